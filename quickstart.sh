@@ -1,0 +1,42 @@
+#!/usr/bin/env bash
+# pelage quick start. On a fresh Debian 12 machine (as root, or with sudo):
+#   ./quickstart.sh run    install what is missing, build, fetch sample meshes, run the default job
+#   ./quickstart.sh test   the same set-up, then the whole test suite (ctest)
+set -euo pipefail
+cd "$(dirname "$0")"
+
+mode="${1:-run}"
+case "$mode" in run|test) ;; *) echo "usage: $0 [run|test]" >&2; exit 2 ;; esac
+
+# --- Debian packages the project builds and runs with (kept in one place) ---
+packages=(
+    cmake g++ make pkg-config ca-certificates
+    libtbb-dev libtinyobjloader-dev nlohmann-json3-dev libcli11-dev libfmt-dev
+    libembree-dev libopenimageio-dev openimageio-tools libopenexr-dev libopencolorio-dev
+    libopencv-core-dev   # Debian's OpenImageIO CMake config names an opencv4 include folder
+    libgtest-dev libgmock-dev libbenchmark-dev
+)
+missing=()
+for p in "${packages[@]}"; do
+    dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if [ ${#missing[@]} -gt 0 ]; then
+    echo "quickstart: installing ${missing[*]}"
+    sudo=""
+    [ "$(id -u)" -eq 0 ] || sudo="sudo"
+    $sudo apt-get update
+    DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y --no-install-recommends "${missing[@]}"
+fi
+
+# --- Build (Release), two jobs: the reference machine has two cores ---
+cmake -S . -B build -DCMAKE_BUILD_TYPE=Release
+cmake --build build -j2
+
+# --- Sample meshes from Debian's libcgal-demo (never committed) ---
+scenes/fetch_meshes.sh
+
+if [ "$mode" = run ]; then
+    build/bin/pelage crps --mesh scenes/meshes/cow.off
+else
+    cd build && ctest --output-on-failure -j2
+fi

@@ -1,0 +1,10 @@
+// The children of `pelage bench`, one file each.
+#pragma once
+
+#include "renderer/cli/common.h"
+
+namespace pelage::cli {
+
+Runner add_bench_crps(CLI::App &bench);
+
+}  // namespace pelage::cli

@@ -1,0 +1,25 @@
+// `pelage bench <what>`: benchmarks of the hot paths, one JSON object on stdout each.
+#include "renderer/cli/bench.h"
+
+#include <vector>
+
+namespace pelage::cli {
+
+Runner add_bench_command(CLI::App &app) {
+    CLI::App *bench = app.add_subcommand("bench", "Benchmarks of the hot paths; each prints JSON");
+    bench->require_subcommand(1);
+    std::vector<std::pair<CLI::App *, Runner>> children;
+    auto add = [&](Runner (*fn)(CLI::App &)) {
+        const size_t before = bench->get_subcommands({}).size();
+        Runner run = fn(*bench);
+        children.emplace_back(bench->get_subcommands({})[before], std::move(run));
+    };
+    add(add_bench_crps);
+    return [children] {
+        for (const auto &[sub, run] : children)
+            if (sub->parsed()) return run();
+        return 2;
+    };
+}
+
+}  // namespace pelage::cli

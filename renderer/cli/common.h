@@ -1,0 +1,49 @@
+// Pieces every subcommand shares: how a subcommand is registered, the --threads and
+// --stats-json options, locating the project's data, timing.
+#pragma once
+
+#include <chrono>
+#include <functional>
+#include <memory>
+#include <string>
+
+#include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
+#include <tbb/global_control.h>
+
+namespace pelage::cli {
+
+// A subcommand registers its options on `app` and returns what runs once parsing
+// succeeded; it returns the exit code (0 ok, 1 runtime failure). Bad input is thrown as
+// pelage::InputError and turned into exit code 2 by main().
+using Runner = std::function<int()>;
+
+Runner add_crps_command(CLI::App &app);
+Runner add_bench_command(CLI::App &app);
+
+// --threads N (0 = all cores). Keep the returned control alive while working.
+struct ThreadOption {
+    int threads = 0;
+    void add_to(CLI::App &app);
+    std::unique_ptr<tbb::global_control> apply() const;
+};
+
+// Writes `j` to `path` atomically (pretty-printed, trailing newline).
+void write_json_file(const std::string &path, const nlohmann::json &j);
+
+// Resolves a path inside the project's data (scenes/...): $PELAGE_DATA_DIR first, then
+// the source tree this binary was built from.
+std::string data_path(const std::string &relative);
+
+class Timer {
+  public:
+    Timer() : m_start(std::chrono::steady_clock::now()) {}
+    double seconds() const {
+        return std::chrono::duration<double>(std::chrono::steady_clock::now() - m_start).count();
+    }
+
+  private:
+    std::chrono::steady_clock::time_point m_start;
+};
+
+}  // namespace pelage::cli

@@ -1,0 +1,147 @@
+// OBJ reader: tinyobjloader does the parsing and polygon triangulation. tinyobjloader is
+// lenient (a malformed number reads as 0, a bad index may be skipped), so a short
+// validating pass first checks the lines that define geometry and reports the first bad
+// one with its line number: we never render a mesh the file did not describe.
+#include <charconv>
+#include <cmath>
+#include <fstream>
+#include <string_view>
+#include <vector>
+
+#ifndef TINYOBJLOADER_USE_DOUBLE
+#define TINYOBJLOADER_USE_DOUBLE  // must match the linked libtinyobjloader_double
+#endif
+#include <tiny_obj_loader.h>
+
+#include "sim/input_error.h"
+#include "sim/mesh_io.h"
+
+namespace pelage::sim {
+namespace {
+
+std::vector<std::string_view> split_ws(std::string_view s) {
+    std::vector<std::string_view> out;
+    size_t i = 0;
+    while (i < s.size()) {
+        while (i < s.size() && std::isspace(static_cast<unsigned char>(s[i]))) ++i;
+        size_t j = i;
+        while (j < s.size() && !std::isspace(static_cast<unsigned char>(s[j]))) ++j;
+        if (j > i) out.push_back(s.substr(i, j - i));
+        i = j;
+    }
+    return out;
+}
+
+// Validates `v` and `f` lines; returns the number of corners of every face in file order.
+std::vector<uint32_t> validate_obj(const std::string &path) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw InputError(path, 0, "", "cannot open file");
+    std::vector<uint32_t> face_corners;
+    std::string line;
+    size_t line_no = 0;
+    int64_t num_v = 0;
+    while (std::getline(in, line)) {
+        ++line_no;
+        if (auto hash = line.find('#'); hash != std::string::npos) line.resize(hash);
+        const auto tok = split_ws(line);
+        if (tok.empty()) continue;
+        auto fail = [&](const std::string &msg) { throw InputError(path, line_no, "", msg); };
+        if (tok[0] == "v") {
+            if (tok.size() < 4) fail("malformed vertex: expected 3 coordinates");
+            for (size_t i = 1; i < 4; ++i) {
+                double x = 0;
+                const auto [end, ec] =
+                    std::from_chars(tok[i].data(), tok[i].data() + tok[i].size(), x);
+                if (ec != std::errc() || end != tok[i].data() + tok[i].size())
+                    fail("malformed coordinate '" + std::string(tok[i]) + "'");
+                if (!std::isfinite(x))
+                    fail("non-finite coordinate '" + std::string(tok[i]) + "'");
+            }
+            ++num_v;
+        } else if (tok[0] == "f") {
+            if (tok.size() < 4) fail("face has " + std::to_string(tok.size() - 1) +
+                                     " corners (a face needs at least 3)");
+            for (size_t i = 1; i < tok.size(); ++i) {
+                const std::string_view t = tok[i];
+                const std::string_view head = t.substr(0, t.find('/'));
+                int64_t idx = 0;
+                const auto [end, ec] =
+                    std::from_chars(head.data(), head.data() + head.size(), idx);
+                if (ec != std::errc() || end != head.data() + head.size())
+                    fail("malformed face corner '" + std::string(t) + "'");
+                const int64_t resolved = idx > 0 ? idx - 1 : num_v + idx;
+                if (idx == 0 || resolved < 0 || resolved >= num_v)
+                    fail("vertex index " + std::to_string(idx) + " out of range (" +
+                         std::to_string(num_v) + " vertices defined so far)");
+            }
+            face_corners.push_back(static_cast<uint32_t>(tok.size() - 1));
+        }
+    }
+    if (num_v == 0 || face_corners.empty())
+        throw InputError(path, 0, "", "empty mesh: no vertices or no faces");
+    return face_corners;
+}
+
+}  // namespace
+
+TriangleMesh read_obj(const std::string &path, MeshReadStats *stats) {
+    const std::vector<uint32_t> face_corners = validate_obj(path);
+
+    tinyobj::ObjReaderConfig config;
+    config.triangulate = true;
+    config.vertex_color = false;
+    config.mtl_search_path = "";  // materials come from the scene, not from .mtl files
+    tinyobj::ObjReader reader;
+    if (!reader.ParseFromFile(path, config))
+        throw InputError(path, 0, "", "OBJ parse error: " + reader.Error());
+
+    const tinyobj::attrib_t &attrib = reader.GetAttrib();
+    TriangleMesh mesh;
+    const size_t nv = attrib.vertices.size() / 3;
+    mesh.positions.resize(nv);
+    for (size_t v = 0; v < nv; ++v)
+        mesh.positions[v] = {attrib.vertices[3 * v], attrib.vertices[3 * v + 1],
+                             attrib.vertices[3 * v + 2]};
+
+    // Per-corner attributes are kept only when every corner has them.
+    bool all_normals = !attrib.normals.empty(), all_uvs = !attrib.texcoords.empty();
+    for (const auto &shape : reader.GetShapes())
+        for (const auto &idx : shape.mesh.indices) {
+            all_normals &= idx.normal_index >= 0;
+            all_uvs &= idx.texcoord_index >= 0;
+        }
+    for (const auto &shape : reader.GetShapes()) {
+        const auto &m = shape.mesh;
+        for (size_t f = 0; f < m.num_face_vertices.size(); ++f) {
+            std::array<VertId, 3> tri{};
+            for (int c = 0; c < 3; ++c) {
+                const tinyobj::index_t idx = m.indices[3 * f + c];
+                tri[c] = static_cast<VertId>(idx.vertex_index);
+                if (all_normals)
+                    mesh.corner_normals.push_back(
+                        {attrib.normals[3 * idx.normal_index],
+                         attrib.normals[3 * idx.normal_index + 1],
+                         attrib.normals[3 * idx.normal_index + 2]});
+                if (all_uvs)
+                    mesh.corner_uvs.push_back({attrib.texcoords[2 * idx.texcoord_index],
+                                               attrib.texcoords[2 * idx.texcoord_index + 1]});
+            }
+            mesh.triangles.push_back(tri);
+        }
+    }
+
+    // Point each triangle back at its source face: an n-gon fans into n - 2 triangles.
+    size_t expected = 0;
+    for (uint32_t n : face_corners) expected += n - 2;
+    if (expected == mesh.triangles.size()) {
+        for (uint32_t f = 0; f < face_corners.size(); ++f)
+            for (uint32_t k = 0; k + 2 < face_corners[f]; ++k) mesh.source_face.push_back(f);
+    } else {  // the triangulator dropped degenerate pieces: fall back to triangle order
+        for (uint32_t t = 0; t < mesh.triangles.size(); ++t) mesh.source_face.push_back(t);
+    }
+    if (stats)
+        for (uint32_t n : face_corners) stats->polygons_triangulated += n > 3;
+    return mesh;
+}
+
+}  // namespace pelage::sim
