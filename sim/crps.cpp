@@ -60,7 +60,10 @@ Crps::Crps(const TriangleMesh &mesh, Topology topo)
             const Vec3d qc = (q[0] + q[1] + q[2]) / 3.0;
             f.y_offset = qc.y;
             f.centre = xz(qc);
-            for (int c = 0; c < 3; ++c) f.v[c] = xz(q[c]) - f.centre;
+            for (int c = 0; c < 3; ++c) {
+                f.v[c] = xz(q[c]) - f.centre;
+                f.bound_radius = std::max(f.bound_radius, length(f.v[c]));
+            }
         }
     });
 

@@ -34,6 +34,7 @@ struct CrpsFrame {  // Teo §4.2, Table 1 (Normal, Yoffset, Center, vertices)
     Vec2d centre;                // (R_t centroid).xz: where local 2D coordinates start
     std::array<Vec2d, 3> v;      // the reference triangle, local 2D coordinates
     double area = 0;
+    double bound_radius = 0;     // max |v[c]|: a circle about the centroid holding the triangle
 };
 
 class Crps {

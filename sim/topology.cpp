@@ -17,15 +17,26 @@ bool walks(const std::array<VertId, 3> &tri, VertId a, VertId b) {
 void build_edges(const TriangleMesh &mesh, Topology &topo) {
     const size_t nt = mesh.num_triangles();
     struct HalfEdge { VertId lo, hi; TriId t; uint8_t k; };
+    // Counting sort by the lower vertex, then a tiny sort inside each vertex's bucket:
+    // linear in the mesh size (a global sort was the build's only n log n step).
+    const size_t nv = mesh.num_vertices();
+    std::vector<uint32_t> bucket(nv + 1, 0);
+    for (TriId t = 0; t < nt; ++t)
+        for (int k = 0; k < 3; ++k)
+            ++bucket[std::min(mesh.triangles[t][k], mesh.triangles[t][(k + 1) % 3]) + 1];
+    for (size_t v = 0; v < nv; ++v) bucket[v + 1] += bucket[v];
     std::vector<HalfEdge> half(3 * nt);
+    std::vector<uint32_t> fill(bucket.begin(), bucket.end() - 1);
     for (TriId t = 0; t < nt; ++t)
         for (uint8_t k = 0; k < 3; ++k) {
             const VertId a = mesh.triangles[t][k], b = mesh.triangles[t][(k + 1) % 3];
-            half[3 * t + k] = {std::min(a, b), std::max(a, b), t, k};
+            half[fill[std::min(a, b)]++] = {std::min(a, b), std::max(a, b), t, k};
         }
-    std::sort(half.begin(), half.end(), [](const HalfEdge &x, const HalfEdge &y) {
-        return std::tie(x.lo, x.hi, x.t, x.k) < std::tie(y.lo, y.hi, y.t, y.k);
-    });
+    for (size_t v = 0; v < nv; ++v)
+        std::sort(half.begin() + bucket[v], half.begin() + bucket[v + 1],
+                  [](const HalfEdge &x, const HalfEdge &y) {
+                      return std::tie(x.hi, x.t, x.k) < std::tie(y.hi, y.t, y.k);
+                  });
     topo.tri_edges.assign(nt, {invalid_id, invalid_id, invalid_id});
     topo.edge_face_row.push_back(0);
     for (size_t i = 0; i < half.size();) {

@@ -28,8 +28,12 @@ bool segments_cross(Vec2d a, Vec2d b, Vec2d c, Vec2d d) {
     return ((d1 > 0 && d2 < 0) || (d1 < 0 && d2 > 0)) && ((d3 > 0 && d4 < 0) || (d3 < 0 && d4 > 0));
 }
 
+// The query region (the master triangle or a point) sits inside the circle
+// (region_centre, region_bound); that circle gives a cheap lower bound on the distance to
+// a candidate's bounding circle, so far candidates skip the exact test.
 template <typename DistanceToRegion>
-void unfold(const Crps &crps, TriId master, double radius, DistanceToRegion &&distance,
+void unfold(const Crps &crps, TriId master, double radius, Vec2d region_centre,
+            double region_bound, DistanceToRegion &&distance,
             std::vector<UnfoldedTriangle> &out, UnfoldScratch &scratch) {
     out.clear();
     scratch.prepare(crps.num_triangles());
@@ -48,6 +52,20 @@ void unfold(const Crps &crps, TriId master, double radius, DistanceToRegion &&di
             if (!scratch.visit(j)) continue;
             const RigidMap2 F = compose(parent.to_master, maps[k]);
             const CrpsFrame &fj = crps.frame(j);
+            // Bounds before the exact test. F maps j's centroid (its local origin) to
+            // (ax, ay); both the region's centre and j's centroid lie inside their shapes, so
+            // the centres' distance bounds the shapes' distance from above, and minus both
+            // bounding radii from below.
+            const double centre_gap = length(Vec2d{F.ax, F.ay} - region_centre);
+            const double lower = centre_gap - region_bound - fj.bound_radius;
+            if (lower > radius) {
+                scratch.unvisit(j);  // another path may bring it closer
+                continue;
+            }
+            if (centre_gap <= radius) {
+                out.push_back({j, parent.depth + 1, F, std::max(lower, 0.0)});
+                continue;
+            }
             const Vec2d mapped[3] = {F.apply(fj.v[0]), F.apply(fj.v[1]), F.apply(fj.v[2])};
             const double d = distance(mapped);
             if (d <= radius) {
@@ -99,14 +117,14 @@ double triangle_triangle_distance(const Vec2d a[3], const Vec2d b[3]) {
 void unfold_around_triangle(const Crps &crps, TriId master, double radius,
                             std::vector<UnfoldedTriangle> &out, UnfoldScratch &scratch) {
     const Vec2d *m = crps.frame(master).v.data();
-    unfold(crps, master, radius,
+    unfold(crps, master, radius, Vec2d{0, 0}, crps.frame(master).bound_radius,
            [m](const Vec2d *mapped) { return triangle_triangle_distance(m, mapped); }, out,
            scratch);
 }
 
 void unfold_around_point(const Crps &crps, TriId master, Vec2d q, double radius,
                          std::vector<UnfoldedTriangle> &out, UnfoldScratch &scratch) {
-    unfold(crps, master, radius,
+    unfold(crps, master, radius, q, 0.0,
            [q](const Vec2d *mapped) { return point_triangle_distance(q, mapped); }, out,
            scratch);
 }

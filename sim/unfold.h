@@ -19,7 +19,9 @@ struct UnfoldedTriangle {
     TriId tri;
     uint32_t depth;        // hops from the master (0 for the master itself)
     RigidMap2 to_master;   // F[tri→master]
-    double distance;       // 2D distance from the query region to the mapped triangle
+    // A lower bound on the 2D distance from the query region to the mapped triangle:
+    // exact when the triangle is near the radius, possibly less for triangles well inside.
+    double distance;
 };
 
 // Reusable per-thread state: a visit stamp per triangle, so repeated unfoldings cost
