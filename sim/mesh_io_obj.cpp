@@ -15,22 +15,10 @@
 
 #include "sim/input_error.h"
 #include "sim/mesh_io.h"
+#include "sim/text_tokens.h"
 
 namespace pelage::sim {
 namespace {
-
-std::vector<std::string_view> split_ws(std::string_view s) {
-    std::vector<std::string_view> out;
-    size_t i = 0;
-    while (i < s.size()) {
-        while (i < s.size() && std::isspace(static_cast<unsigned char>(s[i]))) ++i;
-        size_t j = i;
-        while (j < s.size() && !std::isspace(static_cast<unsigned char>(s[j]))) ++j;
-        if (j > i) out.push_back(s.substr(i, j - i));
-        i = j;
-    }
-    return out;
-}
 
 // Validates `v` and `f` lines; returns the number of corners of every face in file order.
 std::vector<uint32_t> validate_obj(const std::string &path) {
@@ -40,10 +28,11 @@ std::vector<uint32_t> validate_obj(const std::string &path) {
     std::string line;
     size_t line_no = 0;
     int64_t num_v = 0;
+    std::vector<std::string_view> tok;
     while (std::getline(in, line)) {
         ++line_no;
         if (auto hash = line.find('#'); hash != std::string::npos) line.resize(hash);
-        const auto tok = split_ws(line);
+        split_whitespace(line, tok);
         if (tok.empty()) continue;
         auto fail = [&](const std::string &msg) { throw InputError(path, line_no, "", msg); };
         if (tok[0] == "v") {

@@ -10,6 +10,7 @@
 
 #include "sim/input_error.h"
 #include "sim/mesh_io.h"
+#include "sim/text_tokens.h"
 
 namespace pelage::sim {
 namespace {
@@ -23,7 +24,7 @@ class LineTokens {
         while (std::getline(m_in, m_line)) {
             ++m_line_no;
             if (auto hash = m_line.find('#'); hash != std::string::npos) m_line.resize(hash);
-            split();
+            split_whitespace(m_line, m_tokens);
             if (!m_tokens.empty()) return true;
         }
         return false;
@@ -58,19 +59,6 @@ class LineTokens {
     }
 
   private:
-    void split() {
-        m_tokens.clear();
-        const std::string_view s(m_line);
-        size_t i = 0;
-        while (i < s.size()) {
-            while (i < s.size() && std::isspace(static_cast<unsigned char>(s[i]))) ++i;
-            size_t j = i;
-            while (j < s.size() && !std::isspace(static_cast<unsigned char>(s[j]))) ++j;
-            if (j > i) m_tokens.push_back(s.substr(i, j - i));
-            i = j;
-        }
-    }
-
     const std::string &m_path;
     std::istream &m_in;
     std::string m_line;

@@ -223,4 +223,10 @@ Topology build_topology(const TriangleMesh &mesh) {
     return topo;
 }
 
+double mean_edge_length(const TriangleMesh &mesh, const Topology &topo) {
+    double sum = 0;
+    for (const auto &e : topo.edge_vertices) sum += length(mesh.positions[e[1]] - mesh.positions[e[0]]);
+    return topo.num_edges() ? sum / topo.num_edges() : 0.0;
+}
+
 }  // namespace pelage::sim

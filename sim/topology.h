@@ -68,4 +68,7 @@ struct Topology {
 
 Topology build_topology(const TriangleMesh &mesh);
 
+// Mean length of the mesh's (unique) edges: the natural unit for radii on the surface.
+double mean_edge_length(const TriangleMesh &mesh, const Topology &topo);
+
 }  // namespace pelage::sim

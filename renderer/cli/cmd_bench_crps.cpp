@@ -19,12 +19,6 @@ struct BenchCrpsOptions {
     ThreadOption threads;
 };
 
-double mean_edge_length(const sim::TriangleMesh &mesh, const sim::Topology &topo) {
-    double sum = 0;
-    for (const auto &e : topo.edge_vertices) sum += length(mesh.positions[e[1]] - mesh.positions[e[0]]);
-    return sum / std::max<size_t>(topo.num_edges(), 1);
-}
-
 nlohmann::json bench_one(const std::string &path, int repeat) {
     sim::MeshLoadReport report;
     const sim::TriangleMesh mesh = sim::load_mesh(path, &report);
@@ -58,7 +52,7 @@ nlohmann::json bench_one(const std::string &path, int repeat) {
     const double maps_per_second = applied / map_timer.seconds();
 
     // --- Unfolding within two mean edge lengths of each triangle (a sample of 4096) ---
-    const double radius = 2.0 * mean_edge_length(mesh, crps.topology());
+    const double radius = 2.0 * sim::mean_edge_length(mesh, crps.topology());
     sim::UnfoldScratch scratch;
     std::vector<sim::UnfoldedTriangle> out;
     const size_t samples = std::min<size_t>(nt, 4096), stride = std::max<size_t>(nt / samples, 1);

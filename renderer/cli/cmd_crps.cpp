@@ -17,12 +17,6 @@ struct CrpsOptions {
     ThreadOption threads;
 };
 
-double mean_edge_length(const sim::TriangleMesh &mesh, const sim::Topology &topo) {
-    double sum = 0;
-    for (const auto &e : topo.edge_vertices) sum += length(mesh.positions[e[1]] - mesh.positions[e[0]]);
-    return topo.num_edges() ? sum / topo.num_edges() : 0.0;
-}
-
 int run_crps(const CrpsOptions &o) {
     const auto control = o.threads.apply();
     const Timer timer;
@@ -36,7 +30,7 @@ int run_crps(const CrpsOptions &o) {
     for (uint8_t n : topo.num_primary) primary += n;
     const size_t secondary = topo.nbr.size() - primary;
     const double area = s.mesh.surface_area();
-    const double mel = mean_edge_length(s.mesh, topo);
+    const double mel = sim::mean_edge_length(s.mesh, topo);
     const double diag = s.mesh.bounds().diagonal();
 
     fmt::print("pelage crps: {}\n", o.mesh);
