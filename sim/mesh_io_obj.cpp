@@ -15,7 +15,7 @@
 
 #include "sim/input_error.h"
 #include "sim/mesh_io.h"
-#include "sim/text_tokens.h"
+#include "sim/text_lines.h"
 
 namespace pelage::sim {
 namespace {
@@ -29,8 +29,13 @@ std::vector<uint32_t> validate_obj(const std::string &path) {
     size_t line_no = 0;
     int64_t num_v = 0;
     std::vector<std::string_view> tok;
-    while (std::getline(in, line)) {
+    for (;;) {
+        const LineRead r = read_line(in, line);
+        if (r == LineRead::end_of_file) break;
         ++line_no;
+        if (r == LineRead::too_long)
+            throw InputError(path, line_no, "", "line longer than " +
+                                                    std::to_string(max_line_bytes) + " bytes");
         if (auto hash = line.find('#'); hash != std::string::npos) line.resize(hash);
         split_whitespace(line, tok);
         if (tok.empty()) continue;

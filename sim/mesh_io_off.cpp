@@ -10,7 +10,7 @@
 
 #include "sim/input_error.h"
 #include "sim/mesh_io.h"
-#include "sim/text_tokens.h"
+#include "sim/text_lines.h"
 
 namespace pelage::sim {
 namespace {
@@ -21,8 +21,12 @@ class LineTokens {
 
     // Reads the next line that holds at least one token; false at end of file.
     bool next_line() {
-        while (std::getline(m_in, m_line)) {
+        for (;;) {
+            const LineRead r = read_line(m_in, m_line);
+            if (r == LineRead::end_of_file) break;
             ++m_line_no;
+            if (r == LineRead::too_long)
+                fail("line longer than " + std::to_string(max_line_bytes) + " bytes");
             if (auto hash = m_line.find('#'); hash != std::string::npos) m_line.resize(hash);
             split_whitespace(m_line, m_tokens);
             if (!m_tokens.empty()) return true;

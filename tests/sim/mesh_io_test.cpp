@@ -89,6 +89,19 @@ TEST(MeshIo, ErrorsNameTheLine) {
     EXPECT_EQ(error_line(tmp.write("d.obj", "v 0 0 0\nv 1 0 0\nv nan 1 0\nf 1 2 3\n")), 3u);
 }
 
+TEST(MeshIo, HugeLinesAreRejectedWithoutReadingThemWhole) {
+    TempDir tmp;
+    const std::string long_line(3u << 20, '1');
+    EXPECT_EQ(error_line(tmp.write("l.off", "OFF\n3 1 0\n0 0 " + long_line + "\n")), 3u);
+    EXPECT_EQ(error_line(tmp.write("l.obj", "v 0 0 0\nv 0 0 " + long_line + "\n")), 2u);
+}
+
+TEST(MeshIo, WindowsLineEndingsAreAccepted) {
+    TempDir tmp;
+    const auto p = tmp.write("crlf.off", "OFF\r\n3 1 0\r\n0 0 0\r\n1 0 0\r\n0 1 0\r\n3 0 1 2\r\n");
+    EXPECT_EQ(load_mesh(p).num_triangles(), 1u);
+}
+
 TEST(MeshIo, CowAndTriceratopsLoadWithTheirKnownSizes) {
     const TriangleMesh cow = load_mesh(test::sample_mesh("cow.off"));
     EXPECT_EQ(cow.num_triangles(), 5804u);
