@@ -1,9 +1,9 @@
 #include "sim/procedural_mesh.h"
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <numbers>
-#include <regex>
 
 #include "sim/input_error.h"
 
@@ -127,15 +127,28 @@ TriangleMesh make_cylinder(int around, int along, double radius, double height) 
 }
 
 TriangleMesh make_procedural(const std::string &spec) {
-    static const std::regex re(R"(^(sphere|icosphere|torus|plane|cylinder):(\d{1,4})(?:x(\d{1,4}))?$)");
-    std::smatch mt;
-    if (!std::regex_match(spec, mt, re))
+    // kind:A or kind:AxB, with A and B decimal numbers of at most four digits.
+    const auto fail_syntax = [&] {
         throw InputError(spec, 0, "", "malformed procedural mesh (expected sphere:SxS, "
                                       "icosphere:L, torus:UxV, plane:NxN or cylinder:AxL)");
-    const std::string kind = mt[1];
-    const int a = std::stoi(mt[2]);
-    const bool has_b = mt[3].matched;
-    const int b = has_b ? std::stoi(mt[3]) : 0;
+    };
+    const size_t colon = spec.find(':');
+    if (colon == std::string::npos) fail_syntax();
+    const std::string kind = spec.substr(0, colon);
+    if (kind != "sphere" && kind != "icosphere" && kind != "torus" && kind != "plane" &&
+        kind != "cylinder")
+        fail_syntax();
+    const std::string sizes = spec.substr(colon + 1);
+    const size_t x = sizes.find('x');
+    auto number = [&](const std::string &digits) {
+        if (digits.empty() || digits.size() > 4 ||
+            digits.find_first_not_of("0123456789") != std::string::npos)
+            fail_syntax();
+        return std::stoi(digits);
+    };
+    const int a = number(sizes.substr(0, x));
+    const bool has_b = x != std::string::npos;
+    const int b = has_b ? number(sizes.substr(x + 1)) : 0;
     auto need = [&](bool ok, const char *what) {
         if (!ok) throw InputError(spec, 0, "", what);
     };
