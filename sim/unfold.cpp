@@ -34,7 +34,7 @@ bool segments_cross(Vec2d a, Vec2d b, Vec2d c, Vec2d d) {
 template <typename DistanceToRegion>
 void unfold(const Crps &crps, TriId master, double radius, Vec2d region_centre,
             double region_bound, DistanceToRegion &&distance,
-            std::vector<UnfoldedTriangle> &out, UnfoldScratch &scratch) {
+            std::vector<UnfoldedTriangle> &out, UnfoldScratch &scratch, UnfoldPaths paths) {
     out.clear();
     scratch.prepare(crps.num_triangles());
     scratch.begin();
@@ -46,7 +46,8 @@ void unfold(const Crps &crps, TriId master, double radius, Vec2d region_centre,
         const UnfoldedTriangle parent = out[head];
         const auto nbrs = topo.neighbours(parent.tri);
         const auto maps = crps.to_master(parent.tri);
-        for (size_t k = 0; k < nbrs.size(); ++k) {
+        const size_t n = paths == UnfoldPaths::edges_only ? topo.num_primary[parent.tri] : nbrs.size();
+        for (size_t k = 0; k < n; ++k) {
             const TriId j = nbrs[k];
             // Cheap rejection first: already accepted in this unfolding.
             if (!scratch.visit(j)) continue;
@@ -115,18 +116,20 @@ double triangle_triangle_distance(const Vec2d a[3], const Vec2d b[3]) {
 }
 
 void unfold_around_triangle(const Crps &crps, TriId master, double radius,
-                            std::vector<UnfoldedTriangle> &out, UnfoldScratch &scratch) {
+                            std::vector<UnfoldedTriangle> &out, UnfoldScratch &scratch,
+                            UnfoldPaths paths) {
     const Vec2d *m = crps.frame(master).v.data();
     unfold(crps, master, radius, Vec2d{0, 0}, crps.frame(master).bound_radius,
            [m](const Vec2d *mapped) { return triangle_triangle_distance(m, mapped); }, out,
-           scratch);
+           scratch, paths);
 }
 
 void unfold_around_point(const Crps &crps, TriId master, Vec2d q, double radius,
-                         std::vector<UnfoldedTriangle> &out, UnfoldScratch &scratch) {
+                         std::vector<UnfoldedTriangle> &out, UnfoldScratch &scratch,
+                         UnfoldPaths paths) {
     unfold(crps, master, radius, q, 0.0,
            [q](const Vec2d *mapped) { return point_triangle_distance(q, mapped); }, out,
-           scratch);
+           scratch, paths);
 }
 
 }  // namespace pelage::sim
