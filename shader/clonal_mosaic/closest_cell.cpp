@@ -12,8 +12,23 @@ namespace pelage::shader {
 namespace {
 
 constexpr double inf = std::numeric_limits<double>::infinity();
+constexpr uint32_t max_subdivision = 3;
+
+// The barycentric (b1, b2) corners of sub-triangle (i, j, upper) of an n-subdivision.
+std::array<std::array<double, 2>, 3> sub_triangle(uint32_t n, uint32_t i, uint32_t j, bool upper) {
+    const double s = 1.0 / n;
+    if (upper) return {{{(i + 1) * s, j * s}, {(i + 1) * s, (j + 1) * s}, {i * s, (j + 1) * s}}};
+    return {{{i * s, j * s}, {(i + 1) * s, j * s}, {i * s, (j + 1) * s}}};
+}
 
 }  // namespace
+
+struct ClosestCellIndex::Built {
+    TriangleRegions regions{};
+    std::vector<uint32_t> slot_sizes;  // 2n² slots
+    std::vector<Candidate> candidates;
+    std::vector<sim::TriId> candidate_tri;
+};
 
 ClosestCellIndex::ClosestCellIndex(const sim::Crps &crps, const CellTable &cells,
                                    const ClosestCellOptions &options)
@@ -22,14 +37,14 @@ ClosestCellIndex::ClosestCellIndex(const sim::Crps &crps, const CellTable &cells
     const size_t nt = crps.num_triangles();
     double area = 0;
     for (sim::TriId t = 0; t < nt; ++t) area += crps.frame(t).area;
+    m_spacing = std::sqrt(area / std::max<size_t>(cells.size(), 1));
     // First guess of the reach: two mean cell spacings (Walter's r with w_r = 2).
-    m_initial_radius = 2.0 * std::sqrt(area / std::max<size_t>(cells.size(), 1));
+    m_initial_radius = 2.0 * m_spacing;
     // No unfolding reaches farther than the sum of all triangles' diameters.
     for (sim::TriId t = 0; t < nt; ++t) m_max_radius += 2 * crps.frame(t).bound_radius;
 
-    // --- Candidate lists, built in parallel, then concatenated in triangle order ---
-    std::vector<std::vector<Candidate>> per_tri(nt);
-    std::vector<std::vector<sim::TriId>> per_tri_ids(nt);
+    // --- Per triangle, in parallel; then concatenated in triangle order ---
+    std::vector<Built> built(nt);
     struct Scratch {
         sim::UnfoldScratch unfold;
         std::vector<sim::UnfoldedTriangle> unfolded;
@@ -38,97 +53,210 @@ ClosestCellIndex::ClosestCellIndex(const sim::Crps &crps, const CellTable &cells
     tbb::parallel_for(tbb::blocked_range<size_t>(0, nt, 64), [&](const auto &range) {
         Scratch &s = scratch.local();
         for (size_t t = range.begin(); t != range.end(); ++t)
-            build_candidates(crps, static_cast<sim::TriId>(t), s.unfold, s.unfolded, per_tri[t],
-                             per_tri_ids[t]);
+            build_triangle(crps, static_cast<sim::TriId>(t), s.unfold, s.unfolded, built[t]);
     });
-    m_row.assign(nt + 1, 0);
-    size_t cand_cells = 0;
+
+    m_regions.resize(nt);
+    m_slot_row.assign(1, 0);
+    size_t used_slots = 0, cand_cells = 0;
     for (size_t t = 0; t < nt; ++t) {
-        m_row[t + 1] = m_row[t] + static_cast<uint32_t>(per_tri[t].size());
-        m_stats.triangles_without_cells_in_reach += per_tri[t].empty();
-        for (const Candidate &c : per_tri[t]) cand_cells += c.end - c.begin;
+        Built &b = built[t];
+        b.regions.first_slot = static_cast<uint32_t>(m_slot_row.size() - 1);
+        m_regions[t] = b.regions;
+        for (uint32_t size : b.slot_sizes) {
+            m_slot_row.push_back(m_slot_row.back() + size);
+            used_slots += size > 0;
+        }
+        for (const Candidate &c : b.candidates) cand_cells += c.end - c.begin;
+        m_candidates.insert(m_candidates.end(), b.candidates.begin(), b.candidates.end());
+        m_candidate_tri.insert(m_candidate_tri.end(), b.candidate_tri.begin(), b.candidate_tri.end());
+        m_stats.triangles_without_cells_in_reach += b.candidates.empty();
+        b = Built{};
     }
-    m_candidates.reserve(m_row[nt]);
-    m_candidate_tri.reserve(m_row[nt]);
-    for (size_t t = 0; t < nt; ++t) {
-        m_candidates.insert(m_candidates.end(), per_tri[t].begin(), per_tri[t].end());
-        m_candidate_tri.insert(m_candidate_tri.end(), per_tri_ids[t].begin(), per_tri_ids[t].end());
-    }
-    m_stats.mean_candidates = nt ? double(m_candidates.size()) / nt : 0;
-    m_stats.mean_candidate_cells = nt ? double(cand_cells) / nt : 0;
+    m_stats.mean_candidates = used_slots ? double(m_candidates.size()) / used_slots : 0;
+    m_stats.mean_candidate_cells = used_slots ? double(cand_cells) / used_slots : 0;
     m_stats.build_seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
-void ClosestCellIndex::build_candidates(const sim::Crps &crps, sim::TriId t,
-                                        sim::UnfoldScratch &scratch,
-                                        std::vector<sim::UnfoldedTriangle> &unfolded,
-                                        std::vector<Candidate> &out,
-                                        std::vector<sim::TriId> &out_tri) const {
+void ClosestCellIndex::build_triangle(const sim::Crps &crps, sim::TriId t,
+                                      sim::UnfoldScratch &scratch,
+                                      std::vector<sim::UnfoldedTriangle> &unfolded,
+                                      Built &out) const {
     const CellTable &cells = *m_cells;
-    const double b_t = crps.frame(t).bound_radius;
-    // Distances from t's centroid (the local origin) to the nearest and second-nearest
-    // cells of an unfolding.
-    auto two_nearest = [&](double *d1, double *d2) {
-        *d1 = *d2 = inf;
-        for (const sim::UnfoldedTriangle &u : unfolded)
-            for (uint32_t k = cells.row[u.tri]; k < cells.row[u.tri + 1]; ++k) {
-                const sim::Vec2d p = u.to_master.apply({cells.x[k], cells.z[k]});
-                const double d = length(p);
-                if (d < *d1) {
-                    *d2 = *d1;
-                    *d1 = d;
-                } else if (d < *d2) {
-                    *d2 = d;
-                }
-            }
-    };
+    const sim::CrpsFrame &ft = crps.frame(t);
 
-    // Grow the unfolding until it holds every cell within R_t = d_2 + b_t of t. The
-    // second-nearest cell bounds F2 for any point q of t: F2(q) <= |q - c_2| <= d_2 + b_t.
+    // --- Subdivision: about one sub-triangle per cell spacing across, at most 3 ---
+    const uint32_t n = std::clamp<uint32_t>(
+        static_cast<uint32_t>(std::ceil(2 * ft.bound_radius / std::max(m_spacing, 1e-300))), 1,
+        max_subdivision);
+    const sim::Vec2d v0 = ft.v[0], e1 = ft.v[1] - ft.v[0], e2 = ft.v[2] - ft.v[0];
+    const double det = cross(e1, e2);
+    out.regions = {float(v0.x), float(v0.y), float(e2.y / det), float(-e2.x / det),
+                   float(-e1.y / det), float(e1.x / det), n, 0};
+    struct Sub {
+        uint32_t slot;
+        sim::Vec2d v[3], centre;
+        double bound = 0, reach_needed = 0;
+    };
+    std::vector<Sub> subs;
+    for (uint32_t i = 0; i < n; ++i)
+        for (uint32_t j = 0; i + j < n; ++j)
+            for (int upper = 0; upper < 2; ++upper) {
+                if (upper && i + j + 1 >= n) continue;
+                Sub s;
+                s.slot = (i * n + j) * 2 + upper;
+                const auto b = sub_triangle(n, i, j, upper);
+                for (int c = 0; c < 3; ++c) s.v[c] = v0 + e1 * b[c][0] + e2 * b[c][1];
+                s.centre = (s.v[0] + s.v[1] + s.v[2]) / 3.0;
+                for (int c = 0; c < 3; ++c) s.bound = std::max(s.bound, length(s.v[c] - s.centre));
+                subs.push_back(s);
+            }
+
+    // --- Grow t's unfolding until it holds, for every S, all cells within R_S of S ---
     // When fewer than two cells are reachable the radius doubles up to the size of the
-    // whole surface, after which the list holds whatever there is (possibly nothing).
-    double radius = m_initial_radius + b_t;
-    const double max_radius = m_max_radius;
+    // whole surface, after which the lists hold whatever there is (possibly nothing).
+    double radius = m_initial_radius + ft.bound_radius;
     for (int iteration = 0; iteration < 64; ++iteration) {
         sim::unfold_around_triangle(crps, t, radius, unfolded, scratch, m_options.paths);
-        double d1, d2;
-        two_nearest(&d1, &d2);
-        const double needed = d2 + b_t;
-        if (needed <= radius) break;
-        if (radius >= max_radius) break;
-        // The unfolding may take other paths at a larger radius: grow with a margin and
-        // check again.
-        radius = std::isfinite(needed) ? std::min(needed * 1.0001 + 1e-12, max_radius)
-                                       : std::min(2 * radius, max_radius);
+        double needed = 0;
+        for (Sub &s : subs) {
+            double d1 = inf, d2 = inf;
+            for (const sim::UnfoldedTriangle &u : unfolded)
+                for (uint32_t k = cells.row[u.tri]; k < cells.row[u.tri + 1]; ++k) {
+                    const double d = length(u.to_master.apply({cells.x[k], cells.z[k]}) - s.centre);
+                    if (d < d1) { d2 = d1; d1 = d; } else if (d < d2) { d2 = d; }
+                }
+            s.reach_needed = d2 + s.bound;
+            needed = std::max(needed, s.reach_needed);
+        }
+        if (needed <= radius || radius >= m_max_radius) break;
+        // A larger radius may reach triangles by other paths: grow with a margin, re-check.
+        radius = std::isfinite(needed) ? std::min(needed * 1.0001 + 1e-12, m_max_radius)
+                                       : std::min(2 * radius, m_max_radius);
     }
 
-    // --- One candidate per triangle that holds cells, nearest first ---
-    std::vector<std::pair<Candidate, sim::TriId>> list;
-    for (const sim::UnfoldedTriangle &u : unfolded) {
-        const uint32_t begin = cells.row[u.tri], end = cells.row[u.tri + 1];
-        if (begin == end) continue;
-        float reach = 0;
-        for (uint32_t k = begin; k < end; ++k)
-            reach = std::max(reach, std::sqrt(cells.x[k] * cells.x[k] + cells.z[k] * cells.z[k]));
-        const sim::RigidMap2 to_j = u.to_master.inverse();
-        // Round the bounds outward so float rounding can never prune the true nearest.
-        list.push_back({{float(to_j.c), float(to_j.s), float(to_j.ax), float(to_j.ay), begin,
-                         end, reach * (1 + 1e-5f), float(u.distance) * (1 - 1e-5f)},
-                        u.tri});
+    // --- Per sub-triangle: the triangles holding cells within R_S, nearest first ---
+    out.slot_sizes.assign(2 * n * n, 0);
+    std::vector<std::pair<double, size_t>> order;  // (gap, index into unfolded)
+    std::vector<sim::Vec2d> mapped(3 * unfolded.size());
+    for (size_t u = 0; u < unfolded.size(); ++u)
+        for (int c = 0; c < 3; ++c)
+            mapped[3 * u + c] = unfolded[u].to_master.apply(crps.frame(unfolded[u].tri).v[c]);
+    std::sort(subs.begin(), subs.end(), [](const Sub &a, const Sub &b) { return a.slot < b.slot; });
+    for (const Sub &s : subs) {
+        order.clear();
+        for (size_t u = 0; u < unfolded.size(); ++u) {
+            if (cells.count_on(unfolded[u].tri) == 0) continue;
+            const double gap = sim::triangle_triangle_distance(s.v, &mapped[3 * u]);
+            if (gap <= s.reach_needed * (1 + 1e-9)) order.push_back({gap, u});
+        }
+        std::stable_sort(order.begin(), order.end(),
+                         [](const auto &a, const auto &b) { return a.first < b.first; });
+        out.slot_sizes[s.slot] = static_cast<uint32_t>(order.size());
+        for (const auto &[gap, u] : order) {
+            const sim::TriId j = unfolded[u].tri;
+            const uint32_t begin = cells.row[j], end = cells.row[j + 1];
+            float reach = 0;
+            for (uint32_t k = begin; k < end; ++k)
+                reach = std::max(reach, std::sqrt(cells.x[k] * cells.x[k] + cells.z[k] * cells.z[k]));
+            const sim::RigidMap2 to_j = unfolded[u].to_master.inverse();
+            // Round the bounds outward so float rounding can never prune the true nearest.
+            out.candidates.push_back({float(to_j.c), float(to_j.s), float(to_j.ax), float(to_j.ay),
+                                      begin, end, reach * (1 + 1e-5f) + 1e-30f,
+                                      float(gap) * (1 - 1e-5f)});
+            out.candidate_tri.push_back(j);
+        }
     }
-    std::stable_sort(list.begin(), list.end(),
-                     [](const auto &a, const auto &b) { return a.first.gap < b.first.gap; });
-    out.clear();
-    out_tri.clear();
-    for (const auto &[c, tri] : list) {
-        out.push_back(c);
-        out_tri.push_back(tri);
+    // Slots are laid out in slot order; the candidates above were appended in the same
+    // order because `subs` is sorted by slot and unused slots are empty.
+}
+
+uint32_t ClosestCellIndex::slot_of(sim::TriId t, Vec2f q) const {
+    const TriangleRegions &r = m_regions[t];
+    const float dx = q.x - r.v0x, dy = q.y - r.v0y;
+    const float nf = float(r.n);
+    // Clamp to the triangle: hits may sit a rounding error outside it.
+    const float u = std::clamp((r.i00 * dx + r.i01 * dy) * nf, 0.0f, nf);
+    const float v = std::clamp((r.i10 * dx + r.i11 * dy) * nf, 0.0f, nf - u);
+    uint32_t i = std::min(uint32_t(u), r.n - 1), j = std::min(uint32_t(v), r.n - 1);
+    bool upper = (u - float(i)) + (v - float(j)) > 1.0f;
+    if (i + j >= r.n - 1) {  // the last row of sub-triangles has no upper halves
+        j = r.n - 1 - std::min(i, r.n - 1);
+        upper = false;
+    }
+    return r.first_slot + (i * r.n + j) * 2 + (upper ? 1 : 0);
+}
+
+template <bool prune, bool want_f2>
+void ClosestCellIndex::scan(uint32_t slot, Vec2f q, float &best_d2, float &second_d2,
+                            uint32_t &best) const {
+    const float *x = m_cells->x.data(), *z = m_cells->z.data();
+    const uint32_t *id = m_cells->id.data();
+    // D_min of Teo Fig. 6.2: the radius beyond which nothing matters any more — the
+    // second-nearest distance when F2 is wanted, else the nearest.
+    float d_min = std::sqrt(want_f2 ? second_d2 : best_d2);
+    for (uint32_t k = m_slot_row[slot]; k < m_slot_row[slot + 1]; ++k) {
+        const Candidate &c = m_candidates[k];
+        if constexpr (prune) {
+            // Candidates are sorted by their distance from the sub-triangle: none further
+            // can beat the current second-nearest.
+            if (c.gap > d_min) break;
+        }
+        // Reverse neighbour mapping: the query into j's frame, 4 mul + 4 add.
+        const float qx = c.c * q.x - c.s * q.y + c.ax;
+        const float qz = c.s * q.x + c.c * q.y + c.ay;
+        if constexpr (prune) {
+            // j's cells lie within `reach` of its centroid (the origin of its frame).
+            const float r = c.reach + d_min;
+            if (qx * qx + qz * qz > r * r) continue;
+        }
+        bool changed = false;
+        for (uint32_t i = c.begin; i < c.end; ++i) {
+            const float dx = x[i] - qx, dz = z[i] - qz;
+            const float d2 = dx * dx + dz * dz;
+            // The common case: neither nearest nor (when wanted) second.
+            if (d2 > (want_f2 ? second_d2 : best_d2)) continue;
+            if (d2 < best_d2 || (d2 == best_d2 && best != ClosestCell::none && id[i] < id[best])) {
+                if (want_f2 && i != best) second_d2 = best_d2;
+                best_d2 = d2;
+                best = i;
+                changed = true;
+            } else if (want_f2 && d2 < second_d2 && i != best) {
+                second_d2 = d2;
+                changed = true;
+            }
+        }
+        if (changed) d_min = std::sqrt(want_f2 ? second_d2 : best_d2);
     }
 }
 
+ClosestCell ClosestCellIndex::find(sim::TriId t, Vec2f q) const {
+    float best_d2 = std::numeric_limits<float>::infinity(), second_d2 = best_d2;
+    uint32_t best = ClosestCell::none;
+    scan<true, true>(slot_of(t, q), q, best_d2, second_d2, best);
+    return {best, std::sqrt(best_d2), std::sqrt(second_d2)};
+}
+
+ClosestCell ClosestCellIndex::find_nearest(sim::TriId t, Vec2f q) const {
+    float best_d2 = std::numeric_limits<float>::infinity(), second_d2 = best_d2;
+    uint32_t best = ClosestCell::none;
+    scan<true, false>(slot_of(t, q), q, best_d2, second_d2, best);
+    return {best, std::sqrt(best_d2), std::numeric_limits<float>::infinity()};
+}
+
+ClosestCell ClosestCellIndex::find_exhaustive(sim::TriId t, Vec2f q) const {
+    // Every sub-triangle's list: a cell listed twice is the same cell at the same distance.
+    float best_d2 = std::numeric_limits<float>::infinity(), second_d2 = best_d2;
+    uint32_t best = ClosestCell::none;
+    const TriangleRegions &r = m_regions[t];
+    for (uint32_t s = 0; s < 2 * r.n * r.n; ++s) scan<false, true>(r.first_slot + s, q, best_d2, second_d2, best);
+    return {best, std::sqrt(best_d2), std::sqrt(second_d2)};
+}
+
 float ClosestCellIndex::distance_to_cell(sim::TriId t, Vec2f q, uint32_t cell) const {
-    for (uint32_t k = m_row[t]; k < m_row[t + 1]; ++k) {
+    const uint32_t slot = slot_of(t, q);
+    for (uint32_t k = m_slot_row[slot]; k < m_slot_row[slot + 1]; ++k) {
         const Candidate &c = m_candidates[k];
         if (cell < c.begin || cell >= c.end) continue;
         const float qx = c.c * q.x - c.s * q.y + c.ax, qz = c.s * q.x + c.c * q.y + c.ay;
@@ -136,44 +264,5 @@ float ClosestCellIndex::distance_to_cell(sim::TriId t, Vec2f q, uint32_t cell) c
     }
     return std::numeric_limits<float>::infinity();
 }
-
-template <bool prune>
-ClosestCell ClosestCellIndex::search(sim::TriId t, Vec2f q) const {
-    const CellTable &cells = *m_cells;
-    const float *x = cells.x.data(), *z = cells.z.data();
-    const uint32_t *id = cells.id.data();
-    float best_d2 = std::numeric_limits<float>::infinity(), second_d2 = best_d2;
-    uint32_t best = ClosestCell::none;
-    for (uint32_t k = m_row[t]; k < m_row[t + 1]; ++k) {
-        const Candidate &c = m_candidates[k];
-        if constexpr (prune) {
-            // Candidates are sorted by their distance from t: none further can do better
-            // than the current second-nearest (D_min, Teo Fig. 6.2).
-            if (c.gap * c.gap > second_d2) break;
-        }
-        // Reverse neighbour mapping: the query into j's frame, 4 mul + 4 add.
-        const float qx = c.c * q.x - c.s * q.y + c.ax;
-        const float qz = c.s * q.x + c.c * q.y + c.ay;
-        if constexpr (prune) {
-            const float beyond = std::sqrt(qx * qx + qz * qz) - c.reach;
-            if (beyond > 0 && beyond * beyond > second_d2) continue;
-        }
-        for (uint32_t i = c.begin; i < c.end; ++i) {
-            const float dx = x[i] - qx, dz = z[i] - qz;
-            const float d2 = dx * dx + dz * dz;
-            if (d2 < best_d2 || (d2 == best_d2 && id[i] < id[best])) {
-                second_d2 = best_d2;
-                best_d2 = d2;
-                best = i;
-            } else if (d2 < second_d2) {
-                second_d2 = d2;
-            }
-        }
-    }
-    return {best, std::sqrt(best_d2), std::sqrt(second_d2)};
-}
-
-template ClosestCell ClosestCellIndex::search<true>(sim::TriId, Vec2f) const;
-template ClosestCell ClosestCellIndex::search<false>(sim::TriId, Vec2f) const;
 
 }  // namespace pelage::shader

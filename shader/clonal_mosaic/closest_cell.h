@@ -7,16 +7,19 @@
 // cell into t's frame, visits triangles outward from t, and shrinks the search radius
 // D_min whenever a closer cell turns up.
 //
-// What we precompute, once per triangle t (Teo's method, kept, made fast):
+// What we precompute (Teo's method, kept, made fast). Each triangle t is split into n_t²
+// sub-triangles S (regular subdivision in barycentric coordinates; n_t grows with the
+// triangle's size in cell spacings, up to 3), and for each S:
 //   * the candidate triangles: those of t's breadth-first unfolding (sim/unfold.h) that
-//     hold cells and lie within R_t of t, where R_t = d_2 + b_t (d_2: distance from t's
-//     centroid to its second-nearest cell, b_t: t's bounding radius). Every cell that can
-//     be the nearest or second-nearest for some point of t is within R_t of t.
-//   * per candidate, the reverse map F[t→j] in float, the distance from t to j (a lower
-//     bound for any query in t) and the radius of the circle about j's centroid that
-//     holds j's cells.
+//     hold cells and lie within R_S = d_2 + b_S of S (d_2: distance from S's centroid to
+//     its second-nearest cell, b_S: S's bounding radius about that centroid). Every cell
+//     that can be the nearest or second-nearest for some point of S is within R_S of S:
+//     F2(q) <= |q - c_2| <= d_2 + b_S.
+//   * per candidate, the reverse map F[t→j] in float, the distance from S to j (a lower
+//     bound for any query in S) and the radius of the circle about j's centroid that
+//     holds j's cells;
 //   * candidates sorted by that distance, so the loop stops at the first one farther
-//     than the current D_min (Teo's adaptive radius).
+//     than the current D_min (Teo's adaptive radius; we keep the second-nearest, F2).
 // By default the unfolding walks edges only (sim/unfold.h, UnfoldPaths): the two
 // triangles on either side of an edge then see identical maps for every triangle reached
 // through that edge, which reduces Teo's "cracks" (§6.3); `pelage bench lookup` measures
@@ -52,7 +55,7 @@ struct ClosestCellOptions {
 
 struct ClosestCellStats {
     double build_seconds = 0;
-    double mean_candidates = 0;       // triangles per candidate list
+    double mean_candidates = 0;       // triangles per candidate list (per sub-triangle)
     double mean_candidate_cells = 0;  // cells held by those triangles
     size_t triangles_without_cells_in_reach = 0;
 };
@@ -62,10 +65,14 @@ class ClosestCellIndex {
     ClosestCellIndex(const sim::Crps &crps, const CellTable &cells,
                      const ClosestCellOptions &options = {});
 
-    // Nearest cell (and F2) to point q of triangle t, with Teo's pruning.
-    ClosestCell find(sim::TriId t, Vec2f q) const { return search<true>(t, q); }
-    // The same candidates without any pruning: the reference the tests compare against.
-    ClosestCell find_exhaustive(sim::TriId t, Vec2f q) const { return search<false>(t, q); }
+    // Nearest cell (and F2) to point q (local CRPS coordinates) of triangle t, with Teo's
+    // pruning, searching q's sub-triangle list.
+    ClosestCell find(sim::TriId t, Vec2f q) const;
+    // The nearest cell only (f2 left infinite): prunes harder, for hard-edged patterns.
+    ClosestCell find_nearest(sim::TriId t, Vec2f q) const;
+    // The candidates of every sub-triangle of t, without any pruning: the reference the
+    // tests compare find() against (it checks the sub-triangle radii too).
+    ClosestCell find_exhaustive(sim::TriId t, Vec2f q) const;
 
     // Distance from (t, q) to one cell through t's candidate map of the cell's triangle;
     // infinity when that triangle is not a candidate of t. For diagnostics (cracks).
@@ -83,16 +90,26 @@ class ClosestCellIndex {
     };
     static_assert(sizeof(Candidate) == 32);
 
-    template <bool prune>
-    ClosestCell search(sim::TriId t, Vec2f q) const;
-    void build_candidates(const sim::Crps &crps, sim::TriId t, sim::UnfoldScratch &scratch,
-                          std::vector<sim::UnfoldedTriangle> &unfolded,
-                          std::vector<Candidate> &out, std::vector<sim::TriId> &out_tri) const;
+    // Where q falls: v0 + [e1 e2] (b1, b2) = q, inverted per triangle; n = subdivision.
+    struct TriangleRegions {  // 32 bytes
+        float v0x, v0y, i00, i01, i10, i11;
+        uint32_t n;
+        uint32_t first_slot;  // slots (i * n + j) * 2 + upper, 2n² of them, some unused
+    };
+    static_assert(sizeof(TriangleRegions) == 32);
+    struct Built;  // one triangle's regions while building
+
+    uint32_t slot_of(sim::TriId t, Vec2f q) const;
+    template <bool prune, bool want_f2>
+    void scan(uint32_t slot, Vec2f q, float &best_d2, float &second_d2, uint32_t &best) const;
+    void build_triangle(const sim::Crps &crps, sim::TriId t, sim::UnfoldScratch &scratch,
+                        std::vector<sim::UnfoldedTriangle> &unfolded, Built &out) const;
 
     const CellTable *m_cells;
     ClosestCellOptions m_options;
-    double m_initial_radius = 0, m_max_radius = 0;
-    std::vector<uint32_t> m_row;  // candidates of t: [m_row[t], m_row[t + 1])
+    double m_initial_radius = 0, m_max_radius = 0, m_spacing = 0;
+    std::vector<TriangleRegions> m_regions;
+    std::vector<uint32_t> m_slot_row;  // candidates of slot s: [m_slot_row[s], m_slot_row[s + 1])
     std::vector<Candidate> m_candidates;
     std::vector<sim::TriId> m_candidate_tri;  // parallel to m_candidates; not in the hot loop
     ClosestCellStats m_stats;
