@@ -1,6 +1,8 @@
 #include "sim/cell_types.h"
 
+#include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <set>
 #include <sstream>
@@ -321,6 +323,29 @@ Preset load_preset_file(const std::string &path) {
     std::ostringstream ss;
     ss << in.rdbuf();
     return parse_preset(ss.str(), path);
+}
+
+}  // namespace pelage::sim
+
+namespace pelage::sim {
+
+Preset load_preset(const std::string &name_or_path, const std::string &presets_dir) {
+    const bool is_path = name_or_path.find('/') != std::string::npos ||
+                         (name_or_path.size() > 5 && name_or_path.ends_with(".json"));
+    if (is_path) return load_preset_file(name_or_path);
+    const std::filesystem::path file = std::filesystem::path(presets_dir) / (name_or_path + ".json");
+    if (!std::filesystem::exists(file)) {
+        std::vector<std::string> names;
+        std::error_code ec;
+        for (const auto &e : std::filesystem::directory_iterator(presets_dir, ec))
+            if (e.path().extension() == ".json") names.push_back(e.path().stem().string());
+        std::sort(names.begin(), names.end());
+        std::string list;
+        for (const auto &n : names) list += (list.empty() ? "" : ", ") + n;
+        throw InputError("", 0, "--preset", "unknown preset '" + name_or_path + "' (available: " +
+                                                (list.empty() ? "none found in " + presets_dir : list) + ")");
+    }
+    return load_preset_file(file.string());
 }
 
 }  // namespace pelage::sim

@@ -104,3 +104,11 @@ Preset parse_preset(const std::string &json_text, const std::string &file);
 Preset load_preset_file(const std::string &path);
 
 }  // namespace pelage::sim
+
+namespace pelage::sim {
+
+// A preset by name ("giraffe-reticulata" → presets_dir/giraffe-reticulata.json) or by
+// path (anything ending in .json or containing '/'). Unknown names list what exists.
+Preset load_preset(const std::string &name_or_path, const std::string &presets_dir);
+
+}  // namespace pelage::sim
