@@ -89,6 +89,27 @@ void CmSimulation::initialize(uint64_t override_cells) {
     std::vector<double> cumulative(nt);
     double sum = 0;
     for (TriId t = 0; t < nt; ++t) cumulative[t] = (sum += m_crps.frame(t).area);
+    // --- Initial types: exactly round(P_k·n) cells of type k (largest remainder), in a
+    //     seeded random order. Walter lets "the system" pick F cells at random; exact
+    //     proportions remove the binomial spread of the few founders (20 F cells in
+    //     the reticulata run), which otherwise dominates the final counts. ---
+    std::vector<uint8_t> initial_type;
+    {
+        std::vector<uint64_t> count(m_types.size());
+        std::vector<std::pair<double, int>> remainder;
+        uint64_t assigned = 0;
+        for (int k = 0; k < m_types.size(); ++k) {
+            const double exact = m_types[k].initial_probability * double(n);
+            count[k] = static_cast<uint64_t>(std::floor(exact));
+            assigned += count[k];
+            remainder.push_back({-(exact - std::floor(exact)), k});  // largest first, then lower k
+        }
+        std::sort(remainder.begin(), remainder.end());
+        for (size_t i = 0; assigned < n; ++i, ++assigned) ++count[remainder[i % remainder.size()].second];
+        for (int k = 0; k < m_types.size(); ++k) initial_type.insert(initial_type.end(), count[k], uint8_t(k));
+        CounterRng shuffle(m_seed, RandomStream::initial_type, 0);
+        for (uint64_t i = n; i > 1; --i) std::swap(initial_type[i - 1], initial_type[shuffle.next_u64() % i]);
+    }
     for (uint64_t i = 0; i < n; ++i) {
         CounterRng rng(m_seed, RandomStream::initial_position, i);
         const double u = rng.uniform() * sum;
@@ -97,8 +118,7 @@ void CmSimulation::initialize(uint64_t override_cells) {
         const double s = std::sqrt(rng.uniform()), v = rng.uniform();
         const auto &f = m_crps.frame(t);
         const Vec2d p = f.v[0] * (1 - s) + f.v[1] * (s * (1 - v)) + f.v[2] * (s * v);
-        CounterRng type_rng(m_seed, RandomStream::initial_type, i);
-        m_cells.add({t, p}, static_cast<uint8_t>(m_types.draw_initial(type_rng.uniform())));
+        m_cells.add({t, p}, initial_type[i]);
     }
     m_stats.initial_cells = n;
 
