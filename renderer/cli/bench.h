@@ -7,5 +7,6 @@ namespace pelage::cli {
 
 Runner add_bench_crps(CLI::App &bench);
 Runner add_bench_lookup(CLI::App &bench);
+Runner add_bench_sim(CLI::App &bench);
 
 }  // namespace pelage::cli

@@ -23,6 +23,9 @@ int main(int argc, char **argv) {
         commands.emplace_back(app.get_subcommands({})[before], std::move(run));
     };
     add(cli::add_crps_command);
+    add(cli::add_sim_command);
+    add(cli::add_stats_command);
+    add(cli::add_preview_command);
     add(cli::add_bench_command);
 
     try {
