@@ -6,5 +6,6 @@
 namespace pelage::cli {
 
 Runner add_bench_crps(CLI::App &bench);
+Runner add_bench_render(CLI::App &bench);
 
 }  // namespace pelage::cli

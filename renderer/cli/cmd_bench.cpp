@@ -15,6 +15,7 @@ Runner add_bench_command(CLI::App &app) {
         children.emplace_back(bench->get_subcommands({})[before], std::move(run));
     };
     add(add_bench_crps);
+    add(add_bench_render);
     return [children] {
         for (const auto &[sub, run] : children)
             if (sub->parsed()) return run();

@@ -20,6 +20,8 @@ using Runner = std::function<int()>;
 
 Runner add_crps_command(CLI::App &app);
 Runner add_bench_command(CLI::App &app);
+Runner add_render_command(CLI::App &app);
+Runner add_shaders_command(CLI::App &app);
 
 // --threads N (0 = all cores). Keep the returned control alive while working.
 struct ThreadOption {

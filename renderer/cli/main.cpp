@@ -23,6 +23,8 @@ int main(int argc, char **argv) {
         commands.emplace_back(app.get_subcommands({})[before], std::move(run));
     };
     add(cli::add_crps_command);
+    add(cli::add_render_command);
+    add(cli::add_shaders_command);
     add(cli::add_bench_command);
 
     try {
