@@ -371,7 +371,6 @@ SceneDesc parse_scene(const std::string &text, const std::string &path) {
         o.material = mat;
         scene.objects.push_back(std::move(o));
     }
-    if (scene.objects.empty() && scene.lights.empty()) r.fail("objects", "the scene is empty (no objects, no lights)");
 
     if (const json *v = r.take("integrator")) {
         Reader ir(*v, "integrator", scene);
@@ -380,6 +379,7 @@ SceneDesc parse_scene(const std::string &text, const std::string &path) {
         ir.finish();
     }
     r.finish();
+    if (scene.objects.empty() && scene.lights.empty()) r.fail("objects", "the scene is empty (no objects, no lights)");
     return scene;
 }
 
