@@ -3,6 +3,7 @@
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 
+#include <algorithm>
 #include <chrono>
 
 #include "renderer/progress.h"
@@ -11,7 +12,6 @@ namespace pelage::renderer {
 
 namespace {
 constexpr int tile_size = 16;
-constexpr int max_passes = 8;
 }  // namespace
 
 RenderResult render(const Scene &scene, const RenderOptions &opt) {
@@ -26,8 +26,10 @@ RenderResult render(const Scene &scene, const RenderOptions &opt) {
     result.film = std::make_unique<Film>(W, H);
     const int tiles_x = (W + tile_size - 1) / tile_size, tiles_y = (H + tile_size - 1) / tile_size;
     const int num_tiles = tiles_x * tiles_y;
-    const int per_pass = (spp + max_passes - 1) / max_passes;
-    const int passes = (spp + per_pass - 1) / per_pass;
+    // Passes of 1, 1, 2, 4, 8 ... samples: an early stop still has a whole image.
+    std::vector<int> bounds = {0};
+    while (bounds.back() < spp) bounds.push_back(std::min(spp, std::max(1, 2 * bounds.back())));
+    const int passes = int(bounds.size()) - 1;
 
     tbb::enumerable_thread_specific<RenderStats> stats;
     tbb::enumerable_thread_specific<std::vector<RecordedRay>> logs;
@@ -35,7 +37,7 @@ RenderResult render(const Scene &scene, const RenderOptions &opt) {
     std::atomic<bool> stopped{false};
 
     for (int pass = 0; pass < passes && !stopped.load(); ++pass) {
-        const int s0 = pass * per_pass, s1 = std::min(spp, s0 + per_pass);
+        const int s0 = bounds[pass], s1 = bounds[pass + 1];
         tbb::parallel_for(tbb::blocked_range<int>(0, num_tiles, 1), [&](const tbb::blocked_range<int> &range) {
             RenderStats &st = stats.local();
             std::vector<RecordedRay> *log = opt.record_rays ? &logs.local() : nullptr;

@@ -1,4 +1,4 @@
-// Rendering a scene: progressive passes of samples over all pixels, each pass a TBB
+// Rendering a scene: progressive passes of 1, 1, 2, 4, 8 ... samples over all pixels, each pass a TBB
 // parallel loop over 16×16 tiles. Every pixel's samples are summed in sample order, and
 // random numbers depend only on (seed, frame, x, y, sample), so the image is bit-identical
 // at any thread count. A cancel request stops at the next tile; the film then holds all

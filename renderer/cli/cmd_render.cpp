@@ -116,8 +116,8 @@ int run(const RenderCliOptions &o) {
                                                  " non-finite samples dropped").c_str()
                                               : "");
     if (r.interrupted) {
-        std::fprintf(stderr, "pelage render: interrupted; wrote the %d completed samples per pixel to %s\n",
-                     r.spp_done, output.c_str());
+        std::fprintf(stderr, "pelage render: interrupted; wrote %s with %d samples in every pixel (more in some)\n",
+                     output.c_str(), r.spp_done);
         return 1;
     }
     return 0;
