@@ -53,14 +53,12 @@ PathIntegrator::PathIntegrator(const Scene &scene, const Camera &camera, const P
 
 void PathIntegrator::render_tile(Film &film, Sampler &sampler, int x0, int y0, int x1, int y1, int s0,
                                  int s1, RenderStats &stats, std::vector<RecordedRay> *log) const {
-    const float r = m_filter.radius();
     for (int y = y0; y < y1; ++y)
         for (int x = x0; x < x1; ++x)
             for (int s = s0; s < s1; ++s) {
                 sampler.start_pixel_sample(uint32_t(x), uint32_t(y), uint32_t(s));
-                // --- Spread samples over the filter's support; weight by the filter ---
-                const float dx = (2 * sampler.get_1d() - 1) * r, dy = (2 * sampler.get_1d() - 1) * r;
-                const float w = m_filter.eval(dx, dy);
+                // --- Offsets drawn from the filter: every sample has weight 1 ---
+                const float dx = m_filter.sample_1d(sampler.get_1d()), dy = m_filter.sample_1d(sampler.get_1d());
                 const float lu = sampler.get_1d(), lv = sampler.get_1d();
                 const CameraRay ray = m_camera.generate(x + 0.5f + dx, y + 0.5f + dy, lu, lv);
                 FilmSample fs;
@@ -73,7 +71,7 @@ void PathIntegrator::render_tile(Film &film, Sampler &sampler, int x0, int y0, i
                     ++stats.nonfinite_samples;
                     continue;
                 }
-                if (w > 0) film.add(x, y, w, fs);
+                film.add(x, y, 1.0f, fs);
             }
 }
 
