@@ -8,5 +8,6 @@ namespace pelage::cli {
 Runner add_bench_crps(CLI::App &bench);
 Runner add_bench_lookup(CLI::App &bench);
 Runner add_bench_sim(CLI::App &bench);
+Runner add_bench_render(CLI::App &bench);
 
 }  // namespace pelage::cli

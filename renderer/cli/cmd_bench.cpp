@@ -17,6 +17,7 @@ Runner add_bench_command(CLI::App &app) {
     add(add_bench_crps);
     add(add_bench_lookup);
     add(add_bench_sim);
+    add(add_bench_render);
     return [children] {
         for (const auto &[sub, run] : children)
             if (sub->parsed()) return run();

@@ -2,9 +2,12 @@
 // and writes the .cells file (sim/cm_simulation.h, sim/cells_file.h). The keys of
 // --stats-json are a contract (issue 3): triangles, area, cells_by_type, spot_fraction,
 // divisions, relax_steps, seconds.
+#include <algorithm>
+
 #include <fmt/core.h>
 
 #include "renderer/cli/common.h"
+#include "renderer/progress.h"
 #include "sim/cells_file.h"
 #include "sim/cm_simulation.h"
 #include "sim/input_error.h"
@@ -31,9 +34,15 @@ int run_sim(const SimOptions &o) {
 
     sim::CmSimulation simulation(surface.crps, preset.types, preset.params, o.seed);
     {
-        Progress progress("pelage sim");
+        renderer::Progress progress("pelage sim", 1000, renderer::Progress::stderr_is_tty());
         simulation.initialize(o.cells);
-        simulation.run([&](double f) { progress.update(f); });
+        uint64_t shown = 0;
+        simulation.run([&](double f) {
+            const uint64_t now = static_cast<uint64_t>(std::clamp(f, 0.0, 1.0) * 1000);
+            if (now > shown) progress.advance(now - shown);
+            shown = std::max(shown, now);
+        });
+        progress.finish();
     }
     const sim::SimStats &st = simulation.stats();
     const nlohmann::json params = {

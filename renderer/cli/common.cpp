@@ -2,7 +2,6 @@
 
 #include <cstdio>
 #include <cstdlib>
-#include <unistd.h>
 #include <filesystem>
 
 #include "sim/atomic_file.h"
@@ -28,23 +27,6 @@ std::string data_path(const std::string &relative) {
     if (const char *dir = std::getenv("PELAGE_DATA_DIR"); dir && *dir)
         return (std::filesystem::path(dir) / relative).string();
     return (std::filesystem::path(PELAGE_SOURCE_DIR) / relative).string();
-}
-
-Progress::Progress(std::string label) : m_label(std::move(label)), m_tty(isatty(fileno(stderr)) != 0) {}
-
-Progress::~Progress() {
-    if (m_tty && m_last >= 0) std::fprintf(stderr, "\n");
-}
-
-void Progress::update(double fraction) {
-    if (!m_tty) return;
-    const int percent = static_cast<int>(fraction * 100);
-    if (percent == m_last) return;
-    m_last = percent;
-    const int filled = percent * 30 / 100;
-    std::fprintf(stderr, "\r%s [%.*s%*s] %3d%%", m_label.c_str(), filled,
-                 "##############################", 30 - filled, "", percent);
-    std::fflush(stderr);
 }
 
 }  // namespace pelage::cli

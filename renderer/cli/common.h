@@ -24,18 +24,8 @@ Runner add_sim_command(CLI::App &app);
 Runner add_stats_command(CLI::App &app);
 Runner add_preview_command(CLI::App &app);
 
-// A progress bar on stderr, drawn only when stderr is a terminal (quiet in CI/pipes).
-class Progress {
-  public:
-    explicit Progress(std::string label);
-    ~Progress();
-    void update(double fraction);
-
-  private:
-    std::string m_label;
-    bool m_tty;
-    int m_last = -1;
-};
+Runner add_render_command(CLI::App &app);
+Runner add_shaders_command(CLI::App &app);
 
 // --threads N (0 = all cores). Keep the returned control alive while working.
 struct ThreadOption {

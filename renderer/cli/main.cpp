@@ -26,6 +26,8 @@ int main(int argc, char **argv) {
     add(cli::add_sim_command);
     add(cli::add_stats_command);
     add(cli::add_preview_command);
+    add(cli::add_render_command);
+    add(cli::add_shaders_command);
     add(cli::add_bench_command);
 
     try {

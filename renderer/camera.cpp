@@ -1,0 +1,34 @@
+#include "renderer/camera.h"
+
+#include <cmath>
+
+#include "renderer/sampling.h"
+
+namespace pelage::renderer {
+
+Camera::Camera(const CameraDesc &d, int width, int height)
+    : m_pos(d.position), m_width(width), m_height(height) {
+    m_w = normalize(d.look_at - d.position);
+    m_u = normalize(cross(m_w, d.up));
+    m_v = cross(m_u, m_w);
+    m_tan_half_h = std::tan(0.5f * d.fov_deg * pi / 180);
+    m_aspect = float(width) / float(height);
+    m_lens_radius = d.type == CameraDesc::Type::thin_lens ? d.aperture_radius : 0.0f;
+    m_focus = d.focus_distance > 0 ? d.focus_distance : length(d.look_at - d.position);
+}
+
+CameraRay Camera::generate(float x, float y, float u1, float u2) const {
+    // Point on the image plane at distance 1 in camera space.
+    const float sx = (2 * x / m_width - 1) * m_tan_half_h * m_aspect;
+    const float sy = (1 - 2 * y / m_height) * m_tan_half_h;
+    Vec3f dir = m_u * sx + m_v * sy + m_w;
+    if (m_lens_radius <= 0) return {m_pos, normalize(dir)};
+    // --- Thin lens: aim from a lens point at the in-focus point ---
+    float lx, ly;
+    sample_disk(u1, u2, &lx, &ly);
+    const Vec3f lens = m_u * (lx * m_lens_radius) + m_v * (ly * m_lens_radius);
+    const Vec3f focus = dir * m_focus;  // the focus plane is at depth m_focus along m_w
+    return {m_pos + lens, normalize(focus - lens)};
+}
+
+}  // namespace pelage::renderer

@@ -1,0 +1,143 @@
+// `pelage bench render`: throughput of the full path tracer against raw Embree on the same
+// rays. The tracer's rays (camera, secondary, shadow) are recorded in one 1-spp render,
+// then replayed through rtcIntersect1 alone: the hardware limit for this scene, since the
+// tracer cannot trace faster than Embree finds hits. Also reported: the replay with the
+// tracer's own calls (rtcOccluded1 for shadow rays), and the 1 → N thread scaling.
+#include <tbb/global_control.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <iostream>
+#include <thread>
+
+#include "renderer/cli/bench.h"
+#include "renderer/render.h"
+#include "renderer/scene_file.h"
+#include "sim/input_error.h"
+
+namespace pelage::cli {
+namespace {
+
+using namespace pelage::renderer;
+
+struct BenchRenderOptions {
+    std::string scene, res = "1280x720";
+    int spp = 4, repeat = 1;
+};
+
+double replay(RTCScene scene, const std::vector<std::vector<RecordedRay>> &logs, bool occluded_for_shadows) {
+    constexpr size_t block = 4096;
+    std::vector<std::pair<const RecordedRay *, size_t>> blocks;
+    for (const auto &l : logs)
+        for (size_t i = 0; i < l.size(); i += block) blocks.emplace_back(l.data() + i, std::min(block, l.size() - i));
+    const Timer t;
+    tbb::parallel_for(size_t(0), blocks.size(), [&](size_t b) {
+        const auto [rays, n] = blocks[b];
+        for (size_t i = 0; i < n; ++i) {
+            const RecordedRay &r = rays[i];
+            RTCIntersectContext ctx;
+            rtcInitIntersectContext(&ctx);
+            ctx.flags = r.kind == 0 ? RTC_INTERSECT_CONTEXT_FLAG_COHERENT : RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT;
+            RTCRayHit rh;
+            rh.ray.org_x = r.o[0]; rh.ray.org_y = r.o[1]; rh.ray.org_z = r.o[2]; rh.ray.tnear = 0;
+            rh.ray.dir_x = r.d[0]; rh.ray.dir_y = r.d[1]; rh.ray.dir_z = r.d[2]; rh.ray.time = 0;
+            rh.ray.tfar = r.tfar; rh.ray.mask = 0xffffffffu; rh.ray.id = 0; rh.ray.flags = 0;
+            if (occluded_for_shadows && r.kind == 2) {
+                rtcOccluded1(scene, &ctx, &rh.ray);
+            } else {
+                rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+                rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+                rtcIntersect1(scene, &ctx, &rh);
+            }
+        }
+    });
+    return t.seconds();
+}
+
+int run(const BenchRenderOptions &o) {
+    const std::string path = o.scene.empty() ? data_path("scenes/cow.json") : o.scene;
+    SceneDesc desc = load_scene_file(path);
+    int w = 0, h = 0;
+    if (std::sscanf(o.res.c_str(), "%dx%d", &w, &h) != 2 || w < 1 || h < 1)
+        throw InputError("", 0, "--res", "\"" + o.res + "\": expected WIDTHxHEIGHT");
+    desc.film.width = w;
+    desc.film.height = h;
+    desc.film.spp = o.spp;
+    const PluginRegistry plugins;
+    const Scene scene(desc, plugins);
+    const int cores = int(std::max(1u, std::thread::hardware_concurrency()));
+
+    // --- The path tracer at 1 thread and at all cores (best of `repeat`) ---
+    auto timed_render = [&](int threads) {
+        tbb::global_control c(tbb::global_control::max_allowed_parallelism, size_t(threads));
+        RenderResult best;
+        for (int i = 0; i < o.repeat; ++i) {
+            RenderResult r = render(scene, RenderOptions{});
+            if (i == 0 || r.seconds < best.seconds) best = std::move(r);
+        }
+        return best;
+    };
+    const RenderResult r1 = timed_render(1);
+    const RenderResult rn = timed_render(cores);
+    const double pt_rays_per_second = double(rn.stats.rays()) / rn.seconds;
+
+    // --- Record one 1-spp render's rays and replay them through raw Embree ---
+    SceneDesc one = desc;
+    one.film.spp = 1;
+    const Scene scene1(one, plugins);
+    RenderOptions rec;
+    rec.record_rays = true;
+    tbb::global_control c(tbb::global_control::max_allowed_parallelism, size_t(cores));
+    const RenderResult recorded = render(scene1, rec);
+    size_t recorded_rays = 0;
+    for (const auto &l : recorded.rays) recorded_rays += l.size();
+    double t_intersect = 1e300, t_mixed = 1e300;
+    for (int i = 0; i < std::max(1, o.repeat); ++i) {
+        t_intersect = std::min(t_intersect, replay(scene1.geometry().scene(), recorded.rays, false));
+        t_mixed = std::min(t_mixed, replay(scene1.geometry().scene(), recorded.rays, true));
+    }
+    const double embree_rps = recorded_rays / t_intersect, mixed_rps = recorded_rays / t_mixed;
+    // The tracer's own throughput on the recorded 1-spp render (bookkeeping excluded):
+    nlohmann::json j = {
+        {"benchmark", "render"},
+        {"scene", path},
+        {"width", w},
+        {"height", h},
+        {"spp", o.spp},
+        {"threads", cores},
+        {"triangles", scene.geometry().num_triangles()},
+        {"seconds", rn.seconds},
+        {"seconds_1_thread", r1.seconds},
+        {"rays", rn.stats.rays()},
+        {"camera_rays", rn.stats.camera_rays},
+        {"secondary_rays", rn.stats.secondary_rays},
+        {"shadow_rays", rn.stats.shadow_rays},
+        {"plugin_seconds", rn.stats.plugin_seconds()},
+        {"path_tracer_rays_per_second", pt_rays_per_second},
+        {"path_tracer_rays_per_second_1_thread", double(r1.stats.rays()) / r1.seconds},
+        {"embree_rays", recorded_rays},
+        {"embree_rays_per_second", embree_rps},
+        {"embree_same_calls_rays_per_second", mixed_rps},
+        {"ratio", pt_rays_per_second / embree_rps},
+        {"ratio_same_calls", pt_rays_per_second / mixed_rps},
+        {"thread_scaling", r1.seconds / rn.seconds},
+    };
+    std::cout << j.dump(2) << std::endl;
+    return 0;
+}
+
+}  // namespace
+
+Runner add_bench_render(CLI::App &bench) {
+    auto o = std::make_shared<BenchRenderOptions>();
+    CLI::App *sub = bench.add_subcommand("render", "Path tracer rays/s vs raw Embree on the same rays; thread scaling");
+    sub->add_option("--scene", o->scene, "Scene file (default: scenes/cow.json)");
+    sub->add_option("--res", o->res, "Resolution WIDTHxHEIGHT (default 1280x720)");
+    sub->add_option("--spp", o->spp, "Samples per pixel of the timed renders (default 4)")->check(CLI::Range(1, 4096));
+    sub->add_option("--repeat", o->repeat, "Runs per measurement; the fastest counts")->check(CLI::Range(1, 100));
+    return [o] { return run(*o); };
+}
+
+}  // namespace pelage::cli

@@ -1,0 +1,64 @@
+// Unidirectional path tracing with next-event estimation and multiple importance
+// sampling (Veach 1997, PhD thesis, ch. 9, power heuristic β = 2): at every surface
+// vertex one light is chosen uniformly and sampled (shadow ray by rtcOccluded1), and the
+// BSDF is sampled to continue the path; emitters hit by BSDF-sampled rays are weighted
+// against the light sampling density. Russian roulette from rr_depth on, with
+// continuation probability min(0.95, max(β)).
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "renderer/camera.h"
+#include "renderer/film.h"
+#include "renderer/filters.h"
+#include "renderer/sampler.h"
+#include "renderer/scene.h"
+
+namespace pelage::renderer {
+
+struct RenderStats {
+    uint64_t camera_rays = 0, secondary_rays = 0, shadow_rays = 0;
+    uint64_t samples = 0, nonfinite_samples = 0;
+    uint64_t plugin_calls = 0, plugin_timed_calls = 0;
+    double plugin_timed_seconds = 0;  // over the timed subset of calls
+
+    uint64_t rays() const { return camera_rays + secondary_rays + shadow_rays; }
+    // Time in plugins, extrapolated from the timed 1-in-16 subset (timing every call
+    // would cost more than the calls).
+    double plugin_seconds() const {
+        return plugin_timed_calls ? plugin_timed_seconds * double(plugin_calls) / plugin_timed_calls : 0.0;
+    }
+    void add(const RenderStats &o);
+};
+
+// For `pelage bench render`: every ray the tracer casts, to replay it through raw Embree.
+struct RecordedRay {
+    float o[3], tfar;
+    float d[3];
+    uint32_t kind;  // 0 camera, 1 secondary, 2 shadow
+};
+
+class PathIntegrator {
+  public:
+    PathIntegrator(const Scene &scene, const Camera &camera, const PixelFilter &filter, int width,
+                   int height);
+
+    // Adds samples [s0, s1) of every pixel in [x0, x1) × [y0, y1) to the film. Sample 0
+    // also sets the pixel's point AOVs. `log`, when given, receives every ray cast.
+    void render_tile(Film &film, Sampler &sampler, int x0, int y0, int x1, int y1, int s0, int s1,
+                     RenderStats &stats, std::vector<RecordedRay> *log) const;
+
+  private:
+    Rgb radiance(CameraRay ray, Sampler &sampler, FilmSample &fs, FilmPointAovs *aovs,
+                 RenderStats &stats, std::vector<RecordedRay> *log) const;
+
+    const Scene &m_scene;
+    const Camera &m_camera;
+    const PixelFilter &m_filter;
+    RTCScene m_rtc;
+    int m_max_depth, m_rr_depth;
+    float m_pixel_spread;  // radians per pixel, for ray footprints
+};
+
+}  // namespace pelage::renderer

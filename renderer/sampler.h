@@ -1,0 +1,40 @@
+// A counter-based sampler: every number is a hash of (seed, frame, pixel x, pixel y,
+// sample index, dimension), so an image does not depend on thread count or tile order
+// (style.md §2.4). No state is shared between pixels.
+#pragma once
+
+#include <cstdint>
+
+namespace pelage::renderer {
+
+// A 64-bit finalizer (splitmix64, Steele et al. 2014 "Fast splittable pseudorandom
+// number generators", OOPSLA): a bijective mix with full avalanche.
+constexpr uint64_t mix64(uint64_t z) {
+    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
+    z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
+    return z ^ (z >> 31);
+}
+
+class Sampler {
+  public:
+    Sampler(uint64_t seed, uint32_t frame) : m_base(mix64(seed ^ mix64(0x9e3779b97f4a7c15ull + frame))) {}
+
+    // Starts the stream of one pixel sample; dimensions restart at 0.
+    void start_pixel_sample(uint32_t x, uint32_t y, uint32_t sample) {
+        m_key = mix64(m_base ^ mix64((uint64_t(x) << 32 | y) + 0x632be59bd9b4e019ull) ^
+                      (uint64_t(sample) * 0xd6e8feb86659fd93ull));
+        m_dim = 0;
+    }
+    // A uniform float in [0, 1).
+    float get_1d() {
+        const uint64_t h = mix64(m_key + (uint64_t(++m_dim) * 0x9e3779b97f4a7c15ull));
+        return float(h >> 40) * 0x1p-24f;
+    }
+
+  private:
+    uint64_t m_base;
+    uint64_t m_key = 0;
+    uint32_t m_dim = 0;
+};
+
+}  // namespace pelage::renderer

@@ -1,0 +1,60 @@
+#include "renderer/scene.h"
+
+#include <stdexcept>
+
+#include "sim/input_error.h"
+
+namespace pelage::renderer {
+
+Scene::Scene(const SceneDesc &desc, const PluginRegistry &plugins) : m_desc(desc) {
+    // --- Check every material's shader and parameters before loading any mesh ---
+    std::vector<const LoadedPlugin *> chosen;
+    std::vector<PluginParams> params;
+    for (size_t i = 0; i < desc.objects.size(); ++i) {
+        const std::string field = "objects[" + std::to_string(i) + "].material";
+        const LoadedPlugin &p = plugins.get(desc.objects[i].material.shader, desc.path, field + ".shader");
+        params.push_back(validate_plugin_params(*p.desc, desc.objects[i].material.params, desc.path, field + ".params"));
+        chosen.push_back(&p);
+    }
+    m_geometry = std::make_unique<EmbreeScene>(desc);
+    m_lights = std::make_unique<Lights>(desc.lights);
+
+    m_materials.resize(desc.objects.size());
+    for (size_t i = 0; i < desc.objects.size(); ++i) {
+        const ObjectDesc &o = desc.objects[i];
+        const MeshData &mesh = *m_geometry->objects()[i].mesh;
+        PelageParamSet ps{};
+        ps.count = uint32_t(params[i].values.size());
+        ps.values = params[i].values.data();
+        ps.object_id = uint32_t(i);
+        ps.mesh.num_vertices = mesh.num_vertices;
+        ps.mesh.num_triangles = mesh.num_triangles;
+        ps.mesh.positions = mesh.object_positions.data();
+        ps.mesh.triangles = mesh.triangles.data();
+        ps.mesh.corner_uvs = mesh.corner_uvs.empty() ? nullptr : mesh.corner_uvs.data();
+        ps.mesh.cells_path = o.cells.empty() ? nullptr : o.cells.c_str();
+        PelageError err{};
+        Material &m = m_materials[i];
+        m.plugin = chosen[i]->desc;
+        m.instance = m.plugin->create(&ps, &err);
+        if (!m.instance) {
+            err.message[sizeof(err.message) - 1] = 0;
+            throw InputError(desc.path, 0, "objects[" + std::to_string(i) + "].material",
+                             std::string("shader \"") + m.plugin->name + "\" (" + chosen[i]->file +
+                                 ") refused its parameters: " + (err.message[0] ? err.message : "no reason given"));
+        }
+        m.bsdf = o.material.bsdf;
+        m.roughness = o.material.roughness;
+        m.ior = o.material.ior;
+        if (m_aov_names.empty() && m.plugin->aov_names)
+            for (int k = 0; k < PELAGE_SHADER_AOV_SLOTS && m.plugin->aov_names[k]; ++k)
+                m_aov_names.push_back(m.plugin->aov_names[k]);
+    }
+}
+
+Scene::~Scene() {
+    for (Material &m : m_materials)
+        if (m.instance) m.plugin->destroy(m.instance);
+}
+
+}  // namespace pelage::renderer

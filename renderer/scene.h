@@ -1,0 +1,47 @@
+// A scene ready to render: the Embree geometry, per-object materials (a shader plugin
+// instance plus the built-in BSDF it feeds), the lights and the camera. Built from a
+// validated SceneDesc; plugin parameters are validated here, against each plugin's table.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "renderer/camera.h"
+#include "renderer/embree_scene.h"
+#include "renderer/lights.h"
+#include "renderer/plugin_loader.h"
+#include "renderer/scene_file.h"
+
+namespace pelage::renderer {
+
+struct Material {
+    const PelageShaderPlugin *plugin = nullptr;
+    void *instance = nullptr;
+    MaterialDesc::Bsdf bsdf = MaterialDesc::Bsdf::lambert;
+    float roughness = 0.3f, ior = 1.5f;
+};
+
+class Scene {
+  public:
+    Scene(const SceneDesc &desc, const PluginRegistry &plugins);
+    ~Scene();
+    Scene(const Scene &) = delete;
+    Scene &operator=(const Scene &) = delete;
+
+    const SceneDesc &desc() const { return m_desc; }
+    const EmbreeScene &geometry() const { return *m_geometry; }
+    const Lights &lights() const { return *m_lights; }
+    const std::vector<Material> &materials() const { return m_materials; }  // per object
+    // Names of the `shader` AOV slots (from the first plugin in the scene that has any).
+    const std::vector<std::string> &shader_aov_names() const { return m_aov_names; }
+
+  private:
+    SceneDesc m_desc;
+    std::unique_ptr<EmbreeScene> m_geometry;
+    std::unique_ptr<Lights> m_lights;
+    std::vector<Material> m_materials;
+    std::vector<std::string> m_aov_names;
+};
+
+}  // namespace pelage::renderer

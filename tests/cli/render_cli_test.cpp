@@ -1,0 +1,111 @@
+// `pelage render`, `pelage shaders` end to end: the --stats-json output contract, the
+// EXR from the CLI, bit-identical output at 1 and 2 threads, plugin refusal.
+#include <gtest/gtest.h>
+
+#include <OpenImageIO/imageio.h>
+
+#include <sys/wait.h>
+
+#include <cstring>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "tests/test_paths.h"
+
+namespace pelage::test {
+namespace {
+
+const char *small_scene = R"({
+  "camera": {"position": [0, 0.5, 3], "look_at": [0, 0, 0], "fov": 40},
+  "film": {"width": 40, "height": 30, "spp": 4},
+  "lights": [{"type": "environment", "color": [0.5, 0.6, 0.8]},
+             {"type": "distant", "direction": [-1, -1, -0.5], "angle": 1, "intensity": 2}],
+  "objects": [{"mesh": "procedural:sphere:16x16", "normals": "smooth",
+               "material": {"shader": "diffuse", "params": {"albedo": [0.8, 0.3, 0.2]}, "bsdf": "coated"}},
+              {"mesh": "procedural:plane:1x1", "transform": {"scale": 5, "translate": [0, -1, 0]}}]
+})";
+
+std::vector<float> read_pixels(const std::string &path, std::vector<std::string> *names = nullptr) {
+    auto in = OIIO::ImageInput::open(path);
+    if (!in) return {};
+    const OIIO::ImageSpec &s = in->spec();
+    std::vector<float> px(size_t(s.width) * s.height * s.nchannels);
+    in->read_image(0, 0, 0, s.nchannels, OIIO::TypeDesc::FLOAT, px.data());
+    if (names) names->assign(s.channelnames.begin(), s.channelnames.end());
+    return px;
+}
+
+TEST(RenderCli, StatsJsonHasTheContractKeys) {
+    TempDir tmp;
+    const std::string scene = tmp.write("s.json", small_scene);
+    ASSERT_EQ(run_pelage("render " + scene + " -o " + tmp.file("o.exr") + " --spp 2 --res 20x10 --stats-json " +
+                         tmp.file("st.json") + " --preview " + tmp.file("p.png")),
+              0);
+    const auto s = nlohmann::json::parse(std::ifstream(tmp.file("st.json")));
+    for (const char *k : {"seconds", "spp", "width", "height", "rays", "rays_per_second", "plugin_seconds"})
+        EXPECT_TRUE(s.contains(k)) << k;
+    EXPECT_EQ(s["spp"], 2);
+    EXPECT_EQ(s["width"], 20);
+    EXPECT_EQ(s["height"], 10);
+    EXPECT_GE(s["rays"].get<double>(), 20 * 10 * 2);
+    EXPECT_TRUE(std::filesystem::exists(tmp.file("p.png")));
+    std::vector<std::string> names;
+    EXPECT_EQ(read_pixels(tmp.file("o.exr"), &names).size(), 20u * 10 * 17);
+}
+
+TEST(RenderCli, OneAndTwoThreadsGiveBitIdenticalExrs) {
+    TempDir tmp;
+    const std::string scene = tmp.write("s.json", small_scene);
+    ASSERT_EQ(run_pelage("render " + scene + " -q --threads 1 --seed 3 -o " + tmp.file("a.exr")), 0);
+    ASSERT_EQ(run_pelage("render " + scene + " -q --threads 2 --seed 3 -o " + tmp.file("b.exr")), 0);
+    const auto a = read_pixels(tmp.file("a.exr")), b = read_pixels(tmp.file("b.exr"));
+    ASSERT_FALSE(a.empty());
+    ASSERT_EQ(a.size(), b.size());
+    EXPECT_EQ(std::memcmp(a.data(), b.data(), a.size() * sizeof(float)), 0);
+}
+
+TEST(RenderCli, NoOutputIsExit2NamingTheField) {
+    TempDir tmp;
+    const std::string scene = tmp.write("s.json", small_scene);
+    std::string err;
+    EXPECT_EQ(run_pelage("render " + scene, nullptr, &err), 2);
+    EXPECT_NE(err.find("film.output"), std::string::npos) << err;
+    EXPECT_EQ(run_pelage("render " + scene + " -o x.exr --res 10by10", nullptr, &err), 2);
+    EXPECT_NE(err.find("--res"), std::string::npos) << err;
+}
+
+TEST(ShadersCli, ListsDiffuseAndItsParameters) {
+    std::string out;
+    ASSERT_EQ(run_pelage("shaders --json", &out), 0);
+    const auto j = nlohmann::json::parse(out);
+    bool found = false;
+    for (const auto &s : j["shaders"])
+        if (s["name"] == "diffuse") {
+            found = true;
+            EXPECT_EQ(s["params"][0]["name"], "albedo");
+            EXPECT_EQ(s["params"][0]["type"], "rgb");
+        }
+    EXPECT_TRUE(found) << out;
+    std::string err;
+    EXPECT_EQ(run_pelage("shaders wroley", nullptr, &err), 2);
+    EXPECT_NE(err.find("wroley"), std::string::npos);
+}
+
+TEST(ShadersCli, WrongAbiPluginIsRefusedNamingTheFile) {
+    TempDir tmp;
+    const std::string scene = tmp.write("s.json", R"({"camera": {}, "objects": [
+        {"mesh": "procedural:icosphere:1", "material": {"shader": "bad_abi"}}]})");
+    std::string err;
+    const std::string env = "PELAGE_SHADER_PATH=" + std::string(PELAGE_TEST_PLUGIN_DIR) + " ";
+    const int rc = std::system((env + PELAGE_BINARY + " render " + scene + " -o " + tmp.file("o.exr") + " 2>" +
+                                tmp.file("err")).c_str());
+    std::ifstream in(tmp.file("err"));
+    err.assign(std::istreambuf_iterator<char>(in), {});
+    EXPECT_NE(WEXITSTATUS(rc), 0);
+    EXPECT_NE(err.find("bad_abi.so"), std::string::npos) << err;
+    EXPECT_NE(err.find("ABI version 999"), std::string::npos) << err;
+    EXPECT_FALSE(std::filesystem::exists(tmp.file("o.exr")));
+}
+
+}  // namespace
+}  // namespace pelage::test
