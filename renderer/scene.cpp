@@ -33,6 +33,7 @@ Scene::Scene(const SceneDesc &desc, const PluginRegistry &plugins) : m_desc(desc
         ps.mesh.triangles = mesh.triangles.data();
         ps.mesh.corner_uvs = mesh.corner_uvs.empty() ? nullptr : mesh.corner_uvs.data();
         ps.mesh.cells_path = o.cells.empty() ? nullptr : o.cells.c_str();
+        ps.mesh.mesh_path = o.mesh.c_str();
         PelageError err{};
         Material &m = m_materials[i];
         m.plugin = chosen[i]->desc;

@@ -66,6 +66,9 @@ typedef struct PelageMeshView {
     const uint32_t *triangles;   /* 3 indices per triangle                    */
     const float *corner_uvs;     /* 6 floats per triangle, or NULL            */
     const char *cells_path;      /* absolute path of the object's .cells, or NULL */
+    const char *mesh_path;       /* absolute path (or "procedural:...") the mesh was
+                                    loaded from; triangles are in the order pelage's
+                                    loader (sim/mesh_load.h) gives them               */
 } PelageMeshView;
 
 typedef struct PelageParamSet {

@@ -190,7 +190,7 @@ uint32_t ClosestCellIndex::slot_of(sim::TriId t, Vec2f q) const {
 
 template <bool prune, bool want_f2>
 void ClosestCellIndex::scan(uint32_t slot, Vec2f q, float &best_d2, float &second_d2,
-                            uint32_t &best) const {
+                            uint32_t &best, uint32_t &second) const {
     const float *x = m_cells->x.data(), *z = m_cells->z.data();
     const uint32_t *id = m_cells->id.data();
     // D_min of Teo Fig. 6.2: the radius beyond which nothing matters any more — the
@@ -218,12 +218,16 @@ void ClosestCellIndex::scan(uint32_t slot, Vec2f q, float &best_d2, float &secon
             // The common case: neither nearest nor (when wanted) second.
             if (d2 > (want_f2 ? second_d2 : best_d2)) continue;
             if (d2 < best_d2 || (d2 == best_d2 && best != ClosestCell::none && id[i] < id[best])) {
-                if (want_f2 && i != best) second_d2 = best_d2;
+                if (want_f2 && i != best) {
+                    second_d2 = best_d2;
+                    second = best;
+                }
                 best_d2 = d2;
                 best = i;
                 changed = true;
             } else if (want_f2 && d2 < second_d2 && i != best) {
                 second_d2 = d2;
+                second = i;
                 changed = true;
             }
         }
@@ -233,25 +237,26 @@ void ClosestCellIndex::scan(uint32_t slot, Vec2f q, float &best_d2, float &secon
 
 ClosestCell ClosestCellIndex::find(sim::TriId t, Vec2f q) const {
     float best_d2 = std::numeric_limits<float>::infinity(), second_d2 = best_d2;
-    uint32_t best = ClosestCell::none;
-    scan<true, true>(slot_of(t, q), q, best_d2, second_d2, best);
-    return {best, std::sqrt(best_d2), std::sqrt(second_d2)};
+    uint32_t best = ClosestCell::none, second = ClosestCell::none;
+    scan<true, true>(slot_of(t, q), q, best_d2, second_d2, best, second);
+    return {best, second, std::sqrt(best_d2), std::sqrt(second_d2)};
 }
 
 ClosestCell ClosestCellIndex::find_nearest(sim::TriId t, Vec2f q) const {
     float best_d2 = std::numeric_limits<float>::infinity(), second_d2 = best_d2;
-    uint32_t best = ClosestCell::none;
-    scan<true, false>(slot_of(t, q), q, best_d2, second_d2, best);
-    return {best, std::sqrt(best_d2), std::numeric_limits<float>::infinity()};
+    uint32_t best = ClosestCell::none, second = ClosestCell::none;
+    scan<true, false>(slot_of(t, q), q, best_d2, second_d2, best, second);
+    return {best, ClosestCell::none, std::sqrt(best_d2), std::numeric_limits<float>::infinity()};
 }
 
 ClosestCell ClosestCellIndex::find_exhaustive(sim::TriId t, Vec2f q) const {
     // Every sub-triangle's list: a cell listed twice is the same cell at the same distance.
     float best_d2 = std::numeric_limits<float>::infinity(), second_d2 = best_d2;
-    uint32_t best = ClosestCell::none;
+    uint32_t best = ClosestCell::none, second = ClosestCell::none;
     const TriangleRegions &r = m_regions[t];
-    for (uint32_t s = 0; s < 2 * r.n * r.n; ++s) scan<false, true>(r.first_slot + s, q, best_d2, second_d2, best);
-    return {best, std::sqrt(best_d2), std::sqrt(second_d2)};
+    for (uint32_t s = 0; s < 2 * r.n * r.n; ++s)
+        scan<false, true>(r.first_slot + s, q, best_d2, second_d2, best, second);
+    return {best, second, std::sqrt(best_d2), std::sqrt(second_d2)};
 }
 
 float ClosestCellIndex::distance_to_cell(sim::TriId t, Vec2f q, uint32_t cell) const {

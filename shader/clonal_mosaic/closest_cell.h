@@ -44,7 +44,8 @@ struct Vec2f {
 
 struct ClosestCell {
     static constexpr uint32_t none = 0xffffffffu;
-    uint32_t index = none;  // into the CellTable arrays; none when no cell is reachable
+    uint32_t index = none;   // into the CellTable arrays; none when no cell is reachable
+    uint32_t second = none;  // the second-nearest cell (find() and find_exhaustive() only)
     float f1 = std::numeric_limits<float>::infinity();  // distance to the nearest cell
     float f2 = std::numeric_limits<float>::infinity();  // ... to the second nearest
 };
@@ -101,7 +102,8 @@ class ClosestCellIndex {
 
     uint32_t slot_of(sim::TriId t, Vec2f q) const;
     template <bool prune, bool want_f2>
-    void scan(uint32_t slot, Vec2f q, float &best_d2, float &second_d2, uint32_t &best) const;
+    void scan(uint32_t slot, Vec2f q, float &best_d2, float &second_d2, uint32_t &best,
+              uint32_t &second) const;
     void build_triangle(const sim::Crps &crps, sim::TriId t, sim::UnfoldScratch &scratch,
                         std::vector<sim::UnfoldedTriangle> &unfolded, Built &out) const;
 

@@ -40,7 +40,8 @@ void expect_pruned_equals_exhaustive(const sim::Surface &s, size_t n_cells) {
         const ClosestCell b = index.find_exhaustive(q.tri, to_f(q.p));
         const ClosestCell c = index.find_nearest(q.tri, to_f(q.p));
         ASSERT_NE(a.index, ClosestCell::none);
-        agree += a.index == b.index && a.f1 == b.f1 && a.f2 == b.f2 && c.index == a.index && c.f1 == a.f1;
+        agree += a.index == b.index && a.second == b.second && a.f1 == b.f1 && a.f2 == b.f2 &&
+                 c.index == a.index && c.f1 == a.f1;
     }
     EXPECT_GE(double(agree) / queries.size(), 0.9999) << agree << " of " << queries.size();
 }

@@ -1,0 +1,214 @@
+/* clonal_mosaic: the pattern of a `pelage sim` run, looked up at every hit by the
+ * closest-cell search of Teo 2006 ch. 6 (closest_cell.h).
+ *
+ * | parameter  | type   | default | meaning                                                    |
+ * | jitter     | float  | 0       | per-cell brightness variation in [0, 1], keyed by stable id |
+ * | edge_width | float  | 0       | soft boundary between cells, object-space units             |
+ * | antialias  | int    | 1       | also blend boundaries over the ray footprint (no jaggies)   |
+ * | roughness  | string | ""      | per-type coat roughness, "F=0.35,B=0.5"; "" keeps material's|
+ * | unfolding  | string | "edges" | "edges" (fewer cracks) or "teo" (edge and vertex maps)      |
+ *
+ * The object needs "cells": a .cells file made by `pelage sim` for the same mesh (checked
+ * against the mesh's hash). AOVs: cell_id, cell_type, f1 (distance to the cell centre).
+ * Albedo is the cell type's colour; eumelanin/pheomelanin are passed on for the fur.
+ */
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <memory>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "shader/clonal_mosaic/closest_cell.h"
+#include "shader/pelage_shader.h"
+#include "sim/cells_file.h"
+#include "sim/surface.h"
+
+namespace {
+
+using namespace pelage;
+
+struct TypeLook {
+    float colour[3];
+    float eumelanin, pheomelanin;
+    float roughness;  // < 0: the material's
+};
+
+struct ClonalMosaic {
+    shader::CellTable cells;
+    std::unique_ptr<shader::ClosestCellIndex> index;
+    std::vector<float> tri;  // per triangle: v0 (2), e1 (2), e2 (2) in local CRPS coords
+    std::vector<TypeLook> types;
+    float jitter = 0, edge_width = 0;
+    bool antialias = true;
+};
+
+const PelageParamSpec params[] = {
+    {"jitter", PELAGE_PARAM_FLOAT, {0, 0, 0}, nullptr, 0.0f, 1.0f,
+     "per-cell brightness variation, keyed by the stable cell id"},
+    {"edge_width", PELAGE_PARAM_FLOAT, {0, 0, 0}, nullptr, 0.0f, 1e6f,
+     "soft boundary between cells, in object-space units"},
+    {"antialias", PELAGE_PARAM_INT, {1, 0, 0}, nullptr, 0.0f, 1.0f,
+     "blend cell boundaries over the ray footprint"},
+    {"roughness", PELAGE_PARAM_STRING, {0, 0, 0}, "", 0.0f, 0.0f,
+     "per-type coat roughness, e.g. \"F=0.35,B=0.5\"; empty keeps the material's"},
+    {"unfolding", PELAGE_PARAM_STRING, {0, 0, 0}, "edges", 0.0f, 0.0f,
+     "\"edges\" (edge maps only: fewer cracks) or \"teo\" (edge and vertex maps)"},
+    {nullptr, PelageParamType(0), {0, 0, 0}, nullptr, 0, 0, nullptr},
+};
+
+const char *const aov_names[] = {"cell_id", "cell_type", "f1", nullptr};
+
+void set_error(PelageError *err, const std::string &message) {
+    if (!err) return;
+    std::snprintf(err->message, sizeof(err->message), "%s", message.c_str());
+}
+
+const PelageParamValue *find_param(const PelageParamSet *ps, const char *name) {
+    for (uint32_t i = 0; i < ps->count; ++i)
+        if (std::string(ps->values[i].name) == name) return &ps->values[i];
+    return nullptr;
+}
+
+// "F=0.35,B=0.5" -> per-type roughness; throws std::invalid_argument naming the problem.
+void parse_roughness(const std::string &spec, const std::vector<sim::CellType> &types,
+                     std::vector<TypeLook> &looks) {
+    std::stringstream ss(spec);
+    std::string item;
+    while (std::getline(ss, item, ',')) {
+        if (item.empty()) continue;
+        const size_t eq = item.find('=');
+        if (eq == std::string::npos)
+            throw std::invalid_argument("roughness: expected NAME=VALUE, got \"" + item + "\"");
+        const std::string name = item.substr(0, eq);
+        auto it = std::find_if(types.begin(), types.end(), [&](const auto &t) { return t.name == name; });
+        if (it == types.end())
+            throw std::invalid_argument("roughness: the .cells file has no cell type \"" + name + "\"");
+        char *end = nullptr;
+        const std::string value = item.substr(eq + 1);
+        const float r = std::strtof(value.c_str(), &end);
+        if (value.empty() || *end || !(r >= 0 && r <= 1))
+            throw std::invalid_argument("roughness: \"" + value + "\" for " + name + " is not in [0, 1]");
+        looks[it - types.begin()].roughness = r;
+    }
+}
+
+void *create(const PelageParamSet *ps, PelageError *err) {
+    try {
+        if (!ps->mesh.cells_path)
+            throw std::invalid_argument("needs the object's \"cells\": a .cells file made by pelage sim");
+        if (!ps->mesh.mesh_path) throw std::invalid_argument("the renderer gave no mesh path");
+        auto cm = std::make_unique<ClonalMosaic>();
+        cm->jitter = find_param(ps, "jitter")->f[0];
+        cm->edge_width = find_param(ps, "edge_width")->f[0];
+        cm->antialias = find_param(ps, "antialias")->i != 0;
+        const std::string unfolding = find_param(ps, "unfolding")->s;
+        if (unfolding != "edges" && unfolding != "teo")
+            throw std::invalid_argument("unfolding: \"" + unfolding + "\" is neither \"edges\" nor \"teo\"");
+
+        // The same loader as `pelage sim` and the renderer: identical triangles, so the
+        // primitive id of a hit is the .cells triangle.
+        const sim::CellsData data = sim::read_cells_file(ps->mesh.cells_path);
+        const sim::Surface surface = sim::build_surface(ps->mesh.mesh_path);
+        sim::check_cells_match_mesh(data, surface.mesh, ps->mesh.cells_path);
+        if (surface.mesh.num_triangles() != ps->mesh.num_triangles)
+            throw std::invalid_argument("the renderer's mesh has " + std::to_string(ps->mesh.num_triangles) +
+                                        " triangles, the .cells file " +
+                                        std::to_string(surface.mesh.num_triangles()));
+
+        for (const sim::CellType &t : data.types)
+            cm->types.push_back({{t.colour[0], t.colour[1], t.colour[2]}, t.eumelanin, t.pheomelanin, -1.0f});
+        parse_roughness(find_param(ps, "roughness")->s, data.types, cm->types);
+
+        std::vector<shader::CellOnSurface> list;
+        list.reserve(data.num_cells());
+        for (sim::TriId t = 0; t < data.num_triangles(); ++t)
+            for (uint32_t k = data.cell_row[t]; k < data.cell_row[t + 1]; ++k)
+                list.push_back({t, data.x[k], data.z[k], data.id[k], data.type[k]});
+        cm->cells = shader::make_cell_table(data.num_triangles(), list);
+        shader::ClosestCellOptions options;
+        options.paths = unfolding == "teo" ? sim::UnfoldPaths::edges_and_vertices : sim::UnfoldPaths::edges_only;
+        cm->index = std::make_unique<shader::ClosestCellIndex>(surface.crps, cm->cells, options);
+
+        cm->tri.resize(6 * data.num_triangles());
+        for (sim::TriId t = 0; t < data.num_triangles(); ++t) {
+            const sim::CrpsFrame &f = surface.crps.frame(t);
+            const sim::Vec2d e1 = f.v[1] - f.v[0], e2 = f.v[2] - f.v[0];
+            const float v[6] = {float(f.v[0].x), float(f.v[0].y), float(e1.x), float(e1.y), float(e2.x), float(e2.y)};
+            std::copy(v, v + 6, &cm->tri[6 * t]);
+        }
+        return cm.release();
+    } catch (const std::exception &e) {
+        set_error(err, e.what());
+        return nullptr;
+    }
+}
+
+// A stable value in [-1, 1] from a cell id (integer hash, no state).
+float id_noise(uint32_t id) {
+    uint32_t h = id * 0x9E3779B1u;
+    h ^= h >> 16;
+    h *= 0x85EBCA6Bu;
+    h ^= h >> 13;
+    return float(h >> 8) * (2.0f / 16777216.0f) - 1.0f;
+}
+
+void cell_colour(const ClonalMosaic &cm, uint32_t cell, float rgb[3]) {
+    const TypeLook &t = cm.types[cm.cells.type[cell]];
+    const float scale = 1.0f + cm.jitter * 0.5f * id_noise(cm.cells.id[cell]);
+    for (int c = 0; c < 3; ++c) rgb[c] = std::clamp(t.colour[c] * scale, 0.0f, 1.0f);
+}
+
+void shade(const void *self, const PelageHit *hit, PelageShade *out) {
+    const ClonalMosaic &cm = *static_cast<const ClonalMosaic *>(self);
+    if (hit->primitive_id >= cm.cells.num_triangles()) return;  // defaults stay
+    const float *f = &cm.tri[6 * size_t(hit->primitive_id)];
+    const shader::Vec2f q{f[0] + hit->b1 * f[2] + hit->b2 * f[4], f[1] + hit->b1 * f[3] + hit->b2 * f[5]};
+
+    // Boundaries are blended over w: the user's soft width, or at least the footprint.
+    const float w = std::max(cm.edge_width, cm.antialias ? hit->footprint : 0.0f);
+    const shader::ClosestCell c = w > 0 ? cm.index->find(hit->primitive_id, q)
+                                        : cm.index->find_nearest(hit->primitive_id, q);
+    if (c.index == shader::ClosestCell::none) return;  // a component without cells
+
+    float rgb[3];
+    cell_colour(cm, c.index, rgb);
+    const TypeLook &look = cm.types[cm.cells.type[c.index]];
+    float eu = look.eumelanin, pheo = look.pheomelanin;
+    if (w > 0 && c.second != shader::ClosestCell::none) {
+        // (F2 - F1)/2 approximates the distance to the Voronoi edge; blend 50/50 on the
+        // edge, fading to the cell's own colour at distance w: continuous across it.
+        const float d = 0.5f * (c.f2 - c.f1);
+        if (d < w) {
+            const float x = d / w, s = x * x * (3 - 2 * x);
+            const float a = 0.5f + 0.5f * s;
+            float rgb2[3];
+            cell_colour(cm, c.second, rgb2);
+            for (int k = 0; k < 3; ++k) rgb[k] = a * rgb[k] + (1 - a) * rgb2[k];
+            const TypeLook &l2 = cm.types[cm.cells.type[c.second]];
+            eu = a * eu + (1 - a) * l2.eumelanin;
+            pheo = a * pheo + (1 - a) * l2.pheomelanin;
+        }
+    }
+    for (int k = 0; k < 3; ++k) out->albedo[k] = rgb[k];
+    out->eumelanin = eu;
+    out->pheomelanin = pheo;
+    if (look.roughness >= 0) out->roughness = look.roughness;
+    out->aov[0] = float(cm.cells.id[c.index]);
+    out->aov[1] = float(cm.cells.type[c.index]);
+    out->aov[2] = c.f1;
+    out->aov_written = 1;
+}
+
+void destroy(void *self) { delete static_cast<ClonalMosaic *>(self); }
+
+const PelageShaderPlugin plugin = {
+    PELAGE_SHADER_ABI, "clonal_mosaic",
+    "Clonal Mosaic cells from a .cells file, closest cell by reverse neighbour mapping (Teo 2006 ch. 6)",
+    params, aov_names, create, shade, destroy,
+};
+
+}  // namespace
+
+extern "C" PELAGE_EXPORT const PelageShaderPlugin *pelage_shader_plugin(void) { return &plugin; }
