@@ -160,6 +160,13 @@ void cell_colour(const ClonalMosaic &cm, uint32_t cell, float rgb[3]) {
     for (int c = 0; c < 3; ++c) rgb[c] = std::clamp(t.colour[c] * scale, 0.0f, 1.0f);
 }
 
+void write_aovs(const ClonalMosaic &cm, uint32_t cell, float f1, PelageShade *out) {
+    out->aov[0] = float(cm.cells.id[cell]);  // exact below 2^24 cells
+    out->aov[1] = float(cm.cells.type[cell]);
+    out->aov[2] = f1;
+    out->aov_written = 1;
+}
+
 void shade(const void *self, const PelageHit *hit, PelageShade *out) {
     const ClonalMosaic &cm = *static_cast<const ClonalMosaic *>(self);
     if (hit->primitive_id >= cm.cells.num_triangles()) return;  // defaults stay
@@ -168,37 +175,43 @@ void shade(const void *self, const PelageHit *hit, PelageShade *out) {
 
     // Boundaries are blended over w: the user's soft width, or at least the footprint.
     const float w = std::max(cm.edge_width, cm.antialias ? hit->footprint : 0.0f);
-    const shader::ClosestCell c = w > 0 ? cm.index->find(hit->primitive_id, q)
-                                        : cm.index->find_nearest(hit->primitive_id, q);
-    if (c.index == shader::ClosestCell::none) return;  // a component without cells
-
-    float rgb[3];
-    cell_colour(cm, c.index, rgb);
-    const TypeLook &look = cm.types[cm.cells.type[c.index]];
-    float eu = look.eumelanin, pheo = look.pheomelanin;
-    if (w > 0 && c.second != shader::ClosestCell::none) {
-        // (F2 - F1)/2 approximates the distance to the Voronoi edge; blend 50/50 on the
-        // edge, fading to the cell's own colour at distance w: continuous across it.
-        const float d = 0.5f * (c.f2 - c.f1);
-        if (d < w) {
-            const float x = d / w, s = x * x * (3 - 2 * x);
-            const float a = 0.5f + 0.5f * s;
-            float rgb2[3];
-            cell_colour(cm, c.second, rgb2);
-            for (int k = 0; k < 3; ++k) rgb[k] = a * rgb[k] + (1 - a) * rgb2[k];
-            const TypeLook &l2 = cm.types[cm.cells.type[c.second]];
-            eu = a * eu + (1 - a) * l2.eumelanin;
-            pheo = a * pheo + (1 - a) * l2.pheomelanin;
-        }
+    if (w <= 0) {
+        const shader::ClosestCell c = cm.index->find_nearest(hit->primitive_id, q);
+        if (c.index == shader::ClosestCell::none) return;  // a component without cells
+        const TypeLook &look = cm.types[cm.cells.type[c.index]];
+        cell_colour(cm, c.index, out->albedo);
+        out->eumelanin = look.eumelanin;
+        out->pheomelanin = look.pheomelanin;
+        if (look.roughness >= 0) out->roughness = look.roughness;
+        write_aovs(cm, c.index, c.f1, out);
+        return;
     }
-    for (int k = 0; k < 3; ++k) out->albedo[k] = rgb[k];
-    out->eumelanin = eu;
-    out->pheomelanin = pheo;
+    // Blend the three nearest cells with weights 1 - smoothstep(0, 2w, F_i - F1): equal
+    // on a Voronoi edge (F1 = F2) and at a vertex (F1 = F2 = F3), zero once a cell is 2w
+    // farther than the nearest. Continuous everywhere except where four cells lie within
+    // 2w of each other's distance.
+    const auto n = cm.index->find_three(hit->primitive_id, q);
+    if (n.index[0] == shader::ClosestCell::none) return;
+    const float f1 = std::sqrt(n.d2[0]);
+    float rgb[3] = {0, 0, 0}, eu = 0, pheo = 0, total = 0;
+    for (int i = 0; i < 3 && n.index[i] != shader::ClosestCell::none; ++i) {
+        const float x = std::min((std::sqrt(n.d2[i]) - f1) / (2 * w), 1.0f);
+        const float weight = 1 - x * x * (3 - 2 * x);
+        if (weight <= 0) break;
+        float c[3];
+        cell_colour(cm, n.index[i], c);
+        const TypeLook &l = cm.types[cm.cells.type[n.index[i]]];
+        for (int k = 0; k < 3; ++k) rgb[k] += weight * c[k];
+        eu += weight * l.eumelanin;
+        pheo += weight * l.pheomelanin;
+        total += weight;
+    }
+    for (int k = 0; k < 3; ++k) out->albedo[k] = rgb[k] / total;
+    out->eumelanin = eu / total;
+    out->pheomelanin = pheo / total;
+    const TypeLook &look = cm.types[cm.cells.type[n.index[0]]];
     if (look.roughness >= 0) out->roughness = look.roughness;
-    out->aov[0] = float(cm.cells.id[c.index]);
-    out->aov[1] = float(cm.cells.type[c.index]);
-    out->aov[2] = c.f1;
-    out->aov_written = 1;
+    write_aovs(cm, n.index[0], f1, out);
 }
 
 void destroy(void *self) { delete static_cast<ClonalMosaic *>(self); }

@@ -121,13 +121,18 @@ void ClosestCellIndex::build_triangle(const sim::Crps &crps, sim::TriId t,
         sim::unfold_around_triangle(crps, t, radius, unfolded, scratch, m_options.paths);
         double needed = 0;
         for (Sub &s : subs) {
-            double d1 = inf, d2 = inf;
+            // Distances to the three nearest cells: lists serve searches for up to three.
+            double d[3] = {inf, inf, inf};
             for (const sim::UnfoldedTriangle &u : unfolded)
                 for (uint32_t k = cells.row[u.tri]; k < cells.row[u.tri + 1]; ++k) {
-                    const double d = length(u.to_master.apply({cells.x[k], cells.z[k]}) - s.centre);
-                    if (d < d1) { d2 = d1; d1 = d; } else if (d < d2) { d2 = d; }
+                    const double dk = length(u.to_master.apply({cells.x[k], cells.z[k]}) - s.centre);
+                    if (dk < d[2]) {
+                        d[2] = dk;
+                        if (d[2] < d[1]) std::swap(d[1], d[2]);
+                        if (d[1] < d[0]) std::swap(d[0], d[1]);
+                    }
                 }
-            s.reach_needed = d2 + s.bound;
+            s.reach_needed = d[2] + s.bound;
             needed = std::max(needed, s.reach_needed);
         }
         if (needed <= radius || radius >= m_max_radius) break;
@@ -188,19 +193,18 @@ uint32_t ClosestCellIndex::slot_of(sim::TriId t, Vec2f q) const {
     return r.first_slot + (i * r.n + j) * 2 + (upper ? 1 : 0);
 }
 
-template <bool prune, bool want_f2>
-void ClosestCellIndex::scan(uint32_t slot, Vec2f q, float &best_d2, float &second_d2,
-                            uint32_t &best, uint32_t &second) const {
+template <bool prune, int K>
+void ClosestCellIndex::scan(uint32_t slot, Vec2f q, Nearest<K> &n) const {
     const float *x = m_cells->x.data(), *z = m_cells->z.data();
     const uint32_t *id = m_cells->id.data();
-    // D_min of Teo Fig. 6.2: the radius beyond which nothing matters any more — the
-    // second-nearest distance when F2 is wanted, else the nearest.
-    float d_min = std::sqrt(want_f2 ? second_d2 : best_d2);
+    // D_min of Teo Fig. 6.2: the radius beyond which no cell matters any more — the
+    // distance to the K-th nearest found so far.
+    float d_min = std::sqrt(n.d2[K - 1]);
     for (uint32_t k = m_slot_row[slot]; k < m_slot_row[slot + 1]; ++k) {
         const Candidate &c = m_candidates[k];
         if constexpr (prune) {
             // Candidates are sorted by their distance from the sub-triangle: none further
-            // can beat the current second-nearest.
+            // can enter the K nearest.
             if (c.gap > d_min) break;
         }
         // Reverse neighbour mapping: the query into j's frame, 4 mul + 4 add.
@@ -215,48 +219,52 @@ void ClosestCellIndex::scan(uint32_t slot, Vec2f q, float &best_d2, float &secon
         for (uint32_t i = c.begin; i < c.end; ++i) {
             const float dx = x[i] - qx, dz = z[i] - qz;
             const float d2 = dx * dx + dz * dz;
-            // The common case: neither nearest nor (when wanted) second.
-            if (d2 > (want_f2 ? second_d2 : best_d2)) continue;
-            if (d2 < best_d2 || (d2 == best_d2 && best != ClosestCell::none && id[i] < id[best])) {
-                if (want_f2 && i != best) {
-                    second_d2 = best_d2;
-                    second = best;
-                }
-                best_d2 = d2;
-                best = i;
-                changed = true;
-            } else if (want_f2 && d2 < second_d2 && i != best) {
-                second_d2 = d2;
-                second = i;
-                changed = true;
+            if (d2 > n.d2[K - 1]) continue;  // the common case
+            // Order by (distance, stable id); a cell listed twice (exhaustive scan of
+            // several sub-triangles) enters once.
+            int pos = K;
+            bool seen = false;
+            for (int j = K - 1; j >= 0; --j) {
+                seen |= n.index[j] == i;
+                if (d2 < n.d2[j] || (d2 == n.d2[j] && n.index[j] != ClosestCell::none && id[i] < id[n.index[j]]))
+                    pos = j;
             }
+            if (seen || pos == K) continue;
+            for (int j = K - 1; j > pos; --j) {
+                n.d2[j] = n.d2[j - 1];
+                n.index[j] = n.index[j - 1];
+            }
+            n.d2[pos] = d2;
+            n.index[pos] = i;
+            changed = true;
         }
-        if (changed) d_min = std::sqrt(want_f2 ? second_d2 : best_d2);
+        if (changed) d_min = std::sqrt(n.d2[K - 1]);
     }
 }
 
 ClosestCell ClosestCellIndex::find(sim::TriId t, Vec2f q) const {
-    float best_d2 = std::numeric_limits<float>::infinity(), second_d2 = best_d2;
-    uint32_t best = ClosestCell::none, second = ClosestCell::none;
-    scan<true, true>(slot_of(t, q), q, best_d2, second_d2, best, second);
-    return {best, second, std::sqrt(best_d2), std::sqrt(second_d2)};
+    Nearest<2> n;
+    scan<true, 2>(slot_of(t, q), q, n);
+    return {n.index[0], n.index[1], std::sqrt(n.d2[0]), std::sqrt(n.d2[1])};
 }
 
 ClosestCell ClosestCellIndex::find_nearest(sim::TriId t, Vec2f q) const {
-    float best_d2 = std::numeric_limits<float>::infinity(), second_d2 = best_d2;
-    uint32_t best = ClosestCell::none, second = ClosestCell::none;
-    scan<true, false>(slot_of(t, q), q, best_d2, second_d2, best, second);
-    return {best, ClosestCell::none, std::sqrt(best_d2), std::numeric_limits<float>::infinity()};
+    Nearest<1> n;
+    scan<true, 1>(slot_of(t, q), q, n);
+    return {n.index[0], ClosestCell::none, std::sqrt(n.d2[0]), std::numeric_limits<float>::infinity()};
+}
+
+ClosestCellIndex::Nearest<3> ClosestCellIndex::find_three(sim::TriId t, Vec2f q) const {
+    Nearest<3> n;
+    scan<true, 3>(slot_of(t, q), q, n);
+    return n;
 }
 
 ClosestCell ClosestCellIndex::find_exhaustive(sim::TriId t, Vec2f q) const {
-    // Every sub-triangle's list: a cell listed twice is the same cell at the same distance.
-    float best_d2 = std::numeric_limits<float>::infinity(), second_d2 = best_d2;
-    uint32_t best = ClosestCell::none, second = ClosestCell::none;
+    Nearest<2> n;
     const TriangleRegions &r = m_regions[t];
-    for (uint32_t s = 0; s < 2 * r.n * r.n; ++s)
-        scan<false, true>(r.first_slot + s, q, best_d2, second_d2, best, second);
-    return {best, second, std::sqrt(best_d2), std::sqrt(second_d2)};
+    for (uint32_t s = 0; s < 2 * r.n * r.n; ++s) scan<false, 2>(r.first_slot + s, q, n);
+    return {n.index[0], n.index[1], std::sqrt(n.d2[0]), std::sqrt(n.d2[1])};
 }
 
 float ClosestCellIndex::distance_to_cell(sim::TriId t, Vec2f q, uint32_t cell) const {

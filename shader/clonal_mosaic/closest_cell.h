@@ -11,15 +11,15 @@
 // sub-triangles S (regular subdivision in barycentric coordinates; n_t grows with the
 // triangle's size in cell spacings, up to 3), and for each S:
 //   * the candidate triangles: those of t's breadth-first unfolding (sim/unfold.h) that
-//     hold cells and lie within R_S = d_2 + b_S of S (d_2: distance from S's centroid to
-//     its second-nearest cell, b_S: S's bounding radius about that centroid). Every cell
-//     that can be the nearest or second-nearest for some point of S is within R_S of S:
-//     F2(q) <= |q - c_2| <= d_2 + b_S.
+//     hold cells and lie within R_S = d_3 + b_S of S (d_3: distance from S's centroid to
+//     its third-nearest cell, b_S: S's bounding radius about that centroid). Every cell
+//     that can be among the three nearest for some point q of S is within R_S of S:
+//     F3(q) <= |q - c_3| <= d_3 + b_S.
 //   * per candidate, the reverse map F[t→j] in float, the distance from S to j (a lower
 //     bound for any query in S) and the radius of the circle about j's centroid that
 //     holds j's cells;
 //   * candidates sorted by that distance, so the loop stops at the first one farther
-//     than the current D_min (Teo's adaptive radius; we keep the second-nearest, F2).
+//     than the current D_min (Teo's adaptive radius, kept for the K-th nearest wanted).
 // By default the unfolding walks edges only (sim/unfold.h, UnfoldPaths): the two
 // triangles on either side of an edge then see identical maps for every triangle reached
 // through that edge, which reduces Teo's "cracks" (§6.3); `pelage bench lookup` measures
@@ -28,6 +28,7 @@
 // Thread-safety: immutable after construction; find() is const and allocation-free.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <limits>
 #include <vector>
@@ -71,6 +72,20 @@ class ClosestCellIndex {
     ClosestCell find(sim::TriId t, Vec2f q) const;
     // The nearest cell only (f2 left infinite): prunes harder, for hard-edged patterns.
     ClosestCell find_nearest(sim::TriId t, Vec2f q) const;
+
+    // The K nearest cells, nearest first; missing entries are (none, +inf). Squared
+    // distances: callers that blend take square roots of the ones they use.
+    template <int K>
+    struct Nearest {
+        std::array<float, K> d2;
+        std::array<uint32_t, K> index;
+        Nearest() {
+            d2.fill(std::numeric_limits<float>::infinity());
+            index.fill(ClosestCell::none);
+        }
+    };
+    // The three nearest: what a blend continuous across Voronoi vertices needs.
+    Nearest<3> find_three(sim::TriId t, Vec2f q) const;
     // The candidates of every sub-triangle of t, without any pruning: the reference the
     // tests compare find() against (it checks the sub-triangle radii too).
     ClosestCell find_exhaustive(sim::TriId t, Vec2f q) const;
@@ -101,9 +116,8 @@ class ClosestCellIndex {
     struct Built;  // one triangle's regions while building
 
     uint32_t slot_of(sim::TriId t, Vec2f q) const;
-    template <bool prune, bool want_f2>
-    void scan(uint32_t slot, Vec2f q, float &best_d2, float &second_d2, uint32_t &best,
-              uint32_t &second) const;
+    template <bool prune, int K>
+    void scan(uint32_t slot, Vec2f q, Nearest<K> &n) const;
     void build_triangle(const sim::Crps &crps, sim::TriId t, sim::UnfoldScratch &scratch,
                         std::vector<sim::UnfoldedTriangle> &unfolded, Built &out) const;
 

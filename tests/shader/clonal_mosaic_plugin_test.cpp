@@ -1,0 +1,173 @@
+// The clonal_mosaic plugin through the plugin ABI, as the renderer calls it: colours and
+// AOVs equal a direct closest-cell lookup, soft boundaries are continuous, bad inputs are
+// refused with a message.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <random>
+
+#include "renderer/plugin_loader.h"
+#include "shader/clonal_mosaic/closest_cell.h"
+#include "sim/cells_file.h"
+#include "sim/surface.h"
+#include "tests/test_paths.h"
+
+namespace pelage::test {
+namespace {
+
+const std::string mesh_spec = "procedural:icosphere:3";
+
+std::string plugin_file() {
+    return (std::filesystem::path(PELAGE_BINARY).parent_path().parent_path() / "lib/pelage/shaders/clonal_mosaic.so")
+        .string();
+}
+
+// A small two-type mosaic on the icosphere, made by `pelage sim` as a user would.
+std::string make_cells(const TempDir &tmp) {
+    const std::string preset = tmp.write("p.json", R"({"name": "t", "types": [
+        {"name": "F", "colour": [0.1, 0.05, 0.02], "eumelanin": 0.8, "division_time": "never", "initial_probability": 0.3},
+        {"name": "B", "colour": [0.9, 0.6, 0.3], "pheomelanin": 0.5, "division_time": "never", "initial_probability": 0.7}],
+        "adhesion": [[0.5, 0.0], [0.0, 0.5]],
+        "simulation": {"initial_cells": 600, "initial_relax_steps": 10, "w_r": 2.0, "w_d": 0.1,
+                       "rho": 5, "end_time": 1, "relax": "global"}})");
+    const std::string cells = tmp.file("s.cells");
+    EXPECT_EQ(run_pelage("sim --mesh " + mesh_spec + " --preset " + preset + " -o " + cells + " --seed 2"), 0);
+    return cells;
+}
+
+struct Instance {
+    renderer::LoadedPlugin plugin;
+    renderer::PluginParams params;
+    sim::TriangleMesh mesh;
+    std::vector<float> positions;
+    std::vector<uint32_t> triangles;
+    void *self = nullptr;
+    std::string error;
+
+    Instance(const nlohmann::json &p, const char *cells, const std::string &mesh_path = mesh_spec)
+        : plugin(renderer::open_plugin(plugin_file())),
+          params(renderer::validate_plugin_params(*plugin.desc, p, "test.json", "params")),
+          mesh(sim::load_mesh(mesh_path)) {
+        for (const auto &v : mesh.positions) positions.insert(positions.end(), {float(v.x), float(v.y), float(v.z)});
+        for (const auto &t : mesh.triangles) triangles.insert(triangles.end(), t.begin(), t.end());
+        PelageParamSet ps{};
+        ps.count = uint32_t(params.values.size());
+        ps.values = params.values.data();
+        ps.mesh = {uint32_t(mesh.num_vertices()), uint32_t(mesh.num_triangles()), positions.data(),
+                   triangles.data(), nullptr, cells, mesh_path.c_str()};
+        PelageError err{};
+        self = plugin.desc->create(&ps, &err);
+        error = err.message;
+    }
+    ~Instance() {
+        if (self) plugin.desc->destroy(self);
+    }
+    PelageShade shade(uint32_t prim, float b1, float b2, float footprint = 0) const {
+        PelageHit hit{};
+        hit.primitive_id = prim;
+        hit.b1 = b1;
+        hit.b2 = b2;
+        hit.footprint = footprint;
+        PelageShade out{};
+        out.roughness = -1;
+        plugin.desc->shade(self, &hit, &out);
+        return out;
+    }
+};
+
+TEST(ClonalMosaicPlugin, ColourAndAovsAreTheNearestCellsType) {
+    TempDir tmp;
+    const std::string cells = make_cells(tmp);
+    const Instance inst({{"antialias", 0}}, cells.c_str());
+    ASSERT_NE(inst.self, nullptr) << inst.error;
+
+    // The reference: the same search built directly from the .cells file.
+    const sim::CellsData data = sim::read_cells_file(cells);
+    const sim::Surface s = sim::build_surface(mesh_spec);
+    std::vector<shader::CellOnSurface> list;
+    for (sim::TriId t = 0; t < data.num_triangles(); ++t)
+        for (uint32_t k = data.cell_row[t]; k < data.cell_row[t + 1]; ++k)
+            list.push_back({t, data.x[k], data.z[k], data.id[k], data.type[k]});
+    const shader::CellTable table = shader::make_cell_table(data.num_triangles(), list);
+    const shader::ClosestCellIndex index(s.crps, table);
+
+    std::mt19937 rng(1);
+    std::uniform_real_distribution<float> u(0, 1);
+    for (int n = 0; n < 5000; ++n) {
+        const uint32_t prim = rng() % s.mesh.num_triangles();
+        float b1 = u(rng), b2 = u(rng);
+        if (b1 + b2 > 1) { b1 = 1 - b1; b2 = 1 - b2; }
+        const PelageShade sh = inst.shade(prim, b1, b2);
+        const sim::Vec2d q = s.crps.barycentric_to_2d(prim, {1 - b1 - b2, b1, b2});
+        const shader::ClosestCell c = index.find_nearest(prim, {float(q.x), float(q.y)});
+        ASSERT_EQ(sh.aov_written, 1u);
+        ASSERT_EQ(uint32_t(sh.aov[0]), table.id[c.index]);
+        const sim::CellType &type = data.types[table.type[c.index]];
+        ASSERT_EQ(sh.aov[1], float(table.type[c.index]));
+        for (int k = 0; k < 3; ++k) ASSERT_FLOAT_EQ(sh.albedo[k], type.colour[k]);
+        ASSERT_FLOAT_EQ(sh.eumelanin, type.eumelanin);
+        ASSERT_NEAR(sh.aov[2], c.f1, 1e-6);
+    }
+}
+
+// With a soft width, walking across the surface never jumps in colour; without it, the
+// walk crosses hard boundaries. The blend uses the three nearest cells, so it is
+// continuous unless four cells lie within 2w of each other's distance; with w a few
+// percent of the cell spacing (0.14 here), as for antialiasing, that does not happen.
+TEST(ClonalMosaicPlugin, SoftBoundariesAreContinuous) {
+    TempDir tmp;
+    const std::string cells = make_cells(tmp);
+    const Instance hard({{"antialias", 0}}, cells.c_str());
+    const Instance soft({{"antialias", 0}, {"edge_width", 0.005}}, cells.c_str());
+    ASSERT_NE(soft.self, nullptr) << soft.error;
+    float max_jump_hard = 0, max_jump_soft = 0;
+    for (uint32_t prim = 0; prim < 1280; prim += 7) {
+        PelageShade prev_h = hard.shade(prim, 0.0f, 0.0f), prev_s = soft.shade(prim, 0.0f, 0.0f);
+        for (int k = 1; k <= 400; ++k) {  // corner 0 to the middle of edge 1-2
+            const float t = k / 400.0f;
+            const PelageShade h = hard.shade(prim, 0.5f * t, 0.5f * t), s = soft.shade(prim, 0.5f * t, 0.5f * t);
+            max_jump_hard = std::max(max_jump_hard, std::abs(h.albedo[0] - prev_h.albedo[0]));
+            max_jump_soft = std::max(max_jump_soft, std::abs(s.albedo[0] - prev_s.albedo[0]));
+            prev_h = h;
+            prev_s = s;
+        }
+    }
+    EXPECT_GT(max_jump_hard, 0.7f);  // F and B differ by 0.8 in red
+    EXPECT_LT(max_jump_soft, 0.1f);
+}
+
+TEST(ClonalMosaicPlugin, RefusesMissingCellsWrongMeshAndBadParameters) {
+    TempDir tmp;
+    const std::string cells = make_cells(tmp);
+    const Instance no_cells({}, nullptr);
+    EXPECT_EQ(no_cells.self, nullptr);
+    EXPECT_NE(no_cells.error.find("cells"), std::string::npos) << no_cells.error;
+    const Instance wrong_mesh({}, cells.c_str(), "procedural:icosphere:2");
+    EXPECT_EQ(wrong_mesh.self, nullptr);
+    EXPECT_NE(wrong_mesh.error.find("mesh"), std::string::npos) << wrong_mesh.error;
+    const Instance bad_rough({{"roughness", "Q=0.3"}}, cells.c_str());
+    EXPECT_EQ(bad_rough.self, nullptr);
+    EXPECT_NE(bad_rough.error.find("\"Q\""), std::string::npos) << bad_rough.error;
+    const Instance missing_file({}, tmp.file("nope.cells").c_str());
+    EXPECT_EQ(missing_file.self, nullptr);
+    EXPECT_NE(missing_file.error.find("nope.cells"), std::string::npos) << missing_file.error;
+}
+
+TEST(ClonalMosaicPlugin, PerTypeRoughnessOverridesTheMaterial) {
+    TempDir tmp;
+    const std::string cells = make_cells(tmp);
+    const Instance inst({{"antialias", 0}, {"roughness", "F=0.25"}}, cells.c_str());
+    ASSERT_NE(inst.self, nullptr) << inst.error;
+    int f = 0, b = 0;
+    for (uint32_t prim = 0; prim < 1280; ++prim) {
+        const PelageShade sh = inst.shade(prim, 0.3f, 0.3f);
+        if (sh.aov[1] == 0.0f) { EXPECT_FLOAT_EQ(sh.roughness, 0.25f); ++f; }
+        else { EXPECT_FLOAT_EQ(sh.roughness, -1.0f); ++b; }
+    }
+    EXPECT_GT(f, 50);
+    EXPECT_GT(b, 50);
+}
+
+}  // namespace
+}  // namespace pelage::test
