@@ -28,6 +28,7 @@ int main(int argc, char **argv) {
     add(cli::add_preview_command);
     add(cli::add_render_command);
     add(cli::add_shaders_command);
+    add(cli::add_compare_command);
     add(cli::add_bench_command);
 
     try {

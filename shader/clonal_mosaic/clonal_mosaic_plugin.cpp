@@ -175,8 +175,11 @@ void shade(const void *self, const PelageHit *hit, PelageShade *out) {
 
     // Boundaries are blended over w: the user's soft width, or at least the footprint.
     const float w = std::max(cm.edge_width, cm.antialias ? hit->footprint : 0.0f);
-    if (w <= 0) {
-        const shader::ClosestCell c = cm.index->find_nearest(hit->primitive_id, q);
+    // Most hits are farther than 2w from any cell edge: F1 and F2 settle it (or F1 alone
+    // without blending); only the rest pay for the three-cell blend.
+    const shader::ClosestCell c = w > 0 ? cm.index->find(hit->primitive_id, q)
+                                        : cm.index->find_nearest(hit->primitive_id, q);
+    if (w <= 0 || !(c.f2 - c.f1 < 2 * w)) {
         if (c.index == shader::ClosestCell::none) return;  // a component without cells
         const TypeLook &look = cm.types[cm.cells.type[c.index]];
         cell_colour(cm, c.index, out->albedo);

@@ -1,0 +1,82 @@
+// `pelage compare SCENE.json`: one render per shader on the scene's patterned objects,
+// timings and a labelled contact sheet (renderer/compare.h). --report keys are a contract:
+// shaders {NAME: {seconds, ns_per_lookup}}, ratios, lookup_ratios.
+#include <fmt/core.h>
+
+#include <sstream>
+
+#include "renderer/cli/common.h"
+#include "renderer/compare.h"
+#include "renderer/contact_sheet.h"
+#include "sim/input_error.h"
+
+namespace pelage::cli {
+namespace {
+
+struct CompareCliOptions {
+    std::string scene, shaders = "clonal_mosaic,worley,perlin,diffuse", res, report, sheet, view;
+    int spp = 0;
+    unsigned long long seed = 0;
+    size_t lookups = 200000;
+    ThreadOption threads;
+};
+
+int run(const CompareCliOptions &o) {
+    const auto control = o.threads.apply();
+    renderer::SceneDesc desc = renderer::load_scene_file(o.scene);
+    if (o.spp > 0) desc.film.spp = o.spp;
+    if (!o.res.empty()) {
+        int w = 0, h = 0;
+        char extra = 0;
+        if (std::sscanf(o.res.c_str(), "%dx%d%c", &w, &h, &extra) != 2 || w < 1 || h < 1 || w > 16384 || h > 16384)
+            throw InputError("", 0, "--res", "\"" + o.res + "\": expected WIDTHxHEIGHT, e.g. 640x360");
+        desc.film.width = w;
+        desc.film.height = h;
+    }
+    renderer::CompareOptions co;
+    co.seed = o.seed;
+    co.lookups = o.lookups;
+    co.shaders.clear();
+    std::stringstream ss(o.shaders);
+    for (std::string s; std::getline(ss, s, ',');)
+        if (!s.empty()) co.shaders.push_back(s);
+    if (co.shaders.empty()) throw InputError("", 0, "--shaders", "no shader named");
+    // The display is checked before any rendering, so a bad view fails fast.
+    std::optional<renderer::DisplayTransform> display;
+    if (!o.sheet.empty()) display.emplace(o.view.empty() ? desc.film.view : o.view, "");
+
+    const renderer::CompareResult r = renderer::compare_shaders(desc, co);
+    const nlohmann::json report = r.report();
+    for (const auto &run : r.runs)
+        fmt::print("{:<14} render {:8.3f} s   shade {:8.1f} ns/lookup\n", run.shader, run.seconds, run.ns_per_lookup);
+    for (const auto &[k, v] : report["ratios"].items()) fmt::print("  render {:<32} {:.3f}\n", k, v.get<double>());
+    for (const auto &[k, v] : report["lookup_ratios"].items()) fmt::print("  lookup {:<32} {:.3f}\n", k, v.get<double>());
+    if (!o.report.empty()) write_json_file(o.report, report);
+    if (display) {
+        std::vector<renderer::SheetImage> images;
+        for (const auto &run : r.runs) images.push_back({run.shader, &run.rgb});
+        if (!renderer::write_contact_sheet(o.sheet, r.width, r.height, images, *display))
+            std::fprintf(stderr, "pelage compare: warning: no label font; %s is unlabelled\n", o.sheet.c_str());
+    }
+    return 0;
+}
+
+}  // namespace
+
+Runner add_compare_command(CLI::App &app) {
+    auto o = std::make_shared<CompareCliOptions>();
+    CLI::App *sub = app.add_subcommand("compare", "Render a scene once per shader (CM vs Worley, Perlin, ...) and compare");
+    sub->add_option("scene", o->scene, "Scene file (.json) with a patterned object")->required();
+    sub->add_option("--shaders", o->shaders, "Comma-separated shaders, in sheet order");
+    sub->add_option("--res", o->res, "Resolution WIDTHxHEIGHT (overrides the scene)");
+    sub->add_option("--spp", o->spp, "Samples per pixel (overrides the scene)")->check(CLI::Range(1, 1 << 20));
+    sub->add_option("--seed", o->seed, "Sampler seed, the same for every shader");
+    sub->add_option("--lookups", o->lookups, "Surface points timed per shader")->check(CLI::Range(size_t(1), size_t(100000000)));
+    sub->add_option("--report", o->report, "Write the comparison as JSON");
+    sub->add_option("--sheet", o->sheet, "Write a labelled contact sheet (.png/.jpg)");
+    sub->add_option("--view", o->view, "OCIO view for the sheet (default: the scene's)");
+    o->threads.add_to(*sub);
+    return [o] { return run(*o); };
+}
+
+}  // namespace pelage::cli

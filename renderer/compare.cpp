@@ -1,0 +1,118 @@
+#include "renderer/compare.h"
+
+#include <chrono>
+#include <random>
+
+#include "renderer/film.h"
+#include "renderer/plugin_loader.h"
+#include "renderer/render.h"
+#include "renderer/scene.h"
+#include "sim/input_error.h"
+#include "sim/mesh_load.h"
+
+namespace pelage::renderer {
+namespace {
+
+std::vector<size_t> patterned_objects(const SceneDesc &desc) {
+    std::vector<size_t> out;
+    for (size_t i = 0; i < desc.objects.size(); ++i)
+        if (!desc.objects[i].cells.empty() || desc.objects[i].material.shader == "clonal_mosaic")
+            out.push_back(i);
+    return out;
+}
+
+// Area-uniform points on the first patterned object: the hits every shader is timed on.
+std::vector<PelageHit> sample_hits(const SceneDesc &desc, size_t object, size_t n, uint64_t seed) {
+    const sim::TriangleMesh mesh = sim::load_mesh(desc.objects[object].mesh);
+    std::vector<double> cdf;
+    double sum = 0;
+    for (sim::TriId t = 0; t < mesh.num_triangles(); ++t) cdf.push_back(sum += mesh.triangle_area(t));
+    std::mt19937_64 rng(seed + 17);
+    std::uniform_real_distribution<double> u(0, 1);
+    std::vector<PelageHit> hits(n);
+    for (PelageHit &h : hits) {
+        const auto t = uint32_t(std::min<size_t>(std::upper_bound(cdf.begin(), cdf.end(), u(rng) * sum) - cdf.begin(),
+                                                 mesh.num_triangles() - 1));
+        const double s = std::sqrt(u(rng)), r = u(rng);
+        h = PelageHit{};
+        h.object_id = uint32_t(object);
+        h.primitive_id = t;
+        h.b1 = float(s * (1 - r));
+        h.b2 = float(s * r);
+        const sim::Vec3d p = mesh.vertex(t, 0) * (1 - s) + mesh.vertex(t, 1) * (s * (1 - r)) + mesh.vertex(t, 2) * (s * r);
+        const sim::Vec3d nrm = normalize(mesh.face_normal_unnormalized(t));
+        for (int k = 0; k < 3; ++k) {
+            h.p[k] = float(p[k]);
+            h.n[k] = float(nrm[k]);
+        }
+        h.footprint = 1e-3f;
+    }
+    return hits;
+}
+
+}  // namespace
+
+CompareResult compare_shaders(const SceneDesc &desc, const CompareOptions &options) {
+    const std::vector<size_t> subjects = patterned_objects(desc);
+    if (subjects.empty())
+        throw InputError(desc.path, 0, "objects",
+                         "no patterned object to compare: give an object a \"cells\" file or the clonal_mosaic shader");
+    const PluginRegistry plugins;
+    const std::vector<PelageHit> hits = sample_hits(desc, subjects[0], options.lookups, options.seed);
+
+    CompareResult result;
+    result.width = desc.film.width;
+    result.height = desc.film.height;
+    for (const std::string &shader : options.shaders) {
+        SceneDesc d = desc;
+        for (size_t i : subjects) {
+            MaterialDesc &m = d.objects[i].material;
+            if (m.shader != shader) m.params = nlohmann::json::object();  // the plugin's defaults
+            m.shader = shader;
+        }
+        const Scene scene(d, plugins);
+        RenderOptions ro;
+        ro.seed = options.seed;
+        const RenderResult r = render(scene, ro);
+
+        // --- Shading alone, on the same points for every shader ---
+        const Material &mat = scene.materials()[subjects[0]];
+        float sink = 0;
+        const auto t0 = std::chrono::steady_clock::now();
+        for (const PelageHit &h : hits) {
+            PelageShade sh{};
+            mat.plugin->shade(mat.instance, &h, &sh);
+            sink += sh.albedo[0];
+        }
+        const double ns = 1e9 * std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count() /
+                          std::max<size_t>(hits.size(), 1);
+        (void)sink;
+
+        CompareRun run{shader, r.seconds, ns, {}};
+        const std::vector<float> px = r.film->resolve();
+        run.rgb.resize(size_t(d.film.width) * d.film.height * 3);
+        for (size_t i = 0; i < size_t(d.film.width) * d.film.height; ++i)
+            for (int c = 0; c < 3; ++c) run.rgb[3 * i + c] = px[i * Film::num_channels + c];
+        result.runs.push_back(std::move(run));
+    }
+    return result;
+}
+
+nlohmann::json CompareResult::report() const {
+    nlohmann::json shaders = nlohmann::json::object();
+    const CompareRun *cm = nullptr;
+    for (const CompareRun &r : runs) {
+        shaders[r.shader] = {{"seconds", r.seconds}, {"ns_per_lookup", r.ns_per_lookup}};
+        if (r.shader == "clonal_mosaic") cm = &r;
+    }
+    nlohmann::json ratios = nlohmann::json::object(), lookup_ratios = nlohmann::json::object();
+    if (cm)
+        for (const CompareRun &r : runs) {
+            if (&r == cm) continue;
+            ratios["clonal_mosaic_vs_" + r.shader] = r.seconds > 0 ? cm->seconds / r.seconds : 0.0;
+            lookup_ratios["clonal_mosaic_vs_" + r.shader] = r.ns_per_lookup > 0 ? cm->ns_per_lookup / r.ns_per_lookup : 0.0;
+        }
+    return {{"width", width}, {"height", height}, {"shaders", shaders}, {"ratios", ratios}, {"lookup_ratios", lookup_ratios}};
+}
+
+}  // namespace pelage::renderer

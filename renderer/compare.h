@@ -1,0 +1,39 @@
+// `pelage compare`: the same scene rendered once per shader on its patterned objects
+// (same camera, lights, seed), with render times and in-process shading cost per lookup —
+// the comparison of Teo 2006 Table 7.9 (CM vs Perlin, Worley, texture).
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "renderer/scene_file.h"
+
+namespace pelage::renderer {
+
+struct CompareOptions {
+    std::vector<std::string> shaders{"clonal_mosaic", "worley", "perlin", "diffuse"};
+    uint64_t seed = 0;
+    size_t lookups = 200000;  // surface points timed per shader
+};
+
+struct CompareRun {
+    std::string shader;
+    double seconds = 0;        // the whole render
+    double ns_per_lookup = 0;  // shade() alone, same points for every shader
+    std::vector<float> rgb;    // resolved beauty, linear RGB, width × height × 3
+};
+
+struct CompareResult {
+    int width = 0, height = 0;
+    std::vector<CompareRun> runs;
+    nlohmann::json report() const;  // the `--report` contract (README, issue 5)
+};
+
+// The patterned objects are those with a "cells" file or the clonal_mosaic shader; each
+// shader is applied to them with the scene's params when the scene names that shader and
+// the plugin's defaults otherwise. InputError when the scene has no patterned object.
+CompareResult compare_shaders(const SceneDesc &desc, const CompareOptions &options);
+
+}  // namespace pelage::renderer
