@@ -20,10 +20,8 @@
 #include <string>
 #include <vector>
 
-#include "shader/clonal_mosaic/closest_cell.h"
+#include "shader/clonal_mosaic/pattern.h"
 #include "shader/pelage_shader.h"
-#include "sim/cells_file.h"
-#include "sim/surface.h"
 
 namespace {
 
@@ -36,9 +34,9 @@ struct TypeLook {
 };
 
 struct ClonalMosaic {
-    shader::CellTable cells;
-    std::unique_ptr<shader::ClosestCellIndex> index;
-    std::vector<float> tri;  // per triangle: v0 (2), e1 (2), e2 (2) in local CRPS coords
+    std::unique_ptr<shader::MosaicPattern> pattern;
+    const shader::CellTable *cells_ptr = nullptr;
+    const shader::ClosestCellIndex *index = nullptr;
     std::vector<TypeLook> types;
     float jitter = 0, edge_width = 0;
     bool antialias = true;
@@ -107,37 +105,18 @@ void *create(const PelageParamSet *ps, PelageError *err) {
         if (unfolding != "edges" && unfolding != "teo")
             throw std::invalid_argument("unfolding: \"" + unfolding + "\" is neither \"edges\" nor \"teo\"");
 
-        // The same loader as `pelage sim` and the renderer: identical triangles, so the
-        // primitive id of a hit is the .cells triangle.
-        const sim::CellsData data = sim::read_cells_file(ps->mesh.cells_path);
-        const sim::Surface surface = sim::build_surface(ps->mesh.mesh_path);
-        sim::check_cells_match_mesh(data, surface.mesh, ps->mesh.cells_path);
-        if (surface.mesh.num_triangles() != ps->mesh.num_triangles)
+        cm->pattern = std::make_unique<shader::MosaicPattern>(
+            ps->mesh.cells_path, ps->mesh.mesh_path,
+            unfolding == "teo" ? sim::UnfoldPaths::edges_and_vertices : sim::UnfoldPaths::edges_only);
+        if (cm->pattern->num_triangles() != ps->mesh.num_triangles)
             throw std::invalid_argument("the renderer's mesh has " + std::to_string(ps->mesh.num_triangles) +
                                         " triangles, the .cells file " +
-                                        std::to_string(surface.mesh.num_triangles()));
-
-        for (const sim::CellType &t : data.types)
+                                        std::to_string(cm->pattern->num_triangles()));
+        cm->cells_ptr = &cm->pattern->cells();
+        cm->index = &cm->pattern->index();
+        for (const sim::CellType &t : cm->pattern->types())
             cm->types.push_back({{t.colour[0], t.colour[1], t.colour[2]}, t.eumelanin, t.pheomelanin, -1.0f});
-        parse_roughness(find_param(ps, "roughness")->s, data.types, cm->types);
-
-        std::vector<shader::CellOnSurface> list;
-        list.reserve(data.num_cells());
-        for (sim::TriId t = 0; t < data.num_triangles(); ++t)
-            for (uint32_t k = data.cell_row[t]; k < data.cell_row[t + 1]; ++k)
-                list.push_back({t, data.x[k], data.z[k], data.id[k], data.type[k]});
-        cm->cells = shader::make_cell_table(data.num_triangles(), list);
-        shader::ClosestCellOptions options;
-        options.paths = unfolding == "teo" ? sim::UnfoldPaths::edges_and_vertices : sim::UnfoldPaths::edges_only;
-        cm->index = std::make_unique<shader::ClosestCellIndex>(surface.crps, cm->cells, options);
-
-        cm->tri.resize(6 * data.num_triangles());
-        for (sim::TriId t = 0; t < data.num_triangles(); ++t) {
-            const sim::CrpsFrame &f = surface.crps.frame(t);
-            const sim::Vec2d e1 = f.v[1] - f.v[0], e2 = f.v[2] - f.v[0];
-            const float v[6] = {float(f.v[0].x), float(f.v[0].y), float(e1.x), float(e1.y), float(e2.x), float(e2.y)};
-            std::copy(v, v + 6, &cm->tri[6 * t]);
-        }
+        parse_roughness(find_param(ps, "roughness")->s, cm->pattern->types(), cm->types);
         return cm.release();
     } catch (const std::exception &e) {
         set_error(err, e.what());
@@ -155,23 +134,22 @@ float id_noise(uint32_t id) {
 }
 
 void cell_colour(const ClonalMosaic &cm, uint32_t cell, float rgb[3]) {
-    const TypeLook &t = cm.types[cm.cells.type[cell]];
-    const float scale = 1.0f + cm.jitter * 0.5f * id_noise(cm.cells.id[cell]);
+    const TypeLook &t = cm.types[cm.cells_ptr->type[cell]];
+    const float scale = 1.0f + cm.jitter * 0.5f * id_noise(cm.cells_ptr->id[cell]);
     for (int c = 0; c < 3; ++c) rgb[c] = std::clamp(t.colour[c] * scale, 0.0f, 1.0f);
 }
 
 void write_aovs(const ClonalMosaic &cm, uint32_t cell, float f1, PelageShade *out) {
-    out->aov[0] = float(cm.cells.id[cell]);  // exact below 2^24 cells
-    out->aov[1] = float(cm.cells.type[cell]);
+    out->aov[0] = float(cm.cells_ptr->id[cell]);  // exact below 2^24 cells
+    out->aov[1] = float(cm.cells_ptr->type[cell]);
     out->aov[2] = f1;
     out->aov_written = 1;
 }
 
 void shade(const void *self, const PelageHit *hit, PelageShade *out) {
     const ClonalMosaic &cm = *static_cast<const ClonalMosaic *>(self);
-    if (hit->primitive_id >= cm.cells.num_triangles()) return;  // defaults stay
-    const float *f = &cm.tri[6 * size_t(hit->primitive_id)];
-    const shader::Vec2f q{f[0] + hit->b1 * f[2] + hit->b2 * f[4], f[1] + hit->b1 * f[3] + hit->b2 * f[5]};
+    if (hit->primitive_id >= cm.cells_ptr->num_triangles()) return;  // defaults stay
+    const shader::Vec2f q = cm.pattern->point(hit->primitive_id, hit->b1, hit->b2);
 
     // Boundaries are blended over w: the user's soft width, or at least the footprint.
     const float w = std::max(cm.edge_width, cm.antialias ? hit->footprint : 0.0f);
@@ -181,7 +159,7 @@ void shade(const void *self, const PelageHit *hit, PelageShade *out) {
                                         : cm.index->find_nearest(hit->primitive_id, q);
     if (w <= 0 || !(c.f2 - c.f1 < 2 * w)) {
         if (c.index == shader::ClosestCell::none) return;  // a component without cells
-        const TypeLook &look = cm.types[cm.cells.type[c.index]];
+        const TypeLook &look = cm.types[cm.cells_ptr->type[c.index]];
         cell_colour(cm, c.index, out->albedo);
         out->eumelanin = look.eumelanin;
         out->pheomelanin = look.pheomelanin;
@@ -203,7 +181,7 @@ void shade(const void *self, const PelageHit *hit, PelageShade *out) {
         if (weight <= 0) break;
         float c[3];
         cell_colour(cm, n.index[i], c);
-        const TypeLook &l = cm.types[cm.cells.type[n.index[i]]];
+        const TypeLook &l = cm.types[cm.cells_ptr->type[n.index[i]]];
         for (int k = 0; k < 3; ++k) rgb[k] += weight * c[k];
         eu += weight * l.eumelanin;
         pheo += weight * l.pheomelanin;
@@ -212,7 +190,7 @@ void shade(const void *self, const PelageHit *hit, PelageShade *out) {
     for (int k = 0; k < 3; ++k) out->albedo[k] = rgb[k] / total;
     out->eumelanin = eu / total;
     out->pheomelanin = pheo / total;
-    const TypeLook &look = cm.types[cm.cells.type[n.index[0]]];
+    const TypeLook &look = cm.types[cm.cells_ptr->type[n.index[0]]];
     if (look.roughness >= 0) out->roughness = look.roughness;
     write_aovs(cm, n.index[0], f1, out);
 }

@@ -1,0 +1,28 @@
+#include "shader/clonal_mosaic/pattern.h"
+
+namespace pelage::shader {
+
+MosaicPattern::MosaicPattern(const std::string &cells_path, const std::string &mesh_path,
+                             sim::UnfoldPaths paths)
+    : m_data(sim::read_cells_file(cells_path)),
+      // The same loader as `pelage sim` and the renderer: identical triangles, so a hit's
+      // primitive id is the .cells triangle.
+      m_surface(std::make_unique<sim::Surface>(sim::build_surface(mesh_path))) {
+    sim::check_cells_match_mesh(m_data, m_surface->mesh, cells_path);
+    std::vector<CellOnSurface> list;
+    list.reserve(m_data.num_cells());
+    for (sim::TriId t = 0; t < m_data.num_triangles(); ++t)
+        for (uint32_t k = m_data.cell_row[t]; k < m_data.cell_row[t + 1]; ++k)
+            list.push_back({t, m_data.x[k], m_data.z[k], m_data.id[k], m_data.type[k]});
+    m_cells = make_cell_table(m_data.num_triangles(), list);
+    m_index = std::make_unique<ClosestCellIndex>(m_surface->crps, m_cells, ClosestCellOptions{paths});
+    m_tri.resize(6 * m_data.num_triangles());
+    for (sim::TriId t = 0; t < m_data.num_triangles(); ++t) {
+        const sim::CrpsFrame &f = m_surface->crps.frame(t);
+        const sim::Vec2d e1 = f.v[1] - f.v[0], e2 = f.v[2] - f.v[0];
+        const float v[6] = {float(f.v[0].x), float(f.v[0].y), float(e1.x), float(e1.y), float(e2.x), float(e2.y)};
+        std::copy(v, v + 6, &m_tri[6 * t]);
+    }
+}
+
+}  // namespace pelage::shader

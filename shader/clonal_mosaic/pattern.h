@@ -1,0 +1,44 @@
+// A simulated mosaic ready for lookups: the .cells file, the mesh it was grown on (checked
+// against the file's mesh hash) and the closest-cell index. The clonal_mosaic plugin, the
+// fur layer, `pelage lookup` and `pelage bake` all go through this one class, so every
+// tool sees exactly the renderer's pattern.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "shader/clonal_mosaic/closest_cell.h"
+#include "sim/cells_file.h"
+#include "sim/surface.h"
+
+namespace pelage::shader {
+
+class MosaicPattern {
+  public:
+    // Throws pelage::InputError for an unreadable or corrupt .cells file or a mesh that is
+    // not the one the cells were grown on.
+    MosaicPattern(const std::string &cells_path, const std::string &mesh_path,
+                  sim::UnfoldPaths paths = sim::UnfoldPaths::edges_only);
+
+    size_t num_triangles() const { return m_cells.num_triangles(); }
+    // Local CRPS coordinates of barycentric point (b1, b2) of triangle t.
+    Vec2f point(sim::TriId t, float b1, float b2) const {
+        const float *f = &m_tri[6 * size_t(t)];
+        return {f[0] + b1 * f[2] + b2 * f[4], f[1] + b1 * f[3] + b2 * f[5]};
+    }
+    const ClosestCellIndex &index() const { return *m_index; }
+    const CellTable &cells() const { return m_cells; }
+    const std::vector<sim::CellType> &types() const { return m_data.types; }
+    const sim::CellsData &data() const { return m_data; }
+    const sim::Surface &surface() const { return *m_surface; }
+
+  private:
+    sim::CellsData m_data;
+    std::unique_ptr<sim::Surface> m_surface;
+    CellTable m_cells;
+    std::unique_ptr<ClosestCellIndex> m_index;
+    std::vector<float> m_tri;  // per triangle: v0 (2), e1 (2), e2 (2), local CRPS coordinates
+};
+
+}  // namespace pelage::shader
