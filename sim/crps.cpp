@@ -153,8 +153,9 @@ Vec2d Crps::barycentric_to_2d(TriId t, Vec3d b) const {
     return f.v[0] * b.x + f.v[1] * b.y + f.v[2] * b.z;
 }
 
-Vec3d Crps::to_barycentric(TriId t, Vec2d p) const {
-    const CrpsFrame &f = m_frames[t];
+Vec3d Crps::to_barycentric(TriId t, Vec2d p) const { return barycentric_in(m_frames[t], p); }
+
+Vec3d barycentric_in(const CrpsFrame &f, Vec2d p) {
     const Vec2d e1 = f.v[1] - f.v[0], e2 = f.v[2] - f.v[0], r = p - f.v[0];
     const double det = cross(e1, e2);
     const double b1 = cross(r, e2) / det, b2 = cross(e1, r) / det;

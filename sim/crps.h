@@ -37,6 +37,9 @@ struct CrpsFrame {  // Teo §4.2, Table 1 (Normal, Yoffset, Center, vertices)
     double bound_radius = 0;     // max |v[c]|: a circle about the centroid holding the triangle
 };
 
+// Barycentric coordinates (of corners 0, 1, 2) of local point p in a reference triangle.
+Vec3d barycentric_in(const CrpsFrame &f, Vec2d p);
+
 class Crps {
   public:
     // Takes the topology over (it is part of the structure: the maps follow its CSR).

@@ -29,6 +29,8 @@ int main(int argc, char **argv) {
     add(cli::add_render_command);
     add(cli::add_shaders_command);
     add(cli::add_compare_command);
+    add(cli::add_cells_command);
+    add(cli::add_lookup_command);
     add(cli::add_bench_command);
 
     try {

@@ -1,0 +1,74 @@
+// `pelage cells --export` and `pelage lookup`: looking up every exported cell position
+// finds that very cell at distance ~0 — the export's barycentrics and the renderer's search
+// agree. Bad point files are exit 2 with the line.
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <sstream>
+
+#include "tests/test_paths.h"
+
+namespace pelage::test {
+namespace {
+
+TEST(CellsCli, ExportedCellsLookUpToThemselves) {
+    TempDir tmp;
+    const std::string preset = tmp.write("p.json", R"({"name": "t", "types": [
+        {"name": "F", "colour": [0.1, 0.05, 0.02], "division_time": "never", "initial_probability": 0.4},
+        {"name": "B", "colour": [0.9, 0.6, 0.3], "division_time": "never", "initial_probability": 0.6}],
+        "adhesion": [[0.5, 0.0], [0.0, 0.5]],
+        "simulation": {"initial_cells": 400, "initial_relax_steps": 5, "w_r": 2.0, "w_d": 0.1,
+                       "rho": 2, "end_time": 1, "relax": "global"}})");
+    const std::string mesh = "procedural:torus:24x12", cells = tmp.file("s.cells");
+    ASSERT_EQ(run_pelage("sim --mesh " + mesh + " --preset " + preset + " -o " + cells), 0);
+    ASSERT_EQ(run_pelage("cells " + cells + " --export " + tmp.file("cells.txt")), 0);
+
+    std::ifstream in(tmp.file("cells.txt"));
+    std::ofstream pts(tmp.file("pts.txt"));
+    std::vector<std::pair<unsigned, unsigned>> expected;  // (id, type)
+    std::string line;
+    while (std::getline(in, line)) {
+        if (line.empty() || line[0] == '#') continue;
+        std::istringstream ss(line);
+        unsigned face, type, id;
+        double b0, b1, b2;
+        ASSERT_TRUE(ss >> face >> b0 >> b1 >> b2 >> type >> id) << line;
+        EXPECT_NEAR(b0 + b1 + b2, 1.0, 1e-8);  // printed with 9 significant digits
+        pts << face << " " << b0 << " " << b1 << " " << b2 << "\n";
+        expected.push_back({id, type});
+    }
+    pts.close();
+    ASSERT_EQ(expected.size(), 400u);
+    std::string out, err;
+    ASSERT_EQ(run_pelage("lookup " + cells + " --mesh " + mesh + " --points " + tmp.file("pts.txt"), &out, &err), 0) << err;
+    std::istringstream ss(out);
+    for (const auto &[id, type] : expected) {
+        unsigned got_id, got_type;
+        double d;
+        ASSERT_TRUE(ss >> got_id >> got_type >> d);
+        EXPECT_EQ(got_id, id);
+        EXPECT_EQ(got_type, type);
+        EXPECT_LT(d, 1e-5);
+    }
+}
+
+TEST(CellsCli, BadPointLinesAreExit2WithTheLine) {
+    TempDir tmp;
+    const std::string preset = tmp.write("p.json", R"({"name": "t", "types": [
+        {"name": "F", "colour": [0.1, 0.1, 0.1], "division_time": "never", "initial_probability": 1.0}],
+        "adhesion": [[0.0]], "simulation": {"initial_cells": 50, "initial_relax_steps": 1, "w_r": 2.0,
+        "w_d": 0.1, "rho": 1, "end_time": 1, "relax": "global"}})");
+    const std::string cells = tmp.file("s.cells");
+    ASSERT_EQ(run_pelage("sim --mesh procedural:icosphere:1 --preset " + preset + " -o " + cells), 0);
+    std::string err;
+    const std::string pts = tmp.write("pts.txt", "0 0.2 0.3 0.5\n# comment\n99 0.2 0.3 0.5\n");
+    EXPECT_EQ(run_pelage("lookup " + cells + " --mesh procedural:icosphere:1 --points " + pts, nullptr, &err), 2);
+    EXPECT_NE(err.find("pts.txt:3"), std::string::npos) << err;
+    const std::string bad = tmp.write("bad.txt", "0 0.2 0.3\n");
+    EXPECT_EQ(run_pelage("lookup " + cells + " --mesh procedural:icosphere:1 --points " + bad, nullptr, &err), 2);
+    EXPECT_NE(err.find("bad.txt:1"), std::string::npos) << err;
+    EXPECT_EQ(run_pelage("lookup " + cells + " --mesh procedural:icosphere:2 --points " + pts, nullptr, &err), 2);
+}
+
+}  // namespace
+}  // namespace pelage::test
