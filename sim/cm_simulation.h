@@ -88,8 +88,6 @@ class CmSimulation {
     std::vector<Event> m_heap;  // min-heap via std::push_heap with greater<>
     std::vector<int> m_steps_left;   // local relaxation: S countdown per triangle
     std::vector<TriId> m_marked;     // triangles with m_steps_left > 0
-    UnfoldScratch m_unfold;
-    std::vector<UnfoldedTriangle> m_unfolded;
     SimStats m_stats;
 };
 

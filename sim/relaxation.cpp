@@ -17,6 +17,11 @@ void Neighbourhoods::update(const Crps &crps, double r) {
     if (m_entries.size() == nt && r <= m_radius && r * rebuild_ratio >= m_radius) return;
     m_radius = r * slack;
     m_entries.assign(nt, {});
+    m_bounding.resize(nt);
+    for (TriId t = 0; t < nt; ++t) {
+        const auto &v = crps.frame(t).v;
+        m_bounding[t] = std::max({length(v[0]), length(v[1]), length(v[2])});
+    }
     ++m_rebuilds;
     struct Scratch {
         UnfoldScratch unfold;
@@ -54,18 +59,40 @@ RelaxStepResult Relaxer::step(const RelaxContext &ctx, Cells &cells, const std::
     const Crps &crps = *ctx.crps;
     m_nbhd.update(crps, ctx.r);
 
+    // --- Gather cells into triangle order (parallel: each triangle fills its range) ---
+    const size_t nt = crps.num_triangles();
+    m_row.resize(nt + 1);
+    m_row[0] = 0;
+    for (TriId t = 0; t < nt; ++t) m_row[t + 1] = m_row[t] + static_cast<uint32_t>(cells.on(t).size());
+    const size_t n = m_row[nt];
+    m_sx.resize(n); m_sz.resize(n); m_st.resize(n); m_sid.resize(n);
+    {
+        const double *xs = cells.x().data(), *zs = cells.z().data();
+        const uint8_t *ts = cells.types().data();
+        tbb::parallel_for(tbb::blocked_range<TriId>(0, static_cast<TriId>(nt), 256), [&](const auto &range) {
+            for (TriId t = range.begin(); t != range.end(); ++t) {
+                uint32_t i = m_row[t];
+                for (CellId c : cells.on(t)) {
+                    m_sx[i] = xs[c]; m_sz[i] = zs[c]; m_st[i] = ts[c]; m_sid[i] = c;
+                    ++i;
+                }
+            }
+        });
+    }
+
     // --- Offsets of each active triangle's cells in the move buffer ---
     m_active_row.resize(active.size() + 1);
     m_active_row[0] = 0;
     for (size_t i = 0; i < active.size(); ++i)
-        m_active_row[i + 1] = m_active_row[i] + static_cast<uint32_t>(cells.on(active[i]).size());
+        m_active_row[i + 1] = m_active_row[i] + (m_row[active[i] + 1] - m_row[active[i]]);
     const size_t n_active_cells = m_active_row.back();
     m_move.assign(n_active_cells, Vec2d{});
     m_dest.resize(n_active_cells);
 
     const double r = ctx.r, r2 = r * r, inv_r = 1.0 / r;
-    const double *xs = cells.x().data(), *zs = cells.z().data();
-    const uint8_t *ts = cells.types().data();
+    const double *xs = m_sx.data(), *zs = m_sz.data();
+    const uint8_t *ts = m_st.data();
+    const CellId *ids = m_sid.data();
     const bool aniso = ctx.field && !ctx.field->empty() && ctx.w_a > 0;
     const double iso_weight = (1.0 - ctx.w_a) * ctx.w_d;
 
@@ -73,22 +100,24 @@ RelaxStepResult Relaxer::step(const RelaxContext &ctx, Cells &cells, const std::
     tbb::parallel_for(tbb::blocked_range<size_t>(0, active.size(), 8), [&](const auto &range) {
         for (size_t ai = range.begin(); ai != range.end(); ++ai) {
             const TriId t = active[ai];
-            const auto &mine = cells.on(t);
-            if (mine.empty()) continue;
+            const uint32_t mine_begin = m_row[t], mine_end = m_row[t + 1];
+            if (mine_begin == mine_end) continue;
             Vec2d *D = m_move.data() + m_active_row[ai];
             for (const Neighbourhoods::Entry &e : m_nbhd.of(t)) {
-                const auto &theirs = cells.on(e.tri);
-                if (theirs.empty()) continue;
+                const uint32_t theirs_begin = m_row[e.tri], theirs_end = m_row[e.tri + 1];
+                if (theirs_begin == theirs_end) continue;
                 const RigidMap2 &F = e.to_nbr;
-                for (size_t k = 0; k < mine.size(); ++k) {
-                    const CellId c = mine[k];
-                    const Vec2d q = F.apply({xs[c], zs[c]});  // C in j's frame
-                    const uint8_t tc = ts[c];
+                // A cell farther than r from j's bounding circle has no neighbour on j.
+                const double reach = r + m_nbhd.bounding_radius(e.tri), reach2 = reach * reach;
+                for (uint32_t k = mine_begin; k < mine_end; ++k) {
+                    const Vec2d q = F.apply({xs[k], zs[k]});  // C in j's frame
+                    if (q.x * q.x + q.y * q.y > reach2) continue;
+                    const uint8_t tc = ts[k];
                     double sx = 0, sz = 0;
-                    for (const CellId p : theirs) {
+                    for (uint32_t p = theirs_begin; p < theirs_end; ++p) {
                         const double dx = q.x - xs[p], dz = q.y - zs[p];
                         const double d2 = dx * dx + dz * dz;
-                        if (d2 >= r2 || p == c) continue;
+                        if (d2 >= r2 || p == k) continue;
                         // Walter 1998 Fig. 1 step 1: f = 1 − d/r, D = unit(C − P)·f·(1 − α)·r
                         const double oma = ctx.uniform_alpha ? 1.0 - ctx.alpha
                                                              : ctx.types->one_minus_alpha(tc, ts[p]);
@@ -98,18 +127,19 @@ RelaxStepResult Relaxer::step(const RelaxContext &ctx, Cells &cells, const std::
                             sx += dx * s;
                             sz += dz * s;
                         } else {
-                            const Vec2d u = tie_break_direction(ctx.seed, c, p);
+                            const Vec2d u = tie_break_direction(ctx.seed, ids[k], ids[p]);
                             sx += u.x * oma * r;
                             sz += u.y * oma * r;
                         }
                     }
                     // Back into t's frame: the rotation of F[j→t] is the inverse one.
-                    D[k].x += F.c * sx + F.s * sz;
-                    D[k].y += -F.s * sx + F.c * sz;
+                    Vec2d &Dk = D[k - mine_begin];
+                    Dk.x += F.c * sx + F.s * sz;
+                    Dk.y += -F.s * sx + F.c * sz;
                 }
             }
             // SG01 §3.2.1: C' = C + w_a·O + (1 − w_a)·w_d·D, O = (D·Â)·A
-            for (size_t k = 0; k < mine.size(); ++k) {
+            for (uint32_t k = 0; k < mine_end - mine_begin; ++k) {
                 Vec2d m = D[k] * iso_weight;
                 if (aniso) {
                     const Vec2d A = ctx.field->a[t];
@@ -124,11 +154,10 @@ RelaxStepResult Relaxer::step(const RelaxContext &ctx, Cells &cells, const std::
     // --- Walk every moving cell across the surface (parallel, independent) ---
     tbb::parallel_for(tbb::blocked_range<size_t>(0, active.size(), 8), [&](const auto &range) {
         for (size_t ai = range.begin(); ai != range.end(); ++ai) {
-            const auto &mine = cells.on(active[ai]);
-            for (size_t k = 0; k < mine.size(); ++k) {
+            const uint32_t begin = m_row[active[ai]], count = m_row[active[ai] + 1] - begin;
+            for (uint32_t k = 0; k < count; ++k) {
                 const size_t i = m_active_row[ai] + k;
-                const CellId c = mine[k];
-                m_dest[i] = walk(crps, {active[ai], {xs[c], zs[c]}}, m_move[i]);
+                m_dest[i] = walk(crps, {active[ai], {xs[begin + k], zs[begin + k]}}, m_move[i]);
             }
         }
     });
@@ -136,13 +165,13 @@ RelaxStepResult Relaxer::step(const RelaxContext &ctx, Cells &cells, const std::
     // --- Apply serially in triangle order: bucket edits stay deterministic ---
     RelaxStepResult result;
     result.cells_moved = n_active_cells;
-    std::vector<CellId> ids;
-    ids.reserve(n_active_cells);
-    for (size_t ai = 0; ai < active.size(); ++ai)
-        for (CellId c : cells.on(active[ai])) ids.push_back(c);
-    for (size_t i = 0; i < n_active_cells; ++i) {
-        result.max_move = std::max(result.max_move, length(m_move[i]));
-        cells.move(ids[i], m_dest[i]);
+    for (size_t ai = 0; ai < active.size(); ++ai) {
+        const uint32_t begin = m_row[active[ai]], count = m_row[active[ai] + 1] - begin;
+        for (uint32_t k = 0; k < count; ++k) {
+            const size_t i = m_active_row[ai] + k;
+            result.max_move = std::max(result.max_move, length(m_move[i]));
+            cells.move(ids[begin + k], m_dest[i]);
+        }
     }
     return result;
 }

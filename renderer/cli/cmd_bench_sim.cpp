@@ -26,7 +26,7 @@ struct BenchSimOptions {
     uint64_t large_initial = 250000, large_target = 1000000;
     bool skip_large = false;
     uint64_t seed = 1;
-    int repeat = 1;
+    int repeat = 3;
     ThreadOption threads;
 };
 
