@@ -24,18 +24,47 @@ void Neighbourhoods::update(const Crps &crps, double r) {
     }
     ++m_rebuilds;
     struct Scratch {
-        UnfoldScratch unfold;
-        std::vector<UnfoldedTriangle> out;
+        UnfoldScratch visited;
+        std::vector<std::pair<TriId, RigidMap2>> queue;
     };
     tbb::enumerable_thread_specific<Scratch> scratch;
     const double R = m_radius;
+    const Topology &topo = crps.topology();
+    // Breadth-first unfolding as in sim/unfold.h (first path wins, same order), with
+    // cheap tests first: the centroid (origin of every 2D frame) of j mapped into t's
+    // frame within R accepts; farther than R plus both bounding radii rejects; only the
+    // cases in between pay for the exact triangle–triangle distance.
     tbb::parallel_for(tbb::blocked_range<TriId>(0, static_cast<TriId>(nt), 64), [&](const auto &range) {
         Scratch &s = scratch.local();
+        s.visited.prepare(nt);
         for (TriId t = range.begin(); t != range.end(); ++t) {
-            unfold_around_triangle(crps, t, R, s.out, s.unfold);
+            s.visited.begin();
+            s.visited.visit(t);
+            s.queue.clear();
+            s.queue.push_back({t, RigidMap2{}});
+            const Vec2d *vt = crps.frame(t).v.data();
+            for (size_t head = 0; head < s.queue.size(); ++head) {
+                const auto [parent, Fp] = s.queue[head];
+                const auto nbrs = topo.neighbours(parent);
+                const auto maps = crps.to_master(parent);
+                for (size_t k = 0; k < nbrs.size(); ++k) {
+                    const TriId j = nbrs[k];
+                    if (!s.visited.visit(j)) continue;
+                    const RigidMap2 F = compose(Fp, maps[k]);
+                    const double dc = std::hypot(F.ax, F.ay);  // F applied to j's centroid
+                    bool accept = dc <= R;
+                    if (!accept && dc <= R + m_bounding[t] + m_bounding[j]) {
+                        const auto &vj = crps.frame(j).v;
+                        const Vec2d mapped[3] = {F.apply(vj[0]), F.apply(vj[1]), F.apply(vj[2])};
+                        accept = triangle_triangle_distance(vt, mapped) <= R;
+                    }
+                    if (accept) s.queue.push_back({j, F});
+                    else s.visited.unvisit(j);
+                }
+            }
             auto &e = m_entries[t];
-            e.reserve(s.out.size());
-            for (const UnfoldedTriangle &u : s.out) e.push_back({u.tri, u.to_master.inverse()});
+            e.reserve(s.queue.size());
+            for (const auto &[j, F] : s.queue) e.push_back({j, F.inverse()});
         }
     });
 }
