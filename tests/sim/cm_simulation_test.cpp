@@ -161,3 +161,32 @@ TEST(CmSimulation, LocalAndGlobalAgreeOnCounts) {
 
 }  // namespace
 }  // namespace pelage::sim
+
+namespace pelage::sim {
+namespace {
+
+TEST(Relaxation, FullAnisotropyMovesCellsOnlyAlongTheField) {
+    // w_a = 1: C' = C + O with O the projection of D on A (SG01 §3.2.1). On a flat plane
+    // with A along world X, no cell may move in Z.
+    const Surface s = build_surface("procedural:plane:6x6");
+    const Preset p = parse_preset(test::preset_json(
+        R"({"initial_cells": 200, "initial_relax_steps": 0, "w_r": 2.0, "w_d": 0.1, "w_a": 1.0,
+            "anisotropy": {"direction": [1, 0, 0], "magnitude": 0.1}, "rho": 1, "end_time": 0})"), "t");
+    CmSimulation sim(s.crps, p.types, p.params, 2);
+    sim.initialize();
+    std::vector<Vec3d> before;
+    for (CellId c = 0; c < sim.cells().size(); ++c) before.push_back(s.crps.to_3d(sim.cells().tri(c), sim.cells().pos(c)));
+    std::vector<TriId> all(s.mesh.num_triangles());
+    for (TriId t = 0; t < all.size(); ++t) all[t] = t;
+    for (int k = 0; k < 10; ++k) sim.relax(all, false);
+    double moved_x = 0;
+    for (CellId c = 0; c < sim.cells().size(); ++c) {
+        const Vec3d q = s.crps.to_3d(sim.cells().tri(c), sim.cells().pos(c));
+        EXPECT_NEAR(q.z, before[c].z, 1e-9) << c;
+        moved_x += std::abs(q.x - before[c].x);
+    }
+    EXPECT_GT(moved_x, 1e-3);  // and they did move along X
+}
+
+}  // namespace
+}  // namespace pelage::sim
