@@ -225,6 +225,8 @@ void CmSimulation::run(const std::function<void(double)> &progress) {
         if (open_ended && m_heap.empty()) break;
     }
     m_stats.final_radius = radius();
+    m_stats.seconds_neighbourhoods = m_relaxer.neighbourhoods().seconds();
+    m_stats.neighbourhood_builds = m_relaxer.neighbourhoods().rebuilds();
     m_stats.seconds_total = m_stats.seconds_initial + (now_seconds() - t0);
 }
 

@@ -40,6 +40,8 @@ struct SimStats {
     double final_time = 0;
     double final_radius = 0;
     double seconds_initial = 0, seconds_total = 0;
+    double seconds_neighbourhoods = 0;  // building the unfolding cache (once per ~2× cells)
+    size_t neighbourhood_builds = 0;
 };
 
 class CmSimulation {

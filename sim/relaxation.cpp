@@ -1,6 +1,7 @@
 #include "sim/relaxation.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 
 #include <tbb/blocked_range.h>
@@ -15,6 +16,7 @@ namespace pelage::sim {
 void Neighbourhoods::update(const Crps &crps, double r) {
     const size_t nt = crps.num_triangles();
     if (m_entries.size() == nt && r <= m_radius && r * rebuild_ratio >= m_radius) return;
+    const auto start = std::chrono::steady_clock::now();
     m_radius = r * slack;
     m_entries.assign(nt, {});
     m_bounding.resize(nt);
@@ -67,6 +69,7 @@ void Neighbourhoods::update(const Crps &crps, double r) {
             for (const auto &[j, F] : s.queue) e.push_back({j, F.inverse()});
         }
     });
+    m_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
 namespace {

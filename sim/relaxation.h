@@ -40,12 +40,14 @@ class Neighbourhoods {
     double bounding_radius(TriId t) const { return m_bounding[t]; }
     double radius() const { return m_radius; }
     size_t rebuilds() const { return m_rebuilds; }
+    double seconds() const { return m_seconds; }  // total time spent building
 
   private:
     std::vector<std::vector<Entry>> m_entries;
     std::vector<double> m_bounding;
     double m_radius = 0;
     size_t m_rebuilds = 0;
+    double m_seconds = 0;
 };
 
 struct RelaxContext {

@@ -85,6 +85,7 @@ int run_sim(const SimOptions &o) {
             {"cell_steps", st.cell_steps},
             {"seconds", seconds},
             {"seconds_initial", st.seconds_initial},
+            {"seconds_neighbourhoods", st.seconds_neighbourhoods},
             {"cells_steps_per_second", seconds > 0 ? double(st.cell_steps) / seconds : 0.0},
         });
     }
