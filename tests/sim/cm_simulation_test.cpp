@@ -190,3 +190,53 @@ TEST(Relaxation, FullAnisotropyMovesCellsOnlyAlongTheField) {
 
 }  // namespace
 }  // namespace pelage::sim
+
+namespace pelage::sim {
+namespace {
+
+TEST(LocalRelaxation, OnlyTrianglesNearDivisionsAreRelaxed) {
+    // Teo §5.1.4: without divisions nothing is marked, so local steps move no cell;
+    // global steps do.
+    const Surface s = build_surface("procedural:sphere:12x12");
+    const Preset p = parse_preset(test::preset_json(
+        R"({"initial_cells": 300, "initial_relax_steps": 0, "w_r": 2.0, "w_d": 0.1, "rho": 1, "end_time": 5})"), "t");
+    for (RelaxMode mode : {RelaxMode::local, RelaxMode::global}) {
+        SimParams params = p.params;
+        params.relax = mode;
+        CmSimulation sim(s.crps, p.types, params, 8);
+        sim.initialize();
+        const std::vector<double> x0 = sim.cells().x();
+        sim.run();
+        EXPECT_EQ(sim.stats().relax_steps, 5u);
+        EXPECT_EQ(sim.stats().divisions, 0u);
+        if (mode == RelaxMode::local) EXPECT_EQ(sim.cells().x(), x0);
+        else EXPECT_NE(sim.cells().x(), x0);
+    }
+}
+
+TEST(LocalRelaxation, ADivisionRelaxesItsNeighbourhoodForSSteps) {
+    // One dividing cell among still ones: the local run relaxes fewer cell-steps than
+    // the global one, and more than zero.
+    const Surface s = build_surface("procedural:sphere:20x20");
+    const Preset p = parse_preset(R"({"name": "one", "types": [
+        {"name": "F", "colour": [0,0,0], "division_time": 3, "initial_probability": 0.01},
+        {"name": "B", "colour": [1,1,1], "division_time": "never", "initial_probability": 0.99}],
+        "adhesion": [[0.5, 0.0], [0.0, 0.5]],
+        "simulation": {"initial_cells": 2000, "initial_relax_steps": 0, "w_r": 2, "w_d": 0.1, "rho": 4, "end_time": 4,
+                       "division_distribution": "exponential", "local_steps": 3}})", "t");
+    uint64_t steps[2];
+    for (RelaxMode mode : {RelaxMode::local, RelaxMode::global}) {
+        SimParams params = p.params;
+        params.relax = mode;
+        CmSimulation sim(s.crps, p.types, params, 8);
+        sim.initialize();
+        sim.run();
+        ASSERT_GT(sim.stats().divisions, 0u);
+        steps[mode == RelaxMode::local ? 0 : 1] = sim.stats().cell_steps;
+    }
+    EXPECT_GT(steps[0], 0u);
+    EXPECT_LT(steps[0] * 4, steps[1]);
+}
+
+}  // namespace
+}  // namespace pelage::sim
