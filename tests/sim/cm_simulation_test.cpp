@@ -240,3 +240,45 @@ TEST(LocalRelaxation, ADivisionRelaxesItsNeighbourhoodForSSteps) {
 
 }  // namespace
 }  // namespace pelage::sim
+
+namespace pelage::sim {
+namespace {
+
+SurfacePoint locate(const Crps &crps, Vec3d p) {
+    for (TriId t = 0; t < crps.num_triangles(); ++t) {
+        const Vec2d q = crps.to_2d(t, p);
+        if (min_barycentric(crps.frame(t), q) >= 0 && length(crps.to_3d(t, q) - p) < 1e-9) return {t, q};
+    }
+    ADD_FAILURE() << "point not on the mesh";
+    return {};
+}
+
+TEST(Relaxation, TwoCellsOnDifferentTrianglesRepelExactlyAsInWalter) {
+    // Walter 1998 Fig. 1 on a flat mesh (maps are exact there): two cells at distance d
+    // < r on different triangles each move by w_d·(1 − d/r)·(1 − α)·r, away from each
+    // other along the line joining them.
+    const Surface s = build_surface("procedural:plane:8x8");
+    const CellTypes types({CellType{"F", {0, 0, 0}, 0, 0, 1.0, 1.0}}, {{1.0}}, {{0.25}});
+    Cells cells(s.mesh.num_triangles());
+    const Vec3d a{-0.13, 0, 0.02}, b{0.11, 0, -0.05};
+    const SurfacePoint pa = locate(s.crps, a), pb = locate(s.crps, b);
+    ASSERT_NE(pa.tri, pb.tri);
+    cells.add(pa, 0);
+    cells.add(pb, 0);
+    RelaxContext ctx;
+    ctx.crps = &s.crps;
+    ctx.types = &types;
+    ctx.r = 0.5;
+    ctx.w_d = 0.2;
+    Relaxer relaxer;
+    relaxer.step(ctx, cells, {pa.tri, pb.tri});
+    const double d = length(b - a);
+    const double step = ctx.w_d * (1 - d / ctx.r) * (1 - 0.25) * ctx.r;
+    const Vec3d u = (b - a) / d;
+    const Vec3d a1 = s.crps.to_3d(cells.tri(0), cells.pos(0)), b1 = s.crps.to_3d(cells.tri(1), cells.pos(1));
+    EXPECT_NEAR(length(a1 - (a - u * step)), 0, 1e-9);
+    EXPECT_NEAR(length(b1 - (b + u * step)), 0, 1e-9);
+}
+
+}  // namespace
+}  // namespace pelage::sim
