@@ -127,6 +127,12 @@ RelaxStepResult Relaxer::step(const RelaxContext &ctx, Cells &cells, const std::
     const CellId *ids = m_sid.data();
     const bool aniso = ctx.field && !ctx.field->empty() && ctx.w_a > 0;
     const double iso_weight = (1.0 - ctx.w_a) * ctx.w_d;
+    // 1 − α for every pair, resolved once per step (the initial phase uses one α).
+    double one_minus_alpha[max_cell_types][max_cell_types];
+    for (int c = 0; c < max_cell_types; ++c)
+        for (int q = 0; q < max_cell_types; ++q)
+            one_minus_alpha[c][q] = ctx.uniform_alpha ? 1.0 - ctx.alpha
+                                    : (c < ctx.types->size() && q < ctx.types->size() ? ctx.types->one_minus_alpha(c, q) : 0.0);
 
     // --- Forces (parallel over active triangles; each writes only its own cells) ---
     tbb::parallel_for(tbb::blocked_range<size_t>(0, active.size(), 8), [&](const auto &range) {
@@ -144,15 +150,14 @@ RelaxStepResult Relaxer::step(const RelaxContext &ctx, Cells &cells, const std::
                 for (uint32_t k = mine_begin; k < mine_end; ++k) {
                     const Vec2d q = F.apply({xs[k], zs[k]});  // C in j's frame
                     if (q.x * q.x + q.y * q.y > reach2) continue;
-                    const uint8_t tc = ts[k];
+                    const double *oma_row = one_minus_alpha[ts[k]];
                     double sx = 0, sz = 0;
                     for (uint32_t p = theirs_begin; p < theirs_end; ++p) {
                         const double dx = q.x - xs[p], dz = q.y - zs[p];
                         const double d2 = dx * dx + dz * dz;
                         if (d2 >= r2 || p == k) continue;
                         // Walter 1998 Fig. 1 step 1: f = 1 − d/r, D = unit(C − P)·f·(1 − α)·r
-                        const double oma = ctx.uniform_alpha ? 1.0 - ctx.alpha
-                                                             : ctx.types->one_minus_alpha(tc, ts[p]);
+                        const double oma = oma_row[ts[p]];
                         if (d2 > 0) {
                             const double d = std::sqrt(d2);
                             const double s = (1.0 - d * inv_r) * oma * r / d;
