@@ -16,6 +16,7 @@ packages=(
     libopencv-core-dev   # Debian's OpenImageIO CMake config names an opencv4 include folder
     libgtest-dev libgmock-dev libbenchmark-dev
     fonts-dejavu-core    # labels of `pelage compare` contact sheets
+    zlib1g-dev           # PNG previews of .cells files (pelage preview)
 )
 missing=()
 for p in "${packages[@]}"; do

@@ -40,17 +40,6 @@ int CellTypes::mutate(int parent, double u) const {
     return parent;  // rounding left the row sum just below u: no mutation
 }
 
-int CellTypes::draw_initial(double u) const {
-    double cdf = 0;
-    int last = 0;
-    for (int c = 0; c < size(); ++c) {
-        if (m_types[c].initial_probability > 0) last = c;
-        cdf += m_types[c].initial_probability;
-        if (u < cdf) return c;
-    }
-    return last;
-}
-
 int CellTypes::find(const std::string &name) const {
     for (int c = 0; c < size(); ++c)
         if (m_types[c].name == name) return c;

@@ -47,8 +47,6 @@ class CellTypes {
 
     // The type a child of `parent` gets for a uniform number u in [0, 1).
     int mutate(int parent, double u) const;
-    // The type drawn from the initial probabilities for u in [0, 1).
-    int draw_initial(double u) const;
 
     // "F" (foreground) and "B" (background) by name, else types 0 and 1; −1 if absent.
     int foreground() const;

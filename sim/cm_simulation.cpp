@@ -141,10 +141,18 @@ void CmSimulation::initialize(uint64_t override_cells) {
 }
 
 void CmSimulation::mark_local(SurfacePoint at) {
-    unfold_around_point(m_crps, at.tri, at.p, radius(), m_unfolded, m_unfold);
-    for (const UnfoldedTriangle &u : m_unfolded) {
-        if (m_steps_left[u.tri] == 0) m_marked.push_back(u.tri);
-        m_steps_left[u.tri] = m_params.local_steps;
+    // The cached unfolding of the child's triangle covers radius R ≥ r; the triangles
+    // within r of the child are among its entries (bounding circle first, then exact).
+    const double r = radius();
+    Neighbourhoods &nb = m_relaxer.neighbourhoods();
+    nb.update(m_crps, r);
+    for (const Neighbourhoods::Entry &e : nb.of(at.tri)) {
+        const double reach = r + nb.bounding_radius(e.tri);
+        const Vec2d q = e.to_nbr.apply(at.p);
+        if (length_squared(q) > reach * reach) continue;
+        if (point_triangle_distance(q, m_crps.frame(e.tri).v.data()) > r) continue;
+        if (m_steps_left[e.tri] == 0) m_marked.push_back(e.tri);
+        m_steps_left[e.tri] = m_params.local_steps;
     }
 }
 
@@ -217,6 +225,8 @@ void CmSimulation::run(const std::function<void(double)> &progress) {
         if (open_ended && m_heap.empty()) break;
     }
     m_stats.final_radius = radius();
+    m_stats.seconds_neighbourhoods = m_relaxer.neighbourhoods().seconds();
+    m_stats.neighbourhood_builds = m_relaxer.neighbourhoods().rebuilds();
     m_stats.seconds_total = m_stats.seconds_initial + (now_seconds() - t0);
 }
 

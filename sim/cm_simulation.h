@@ -40,6 +40,8 @@ struct SimStats {
     double final_time = 0;
     double final_radius = 0;
     double seconds_initial = 0, seconds_total = 0;
+    double seconds_neighbourhoods = 0;  // building the unfolding cache (once per ~2× cells)
+    size_t neighbourhood_builds = 0;
 };
 
 class CmSimulation {
@@ -88,8 +90,6 @@ class CmSimulation {
     std::vector<Event> m_heap;  // min-heap via std::push_heap with greater<>
     std::vector<int> m_steps_left;   // local relaxation: S countdown per triangle
     std::vector<TriId> m_marked;     // triangles with m_steps_left > 0
-    UnfoldScratch m_unfold;
-    std::vector<UnfoldedTriangle> m_unfolded;
     SimStats m_stats;
 };
 

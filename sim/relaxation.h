@@ -36,13 +36,18 @@ class Neighbourhoods {
     // Makes sure the cache covers radius r.
     void update(const Crps &crps, double r);
     const std::vector<Entry> &of(TriId t) const { return m_entries[t]; }
+    // Radius of t's bounding circle about its centroid (the origin of its 2D frame).
+    double bounding_radius(TriId t) const { return m_bounding[t]; }
     double radius() const { return m_radius; }
     size_t rebuilds() const { return m_rebuilds; }
+    double seconds() const { return m_seconds; }  // total time spent building
 
   private:
     std::vector<std::vector<Entry>> m_entries;
+    std::vector<double> m_bounding;
     double m_radius = 0;
     size_t m_rebuilds = 0;
+    double m_seconds = 0;
 };
 
 struct RelaxContext {
@@ -69,6 +74,12 @@ class Relaxer {
 
   private:
     Neighbourhoods m_nbhd;
+    // Cells copied into triangle order at the start of each step: the force loop then
+    // reads contiguous memory instead of cells scattered by creation order.
+    std::vector<uint32_t> m_row;
+    std::vector<double> m_sx, m_sz;
+    std::vector<uint8_t> m_st;
+    std::vector<CellId> m_sid;
     std::vector<Vec2d> m_move;          // per active cell, in active order
     std::vector<uint32_t> m_active_row; // offsets of each active triangle's cells
     std::vector<SurfacePoint> m_dest;

@@ -1,10 +1,13 @@
 // `pelage preview FILE.cells -o out.png`: a quick orthographic, flat-shaded view of the
 // mesh stored in a .cells file with its cells as coloured dots (a debugging view, not
 // the renderer; sim/cells_preview.h).
+#include <cmath>
+
 #include "renderer/cli/common.h"
 #include "renderer/cli/png_encode.h"
 #include "sim/cells_file.h"
 #include "sim/cells_preview.h"
+#include "sim/input_error.h"
 
 namespace pelage::cli {
 namespace {
@@ -17,7 +20,12 @@ struct PreviewCliOptions {
 
 int run_preview(PreviewCliOptions o) {
     const sim::CellsData data = sim::read_cells_file(o.file);
-    if (o.direction.size() == 3) o.view.view = {o.direction[0], o.direction[1], o.direction[2]};
+    if (o.direction.size() == 3) {
+        const double len2 = o.direction[0] * o.direction[0] + o.direction[1] * o.direction[1] +
+                            o.direction[2] * o.direction[2];
+        if (!(len2 > 0) || !std::isfinite(len2)) throw InputError("", 0, "--view", "must be a non-zero direction");
+        o.view.view = {o.direction[0], o.direction[1], o.direction[2]};
+    }
     const sim::PreviewImage img = sim::render_cells_preview(data, o.view);
     write_png_rgb8(o.output, img.width, img.height, img.rgb);
     return 0;

@@ -3,6 +3,7 @@
 // --stats-json are a contract (issue 3): triangles, area, cells_by_type, spot_fraction,
 // divisions, relax_steps, seconds.
 #include <algorithm>
+#include <cmath>
 
 #include <fmt/core.h>
 
@@ -30,6 +31,12 @@ int run_sim(const SimOptions &o) {
     sim::Preset preset = sim::load_preset(o.preset, data_path("scenes/presets"));
     if (o.relax == "local") preset.params.relax = sim::RelaxMode::local;
     else if (o.relax == "global") preset.params.relax = sim::RelaxMode::global;
+    if (o.cells > 0 && preset.params.target_cells > 0 && preset.params.initial_cells > 0) {
+        // A target count belongs to the preset's initial count: keep their ratio, so a
+        // run with more or fewer cells grows by the same factor (Teo presets stop there).
+        preset.params.target_cells = static_cast<uint64_t>(std::llround(
+            double(preset.params.target_cells) * double(o.cells) / double(preset.params.initial_cells)));
+    }
     const sim::Surface surface = sim::build_surface(o.mesh);
 
     sim::CmSimulation simulation(surface.crps, preset.types, preset.params, o.seed);
@@ -94,6 +101,7 @@ int run_sim(const SimOptions &o) {
             {"cell_steps", st.cell_steps},
             {"seconds", seconds},
             {"seconds_initial", st.seconds_initial},
+            {"seconds_neighbourhoods", st.seconds_neighbourhoods},
             {"cells_steps_per_second", seconds > 0 ? double(st.cell_steps) / seconds : 0.0},
         });
     }
@@ -107,7 +115,8 @@ Runner add_sim_command(CLI::App &app) {
     CLI::App *sub = app.add_subcommand("sim", "Grow a Clonal Mosaic on a mesh and write a .cells file");
     sub->add_option("--mesh", o->mesh, "Mesh file (.off, .obj) or procedural:sphere:20x20 ...")->required();
     sub->add_option("--preset", o->preset, "Preset name (scenes/presets/NAME.json) or a preset file")->required();
-    sub->add_option("--cells", o->cells, "Initial cell count (overrides the preset)");
+    sub->add_option("--cells", o->cells,
+                    "Initial cell count (overrides the preset; a preset's target count is scaled with it)");
     sub->add_option("--seed", o->seed, "Seed: same mesh, preset and seed give identical .cells");
     sub->add_option("--relax", o->relax, "Relaxation mode (overrides the preset)")
         ->check(CLI::IsMember({"local", "global"}));

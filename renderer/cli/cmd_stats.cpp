@@ -7,18 +7,20 @@
 
 #include "renderer/cli/common.h"
 #include "sim/cells_file.h"
+#include "sim/mesh_load.h"
 #include "sim/pattern_stats.h"
 
 namespace pelage::cli {
 namespace {
 
 struct StatsOptions {
-    std::string file, stats_json;
+    std::string file, stats_json, mesh;
     bool json = false;
 };
 
 int run_stats(const StatsOptions &o) {
     const sim::CellsData data = sim::read_cells_file(o.file);
+    if (!o.mesh.empty()) sim::check_cells_match_mesh(data, sim::load_mesh(o.mesh), o.file);
     const sim::PatternStats s = sim::compute_pattern_stats(data);
     nlohmann::json by_type = nlohmann::json::object();
     for (const auto &[name, n] : s.cells_by_type) by_type[name] = n;
@@ -53,6 +55,7 @@ Runner add_stats_command(CLI::App &app) {
     CLI::App *sub = app.add_subcommand("stats", "Pattern statistics of a .cells file");
     sub->add_option("file", o->file, ".cells file")->required();
     sub->add_flag("--json", o->json, "Print JSON on stdout");
+    sub->add_option("--mesh", o->mesh, "Also check that the cells were made for this mesh");
     sub->add_option("--stats-json", o->stats_json, "Also write the JSON to this file");
     return [o] { return run_stats(*o); };
 }

@@ -2,6 +2,9 @@
 
 #include <array>
 #include <ostream>
+#include <stdexcept>
+
+#include <zlib.h>
 
 #include "sim/atomic_file.h"
 
@@ -46,21 +49,12 @@ std::vector<uint8_t> encode_png_rgb8(int width, int height, const std::vector<ui
         raw.push_back(0);
         raw.insert(raw.end(), rgb.begin() + size_t(y) * width * 3, rgb.begin() + size_t(y + 1) * width * 3);
     }
-    // --- zlib stream of stored blocks (RFC 1950/1951), Adler-32 trailer ---
-    std::vector<uint8_t> z{0x78, 0x01};
-    uint32_t a = 1, b = 0;
-    for (uint8_t v : raw) { a = (a + v) % 65521; b = (b + a) % 65521; }
-    for (size_t pos = 0; pos < raw.size() || pos == 0; ) {
-        const size_t n = std::min<size_t>(65535, raw.size() - pos);
-        const bool last = pos + n >= raw.size();
-        z.push_back(last ? 1 : 0);
-        z.push_back(n & 0xff); z.push_back(n >> 8);
-        z.push_back(~n & 0xff); z.push_back((~n >> 8) & 0xff);
-        z.insert(z.end(), raw.begin() + pos, raw.begin() + pos + n);
-        pos += n;
-        if (last) break;
-    }
-    put_be32(z, (b << 16) | a);
+    // --- zlib stream (RFC 1950), best compression ---
+    uLongf z_size = compressBound(static_cast<uLong>(raw.size()));
+    std::vector<uint8_t> z(z_size);
+    if (compress2(z.data(), &z_size, raw.data(), static_cast<uLong>(raw.size()), 9) != Z_OK)
+        throw std::runtime_error("PNG: zlib compression failed");
+    z.resize(z_size);
 
     std::vector<uint8_t> out{0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
     std::vector<uint8_t> ihdr;

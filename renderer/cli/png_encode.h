@@ -1,6 +1,6 @@
-// A minimal PNG writer for debugging views (`pelage preview`): 8-bit RGB, zlib "stored"
-// (uncompressed) deflate blocks, so it needs no library. Not for final images, which go
-// through OpenImageIO/OpenColorIO in the renderer.
+// A minimal PNG writer for debugging views (`pelage preview`): 8-bit RGB, filter 0,
+// zlib-compressed. Not for final images, which go through OpenImageIO/OpenColorIO in the
+// renderer.
 #pragma once
 
 #include <cstdint>

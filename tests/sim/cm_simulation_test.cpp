@@ -161,3 +161,124 @@ TEST(CmSimulation, LocalAndGlobalAgreeOnCounts) {
 
 }  // namespace
 }  // namespace pelage::sim
+
+namespace pelage::sim {
+namespace {
+
+TEST(Relaxation, FullAnisotropyMovesCellsOnlyAlongTheField) {
+    // w_a = 1: C' = C + O with O the projection of D on A (SG01 §3.2.1). On a flat plane
+    // with A along world X, no cell may move in Z.
+    const Surface s = build_surface("procedural:plane:6x6");
+    const Preset p = parse_preset(test::preset_json(
+        R"({"initial_cells": 200, "initial_relax_steps": 0, "w_r": 2.0, "w_d": 0.1, "w_a": 1.0,
+            "anisotropy": {"direction": [1, 0, 0], "magnitude": 0.1}, "rho": 1, "end_time": 0})"), "t");
+    CmSimulation sim(s.crps, p.types, p.params, 2);
+    sim.initialize();
+    std::vector<Vec3d> before;
+    for (CellId c = 0; c < sim.cells().size(); ++c) before.push_back(s.crps.to_3d(sim.cells().tri(c), sim.cells().pos(c)));
+    std::vector<TriId> all(s.mesh.num_triangles());
+    for (TriId t = 0; t < all.size(); ++t) all[t] = t;
+    for (int k = 0; k < 10; ++k) sim.relax(all, false);
+    double moved_x = 0;
+    for (CellId c = 0; c < sim.cells().size(); ++c) {
+        const Vec3d q = s.crps.to_3d(sim.cells().tri(c), sim.cells().pos(c));
+        EXPECT_NEAR(q.z, before[c].z, 1e-9) << c;
+        moved_x += std::abs(q.x - before[c].x);
+    }
+    EXPECT_GT(moved_x, 1e-3);  // and they did move along X
+}
+
+}  // namespace
+}  // namespace pelage::sim
+
+namespace pelage::sim {
+namespace {
+
+TEST(LocalRelaxation, OnlyTrianglesNearDivisionsAreRelaxed) {
+    // Teo §5.1.4: without divisions nothing is marked, so local steps move no cell;
+    // global steps do.
+    const Surface s = build_surface("procedural:sphere:12x12");
+    const Preset p = parse_preset(test::preset_json(
+        R"({"initial_cells": 300, "initial_relax_steps": 0, "w_r": 2.0, "w_d": 0.1, "rho": 1, "end_time": 5})"), "t");
+    for (RelaxMode mode : {RelaxMode::local, RelaxMode::global}) {
+        SimParams params = p.params;
+        params.relax = mode;
+        CmSimulation sim(s.crps, p.types, params, 8);
+        sim.initialize();
+        const std::vector<double> x0 = sim.cells().x();
+        sim.run();
+        EXPECT_EQ(sim.stats().relax_steps, 5u);
+        EXPECT_EQ(sim.stats().divisions, 0u);
+        if (mode == RelaxMode::local) EXPECT_EQ(sim.cells().x(), x0);
+        else EXPECT_NE(sim.cells().x(), x0);
+    }
+}
+
+TEST(LocalRelaxation, ADivisionRelaxesItsNeighbourhoodForSSteps) {
+    // One dividing cell among still ones: the local run relaxes fewer cell-steps than
+    // the global one, and more than zero.
+    const Surface s = build_surface("procedural:sphere:20x20");
+    const Preset p = parse_preset(R"({"name": "one", "types": [
+        {"name": "F", "colour": [0,0,0], "division_time": 3, "initial_probability": 0.01},
+        {"name": "B", "colour": [1,1,1], "division_time": "never", "initial_probability": 0.99}],
+        "adhesion": [[0.5, 0.0], [0.0, 0.5]],
+        "simulation": {"initial_cells": 2000, "initial_relax_steps": 0, "w_r": 2, "w_d": 0.1, "rho": 4, "end_time": 4,
+                       "division_distribution": "exponential", "local_steps": 3}})", "t");
+    uint64_t steps[2];
+    for (RelaxMode mode : {RelaxMode::local, RelaxMode::global}) {
+        SimParams params = p.params;
+        params.relax = mode;
+        CmSimulation sim(s.crps, p.types, params, 8);
+        sim.initialize();
+        sim.run();
+        ASSERT_GT(sim.stats().divisions, 0u);
+        steps[mode == RelaxMode::local ? 0 : 1] = sim.stats().cell_steps;
+    }
+    EXPECT_GT(steps[0], 0u);
+    EXPECT_LT(steps[0] * 4, steps[1]);
+}
+
+}  // namespace
+}  // namespace pelage::sim
+
+namespace pelage::sim {
+namespace {
+
+SurfacePoint locate(const Crps &crps, Vec3d p) {
+    for (TriId t = 0; t < crps.num_triangles(); ++t) {
+        const Vec2d q = crps.to_2d(t, p);
+        if (min_barycentric(crps.frame(t), q) >= 0 && length(crps.to_3d(t, q) - p) < 1e-9) return {t, q};
+    }
+    ADD_FAILURE() << "point not on the mesh";
+    return {};
+}
+
+TEST(Relaxation, TwoCellsOnDifferentTrianglesRepelExactlyAsInWalter) {
+    // Walter 1998 Fig. 1 on a flat mesh (maps are exact there): two cells at distance d
+    // < r on different triangles each move by w_d·(1 − d/r)·(1 − α)·r, away from each
+    // other along the line joining them.
+    const Surface s = build_surface("procedural:plane:8x8");
+    const CellTypes types({CellType{"F", {0, 0, 0}, 0, 0, 1.0, 1.0}}, {{1.0}}, {{0.25}});
+    Cells cells(s.mesh.num_triangles());
+    const Vec3d a{-0.13, 0, 0.02}, b{0.11, 0, -0.05};
+    const SurfacePoint pa = locate(s.crps, a), pb = locate(s.crps, b);
+    ASSERT_NE(pa.tri, pb.tri);
+    cells.add(pa, 0);
+    cells.add(pb, 0);
+    RelaxContext ctx;
+    ctx.crps = &s.crps;
+    ctx.types = &types;
+    ctx.r = 0.5;
+    ctx.w_d = 0.2;
+    Relaxer relaxer;
+    relaxer.step(ctx, cells, {pa.tri, pb.tri});
+    const double d = length(b - a);
+    const double step = ctx.w_d * (1 - d / ctx.r) * (1 - 0.25) * ctx.r;
+    const Vec3d u = (b - a) / d;
+    const Vec3d a1 = s.crps.to_3d(cells.tri(0), cells.pos(0)), b1 = s.crps.to_3d(cells.tri(1), cells.pos(1));
+    EXPECT_NEAR(length(a1 - (a - u * step)), 0, 1e-9);
+    EXPECT_NEAR(length(b1 - (b + u * step)), 0, 1e-9);
+}
+
+}  // namespace
+}  // namespace pelage::sim
