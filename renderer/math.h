@@ -19,7 +19,10 @@ struct Vec3f {
     constexpr Vec3f operator-() const { return {-x, -y, -z}; }
     constexpr Vec3f operator*(float s) const { return {x * s, y * s, z * s}; }
     constexpr Vec3f operator*(Vec3f o) const { return {x * o.x, y * o.y, z * o.z}; }
-    constexpr Vec3f operator/(float s) const { return {x / s, y / s, z / s}; }
+    constexpr Vec3f operator/(float s) const {
+        const float inv = 1.0f / s;  // one division, not three
+        return {x * inv, y * inv, z * inv};
+    }
     constexpr Vec3f &operator+=(Vec3f o) { x += o.x; y += o.y; z += o.z; return *this; }
     constexpr Vec3f &operator*=(Vec3f o) { x *= o.x; y *= o.y; z *= o.z; return *this; }
     constexpr Vec3f &operator*=(float s) { x *= s; y *= s; z *= s; return *this; }
