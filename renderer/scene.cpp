@@ -1,5 +1,6 @@
 #include "renderer/scene.h"
 
+#include <filesystem>
 #include <stdexcept>
 
 #include "sim/input_error.h"
@@ -16,6 +17,10 @@ Scene::Scene(const SceneDesc &desc, const PluginRegistry &plugins) : m_desc(desc
         params.push_back(validate_plugin_params(*p.desc, desc.objects[i].material.params, desc.path, field + ".params"));
         chosen.push_back(&p);
     }
+    for (size_t i = 0; i < desc.objects.size(); ++i)
+        if (const std::string &c = desc.objects[i].cells; !c.empty() && !std::filesystem::is_regular_file(c))
+            throw InputError(c, 0, "", "cannot open file (objects[" + std::to_string(i) + "].cells in " +
+                                           desc.path + ")");
     m_geometry = std::make_unique<EmbreeScene>(desc);
     m_lights = std::make_unique<Lights>(desc.lights);
 

@@ -59,6 +59,26 @@ TEST(PathIntegrator, WhiteFurnaceNonAbsorbingSphereConvergesToEnvironment) {
     EXPECT_NEAR(mean, 1.0, 0.01);
 }
 
+TEST(PathIntegrator, WhiteFurnaceWithInterreflectionConvergesToEnvironment) {
+    TempDir tmp;
+    // A non-convex torus: paths bounce between its parts. With albedo 1 under uniform L
+    // every surface must render as L, whatever the number of bounces (Russian roulette
+    // keeps it unbiased; the depth cap truncates, so it is set far beyond what matters).
+    const std::string json = R"({
+      "camera": {"position": [0, 2.2, 2.2], "look_at": [0, 0, 0], "fov": 50},
+      "film": {"width": 24, "height": 24, "spp": 256, "filter": {"type": "box"}},
+      "lights": [{"type": "environment", "color": 1}],
+      "objects": [{"mesh": "procedural:torus:48x24", "normals": "flat",
+                   "material": {"params": {"albedo": 1}}}],
+      "integrator": {"max_depth": 200}
+    })";
+    const RenderedImage img = render_json(json, tmp);
+    int n = 0;
+    const double mean = covered_mean(img, &n);
+    ASSERT_GT(n, 100);
+    EXPECT_NEAR(mean, 1.0, 0.01);
+}
+
 TEST(PathIntegrator, UncoveredPixelsSeeTheEnvironmentWithZeroAlpha) {
     TempDir tmp;
     const RenderedImage img = render_json(furnace_scene(0.5f, 2.0f, 4), tmp);
