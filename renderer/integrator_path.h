@@ -25,7 +25,7 @@ struct RenderStats {
 
     uint64_t rays() const { return camera_rays + secondary_rays + shadow_rays; }
     // Time in plugins, extrapolated from the timed 1-in-16 subset (timing every call
-    // would cost more than the calls).
+    // would cost more than the calls), less the clock reads' own cost.
     double plugin_seconds() const {
         return plugin_timed_calls ? plugin_timed_seconds * double(plugin_calls) / plugin_timed_calls : 0.0;
     }
@@ -59,6 +59,7 @@ class PathIntegrator {
     RTCScene m_rtc;
     int m_max_depth, m_rr_depth;
     float m_pixel_spread;  // radians per pixel, for ray footprints
+    double m_timer_overhead;
 };
 
 }  // namespace pelage::renderer
