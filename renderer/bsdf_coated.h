@@ -2,7 +2,8 @@
 // (Walter et al. 2007, "Microfacet Models for Refraction through Rough Surfaces", EGSR,
 // eqs. 20 (Fresnel-weighted Cook-Torrance), 33 (D) and 34 (G1)) plus the base, seen
 // through the coat and attenuated by the transmittance (1 − F) on the way in and out:
-//   f = F(wo·h) D(h) G2(wo, wi) / (4 cos θ_o cos θ_i) + (1 − F(cos θ_i))(1 − F(cos θ_o)) ρ/π.
+//   f = F(wo·h) D(h) G2(wo, wi) / (4 cos θ_o cos θ_i) + (1 − F(cos θ_i))(1 − F(cos θ_o))
+//   ρ/π.
 // This ignores inter-reflection between coat and base (energy is lost, never gained).
 // The specular lobe is sampled from the distribution of visible normals (Heitz 2018,
 // "Sampling the GGX Distribution of Visible Normals", JCGT 7(4)).

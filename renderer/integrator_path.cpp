@@ -15,16 +15,26 @@ namespace {
 constexpr float inf = std::numeric_limits<float>::infinity();
 constexpr int max_infinite_lights = 8;
 constexpr uint64_t plugin_timing_stride = 16;
-constexpr float shadow_ray_shortening = 1e-4f;  // keep shadow rays off the light's surface
+constexpr float shadow_ray_shortening =
+    1e-4f;  // keep shadow rays off the light's surface
 
 struct Vertex {
     Vec3f p, ng, ns, wo;
 };
 
 void set_ray(RTCRay &r, Vec3f o, Vec3f d, float tfar) {
-    r.org_x = o.x; r.org_y = o.y; r.org_z = o.z; r.tnear = 0;
-    r.dir_x = d.x; r.dir_y = d.y; r.dir_z = d.z; r.time = 0;
-    r.tfar = tfar; r.mask = 0xffffffffu; r.id = 0; r.flags = 0;
+    r.org_x = o.x;
+    r.org_y = o.y;
+    r.org_z = o.z;
+    r.tnear = 0;
+    r.dir_x = d.x;
+    r.dir_y = d.y;
+    r.dir_z = d.z;
+    r.time = 0;
+    r.tfar = tfar;
+    r.mask = 0xffffffffu;
+    r.id = 0;
+    r.flags = 0;
 }
 
 void record(std::vector<RecordedRay> *log, Vec3f o, Vec3f d, float tfar, uint32_t kind) {
@@ -60,24 +70,32 @@ void RenderStats::add(const RenderStats &o) {
     plugin_timed_seconds += o.plugin_timed_seconds;
 }
 
-PathIntegrator::PathIntegrator(const Scene &scene, const Camera &camera, const PixelFilter &filter,
-                               int /*width*/, int height)
-    : m_scene(scene), m_camera(camera), m_filter(filter), m_rtc(scene.geometry().scene()),
-      m_max_depth(scene.desc().integrator.max_depth), m_rr_depth(scene.desc().integrator.rr_depth) {
+PathIntegrator::PathIntegrator(const Scene &scene, const Camera &camera,
+                               const PixelFilter &filter, int /*width*/, int height)
+    : m_scene(scene),
+      m_camera(camera),
+      m_filter(filter),
+      m_rtc(scene.geometry().scene()),
+      m_max_depth(scene.desc().integrator.max_depth),
+      m_rr_depth(scene.desc().integrator.rr_depth) {
     m_timer_overhead = timer_overhead_seconds();
-    m_pixel_spread = 2 * std::tan(0.5f * scene.desc().camera.fov_deg * pi / 180) / float(height);
+    m_pixel_spread =
+        2 * std::tan(0.5f * scene.desc().camera.fov_deg * pi / 180) / float(height);
 }
 
-void PathIntegrator::render_tile(Film &film, Sampler &sampler, int x0, int y0, int x1, int y1, int s0,
-                                 int s1, RenderStats &stats, std::vector<RecordedRay> *log) const {
+void PathIntegrator::render_tile(Film &film, Sampler &sampler, int x0, int y0, int x1,
+                                 int y1, int s0, int s1, RenderStats &stats,
+                                 std::vector<RecordedRay> *log) const {
     for (int y = y0; y < y1; ++y)
         for (int x = x0; x < x1; ++x)
             for (int s = s0; s < s1; ++s) {
                 sampler.start_pixel_sample(uint32_t(x), uint32_t(y), uint32_t(s));
                 // --- Offsets drawn from the filter: every sample has weight 1 ---
-                const float dx = m_filter.sample_1d(sampler.get_1d()), dy = m_filter.sample_1d(sampler.get_1d());
+                const float dx = m_filter.sample_1d(sampler.get_1d()),
+                            dy = m_filter.sample_1d(sampler.get_1d());
                 const float lu = sampler.get_1d(), lv = sampler.get_1d();
-                const CameraRay ray = m_camera.generate(x + 0.5f + dx, y + 0.5f + dy, lu, lv);
+                const CameraRay ray =
+                    m_camera.generate(x + 0.5f + dx, y + 0.5f + dy, lu, lv);
                 FilmSample fs;
                 FilmPointAovs aovs;
                 fs.L = radiance(ray, sampler, fs, s == 0 ? &aovs : nullptr, stats, log);
@@ -92,8 +110,9 @@ void PathIntegrator::render_tile(Film &film, Sampler &sampler, int x0, int y0, i
             }
 }
 
-Rgb PathIntegrator::radiance(CameraRay cam, Sampler &sampler, FilmSample &fs, FilmPointAovs *aovs,
-                             RenderStats &stats, std::vector<RecordedRay> *log) const {
+Rgb PathIntegrator::radiance(CameraRay cam, Sampler &sampler, FilmSample &fs,
+                             FilmPointAovs *aovs, RenderStats &stats,
+                             std::vector<RecordedRay> *log) const {
     const Lights &lights = m_scene.lights();
     const EmbreeScene &geometry = m_scene.geometry();
     const int num_lights = lights.count();
@@ -101,23 +120,26 @@ Rgb PathIntegrator::radiance(CameraRay cam, Sampler &sampler, FilmSample &fs, Fi
 
     Rgb L{}, beta{1, 1, 1};
     Vec3f o = cam.o, d = cam.d;
-    float prev_pdf = 0;         // solid-angle density of the BSDF sample that made d
+    float prev_pdf = 0;  // solid-angle density of the BSDF sample that made d
     bool prev_specular = false;
-    float footprint = 0;        // ray cone width at the ray origin
+    float footprint = 0;  // ray cone width at the ray origin
 
     for (int depth = 0;; ++depth) {
         // --- Intersect the scene (primary rays are coherent) ---
         RTCIntersectContext ctx;
         rtcInitIntersectContext(&ctx);
-        ctx.flags = depth == 0 ? RTC_INTERSECT_CONTEXT_FLAG_COHERENT : RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT;
+        ctx.flags = depth == 0 ? RTC_INTERSECT_CONTEXT_FLAG_COHERENT
+                               : RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT;
         RTCRayHit rh;
         set_ray(rh.ray, o, d, inf);
         rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
         rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
         rtcIntersect1(m_rtc, &ctx, &rh);
         record(log, o, d, inf, depth == 0 ? 0 : 1);
-        if (depth == 0) ++stats.camera_rays;
-        else ++stats.secondary_rays;
+        if (depth == 0)
+            ++stats.camera_rays;
+        else
+            ++stats.secondary_rays;
         const bool hit_geometry = rh.hit.geomID != RTC_INVALID_GEOMETRY_ID;
         const float t_hit = hit_geometry ? rh.ray.tfar : inf;
         const bool unweighted = depth == 0 || prev_specular;
@@ -126,7 +148,8 @@ Rgb PathIntegrator::radiance(CameraRay cam, Sampler &sampler, FilmSample &fs, Fi
         if (const AreaLightHit al = lights.intersect(o, d, t_hit); al.light >= 0) {
             float pdf_light;
             const Rgb Le = lights.area_radiance(al.light, o, d, al.t, &pdf_light);
-            const float w = unweighted ? 1.0f : power_heuristic(prev_pdf, select_pdf * pdf_light);
+            const float w =
+                unweighted ? 1.0f : power_heuristic(prev_pdf, select_pdf * pdf_light);
             L += beta * Le * w;
             if (depth == 0) fs.alpha = 1;
             break;
@@ -136,7 +159,9 @@ Rgb PathIntegrator::radiance(CameraRay cam, Sampler &sampler, FilmSample &fs, Fi
             Lights::InfiniteHit hits[max_infinite_lights];
             const int n = lights.eval_infinite(d, hits, max_infinite_lights);
             for (int k = 0; k < n; ++k) {
-                const float w = unweighted ? 1.0f : power_heuristic(prev_pdf, select_pdf * hits[k].pdf);
+                const float w = unweighted
+                                    ? 1.0f
+                                    : power_heuristic(prev_pdf, select_pdf * hits[k].pdf);
                 L += beta * hits[k].L * w;
             }
             break;
@@ -166,7 +191,8 @@ Rgb PathIntegrator::radiance(CameraRay cam, Sampler &sampler, FilmSample &fs, Fi
         v.ns = v.ng;
         if (!mesh.corner_normals.empty()) {
             const float *N = &mesh.corner_normals[9 * size_t(prim)];
-            Vec3f ns = Vec3f{N[0], N[1], N[2]} * b0 + Vec3f{N[3], N[4], N[5]} * b1 + Vec3f{N[6], N[7], N[8]} * b2;
+            Vec3f ns = Vec3f{N[0], N[1], N[2]} * b0 + Vec3f{N[3], N[4], N[5]} * b1 +
+                       Vec3f{N[6], N[7], N[8]} * b2;
             if (!og.baked) ns = og.normal_to_world.vector(ns);
             const float len = length(ns);
             if (len > 0) {
@@ -185,8 +211,12 @@ Rgb PathIntegrator::radiance(CameraRay cam, Sampler &sampler, FilmSample &fs, Fi
         ph.primitive_id = prim;
         ph.b1 = b1;
         ph.b2 = b2;
-        ph.p[0] = v.p.x; ph.p[1] = v.p.y; ph.p[2] = v.p.z;
-        ph.n[0] = v.ns.x; ph.n[1] = v.ns.y; ph.n[2] = v.ns.z;
+        ph.p[0] = v.p.x;
+        ph.p[1] = v.p.y;
+        ph.p[2] = v.p.z;
+        ph.n[0] = v.ns.x;
+        ph.n[1] = v.ns.y;
+        ph.n[2] = v.ns.z;
         if (!mesh.corner_uvs.empty()) {
             const float *U = &mesh.corner_uvs[6 * size_t(prim)];
             ph.uv[0] = U[0] * b0 + U[2] * b1 + U[4] * b2;
@@ -201,7 +231,9 @@ Rgb PathIntegrator::radiance(CameraRay cam, Sampler &sampler, FilmSample &fs, Fi
         if (stats.plugin_calls++ % plugin_timing_stride == 0) {
             const auto t0 = std::chrono::steady_clock::now();
             mat.plugin->shade(mat.instance, &ph, &sh);
-            const double dt = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+            const double dt =
+                std::chrono::duration<double>(std::chrono::steady_clock::now() - t0)
+                    .count();
             stats.plugin_timed_seconds += std::max(0.0, dt - m_timer_overhead);
             ++stats.plugin_timed_calls;
         } else {
@@ -221,7 +253,8 @@ Rgb PathIntegrator::radiance(CameraRay cam, Sampler &sampler, FilmSample &fs, Fi
                 aovs->object_id = float(object);
                 aovs->primitive_id = float(prim);
                 if (sh.aov_written)
-                    for (int k = 0; k < PELAGE_SHADER_AOV_SLOTS; ++k) aovs->shader[k] = sh.aov[k];
+                    for (int k = 0; k < PELAGE_SHADER_AOV_SLOTS; ++k)
+                        aovs->shader[k] = sh.aov[k];
             }
         }
         if (depth >= m_max_depth) break;
@@ -229,18 +262,23 @@ Rgb PathIntegrator::radiance(CameraRay cam, Sampler &sampler, FilmSample &fs, Fi
         // --- Direct lighting and BSDF sampling, for the material's BSDF ---
         const Frame frame = Frame::from_z(v.ns);
         const Vec3f wo_local = frame.to_local(v.wo);
-        const float u_light = sampler.get_1d(), ul1 = sampler.get_1d(), ul2 = sampler.get_1d();
-        const float u_lobe = sampler.get_1d(), ub1 = sampler.get_1d(), ub2 = sampler.get_1d();
+        const float u_light = sampler.get_1d(), ul1 = sampler.get_1d(),
+                    ul2 = sampler.get_1d();
+        const float u_lobe = sampler.get_1d(), ub1 = sampler.get_1d(),
+                    ub2 = sampler.get_1d();
         auto scatter = [&](const auto &bsdf) -> bool {
             // --- Next-event estimation: one light, chosen uniformly ---
             LightSample ls;
             const int li = std::min(int(u_light * num_lights), num_lights - 1);
-            if (num_lights > 0 && lights.sample(li, v.p, ul1, ul2, &ls) && dot(ls.wi, v.ng) > 0) {
+            if (num_lights > 0 && lights.sample(li, v.p, ul1, ul2, &ls) &&
+                dot(ls.wi, v.ng) > 0) {
                 const Vec3f wi_local = frame.to_local(ls.wi);
                 const Rgb f = bsdf.eval(wo_local, wi_local);
                 if (!is_black(f)) {
                     const Vec3f so = offset_ray_origin(v.p, v.ng, ls.wi);
-                    const float tfar = std::isinf(ls.distance) ? inf : ls.distance * (1 - shadow_ray_shortening);
+                    const float tfar = std::isinf(ls.distance)
+                                           ? inf
+                                           : ls.distance * (1 - shadow_ray_shortening);
                     RTCIntersectContext sctx;
                     rtcInitIntersectContext(&sctx);
                     sctx.flags = RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT;
@@ -251,7 +289,10 @@ Rgb PathIntegrator::radiance(CameraRay cam, Sampler &sampler, FilmSample &fs, Fi
                     ++stats.shadow_rays;
                     if (sr.tfar >= 0) {  // Embree sets tfar = -inf when occluded
                         const float light_pdf = select_pdf * ls.pdf;
-                        const float w = ls.delta ? 1.0f : power_heuristic(light_pdf, bsdf.pdf(wo_local, wi_local));
+                        const float w =
+                            ls.delta ? 1.0f
+                                     : power_heuristic(light_pdf,
+                                                       bsdf.pdf(wo_local, wi_local));
                         L += beta * f * ls.Li * (std::abs(wi_local.z) * w / light_pdf);
                     }
                 }
@@ -270,7 +311,9 @@ Rgb PathIntegrator::radiance(CameraRay cam, Sampler &sampler, FilmSample &fs, Fi
         };
         bool go_on;
         if (mat.bsdf == MaterialDesc::Bsdf::coated)
-            go_on = scatter(BsdfCoated(albedo, sh.roughness >= 0 ? std::min(sh.roughness, 1.0f) : mat.roughness, mat.ior));
+            go_on = scatter(BsdfCoated(
+                albedo, sh.roughness >= 0 ? std::min(sh.roughness, 1.0f) : mat.roughness,
+                mat.ior));
         else
             go_on = scatter(BsdfLambert(albedo));
         if (!go_on || is_black(beta)) break;

@@ -19,7 +19,8 @@ Lights::Lights(const std::vector<LightDesc> &descs) {
         switch (d.type) {
             case LightDesc::Type::environment:
                 l.env = d.image.empty() ? std::make_shared<EnvironmentLight>(l.L)
-                                        : std::make_shared<EnvironmentLight>(d.image, d.intensity, d.rotation_deg);
+                                        : std::make_shared<EnvironmentLight>(
+                                              d.image, d.intensity, d.rotation_deg);
                 m_infinite.push_back(int(m_lights.size()));
                 break;
             case LightDesc::Type::distant: {
@@ -128,7 +129,8 @@ AreaLightHit Lights::intersect(Vec3f o, Vec3f d, float t_max) const {
         float t = -1;
         if (l.type == LightDesc::Type::sphere) {
             const Vec3f oc = o - l.center;
-            const float b = dot(oc, d), c = dot(oc, oc) - l.radius * l.radius, disc = b * b - c;
+            const float b = dot(oc, d), c = dot(oc, oc) - l.radius * l.radius,
+                        disc = b * b - c;
             if (disc < 0) continue;
             const float sq = std::sqrt(disc);
             t = -b - sq;
@@ -145,7 +147,10 @@ AreaLightHit Lights::intersect(Vec3f o, Vec3f d, float t_max) const {
             const float a = (qu * vv - qv * uv) / det, b = (qv * uu - qu * uv) / det;
             if (a < 0 || a > 1 || b < 0 || b > 1) continue;
         }
-        if (t > 0 && t < best.t) { best.t = t; best.light = i; }
+        if (t > 0 && t < best.t) {
+            best.t = t;
+            best.light = i;
+        }
     }
     return best;
 }
@@ -155,13 +160,19 @@ Rgb Lights::area_radiance(int index, Vec3f o, Vec3f d, float t, float *pdf) cons
     if (l.type == LightDesc::Type::sphere) {
         const Vec3f to_c = l.center - o;
         const float d2 = dot(to_c, to_c);
-        if (d2 <= l.radius * l.radius) { *pdf = 0; return l.L; }
+        if (d2 <= l.radius * l.radius) {
+            *pdf = 0;
+            return l.L;
+        }
         const float cos_max = std::sqrt(std::max(0.0f, 1 - l.radius * l.radius / d2));
         *pdf = 1 / (2 * pi * (1 - cos_max));
         return l.L;
     }
     const float cos_l = -dot(l.n, d);
-    if (cos_l <= 0 && !l.two_sided) { *pdf = 0; return {}; }
+    if (cos_l <= 0 && !l.two_sided) {
+        *pdf = 0;
+        return {};
+    }
     *pdf = t * t / (std::abs(cos_l) * l.area);
     return l.L;
 }

@@ -32,7 +32,8 @@ void check_consistency(const B &bsdf, Vec3f wo, double *by_sampling, double *by_
             a += luminance(bs->weight);
             EXPECT_NEAR(bs->pdf, bsdf.pdf(wo, bs->wi), 1e-3f * bs->pdf);
         }
-        const Vec3f wi = direction(u1, 2 * pi * u2);  // uniform hemisphere, density 1/(2π)
+        const Vec3f wi =
+            direction(u1, 2 * pi * u2);  // uniform hemisphere, density 1/(2π)
         b += luminance(bsdf.eval(wo, wi)) * wi.z * 2 * pi;
     }
     *by_sampling = a / n;
@@ -75,7 +76,8 @@ TEST(BsdfCoated, WhiteFurnaceNeverGainsEnergy) {
 }
 
 TEST(PixelFilter, SamplesStayInTheSupportAndFollowTheFilter) {
-    for (FilterType t : {FilterType::box, FilterType::gaussian, FilterType::blackman_harris}) {
+    for (FilterType t :
+         {FilterType::box, FilterType::gaussian, FilterType::blackman_harris}) {
         const PixelFilter f(t, 1.5f);
         double mean = 0, mean_abs = 0;
         constexpr int n = 100000;
