@@ -172,18 +172,21 @@ Rgb PathIntegrator::radiance(CameraRay cam, Sampler &sampler, FilmSample &fs,
         const ObjectGeometry &og = geometry.objects()[object];
         const MeshData &mesh = *og.mesh;
         const uint32_t prim = rh.hit.primID;
-        const uint32_t *tri = &mesh.triangles[3 * size_t(prim)];
-        const float *P = mesh.positions.data();
-        const Vec3f p0{P[3 * tri[0]], P[3 * tri[0] + 1], P[3 * tri[0] + 2]};
-        const Vec3f p1{P[3 * tri[1]], P[3 * tri[1] + 1], P[3 * tri[1] + 2]};
-        const Vec3f p2{P[3 * tri[2]], P[3 * tri[2] + 1], P[3 * tri[2] + 2]};
         const float b1 = rh.hit.u, b2 = rh.hit.v, b0 = 1 - b1 - b2;
         Vertex v;
-        v.p = p0 * b0 + p1 * b1 + p2 * b2;
-        v.ng = cross(p1 - p0, p2 - p0);
-        if (!og.baked) {
-            v.p = og.to_world.point(v.p);
-            v.ng = og.normal_to_world.vector(v.ng);
+        // The hit point from the ray (its float error is far below the origin offset);
+        // Embree's Ng for baked meshes, so the vertices are not fetched again.
+        v.p = o + d * t_hit;
+        if (og.baked) {
+            v.ng = {rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z};
+        } else {
+            // Embree reports Ng of instanced geometry in object space: rebuild and move it.
+            const uint32_t *tri = &mesh.triangles[3 * size_t(prim)];
+            const float *P = mesh.positions.data();
+            const Vec3f p0{P[3 * tri[0]], P[3 * tri[0] + 1], P[3 * tri[0] + 2]};
+            const Vec3f p1{P[3 * tri[1]], P[3 * tri[1] + 1], P[3 * tri[1] + 2]};
+            const Vec3f p2{P[3 * tri[2]], P[3 * tri[2] + 1], P[3 * tri[2] + 2]};
+            v.ng = og.normal_to_world.vector(cross(p1 - p0, p2 - p0));
         }
         v.ng = normalize(v.ng);
         v.wo = -d;

@@ -25,7 +25,7 @@ using namespace pelage::renderer;
 
 struct BenchRenderOptions {
     std::string scene, res = "1280x720";
-    int spp = 4, repeat = 1;
+    int spp = 4, repeat = 3;
 };
 
 double replay(RTCScene scene, const std::vector<std::vector<RecordedRay>> &logs,
@@ -155,7 +155,7 @@ Runner add_bench_render(CLI::App &bench) {
     sub->add_option("--res", o->res, "Resolution WIDTHxHEIGHT (default 1280x720)");
     sub->add_option("--spp", o->spp, "Samples per pixel of the timed renders (default 4)")
         ->check(CLI::Range(1, 4096));
-    sub->add_option("--repeat", o->repeat, "Runs per measurement; the fastest counts")
+    sub->add_option("--repeat", o->repeat, "Runs per measurement (default 3); the fastest counts")
         ->check(CLI::Range(1, 100));
     return [o] { return run(*o); };
 }
