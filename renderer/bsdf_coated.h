@@ -29,7 +29,15 @@ class BsdfCoated {
     float smith_g1(Vec3f w) const;      // G1(w), GGX
 
   private:
-    float specular_probability(Vec3f wo) const;
+    // Terms that depend on wo only, computed once per wo: a BSDF is built per hit and
+    // eval/pdf/sample are called several times with the same wo. Not thread-safe (a BSDF
+    // is a per-hit local value).
+    struct WoTerms {
+        float cos_o = -2, F_o = 0, G1_o = 0, p_spec = 0;
+    };
+    const WoTerms &wo_terms(Vec3f wo) const;
+    float specular_probability(Vec3f wo) const { return wo_terms(wo).p_spec; }
+    mutable WoTerms m_wo;
 
     Rgb m_rho;
     float m_alpha, m_eta;
