@@ -79,6 +79,32 @@ TEST(RenderCli, NoOutputIsExit2NamingTheField) {
     EXPECT_NE(err.find("--res"), std::string::npos) << err;
 }
 
+TEST(RenderCli, InterruptWritesTheCompletedPassesAtomically) {
+    TempDir tmp;
+    // Far more samples than can finish: Ctrl-C (SIGINT, sent by timeout after 3 s) must
+    // stop the render and still write a whole image, marked as interrupted.
+    const std::string scene =
+        tmp.write("s.json", R"({"camera": {}, "film": {"width": 32, "height": 32,
+        "spp": 1000000}, "lights": [{"type": "environment"}], "objects": [{"mesh": "procedural:icosphere:2"}]})");
+    const std::string cmd = "timeout --preserve-status -s INT 3 " +
+                            std::string(PELAGE_BINARY) + " render " + scene + " -q -o " +
+                            tmp.file("o.exr") + " --stats-json " + tmp.file("s.json") +
+                            " 2>" + tmp.file("err");
+    const int rc = std::system(cmd.c_str());
+    EXPECT_EQ(WEXITSTATUS(rc), 1);
+    auto in = OIIO::ImageInput::open(tmp.file("o.exr"));
+    ASSERT_TRUE(in);
+    EXPECT_EQ(in->spec().get_int_attribute("pelage:interrupted"), 1);
+    EXPECT_GE(in->spec().get_int_attribute("pelage:spp"), 1);
+    const auto st = nlohmann::json::parse(std::ifstream(tmp.file("s.json")));
+    EXPECT_TRUE(st["interrupted"].get<bool>());
+    // Only the final files remain: no temporaries.
+    size_t files = 0;
+    for (const auto &e : std::filesystem::directory_iterator(tmp.path()))
+        files += e.path().filename().string()[0] == '.';
+    EXPECT_EQ(files, 0u);
+}
+
 TEST(ShadersCli, ListsDiffuseAndItsParameters) {
     std::string out;
     ASSERT_EQ(run_pelage("shaders --json", &out), 0);
