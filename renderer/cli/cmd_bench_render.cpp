@@ -8,6 +8,8 @@
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
+#include <sys/resource.h>
+
 #include <algorithm>
 #include <filesystem>
 #include <iostream>
@@ -27,6 +29,15 @@ struct BenchRenderOptions {
     std::string scene, res = "1280x720";
     int spp = 4, repeat = 3;
 };
+
+// CPU time of the whole process (all threads). Rays per CPU-second is the throughput per
+// busy core: unlike wall time it is not inflated when other jobs share the machine.
+double process_cpu_seconds() {
+    rusage u{};
+    getrusage(RUSAGE_SELF, &u);
+    return double(u.ru_utime.tv_sec + u.ru_stime.tv_sec) +
+           1e-6 * double(u.ru_utime.tv_usec + u.ru_stime.tv_usec);
+}
 
 double replay(RTCScene scene, const std::vector<std::vector<RecordedRay>> &logs,
               bool occluded_for_shadows) {
@@ -87,14 +98,18 @@ int run(const BenchRenderOptions &o) {
         tbb::global_control c(tbb::global_control::max_allowed_parallelism,
                               size_t(threads));
         RenderResult best;
+        double best_cpu = 0;
         for (int i = 0; i < o.repeat; ++i) {
+            const double c0 = process_cpu_seconds();
             RenderResult r = render(scene, RenderOptions{});
+            const double cpu = process_cpu_seconds() - c0;
             if (i == 0 || r.seconds < best.seconds) best = std::move(r);
+            if (i == 0 || cpu < best_cpu) best_cpu = cpu;
         }
-        return best;
+        return std::make_pair(std::move(best), best_cpu);
     };
-    const RenderResult r1 = timed_render(1);
-    const RenderResult rn = timed_render(cores);
+    const auto [r1, cpu1] = timed_render(1);
+    const auto [rn, cpun] = timed_render(cores);
     const double pt_rays_per_second = double(rn.stats.rays()) / rn.seconds;
 
     // --- Record one 1-spp render's rays and replay them through raw Embree ---
@@ -107,16 +122,19 @@ int run(const BenchRenderOptions &o) {
     const RenderResult recorded = render(scene1, rec);
     size_t recorded_rays = 0;
     for (const auto &l : recorded.rays) recorded_rays += l.size();
-    double t_intersect = 1e300, t_mixed = 1e300;
+    double t_intersect = 1e300, t_mixed = 1e300, cpu_intersect = 1e300;
     for (int i = 0; i < std::max(1, o.repeat); ++i) {
+        const double c0 = process_cpu_seconds();
         t_intersect = std::min(t_intersect,
                                replay(scene1.geometry().scene(), recorded.rays, false));
+        cpu_intersect = std::min(cpu_intersect, process_cpu_seconds() - c0);
         t_mixed =
             std::min(t_mixed, replay(scene1.geometry().scene(), recorded.rays, true));
     }
     const double embree_rps = recorded_rays / t_intersect,
                  mixed_rps = recorded_rays / t_mixed;
-    // The tracer's own throughput on the recorded 1-spp render (bookkeeping excluded):
+    const double pt_cpu_rps = double(rn.stats.rays()) / cpun;
+    const double embree_cpu_rps = double(recorded_rays) / cpu_intersect;
     nlohmann::json j = {
         {"benchmark", "render"},
         {"scene", path},
@@ -140,6 +158,11 @@ int run(const BenchRenderOptions &o) {
         {"ratio", pt_rays_per_second / embree_rps},
         {"ratio_same_calls", pt_rays_per_second / mixed_rps},
         {"thread_scaling", r1.seconds / rn.seconds},
+        {"path_tracer_rays_per_cpu_second", pt_cpu_rps},
+        {"embree_rays_per_cpu_second", embree_cpu_rps},
+        {"ratio_cpu", pt_cpu_rps / embree_cpu_rps},
+        {"cpu_seconds", cpun},
+        {"cpu_seconds_1_thread", cpu1},
     };
     std::cout << j.dump(2) << std::endl;
     return 0;
