@@ -68,6 +68,18 @@ int run(const RenderCliOptions &o) {
         display.emplace(desc.film.view, "");  // checks the view before any work is done
     }
 
+    // --- Fail before rendering, not after, when an output folder is missing ---
+    for (const auto &[flag, file] : {std::pair<std::string, std::string>{"-o", output},
+                                     {"--preview", preview},
+                                     {"--stats-json", o.stats_json}}) {
+        if (file.empty()) continue;
+        const fs::path dir = fs::absolute(fs::path(file)).parent_path();
+        if (!fs::is_directory(dir))
+            throw InputError(
+                "", 0, flag,
+                "\"" + file + "\": folder " + dir.string() + " does not exist");
+    }
+
     // --- Build the scene: plugins, meshes, Embree, lights ---
     const PluginRegistry plugins;
     const Scene scene(desc, plugins);

@@ -77,6 +77,10 @@ TEST(RenderCli, NoOutputIsExit2NamingTheField) {
     EXPECT_NE(err.find("film.output"), std::string::npos) << err;
     EXPECT_EQ(run_pelage("render " + scene + " -o x.exr --res 10by10", nullptr, &err), 2);
     EXPECT_NE(err.find("--res"), std::string::npos) << err;
+    EXPECT_EQ(
+        run_pelage("render " + scene + " -o " + tmp.file("nope/x.exr"), nullptr, &err),
+        2);
+    EXPECT_NE(err.find("nope"), std::string::npos) << err;
 }
 
 TEST(RenderCli, InterruptWritesTheCompletedPassesAtomically) {
