@@ -122,7 +122,8 @@ Rgb PathIntegrator::radiance(CameraRay cam, Sampler &sampler, FilmSample &fs,
     Vec3f o = cam.o, d = cam.d;
     float prev_pdf = 0;  // solid-angle density of the BSDF sample that made d
     bool prev_specular = false;
-    float footprint = 0;  // ray cone width at the ray origin
+    Vec3f prev_ng{0, 0, 1};  // geometric normal at the vertex d left
+    float footprint = 0;     // ray cone width at the ray origin
 
     for (int depth = 0;; ++depth) {
         // --- Intersect the scene (primary rays are coherent) ---
@@ -157,7 +158,7 @@ Rgb PathIntegrator::radiance(CameraRay cam, Sampler &sampler, FilmSample &fs,
         // --- Escaped: the environment and distant discs ---
         if (!hit_geometry) {
             Lights::InfiniteHit hits[max_infinite_lights];
-            const int n = lights.eval_infinite(d, hits, max_infinite_lights);
+            const int n = lights.eval_infinite(d, prev_ng, hits, max_infinite_lights);
             for (int k = 0; k < n; ++k) {
                 const float w = unweighted
                                     ? 1.0f
@@ -180,7 +181,8 @@ Rgb PathIntegrator::radiance(CameraRay cam, Sampler &sampler, FilmSample &fs,
         if (og.baked) {
             v.ng = {rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z};
         } else {
-            // Embree reports Ng of instanced geometry in object space: rebuild and move it.
+            // Embree reports Ng of instanced geometry in object space: rebuild and move
+            // it.
             const uint32_t *tri = &mesh.triangles[3 * size_t(prim)];
             const float *P = mesh.positions.data();
             const Vec3f p0{P[3 * tri[0]], P[3 * tri[0] + 1], P[3 * tri[0] + 2]};
@@ -273,7 +275,7 @@ Rgb PathIntegrator::radiance(CameraRay cam, Sampler &sampler, FilmSample &fs,
             // --- Next-event estimation: one light, chosen uniformly ---
             LightSample ls;
             const int li = std::min(int(u_light * num_lights), num_lights - 1);
-            if (num_lights > 0 && lights.sample(li, v.p, ul1, ul2, &ls) &&
+            if (num_lights > 0 && lights.sample(li, v.p, v.ng, ul1, ul2, &ls) &&
                 dot(ls.wi, v.ng) > 0) {
                 const Vec3f wi_local = frame.to_local(ls.wi);
                 const Rgb f = bsdf.eval(wo_local, wi_local);
@@ -308,6 +310,7 @@ Rgb PathIntegrator::radiance(CameraRay cam, Sampler &sampler, FilmSample &fs,
             beta *= bs->weight;
             prev_pdf = bs->pdf;
             prev_specular = bs->specular;
+            prev_ng = v.ng;
             o = offset_ray_origin(v.p, v.ng, wi);
             d = wi;
             return true;

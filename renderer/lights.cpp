@@ -57,11 +57,19 @@ Lights::Lights(const std::vector<LightDesc> &descs) {
     }
 }
 
-bool Lights::sample(int index, Vec3f p, float u1, float u2, LightSample *out) const {
+bool Lights::sample(int index, Vec3f p, Vec3f n, float u1, float u2,
+                    LightSample *out) const {
     const Light &l = m_lights[index];
     switch (l.type) {
         case LightDesc::Type::environment: {
-            out->Li = l.env->sample(u1, u2, &out->wi, &out->pdf);
+            if (l.env->is_constant()) {
+                const Vec3f w = sample_cosine_hemisphere(u1, u2);
+                out->wi = Frame::from_z(n).to_world(w);
+                out->pdf = w.z * inv_pi;
+                out->Li = l.env->eval(out->wi);
+            } else {
+                out->Li = l.env->sample(u1, u2, &out->wi, &out->pdf);
+            }
             out->distance = inf;
             out->delta = false;
             return out->pdf > 0 && !is_black(out->Li);
@@ -177,13 +185,16 @@ Rgb Lights::area_radiance(int index, Vec3f o, Vec3f d, float t, float *pdf) cons
     return l.L;
 }
 
-int Lights::eval_infinite(Vec3f d, InfiniteHit out[], int max_out) const {
+int Lights::eval_infinite(Vec3f d, Vec3f n_prev, InfiniteHit out[], int max_out) const {
     int n = 0;
     for (int i : m_infinite) {
         if (n == max_out) break;
         const Light &l = m_lights[i];
         if (l.type == LightDesc::Type::environment) {
-            out[n++] = {l.env->eval(d), l.env->pdf(d)};
+            const float pdf = l.env->is_constant()
+                                  ? std::max(0.0f, dot(n_prev, d)) * inv_pi
+                                  : l.env->pdf(d);
+            out[n++] = {l.env->eval(d), pdf};
         } else if (dot(d, l.to_light) >= l.cos_max) {
             out[n++] = {l.L, 1 / (2 * pi * (1 - l.cos_max))};
         }
