@@ -259,7 +259,7 @@ Rgb PathIntegrator::radiance(CameraRay cam, Sampler &sampler, FilmSample &fs,
                 aovs->primitive_id = float(prim);
                 if (sh.aov_written)
                     for (int k = 0; k < PELAGE_SHADER_AOV_SLOTS; ++k)
-                        aovs->shader[k] = sh.aov[k];
+                        aovs->shader[k] = std::isfinite(sh.aov[k]) ? sh.aov[k] : 0.0f;
             }
         }
         if (depth >= m_max_depth) break;
