@@ -190,5 +190,40 @@ TEST(PathIntegrator, ReusedMeshIsInstancedAndRendersLikeCopies) {
     EXPECT_NEAR(img.at(20, 8, 0), 0.25f, 0.03f);
 }
 
+TEST(PathIntegrator, PluginAovsReachTheFilmAndNanAlbedosDoNot) {
+    TempDir tmp;
+    setenv("PELAGE_SHADER_PATH", (std::string(PELAGE_TEST_PLUGIN_DIR) + "/probe").c_str(),
+           1);
+    const std::string json = R"({
+      "camera": {"position": [0, 0, 3.2], "look_at": [0, 0, 0], "fov": 45},
+      "film": {"width": 24, "height": 24, "spp": 8},
+      "lights": [{"type": "environment", "color": 1}],
+      "objects": [{"mesh": "procedural:icosphere:2", "material": {"shader": "aov_probe",
+                   "params": {"offset": 3}}}]
+    })";
+    const renderer::SceneDesc desc = renderer::load_scene_file(tmp.write("s.json", json));
+    const renderer::PluginRegistry plugins;
+    unsetenv("PELAGE_SHADER_PATH");
+    const renderer::Scene scene(desc, plugins);
+    ASSERT_EQ(scene.shader_aov_names().size(), 2u);
+    EXPECT_EQ(scene.shader_aov_names()[1], "object_plus_offset");
+    const renderer::RenderResult r = renderer::render(scene, {});
+    const std::vector<float> px = r.film->resolve();
+    const int nc = renderer::Film::num_channels;
+    int covered = 0;
+    for (size_t i = 0; i < px.size() / nc; ++i) {
+        const float *p = &px[i * nc];
+        for (int c = 0; c < nc; ++c) ASSERT_TRUE(std::isfinite(p[c])) << "channel " << c;
+        if (p[11] == 0.0f) {  // id.object: the sphere
+            ++covered;
+            EXPECT_EQ(p[13], p[12]);  // shader.prim == id.primitive (both from sample 0)
+            EXPECT_EQ(p[14], 3.0f);   // object 0 + offset 3
+        }
+    }
+    EXPECT_GT(covered, 50);
+    EXPECT_EQ(r.stats.nonfinite_samples,
+              0u);  // the NaN albedo was clamped to 0 at the hit
+}
+
 }  // namespace
 }  // namespace pelage::test
