@@ -17,9 +17,9 @@ namespace pelage::renderer {
 
 struct BsdfSample {
     Vec3f wi;
-    Rgb f;        // excludes |cos θ_i|
+    Rgb f;  // excludes |cos θ_i|
     float pdf;
-    Rgb weight;   // f · |cos θ_i| / pdf
+    Rgb weight;  // f · |cos θ_i| / pdf
     bool specular;
 };
 

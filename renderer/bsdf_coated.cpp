@@ -37,19 +37,24 @@ float BsdfCoated::smith_g1(Vec3f w) const {
     return 2 / (1 + std::sqrt(1 + m_alpha * m_alpha * tan2));
 }
 
-float BsdfCoated::specular_probability(Vec3f wo) const {
+const BsdfCoated::WoTerms &BsdfCoated::wo_terms(Vec3f wo) const {
+    if (m_wo.cos_o == wo.z) return m_wo;
+    m_wo.cos_o = wo.z;
+    m_wo.F_o = fresnel_dielectric(wo.z, m_eta);
+    m_wo.G1_o = smith_g1(wo);
     // Pick the coat in proportion to its reflectance, but never starve either lobe.
-    const float f = fresnel_dielectric(wo.z, m_eta);
-    const float base = luminance(m_rho) * (1 - f);
-    return std::clamp(f / std::max(f + base, 1e-6f), 0.1f, 0.9f);
+    const float base = luminance(m_rho) * (1 - m_wo.F_o);
+    m_wo.p_spec = std::clamp(m_wo.F_o / std::max(m_wo.F_o + base, 1e-6f), 0.1f, 0.9f);
+    return m_wo;
 }
 
 Rgb BsdfCoated::eval(Vec3f wo, Vec3f wi) const {
     if (wo.z <= 0 || wi.z <= 0) return {};
     Vec3f h = normalize(wo + wi);
     const float f_h = fresnel_dielectric(dot(wo, h), m_eta);
-    const float spec = f_h * distribution(h) * smith_g1(wo) * smith_g1(wi) / (4 * wo.z * wi.z);
-    const float t = (1 - fresnel_dielectric(wi.z, m_eta)) * (1 - fresnel_dielectric(wo.z, m_eta));
+    const WoTerms &o = wo_terms(wo);
+    const float spec = f_h * distribution(h) * o.G1_o * smith_g1(wi) / (4 * wo.z * wi.z);
+    const float t = (1 - fresnel_dielectric(wi.z, m_eta)) * (1 - o.F_o);
     return m_rho * (t * inv_pi) + Rgb{spec, spec, spec};
 }
 
@@ -58,27 +63,32 @@ float BsdfCoated::pdf(Vec3f wo, Vec3f wi) const {
     const Vec3f h = normalize(wo + wi);
     // Visible-normal density D_wo(h) = G1(wo) max(0, wo·h) D(h) / cos θ_o, then the
     // reflection Jacobian 1 / (4 wo·h).
-    const float pdf_spec = smith_g1(wo) * distribution(h) / (4 * wo.z);
-    const float p = specular_probability(wo);
+    const WoTerms &o = wo_terms(wo);
+    const float pdf_spec = o.G1_o * distribution(h) / (4 * wo.z);
+    const float p = o.p_spec;
     return p * pdf_spec + (1 - p) * wi.z * inv_pi;
 }
 
-std::optional<BsdfSample> BsdfCoated::sample(Vec3f wo, float u_lobe, float u1, float u2) const {
+std::optional<BsdfSample> BsdfCoated::sample(Vec3f wo, float u_lobe, float u1,
+                                             float u2) const {
     if (wo.z <= 0) return std::nullopt;
     Vec3f wi;
     if (u_lobe < specular_probability(wo)) {
         // --- Sample a visible normal (Heitz 2018, listing 1) and reflect ---
         const Vec3f vh = normalize(Vec3f{m_alpha * wo.x, m_alpha * wo.y, wo.z});
         const float len2 = vh.x * vh.x + vh.y * vh.y;
-        const Vec3f t1 = len2 > 0 ? Vec3f{-vh.y, vh.x, 0} / std::sqrt(len2) : Vec3f{1, 0, 0};
+        const Vec3f t1 =
+            len2 > 0 ? Vec3f{-vh.y, vh.x, 0} / std::sqrt(len2) : Vec3f{1, 0, 0};
         const Vec3f t2 = cross(vh, t1);
         const float r = std::sqrt(u1), phi = 2 * pi * u2;
         const float p1 = r * std::cos(phi);
         float p2 = r * std::sin(phi);
         const float s = 0.5f * (1 + vh.z);
         p2 = (1 - s) * std::sqrt(std::max(0.0f, 1 - p1 * p1)) + s * p2;
-        const Vec3f nh = t1 * p1 + t2 * p2 + vh * std::sqrt(std::max(0.0f, 1 - p1 * p1 - p2 * p2));
-        const Vec3f h = normalize(Vec3f{m_alpha * nh.x, m_alpha * nh.y, std::max(1e-6f, nh.z)});
+        const Vec3f nh =
+            t1 * p1 + t2 * p2 + vh * std::sqrt(std::max(0.0f, 1 - p1 * p1 - p2 * p2));
+        const Vec3f h =
+            normalize(Vec3f{m_alpha * nh.x, m_alpha * nh.y, std::max(1e-6f, nh.z)});
         wi = h * (2 * dot(wo, h)) - wo;
     } else {
         wi = sample_cosine_hemisphere(u1, u2);

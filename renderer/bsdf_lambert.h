@@ -13,8 +13,11 @@ class BsdfLambert {
     Rgb eval(Vec3f wo, Vec3f wi) const {
         return (wo.z > 0 && wi.z > 0) ? m_rho * inv_pi : Rgb{};
     }
-    float pdf(Vec3f wo, Vec3f wi) const { return (wo.z > 0 && wi.z > 0) ? wi.z * inv_pi : 0.0f; }
-    std::optional<BsdfSample> sample(Vec3f wo, float /*u_lobe*/, float u1, float u2) const {
+    float pdf(Vec3f wo, Vec3f wi) const {
+        return (wo.z > 0 && wi.z > 0) ? wi.z * inv_pi : 0.0f;
+    }
+    std::optional<BsdfSample> sample(Vec3f wo, float /*u_lobe*/, float u1,
+                                     float u2) const {
         if (wo.z <= 0) return std::nullopt;
         const Vec3f wi = sample_cosine_hemisphere(u1, u2);
         if (wi.z <= 0) return std::nullopt;

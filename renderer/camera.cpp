@@ -15,12 +15,14 @@ Camera::Camera(const CameraDesc &d, int width, int height)
     m_aspect = float(width) / float(height);
     m_lens_radius = d.type == CameraDesc::Type::thin_lens ? d.aperture_radius : 0.0f;
     m_focus = d.focus_distance > 0 ? d.focus_distance : length(d.look_at - d.position);
+    m_scale_x = 2.0f / width * m_tan_half_h * m_aspect;
+    m_scale_y = 2.0f / height * m_tan_half_h;
 }
 
 CameraRay Camera::generate(float x, float y, float u1, float u2) const {
     // Point on the image plane at distance 1 in camera space.
-    const float sx = (2 * x / m_width - 1) * m_tan_half_h * m_aspect;
-    const float sy = (1 - 2 * y / m_height) * m_tan_half_h;
+    const float sx = x * m_scale_x - m_tan_half_h * m_aspect;
+    const float sy = m_tan_half_h - y * m_scale_y;
     Vec3f dir = m_u * sx + m_v * sy + m_w;
     if (m_lens_radius <= 0) return {m_pos, normalize(dir)};
     // --- Thin lens: aim from a lens point at the in-focus point ---

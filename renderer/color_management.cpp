@@ -17,7 +17,8 @@ std::string DisplayTransform::config_location() {
     std::error_code ec;
     const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
     if (!ec) {
-        const fs::path p = exe.parent_path().parent_path() / "share" / "pelage" / "ocio" / "config.ocio";
+        const fs::path p =
+            exe.parent_path().parent_path() / "share" / "pelage" / "ocio" / "config.ocio";
         if (fs::exists(p)) return p.string();
     }
     return PELAGE_OCIO_CONFIG;
@@ -31,7 +32,8 @@ DisplayTransform::DisplayTransform(const std::string &view, const std::string &d
         m_display = display.empty() ? config->getDefaultDisplay() : display;
         m_view = view.empty() ? config->getDefaultView(m_display.c_str()) : view;
     } catch (const OCIO::Exception &e) {
-        throw std::runtime_error(m_config_path + ": cannot read OpenColorIO config: " + e.what());
+        throw std::runtime_error(m_config_path +
+                                 ": cannot read OpenColorIO config: " + e.what());
     }
     bool found = false;
     std::string views;
@@ -42,7 +44,8 @@ DisplayTransform::DisplayTransform(const std::string &view, const std::string &d
     }
     if (!found)
         throw InputError(m_config_path, 0, "film.view",
-                         "unknown view \"" + m_view + "\" for display \"" + m_display + "\" (views: " + views + ")");
+                         "unknown view \"" + m_view + "\" for display \"" + m_display +
+                             "\" (views: " + views + ")");
     try {
         auto t = OCIO::DisplayViewTransform::Create();
         t->setSrc(OCIO::ROLE_SCENE_LINEAR);

@@ -11,15 +11,17 @@ namespace pelage::renderer {
 
 namespace {
 
-std::shared_ptr<MeshData> load_mesh_data(const ObjectDesc &o, const std::string &scene_path, size_t index) {
+std::shared_ptr<MeshData> load_mesh_data(const ObjectDesc &o,
+                                         const std::string &scene_path, size_t index) {
     sim::TriangleMesh mesh;
     try {
         mesh = sim::load_mesh(o.mesh);
     } catch (const InputError &e) {
         // Keep the mesh file's own location, and say which object asked for it.
-        throw InputError(e.file(), e.line(), e.field(),
-                         std::string(e.what()).substr(std::string(e.what()).find(": ") + 2) +
-                             " (objects[" + std::to_string(index) + "].mesh in " + scene_path + ")");
+        throw InputError(
+            e.file(), e.line(), e.field(),
+            std::string(e.what()).substr(std::string(e.what()).find(": ") + 2) +
+                " (objects[" + std::to_string(index) + "].mesh in " + scene_path + ")");
     }
     auto m = std::make_shared<MeshData>();
     m->source = o.mesh;
@@ -35,7 +37,8 @@ std::shared_ptr<MeshData> load_mesh_data(const ObjectDesc &o, const std::string 
     for (size_t t = 0; t < mesh.num_triangles(); ++t)
         for (int c = 0; c < 3; ++c) m->triangles[3 * t + c] = mesh.triangles[t][c];
     // --- Shading normals: from the file, area-weighted smooth, or none (flat) ---
-    const bool file_normals = !mesh.corner_normals.empty() && o.normals != ObjectDesc::Normals::flat;
+    const bool file_normals =
+        !mesh.corner_normals.empty() && o.normals != ObjectDesc::Normals::flat;
     if (file_normals) {
         m->corner_normals.resize(size_t(m->num_triangles) * 9);
         for (size_t i = 0; i < mesh.corner_normals.size(); ++i) {
@@ -47,7 +50,8 @@ std::shared_ptr<MeshData> load_mesh_data(const ObjectDesc &o, const std::string 
     } else if (o.normals == ObjectDesc::Normals::smooth) {
         std::vector<sim::Vec3d> vn(mesh.num_vertices());
         for (size_t t = 0; t < mesh.num_triangles(); ++t) {
-            const sim::Vec3d n = mesh.face_normal_unnormalized(sim::TriId(t));  // |n| = 2 area
+            const sim::Vec3d n =
+                mesh.face_normal_unnormalized(sim::TriId(t));  // |n| = 2 area
             for (int c = 0; c < 3; ++c) vn[mesh.triangles[t][c]] += n;
         }
         m->corner_normals.resize(size_t(m->num_triangles) * 9);
@@ -56,7 +60,8 @@ std::shared_ptr<MeshData> load_mesh_data(const ObjectDesc &o, const std::string 
                 sim::Vec3d n = vn[mesh.triangles[t][c]];
                 const double len = sim::length(n);
                 n = len > 0 ? n / len : mesh.face_normal_unnormalized(sim::TriId(t));
-                for (int k = 0; k < 3; ++k) m->corner_normals[9 * t + 3 * c + k] = float(n[k]);
+                for (int k = 0; k < 3; ++k)
+                    m->corner_normals[9 * t + 3 * c + k] = float(n[k]);
             }
     }
     if (!mesh.corner_uvs.empty()) {
@@ -71,25 +76,34 @@ std::shared_ptr<MeshData> load_mesh_data(const ObjectDesc &o, const std::string 
 }
 
 // A baked copy: positions and normals moved to world space.
-std::shared_ptr<MeshData> bake(const MeshData &src, const Affine &to_world, const Affine &normal_m) {
+std::shared_ptr<MeshData> bake(const MeshData &src, const Affine &to_world,
+                               const Affine &normal_m) {
     auto m = std::make_shared<MeshData>(src);
     for (uint32_t v = 0; v < m->num_vertices; ++v) {
-        const Vec3f p = to_world.point({src.positions[3 * v], src.positions[3 * v + 1], src.positions[3 * v + 2]});
-        m->positions[3 * v] = p.x; m->positions[3 * v + 1] = p.y; m->positions[3 * v + 2] = p.z;
+        const Vec3f p = to_world.point(
+            {src.positions[3 * v], src.positions[3 * v + 1], src.positions[3 * v + 2]});
+        m->positions[3 * v] = p.x;
+        m->positions[3 * v + 1] = p.y;
+        m->positions[3 * v + 2] = p.z;
     }
     for (size_t i = 0; i + 2 < m->corner_normals.size(); i += 3) {
-        const Vec3f n = normalize(normal_m.vector({src.corner_normals[i], src.corner_normals[i + 1], src.corner_normals[i + 2]}));
-        m->corner_normals[i] = n.x; m->corner_normals[i + 1] = n.y; m->corner_normals[i + 2] = n.z;
+        const Vec3f n =
+            normalize(normal_m.vector({src.corner_normals[i], src.corner_normals[i + 1],
+                                       src.corner_normals[i + 2]}));
+        m->corner_normals[i] = n.x;
+        m->corner_normals[i + 1] = n.y;
+        m->corner_normals[i + 2] = n.z;
     }
     return m;
 }
 
 RTCGeometry make_triangle_geometry(RTCDevice device, const MeshData &m) {
     RTCGeometry g = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
-    rtcSetSharedGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, m.positions.data(), 0,
-                               3 * sizeof(float), m.num_vertices);
-    rtcSetSharedGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, m.triangles.data(), 0,
-                               3 * sizeof(uint32_t), m.num_triangles);
+    rtcSetSharedGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
+                               m.positions.data(), 0, 3 * sizeof(float), m.num_vertices);
+    rtcSetSharedGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
+                               m.triangles.data(), 0, 3 * sizeof(uint32_t),
+                               m.num_triangles);
     rtcCommitGeometry(g);
     return g;
 }
@@ -100,7 +114,8 @@ void EmbreeScene::error_callback(void *user, RTCError code, const char *message)
     auto *self = static_cast<EmbreeScene *>(user);
     std::lock_guard<std::mutex> lock(self->m_error_mutex);
     if (self->m_error.empty())
-        self->m_error = "Embree error " + std::to_string(int(code)) + ": " + (message ? message : "");
+        self->m_error =
+            "Embree error " + std::to_string(int(code)) + ": " + (message ? message : "");
 }
 
 void EmbreeScene::check() const {
@@ -110,8 +125,9 @@ void EmbreeScene::check() const {
 
 EmbreeScene::EmbreeScene(const SceneDesc &scene) {
     m_device = rtcNewDevice(nullptr);
-    if (!m_device) throw std::runtime_error("cannot create the Embree device (error " +
-                                            std::to_string(int(rtcGetDeviceError(nullptr))) + ")");
+    if (!m_device)
+        throw std::runtime_error("cannot create the Embree device (error " +
+                                 std::to_string(int(rtcGetDeviceError(nullptr))) + ")");
     rtcSetDeviceErrorFunction(m_device, error_callback, this);
     m_scene = rtcNewScene(m_device);
     rtcSetSceneBuildQuality(m_scene, RTC_BUILD_QUALITY_HIGH);
@@ -132,7 +148,8 @@ EmbreeScene::EmbreeScene(const SceneDesc &scene) {
         m_num_triangles += mesh->num_triangles;
         if (users[key] == 1) {
             og.baked = true;
-            og.mesh = o.transform.is_identity() ? mesh : bake(*mesh, o.transform, normal_m);
+            og.mesh =
+                o.transform.is_identity() ? mesh : bake(*mesh, o.transform, normal_m);
             RTCGeometry g = make_triangle_geometry(m_device, *og.mesh);
             const unsigned id = rtcAttachGeometry(m_scene, g);
             rtcReleaseGeometry(g);
@@ -154,7 +171,8 @@ EmbreeScene::EmbreeScene(const SceneDesc &scene) {
             }
             RTCGeometry inst = rtcNewGeometry(m_device, RTC_GEOMETRY_TYPE_INSTANCE);
             rtcSetGeometryInstancedScene(inst, child);
-            rtcSetGeometryTransform(inst, 0, RTC_FORMAT_FLOAT3X4_ROW_MAJOR, &o.transform.m[0][0]);
+            rtcSetGeometryTransform(inst, 0, RTC_FORMAT_FLOAT3X4_ROW_MAJOR,
+                                    &o.transform.m[0][0]);
             rtcCommitGeometry(inst);
             const unsigned id = rtcAttachGeometry(m_scene, inst);
             rtcReleaseGeometry(inst);

@@ -24,18 +24,18 @@ namespace pelage::renderer {
 struct MeshData {
     std::string source;
     uint32_t num_vertices = 0, num_triangles = 0;
-    std::vector<float> positions;       // xyz per vertex (+1 pad float: Embree reads 16 B)
-    std::vector<uint32_t> triangles;    // 3 per triangle
-    std::vector<float> corner_normals;  // 9 per triangle, or empty (flat shading)
-    std::vector<float> corner_uvs;      // 6 per triangle, or empty
+    std::vector<float> positions;     // xyz per vertex (+1 pad float: Embree reads 16 B)
+    std::vector<uint32_t> triangles;  // 3 per triangle
+    std::vector<float> corner_normals;    // 9 per triangle, or empty (flat shading)
+    std::vector<float> corner_uvs;        // 6 per triangle, or empty
     std::vector<float> object_positions;  // untransformed copy for plugins (same layout)
 };
 
 struct ObjectGeometry {
     std::shared_ptr<const MeshData> mesh;
-    bool baked = true;         // mesh already in world space
-    Affine to_world;           // identity when baked
-    Affine normal_to_world;    // inverse transpose of to_world's linear part
+    bool baked = true;       // mesh already in world space
+    Affine to_world;         // identity when baked
+    Affine normal_to_world;  // inverse transpose of to_world's linear part
 };
 
 class EmbreeScene {
@@ -51,7 +51,8 @@ class EmbreeScene {
     const std::vector<ObjectGeometry> &objects() const { return m_objects; }
     // Object id for an Embree hit: instID[0] for instanced meshes, else geomID.
     uint32_t object_of(unsigned geom_id, unsigned inst_id) const {
-        return inst_id != RTC_INVALID_GEOMETRY_ID ? m_object_of_instance[inst_id] : m_object_of_geometry[geom_id];
+        return inst_id != RTC_INVALID_GEOMETRY_ID ? m_object_of_instance[inst_id]
+                                                  : m_object_of_geometry[geom_id];
     }
     size_t num_triangles() const { return m_num_triangles; }
     // Throws the first device error recorded so far, if any.

@@ -3,7 +3,9 @@
 namespace pelage::renderer {
 
 Film::Film(int width, int height)
-    : m_width(width), m_height(height), m_accum(size_t(width) * height * accum_stride, 0.0f),
+    : m_width(width),
+      m_height(height),
+      m_accum(size_t(width) * height * accum_stride, 0.0f),
       m_point(size_t(width) * height) {}
 
 std::vector<float> Film::resolve() const {
@@ -15,7 +17,11 @@ std::vector<float> Film::resolve() const {
         for (int c = 0; c < 10; ++c) o[c] = a[c] * inv_w;
         // A mean of unit normals is shorter than 1 at silhouettes; renormalize.
         const Vec3f n{o[7], o[8], o[9]};
-        if (const float len = length(n); len > 0) { o[7] = n.x / len; o[8] = n.y / len; o[9] = n.z / len; }
+        if (const float len = length(n); len > 0) {
+            o[7] = n.x / len;
+            o[8] = n.y / len;
+            o[9] = n.z / len;
+        }
         const FilmPointAovs &p = m_point[i];
         o[10] = p.depth;
         o[11] = p.object_id;
@@ -25,13 +31,16 @@ std::vector<float> Film::resolve() const {
     return out;
 }
 
-std::vector<std::string> Film::channel_names(const std::vector<std::string> &shader_aov_names) {
-    std::vector<std::string> n = {"R", "G", "B", "A", "albedo.R", "albedo.G", "albedo.B",
-                                  "N.X", "N.Y", "N.Z", "depth.Z", "id.object", "id.primitive"};
+std::vector<std::string> Film::channel_names(
+    const std::vector<std::string> &shader_aov_names) {
+    std::vector<std::string> n = {
+        "R",   "G",   "B",   "A",       "albedo.R",  "albedo.G",    "albedo.B",
+        "N.X", "N.Y", "N.Z", "depth.Z", "id.object", "id.primitive"};
     for (int k = 0; k < PELAGE_SHADER_AOV_SLOTS; ++k)
-        n.push_back("shader." + (size_t(k) < shader_aov_names.size() && !shader_aov_names[k].empty()
-                                     ? shader_aov_names[k]
-                                     : std::to_string(k)));
+        n.push_back("shader." +
+                    (size_t(k) < shader_aov_names.size() && !shader_aov_names[k].empty()
+                         ? shader_aov_names[k]
+                         : std::to_string(k)));
     return n;
 }
 

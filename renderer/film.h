@@ -40,18 +40,27 @@ class Film {
     // Single writer per pixel (its tile's thread).
     void add(int x, int y, float weight, const FilmSample &s) {
         float *a = &m_accum[size_t(y * m_width + x) * accum_stride];
-        a[0] += weight * s.L.x; a[1] += weight * s.L.y; a[2] += weight * s.L.z;
+        a[0] += weight * s.L.x;
+        a[1] += weight * s.L.y;
+        a[2] += weight * s.L.z;
         a[3] += weight * s.alpha;
-        a[4] += weight * s.albedo.x; a[5] += weight * s.albedo.y; a[6] += weight * s.albedo.z;
-        a[7] += weight * s.normal.x; a[8] += weight * s.normal.y; a[9] += weight * s.normal.z;
+        a[4] += weight * s.albedo.x;
+        a[5] += weight * s.albedo.y;
+        a[6] += weight * s.albedo.z;
+        a[7] += weight * s.normal.x;
+        a[8] += weight * s.normal.y;
+        a[9] += weight * s.normal.z;
         a[10] += weight;
     }
-    void set_point_aovs(int x, int y, const FilmPointAovs &p) { m_point[size_t(y * m_width + x)] = p; }
+    void set_point_aovs(int x, int y, const FilmPointAovs &p) {
+        m_point[size_t(y * m_width + x)] = p;
+    }
 
     static constexpr int num_channels = 4 + 3 + 3 + 1 + 2 + PELAGE_SHADER_AOV_SLOTS;
     // All layers as interleaved float channels in the order of channel_names().
     std::vector<float> resolve() const;
-    static std::vector<std::string> channel_names(const std::vector<std::string> &shader_aov_names);
+    static std::vector<std::string> channel_names(
+        const std::vector<std::string> &shader_aov_names);
 
   private:
     static constexpr int accum_stride = 11;

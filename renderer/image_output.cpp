@@ -18,15 +18,18 @@ namespace {
 // format by it).
 std::string temp_name(const std::string &path) {
     const fs::path p(path);
-    return (p.parent_path() / ("." + p.stem().string() + ".tmp" + std::to_string(getpid()) +
-                               p.extension().string())).string();
+    return (p.parent_path() / ("." + p.stem().string() + ".tmp" +
+                               std::to_string(getpid()) + p.extension().string()))
+        .string();
 }
 
-void write_atomically(const std::string &path, const OIIO::ImageSpec &spec, const void *data,
-                      OIIO::TypeDesc format) {
+void write_atomically(const std::string &path, const OIIO::ImageSpec &spec,
+                      const void *data, OIIO::TypeDesc format) {
     const std::string tmp = temp_name(path);
     auto out = OIIO::ImageOutput::create(path);
-    if (!out) throw std::runtime_error(path + ": cannot write this image format: " + OIIO::geterror());
+    if (!out)
+        throw std::runtime_error(path +
+                                 ": cannot write this image format: " + OIIO::geterror());
     bool ok = out->open(tmp, spec) && out->write_image(format, data);
     ok = out->close() && ok;
     if (!ok) {
@@ -39,16 +42,19 @@ void write_atomically(const std::string &path, const OIIO::ImageSpec &spec, cons
     fs::rename(tmp, path, ec);
     if (ec) {
         fs::remove(tmp, ec);
-        throw std::runtime_error(path + ": cannot move the finished image into place: " + ec.message());
+        throw std::runtime_error(
+            path + ": cannot move the finished image into place: " + ec.message());
     }
 }
 
 }  // namespace
 
-void write_exr(const std::string &path, int width, int height, const std::vector<float> &pixels,
-               const std::vector<std::string> &names, bool half, const ImageMetadata &meta) {
+void write_exr(const std::string &path, int width, int height,
+               const std::vector<float> &pixels, const std::vector<std::string> &names,
+               bool half, const ImageMetadata &meta) {
     const int nc = int(names.size());
-    OIIO::ImageSpec spec(width, height, nc, half ? OIIO::TypeDesc::HALF : OIIO::TypeDesc::FLOAT);
+    OIIO::ImageSpec spec(width, height, nc,
+                         half ? OIIO::TypeDesc::HALF : OIIO::TypeDesc::FLOAT);
     spec.channelnames = names;
     spec.alpha_channel = 3;
     spec.z_channel = -1;
@@ -56,9 +62,11 @@ void write_exr(const std::string &path, int width, int height, const std::vector
     for (int c = 0; c < nc; ++c) {
         // Depth, ids and plugin values need float precision (ids above 2048 are not exact
         // in half); colour layers use the requested type.
-        const bool exact = names[c].rfind("depth.", 0) == 0 || names[c].rfind("id.", 0) == 0 ||
+        const bool exact = names[c].rfind("depth.", 0) == 0 ||
+                           names[c].rfind("id.", 0) == 0 ||
                            names[c].rfind("shader.", 0) == 0;
-        spec.channelformats[c] = exact || !half ? OIIO::TypeDesc::FLOAT : OIIO::TypeDesc::HALF;
+        spec.channelformats[c] =
+            exact || !half ? OIIO::TypeDesc::FLOAT : OIIO::TypeDesc::HALF;
     }
     spec.attribute("compression", "zip");
     spec.attribute("Software", meta.software);
@@ -70,8 +78,9 @@ void write_exr(const std::string &path, int width, int height, const std::vector
     write_atomically(path, spec, pixels.data(), OIIO::TypeDesc::FLOAT);
 }
 
-void write_preview(const std::string &path, int width, int height, const std::vector<float> &pixels,
-                   int channels, const DisplayTransform &display) {
+void write_preview(const std::string &path, int width, int height,
+                   const std::vector<float> &pixels, int channels,
+                   const DisplayTransform &display) {
     std::vector<float> rgb(size_t(width) * height * 3);
     for (size_t i = 0; i < size_t(width) * height; ++i)
         for (int c = 0; c < 3; ++c) rgb[3 * i + c] = pixels[i * channels + c];

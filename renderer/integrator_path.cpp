@@ -15,20 +15,46 @@ namespace {
 constexpr float inf = std::numeric_limits<float>::infinity();
 constexpr int max_infinite_lights = 8;
 constexpr uint64_t plugin_timing_stride = 16;
-constexpr float shadow_ray_shortening = 1e-4f;  // keep shadow rays off the light's surface
+constexpr float shadow_ray_shortening =
+    1e-4f;  // keep shadow rays off the light's surface
 
 struct Vertex {
     Vec3f p, ng, ns, wo;
 };
 
 void set_ray(RTCRay &r, Vec3f o, Vec3f d, float tfar) {
-    r.org_x = o.x; r.org_y = o.y; r.org_z = o.z; r.tnear = 0;
-    r.dir_x = d.x; r.dir_y = d.y; r.dir_z = d.z; r.time = 0;
-    r.tfar = tfar; r.mask = 0xffffffffu; r.id = 0; r.flags = 0;
+    r.org_x = o.x;
+    r.org_y = o.y;
+    r.org_z = o.z;
+    r.tnear = 0;
+    r.dir_x = d.x;
+    r.dir_y = d.y;
+    r.dir_z = d.z;
+    r.time = 0;
+    r.tfar = tfar;
+    r.mask = 0xffffffffu;
+    r.id = 0;
+    r.flags = 0;
 }
 
 void record(std::vector<RecordedRay> *log, Vec3f o, Vec3f d, float tfar, uint32_t kind) {
     if (log) log->push_back({{o.x, o.y, o.z}, tfar, {d.x, d.y, d.z}, kind});
+}
+
+// The cost of the two clock reads around a timed plugin call (the fastest of many
+// back-to-back pairs), subtracted from each timing: in a VM a clock read can cost more
+// than a simple plugin.
+double timer_overhead_seconds() {
+    static const double overhead = [] {
+        double best = 1e9;
+        for (int i = 0; i < 2000; ++i) {
+            const auto a = std::chrono::steady_clock::now();
+            const auto b = std::chrono::steady_clock::now();
+            best = std::min(best, std::chrono::duration<double>(b - a).count());
+        }
+        return best;
+    }();
+    return overhead;
 }
 
 }  // namespace
@@ -44,23 +70,32 @@ void RenderStats::add(const RenderStats &o) {
     plugin_timed_seconds += o.plugin_timed_seconds;
 }
 
-PathIntegrator::PathIntegrator(const Scene &scene, const Camera &camera, const PixelFilter &filter,
-                               int /*width*/, int height)
-    : m_scene(scene), m_camera(camera), m_filter(filter), m_rtc(scene.geometry().scene()),
-      m_max_depth(scene.desc().integrator.max_depth), m_rr_depth(scene.desc().integrator.rr_depth) {
-    m_pixel_spread = 2 * std::tan(0.5f * scene.desc().camera.fov_deg * pi / 180) / float(height);
+PathIntegrator::PathIntegrator(const Scene &scene, const Camera &camera,
+                               const PixelFilter &filter, int /*width*/, int height)
+    : m_scene(scene),
+      m_camera(camera),
+      m_filter(filter),
+      m_rtc(scene.geometry().scene()),
+      m_max_depth(scene.desc().integrator.max_depth),
+      m_rr_depth(scene.desc().integrator.rr_depth) {
+    m_timer_overhead = timer_overhead_seconds();
+    m_pixel_spread =
+        2 * std::tan(0.5f * scene.desc().camera.fov_deg * pi / 180) / float(height);
 }
 
-void PathIntegrator::render_tile(Film &film, Sampler &sampler, int x0, int y0, int x1, int y1, int s0,
-                                 int s1, RenderStats &stats, std::vector<RecordedRay> *log) const {
+void PathIntegrator::render_tile(Film &film, Sampler &sampler, int x0, int y0, int x1,
+                                 int y1, int s0, int s1, RenderStats &stats,
+                                 std::vector<RecordedRay> *log) const {
     for (int y = y0; y < y1; ++y)
         for (int x = x0; x < x1; ++x)
             for (int s = s0; s < s1; ++s) {
                 sampler.start_pixel_sample(uint32_t(x), uint32_t(y), uint32_t(s));
                 // --- Offsets drawn from the filter: every sample has weight 1 ---
-                const float dx = m_filter.sample_1d(sampler.get_1d()), dy = m_filter.sample_1d(sampler.get_1d());
+                const float dx = m_filter.sample_1d(sampler.get_1d()),
+                            dy = m_filter.sample_1d(sampler.get_1d());
                 const float lu = sampler.get_1d(), lv = sampler.get_1d();
-                const CameraRay ray = m_camera.generate(x + 0.5f + dx, y + 0.5f + dy, lu, lv);
+                const CameraRay ray =
+                    m_camera.generate(x + 0.5f + dx, y + 0.5f + dy, lu, lv);
                 FilmSample fs;
                 FilmPointAovs aovs;
                 fs.L = radiance(ray, sampler, fs, s == 0 ? &aovs : nullptr, stats, log);
@@ -75,8 +110,9 @@ void PathIntegrator::render_tile(Film &film, Sampler &sampler, int x0, int y0, i
             }
 }
 
-Rgb PathIntegrator::radiance(CameraRay cam, Sampler &sampler, FilmSample &fs, FilmPointAovs *aovs,
-                             RenderStats &stats, std::vector<RecordedRay> *log) const {
+Rgb PathIntegrator::radiance(CameraRay cam, Sampler &sampler, FilmSample &fs,
+                             FilmPointAovs *aovs, RenderStats &stats,
+                             std::vector<RecordedRay> *log) const {
     const Lights &lights = m_scene.lights();
     const EmbreeScene &geometry = m_scene.geometry();
     const int num_lights = lights.count();
@@ -84,23 +120,27 @@ Rgb PathIntegrator::radiance(CameraRay cam, Sampler &sampler, FilmSample &fs, Fi
 
     Rgb L{}, beta{1, 1, 1};
     Vec3f o = cam.o, d = cam.d;
-    float prev_pdf = 0;         // solid-angle density of the BSDF sample that made d
+    float prev_pdf = 0;  // solid-angle density of the BSDF sample that made d
     bool prev_specular = false;
-    float footprint = 0;        // ray cone width at the ray origin
+    Vec3f prev_ng{0, 0, 1};  // geometric normal at the vertex d left
+    float footprint = 0;     // ray cone width at the ray origin
 
     for (int depth = 0;; ++depth) {
         // --- Intersect the scene (primary rays are coherent) ---
         RTCIntersectContext ctx;
         rtcInitIntersectContext(&ctx);
-        ctx.flags = depth == 0 ? RTC_INTERSECT_CONTEXT_FLAG_COHERENT : RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT;
+        ctx.flags = depth == 0 ? RTC_INTERSECT_CONTEXT_FLAG_COHERENT
+                               : RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT;
         RTCRayHit rh;
         set_ray(rh.ray, o, d, inf);
         rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
         rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
         rtcIntersect1(m_rtc, &ctx, &rh);
         record(log, o, d, inf, depth == 0 ? 0 : 1);
-        if (depth == 0) ++stats.camera_rays;
-        else ++stats.secondary_rays;
+        if (depth == 0)
+            ++stats.camera_rays;
+        else
+            ++stats.secondary_rays;
         const bool hit_geometry = rh.hit.geomID != RTC_INVALID_GEOMETRY_ID;
         const float t_hit = hit_geometry ? rh.ray.tfar : inf;
         const bool unweighted = depth == 0 || prev_specular;
@@ -109,7 +149,8 @@ Rgb PathIntegrator::radiance(CameraRay cam, Sampler &sampler, FilmSample &fs, Fi
         if (const AreaLightHit al = lights.intersect(o, d, t_hit); al.light >= 0) {
             float pdf_light;
             const Rgb Le = lights.area_radiance(al.light, o, d, al.t, &pdf_light);
-            const float w = unweighted ? 1.0f : power_heuristic(prev_pdf, select_pdf * pdf_light);
+            const float w =
+                unweighted ? 1.0f : power_heuristic(prev_pdf, select_pdf * pdf_light);
             L += beta * Le * w;
             if (depth == 0) fs.alpha = 1;
             break;
@@ -117,9 +158,11 @@ Rgb PathIntegrator::radiance(CameraRay cam, Sampler &sampler, FilmSample &fs, Fi
         // --- Escaped: the environment and distant discs ---
         if (!hit_geometry) {
             Lights::InfiniteHit hits[max_infinite_lights];
-            const int n = lights.eval_infinite(d, hits, max_infinite_lights);
+            const int n = lights.eval_infinite(d, prev_ng, hits, max_infinite_lights);
             for (int k = 0; k < n; ++k) {
-                const float w = unweighted ? 1.0f : power_heuristic(prev_pdf, select_pdf * hits[k].pdf);
+                const float w = unweighted
+                                    ? 1.0f
+                                    : power_heuristic(prev_pdf, select_pdf * hits[k].pdf);
                 L += beta * hits[k].L * w;
             }
             break;
@@ -130,18 +173,22 @@ Rgb PathIntegrator::radiance(CameraRay cam, Sampler &sampler, FilmSample &fs, Fi
         const ObjectGeometry &og = geometry.objects()[object];
         const MeshData &mesh = *og.mesh;
         const uint32_t prim = rh.hit.primID;
-        const uint32_t *tri = &mesh.triangles[3 * size_t(prim)];
-        const float *P = mesh.positions.data();
-        const Vec3f p0{P[3 * tri[0]], P[3 * tri[0] + 1], P[3 * tri[0] + 2]};
-        const Vec3f p1{P[3 * tri[1]], P[3 * tri[1] + 1], P[3 * tri[1] + 2]};
-        const Vec3f p2{P[3 * tri[2]], P[3 * tri[2] + 1], P[3 * tri[2] + 2]};
         const float b1 = rh.hit.u, b2 = rh.hit.v, b0 = 1 - b1 - b2;
         Vertex v;
-        v.p = p0 * b0 + p1 * b1 + p2 * b2;
-        v.ng = cross(p1 - p0, p2 - p0);
-        if (!og.baked) {
-            v.p = og.to_world.point(v.p);
-            v.ng = og.normal_to_world.vector(v.ng);
+        // The hit point from the ray (its float error is far below the origin offset);
+        // Embree's Ng for baked meshes, so the vertices are not fetched again.
+        v.p = o + d * t_hit;
+        if (og.baked) {
+            v.ng = {rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z};
+        } else {
+            // Embree reports Ng of instanced geometry in object space: rebuild and move
+            // it.
+            const uint32_t *tri = &mesh.triangles[3 * size_t(prim)];
+            const float *P = mesh.positions.data();
+            const Vec3f p0{P[3 * tri[0]], P[3 * tri[0] + 1], P[3 * tri[0] + 2]};
+            const Vec3f p1{P[3 * tri[1]], P[3 * tri[1] + 1], P[3 * tri[1] + 2]};
+            const Vec3f p2{P[3 * tri[2]], P[3 * tri[2] + 1], P[3 * tri[2] + 2]};
+            v.ng = og.normal_to_world.vector(cross(p1 - p0, p2 - p0));
         }
         v.ng = normalize(v.ng);
         v.wo = -d;
@@ -149,7 +196,8 @@ Rgb PathIntegrator::radiance(CameraRay cam, Sampler &sampler, FilmSample &fs, Fi
         v.ns = v.ng;
         if (!mesh.corner_normals.empty()) {
             const float *N = &mesh.corner_normals[9 * size_t(prim)];
-            Vec3f ns = Vec3f{N[0], N[1], N[2]} * b0 + Vec3f{N[3], N[4], N[5]} * b1 + Vec3f{N[6], N[7], N[8]} * b2;
+            Vec3f ns = Vec3f{N[0], N[1], N[2]} * b0 + Vec3f{N[3], N[4], N[5]} * b1 +
+                       Vec3f{N[6], N[7], N[8]} * b2;
             if (!og.baked) ns = og.normal_to_world.vector(ns);
             const float len = length(ns);
             if (len > 0) {
@@ -168,8 +216,12 @@ Rgb PathIntegrator::radiance(CameraRay cam, Sampler &sampler, FilmSample &fs, Fi
         ph.primitive_id = prim;
         ph.b1 = b1;
         ph.b2 = b2;
-        ph.p[0] = v.p.x; ph.p[1] = v.p.y; ph.p[2] = v.p.z;
-        ph.n[0] = v.ns.x; ph.n[1] = v.ns.y; ph.n[2] = v.ns.z;
+        ph.p[0] = v.p.x;
+        ph.p[1] = v.p.y;
+        ph.p[2] = v.p.z;
+        ph.n[0] = v.ns.x;
+        ph.n[1] = v.ns.y;
+        ph.n[2] = v.ns.z;
         if (!mesh.corner_uvs.empty()) {
             const float *U = &mesh.corner_uvs[6 * size_t(prim)];
             ph.uv[0] = U[0] * b0 + U[2] * b1 + U[4] * b2;
@@ -184,7 +236,10 @@ Rgb PathIntegrator::radiance(CameraRay cam, Sampler &sampler, FilmSample &fs, Fi
         if (stats.plugin_calls++ % plugin_timing_stride == 0) {
             const auto t0 = std::chrono::steady_clock::now();
             mat.plugin->shade(mat.instance, &ph, &sh);
-            stats.plugin_timed_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+            const double dt =
+                std::chrono::duration<double>(std::chrono::steady_clock::now() - t0)
+                    .count();
+            stats.plugin_timed_seconds += std::max(0.0, dt - m_timer_overhead);
             ++stats.plugin_timed_calls;
         } else {
             mat.plugin->shade(mat.instance, &ph, &sh);
@@ -203,7 +258,8 @@ Rgb PathIntegrator::radiance(CameraRay cam, Sampler &sampler, FilmSample &fs, Fi
                 aovs->object_id = float(object);
                 aovs->primitive_id = float(prim);
                 if (sh.aov_written)
-                    for (int k = 0; k < PELAGE_SHADER_AOV_SLOTS; ++k) aovs->shader[k] = sh.aov[k];
+                    for (int k = 0; k < PELAGE_SHADER_AOV_SLOTS; ++k)
+                        aovs->shader[k] = std::isfinite(sh.aov[k]) ? sh.aov[k] : 0.0f;
             }
         }
         if (depth >= m_max_depth) break;
@@ -211,18 +267,23 @@ Rgb PathIntegrator::radiance(CameraRay cam, Sampler &sampler, FilmSample &fs, Fi
         // --- Direct lighting and BSDF sampling, for the material's BSDF ---
         const Frame frame = Frame::from_z(v.ns);
         const Vec3f wo_local = frame.to_local(v.wo);
-        const float u_light = sampler.get_1d(), ul1 = sampler.get_1d(), ul2 = sampler.get_1d();
-        const float u_lobe = sampler.get_1d(), ub1 = sampler.get_1d(), ub2 = sampler.get_1d();
+        const float u_light = sampler.get_1d(), ul1 = sampler.get_1d(),
+                    ul2 = sampler.get_1d();
+        const float u_lobe = sampler.get_1d(), ub1 = sampler.get_1d(),
+                    ub2 = sampler.get_1d();
         auto scatter = [&](const auto &bsdf) -> bool {
             // --- Next-event estimation: one light, chosen uniformly ---
             LightSample ls;
             const int li = std::min(int(u_light * num_lights), num_lights - 1);
-            if (num_lights > 0 && lights.sample(li, v.p, ul1, ul2, &ls) && dot(ls.wi, v.ng) > 0) {
+            if (num_lights > 0 && lights.sample(li, v.p, v.ng, ul1, ul2, &ls) &&
+                dot(ls.wi, v.ng) > 0) {
                 const Vec3f wi_local = frame.to_local(ls.wi);
                 const Rgb f = bsdf.eval(wo_local, wi_local);
                 if (!is_black(f)) {
                     const Vec3f so = offset_ray_origin(v.p, v.ng, ls.wi);
-                    const float tfar = std::isinf(ls.distance) ? inf : ls.distance * (1 - shadow_ray_shortening);
+                    const float tfar = std::isinf(ls.distance)
+                                           ? inf
+                                           : ls.distance * (1 - shadow_ray_shortening);
                     RTCIntersectContext sctx;
                     rtcInitIntersectContext(&sctx);
                     sctx.flags = RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT;
@@ -233,7 +294,10 @@ Rgb PathIntegrator::radiance(CameraRay cam, Sampler &sampler, FilmSample &fs, Fi
                     ++stats.shadow_rays;
                     if (sr.tfar >= 0) {  // Embree sets tfar = -inf when occluded
                         const float light_pdf = select_pdf * ls.pdf;
-                        const float w = ls.delta ? 1.0f : power_heuristic(light_pdf, bsdf.pdf(wo_local, wi_local));
+                        const float w =
+                            ls.delta ? 1.0f
+                                     : power_heuristic(light_pdf,
+                                                       bsdf.pdf(wo_local, wi_local));
                         L += beta * f * ls.Li * (std::abs(wi_local.z) * w / light_pdf);
                     }
                 }
@@ -246,13 +310,16 @@ Rgb PathIntegrator::radiance(CameraRay cam, Sampler &sampler, FilmSample &fs, Fi
             beta *= bs->weight;
             prev_pdf = bs->pdf;
             prev_specular = bs->specular;
+            prev_ng = v.ng;
             o = offset_ray_origin(v.p, v.ng, wi);
             d = wi;
             return true;
         };
         bool go_on;
         if (mat.bsdf == MaterialDesc::Bsdf::coated)
-            go_on = scatter(BsdfCoated(albedo, sh.roughness >= 0 ? std::min(sh.roughness, 1.0f) : mat.roughness, mat.ior));
+            go_on = scatter(BsdfCoated(
+                albedo, sh.roughness >= 0 ? std::min(sh.roughness, 1.0f) : mat.roughness,
+                mat.ior));
         else
             go_on = scatter(BsdfLambert(albedo));
         if (!go_on || is_black(beta)) break;

@@ -25,9 +25,11 @@ struct RenderStats {
 
     uint64_t rays() const { return camera_rays + secondary_rays + shadow_rays; }
     // Time in plugins, extrapolated from the timed 1-in-16 subset (timing every call
-    // would cost more than the calls).
+    // would cost more than the calls), less the clock reads' own cost.
     double plugin_seconds() const {
-        return plugin_timed_calls ? plugin_timed_seconds * double(plugin_calls) / plugin_timed_calls : 0.0;
+        return plugin_timed_calls
+                   ? plugin_timed_seconds * double(plugin_calls) / plugin_timed_calls
+                   : 0.0;
     }
     void add(const RenderStats &o);
 };
@@ -41,13 +43,13 @@ struct RecordedRay {
 
 class PathIntegrator {
   public:
-    PathIntegrator(const Scene &scene, const Camera &camera, const PixelFilter &filter, int width,
-                   int height);
+    PathIntegrator(const Scene &scene, const Camera &camera, const PixelFilter &filter,
+                   int width, int height);
 
     // Adds samples [s0, s1) of every pixel in [x0, x1) × [y0, y1) to the film. Sample 0
     // also sets the pixel's point AOVs. `log`, when given, receives every ray cast.
-    void render_tile(Film &film, Sampler &sampler, int x0, int y0, int x1, int y1, int s0, int s1,
-                     RenderStats &stats, std::vector<RecordedRay> *log) const;
+    void render_tile(Film &film, Sampler &sampler, int x0, int y0, int x1, int y1, int s0,
+                     int s1, RenderStats &stats, std::vector<RecordedRay> *log) const;
 
   private:
     Rgb radiance(CameraRay ray, Sampler &sampler, FilmSample &fs, FilmPointAovs *aovs,
@@ -59,6 +61,7 @@ class PathIntegrator {
     RTCScene m_rtc;
     int m_max_depth, m_rr_depth;
     float m_pixel_spread;  // radians per pixel, for ray footprints
+    double m_timer_overhead;
 };
 
 }  // namespace pelage::renderer

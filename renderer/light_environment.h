@@ -14,8 +14,9 @@ namespace pelage::renderer {
 
 class EnvironmentLight {
   public:
-    EnvironmentLight(Rgb constant);                                   // constant radiance
-    EnvironmentLight(const std::string &image, float scale, float rotation_deg);  // throws
+    EnvironmentLight(Rgb constant);  // constant radiance
+    EnvironmentLight(const std::string &image, float scale,
+                     float rotation_deg);  // throws
 
     Rgb eval(Vec3f dir) const;
     float pdf(Vec3f dir) const;  // solid angle

@@ -19,7 +19,8 @@ Lights::Lights(const std::vector<LightDesc> &descs) {
         switch (d.type) {
             case LightDesc::Type::environment:
                 l.env = d.image.empty() ? std::make_shared<EnvironmentLight>(l.L)
-                                        : std::make_shared<EnvironmentLight>(d.image, d.intensity, d.rotation_deg);
+                                        : std::make_shared<EnvironmentLight>(
+                                              d.image, d.intensity, d.rotation_deg);
                 m_infinite.push_back(int(m_lights.size()));
                 break;
             case LightDesc::Type::distant: {
@@ -56,11 +57,19 @@ Lights::Lights(const std::vector<LightDesc> &descs) {
     }
 }
 
-bool Lights::sample(int index, Vec3f p, float u1, float u2, LightSample *out) const {
+bool Lights::sample(int index, Vec3f p, Vec3f n, float u1, float u2,
+                    LightSample *out) const {
     const Light &l = m_lights[index];
     switch (l.type) {
         case LightDesc::Type::environment: {
-            out->Li = l.env->sample(u1, u2, &out->wi, &out->pdf);
+            if (l.env->is_constant()) {
+                const Vec3f w = sample_cosine_hemisphere(u1, u2);
+                out->wi = Frame::from_z(n).to_world(w);
+                out->pdf = w.z * inv_pi;
+                out->Li = l.env->eval(out->wi);
+            } else {
+                out->Li = l.env->sample(u1, u2, &out->wi, &out->pdf);
+            }
             out->distance = inf;
             out->delta = false;
             return out->pdf > 0 && !is_black(out->Li);
@@ -128,7 +137,8 @@ AreaLightHit Lights::intersect(Vec3f o, Vec3f d, float t_max) const {
         float t = -1;
         if (l.type == LightDesc::Type::sphere) {
             const Vec3f oc = o - l.center;
-            const float b = dot(oc, d), c = dot(oc, oc) - l.radius * l.radius, disc = b * b - c;
+            const float b = dot(oc, d), c = dot(oc, oc) - l.radius * l.radius,
+                        disc = b * b - c;
             if (disc < 0) continue;
             const float sq = std::sqrt(disc);
             t = -b - sq;
@@ -145,7 +155,10 @@ AreaLightHit Lights::intersect(Vec3f o, Vec3f d, float t_max) const {
             const float a = (qu * vv - qv * uv) / det, b = (qv * uu - qu * uv) / det;
             if (a < 0 || a > 1 || b < 0 || b > 1) continue;
         }
-        if (t > 0 && t < best.t) { best.t = t; best.light = i; }
+        if (t > 0 && t < best.t) {
+            best.t = t;
+            best.light = i;
+        }
     }
     return best;
 }
@@ -155,24 +168,33 @@ Rgb Lights::area_radiance(int index, Vec3f o, Vec3f d, float t, float *pdf) cons
     if (l.type == LightDesc::Type::sphere) {
         const Vec3f to_c = l.center - o;
         const float d2 = dot(to_c, to_c);
-        if (d2 <= l.radius * l.radius) { *pdf = 0; return l.L; }
+        if (d2 <= l.radius * l.radius) {
+            *pdf = 0;
+            return l.L;
+        }
         const float cos_max = std::sqrt(std::max(0.0f, 1 - l.radius * l.radius / d2));
         *pdf = 1 / (2 * pi * (1 - cos_max));
         return l.L;
     }
     const float cos_l = -dot(l.n, d);
-    if (cos_l <= 0 && !l.two_sided) { *pdf = 0; return {}; }
+    if (cos_l <= 0 && !l.two_sided) {
+        *pdf = 0;
+        return {};
+    }
     *pdf = t * t / (std::abs(cos_l) * l.area);
     return l.L;
 }
 
-int Lights::eval_infinite(Vec3f d, InfiniteHit out[], int max_out) const {
+int Lights::eval_infinite(Vec3f d, Vec3f n_prev, InfiniteHit out[], int max_out) const {
     int n = 0;
     for (int i : m_infinite) {
         if (n == max_out) break;
         const Light &l = m_lights[i];
         if (l.type == LightDesc::Type::environment) {
-            out[n++] = {l.env->eval(d), l.env->pdf(d)};
+            const float pdf = l.env->is_constant()
+                                  ? std::max(0.0f, dot(n_prev, d)) * inv_pi
+                                  : l.env->pdf(d);
+            out[n++] = {l.env->eval(d), pdf};
         } else if (dot(d, l.to_light) >= l.cos_max) {
             out[n++] = {l.L, 1 / (2 * pi * (1 - l.cos_max))};
         }

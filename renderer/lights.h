@@ -37,8 +37,10 @@ class Lights {
     int count() const { return int(m_lights.size()); }
     float select_pdf() const { return m_lights.empty() ? 0.0f : 1.0f / m_lights.size(); }
 
-    // Samples light `index` as seen from p. False when it cannot contribute.
-    bool sample(int index, Vec3f p, float u1, float u2, LightSample *out) const;
+    // Samples light `index` as seen from p, whose geometric normal n faces the side
+    // being shaded. False when it cannot contribute. A constant environment is sampled
+    // cosine-weighted about n (density cos θ / π), so no sample falls below the surface.
+    bool sample(int index, Vec3f p, Vec3f n, float u1, float u2, LightSample *out) const;
 
     // Nearest area light along the ray closer than t_max.
     AreaLightHit intersect(Vec3f o, Vec3f d, float t_max) const;
@@ -46,14 +48,16 @@ class Lights {
     // density with which sample() would have produced d from o.
     Rgb area_radiance(int index, Vec3f o, Vec3f d, float t, float *pdf) const;
 
-    // What an escaping ray sees: the environment plus distant discs containing d. For
-    // MIS, *pdf_sum gets Σ select_pdf · pdf over those lights, and *count how many there
-    // were (the caller weights the whole sum with one power heuristic term each).
+    // What an escaping ray sees: the environment plus distant discs containing d, each
+    // with its radiance and the density with which sample() would have produced d (the
+    // caller weights each with its own power-heuristic term).
     struct InfiniteHit {
         Rgb L;
         float pdf;
     };
-    int eval_infinite(Vec3f d, InfiniteHit out[], int max_out) const;
+    // n_prev: the geometric normal at the vertex the ray left (for the constant
+    // environment's density).
+    int eval_infinite(Vec3f d, Vec3f n_prev, InfiniteHit out[], int max_out) const;
 
   private:
     struct Light {

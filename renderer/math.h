@@ -19,10 +19,28 @@ struct Vec3f {
     constexpr Vec3f operator-() const { return {-x, -y, -z}; }
     constexpr Vec3f operator*(float s) const { return {x * s, y * s, z * s}; }
     constexpr Vec3f operator*(Vec3f o) const { return {x * o.x, y * o.y, z * o.z}; }
-    constexpr Vec3f operator/(float s) const { return {x / s, y / s, z / s}; }
-    constexpr Vec3f &operator+=(Vec3f o) { x += o.x; y += o.y; z += o.z; return *this; }
-    constexpr Vec3f &operator*=(Vec3f o) { x *= o.x; y *= o.y; z *= o.z; return *this; }
-    constexpr Vec3f &operator*=(float s) { x *= s; y *= s; z *= s; return *this; }
+    constexpr Vec3f operator/(float s) const {
+        const float inv = 1.0f / s;  // one division, not three
+        return {x * inv, y * inv, z * inv};
+    }
+    constexpr Vec3f &operator+=(Vec3f o) {
+        x += o.x;
+        y += o.y;
+        z += o.z;
+        return *this;
+    }
+    constexpr Vec3f &operator*=(Vec3f o) {
+        x *= o.x;
+        y *= o.y;
+        z *= o.z;
+        return *this;
+    }
+    constexpr Vec3f &operator*=(float s) {
+        x *= s;
+        y *= s;
+        z *= s;
+        return *this;
+    }
     constexpr float operator[](int i) const { return i == 0 ? x : (i == 1 ? y : z); }
     constexpr bool operator==(const Vec3f &) const = default;
 };
@@ -51,7 +69,9 @@ struct Frame {
     static Frame from_z(Vec3f n) {
         const float sign = std::copysign(1.0f, n.z);
         const float a = -1.0f / (sign + n.z), b = n.x * n.y * a;
-        return {{1 + sign * n.x * n.x * a, sign * b, -sign * n.x}, {b, sign + n.y * n.y * a, -n.y}, n};
+        return {{1 + sign * n.x * n.x * a, sign * b, -sign * n.x},
+                {b, sign + n.y * n.y * a, -n.y},
+                n};
     }
     Vec3f to_local(Vec3f v) const { return {dot(v, s), dot(v, t), dot(v, n)}; }
     Vec3f to_world(Vec3f v) const { return s * v.x + t * v.y + n * v.z; }

@@ -20,12 +20,14 @@ LoadedPlugin open_plugin(const std::string &file) {
     void *handle = dlopen(file.c_str(), RTLD_NOW | RTLD_LOCAL);
     if (!handle) {
         const char *e = dlerror();
-        throw std::runtime_error(file + ": cannot load shader plugin: " + (e ? e : "unknown error"));
+        throw std::runtime_error(
+            file + ": cannot load shader plugin: " + (e ? e : "unknown error"));
     }
     auto entry = reinterpret_cast<PelageShaderEntry>(dlsym(handle, PELAGE_SHADER_ENTRY));
     if (!entry) {
         dlclose(handle);
-        throw std::runtime_error(file + ": not a pelage shader plugin (no symbol `" PELAGE_SHADER_ENTRY "`)");
+        throw std::runtime_error(
+            file + ": not a pelage shader plugin (no symbol `" PELAGE_SHADER_ENTRY "`)");
     }
     const PelageShaderPlugin *desc = entry();
     if (!desc) {
@@ -36,16 +38,20 @@ LoadedPlugin open_plugin(const std::string &file) {
     if (desc->abi != PELAGE_SHADER_ABI) {
         const unsigned abi = desc->abi;
         dlclose(handle);
-        throw std::runtime_error(file + ": shader plugin ABI version " + std::to_string(abi) +
-                                 ", this pelage needs " + std::to_string(PELAGE_SHADER_ABI) +
+        throw std::runtime_error(file + ": shader plugin ABI version " +
+                                 std::to_string(abi) + ", this pelage needs " +
+                                 std::to_string(PELAGE_SHADER_ABI) +
                                  " (rebuild the plugin against shader/pelage_shader.h)");
     }
     if (!desc->name || !desc->create || !desc->shade || !desc->destroy || !desc->params) {
         dlclose(handle);
-        throw std::runtime_error(file + ": shader plugin descriptor is incomplete (name, params, "
-                                        "create, shade and destroy are required)");
+        throw std::runtime_error(
+            file +
+            ": shader plugin descriptor is incomplete (name, params, "
+            "create, shade and destroy are required)");
     }
-    // The handle stays open for the life of the process: instances may outlive a registry.
+    // The handle stays open for the life of the process: instances may outlive a
+    // registry.
     return {file, desc};
 }
 
@@ -59,13 +65,17 @@ std::vector<std::string> PluginRegistry::default_search_path() {
     }
     std::error_code ec;
     const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
-    if (!ec) dirs.push_back((exe.parent_path().parent_path() / "lib" / "pelage" / "shaders").string());
+    if (!ec)
+        dirs.push_back(
+            (exe.parent_path().parent_path() / "lib" / "pelage" / "shaders").string());
     return dirs;
 }
 
 PluginRegistry::PluginRegistry() : PluginRegistry(default_search_path()) {}
 
-PluginRegistry::PluginRegistry(std::vector<std::string> dirs) : m_dirs(std::move(dirs)) { scan(); }
+PluginRegistry::PluginRegistry(std::vector<std::string> dirs) : m_dirs(std::move(dirs)) {
+    scan();
+}
 
 void PluginRegistry::scan() {
     for (const auto &dir : m_dirs) {
@@ -76,7 +86,8 @@ void PluginRegistry::scan() {
         std::sort(files.begin(), files.end());
         for (const auto &f : files) {
             const std::string stem = f.stem().string();
-            if (m_plugins.count(stem) || m_refused.count(stem)) continue;  // earlier folder wins
+            if (m_plugins.count(stem) || m_refused.count(stem))
+                continue;  // earlier folder wins
             try {
                 LoadedPlugin p = open_plugin(f.string());
                 const std::string name = p.desc->name;
@@ -88,10 +99,12 @@ void PluginRegistry::scan() {
     }
 }
 
-const LoadedPlugin &PluginRegistry::get(const std::string &name, const std::string &scene_file,
+const LoadedPlugin &PluginRegistry::get(const std::string &name,
+                                        const std::string &scene_file,
                                         const std::string &field) const {
     if (auto it = m_plugins.find(name); it != m_plugins.end()) return it->second;
-    if (auto it = m_refused.find(name); it != m_refused.end()) throw std::runtime_error(it->second);
+    if (auto it = m_refused.find(name); it != m_refused.end())
+        throw std::runtime_error(it->second);
     std::string dirs;
     for (const auto &d : m_dirs) dirs += (dirs.empty() ? "" : ":") + d;
     throw InputError(scene_file, 0, field,
@@ -102,16 +115,22 @@ const LoadedPlugin &PluginRegistry::get(const std::string &name, const std::stri
 
 const char *param_type_name(PelageParamType t) {
     switch (t) {
-        case PELAGE_PARAM_FLOAT: return "float";
-        case PELAGE_PARAM_INT: return "int";
-        case PELAGE_PARAM_RGB: return "rgb";
-        case PELAGE_PARAM_STRING: return "string";
+        case PELAGE_PARAM_FLOAT:
+            return "float";
+        case PELAGE_PARAM_INT:
+            return "int";
+        case PELAGE_PARAM_RGB:
+            return "rgb";
+        case PELAGE_PARAM_STRING:
+            return "string";
     }
     return "?";
 }
 
-PluginParams validate_plugin_params(const PelageShaderPlugin &plugin, const nlohmann::json &params,
-                                    const std::string &scene_file, const std::string &prefix) {
+PluginParams validate_plugin_params(const PelageShaderPlugin &plugin,
+                                    const nlohmann::json &params,
+                                    const std::string &scene_file,
+                                    const std::string &prefix) {
     PluginParams out;
     auto fail = [&](const std::string &key, const std::string &msg) {
         throw InputError(scene_file, 0, prefix + "." + key, msg);
@@ -127,9 +146,11 @@ PluginParams validate_plugin_params(const PelageShaderPlugin &plugin, const nloh
         auto check = [&](const nlohmann::json &x, const std::string &what) -> float {
             if (!x.is_number()) fail(s->name, "expected a number" + what);
             const double d = x.get<double>();
-            if (!std::isfinite(d) || (has_range && (d < s->min_value || d > s->max_value))) {
+            if (!std::isfinite(d) ||
+                (has_range && (d < s->min_value || d > s->max_value))) {
                 std::ostringstream m;
-                m << "= " << d << ": must be in [" << s->min_value << ", " << s->max_value << "]";
+                m << "= " << d << ": must be in [" << s->min_value << ", " << s->max_value
+                  << "]";
                 fail(s->name, m.str());
             }
             return float(d);
@@ -138,7 +159,9 @@ PluginParams validate_plugin_params(const PelageShaderPlugin &plugin, const nloh
             ++known;
             const nlohmann::json &x = *it;
             switch (s->type) {
-                case PELAGE_PARAM_FLOAT: v.f[0] = check(x, ""); break;
+                case PELAGE_PARAM_FLOAT:
+                    v.f[0] = check(x, "");
+                    break;
                 case PELAGE_PARAM_INT:
                     if (!x.is_number_integer()) fail(s->name, "expected an integer");
                     v.i = int32_t(check(x, ""));
@@ -148,7 +171,8 @@ PluginParams validate_plugin_params(const PelageShaderPlugin &plugin, const nloh
                     if (x.is_number()) {
                         v.f[0] = v.f[1] = v.f[2] = check(x, "");
                     } else {
-                        if (!x.is_array() || x.size() != 3) fail(s->name, "expected [r, g, b] or one number");
+                        if (!x.is_array() || x.size() != 3)
+                            fail(s->name, "expected [r, g, b] or one number");
                         for (int c = 0; c < 3; ++c) v.f[c] = check(x[c], " in [r, g, b]");
                     }
                     break;
@@ -167,9 +191,11 @@ PluginParams validate_plugin_params(const PelageShaderPlugin &plugin, const nloh
     if (known != params.size()) {
         for (auto it = params.begin(); it != params.end(); ++it) {
             bool found = false;
-            for (const PelageParamSpec *s = plugin.params; s->name; ++s) found |= it.key() == s->name;
+            for (const PelageParamSpec *s = plugin.params; s->name; ++s)
+                found |= it.key() == s->name;
             if (!found)
-                fail(it.key(), std::string("unknown parameter of shader \"") + plugin.name + "\"");
+                fail(it.key(),
+                     std::string("unknown parameter of shader \"") + plugin.name + "\"");
         }
     }
     return out;

@@ -7,10 +7,9 @@
 
 #include <deque>
 #include <map>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
-
-#include <nlohmann/json.hpp>
 
 #include "shader/pelage_shader.h"
 
@@ -62,8 +61,10 @@ struct PluginParams {
 
 // Checks `params` (a JSON object) against the plugin's table: unknown keys, types and
 // ranges are pelage::InputError at `field_prefix.<key>` in `scene_file`.
-PluginParams validate_plugin_params(const PelageShaderPlugin &plugin, const nlohmann::json &params,
-                                    const std::string &scene_file, const std::string &field_prefix);
+PluginParams validate_plugin_params(const PelageShaderPlugin &plugin,
+                                    const nlohmann::json &params,
+                                    const std::string &scene_file,
+                                    const std::string &field_prefix);
 
 const char *param_type_name(PelageParamType t);
 

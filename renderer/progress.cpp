@@ -20,7 +20,9 @@ extern "C" void on_sigint(int) {
 bool Progress::stderr_is_tty() { return isatty(STDERR_FILENO) == 1; }
 
 Progress::Progress(std::string label, uint64_t total, bool enabled)
-    : m_label(std::move(label)), m_total(total ? total : 1), m_enabled(enabled),
+    : m_label(std::move(label)),
+      m_total(total ? total : 1),
+      m_enabled(enabled),
       m_start(std::chrono::steady_clock::now()) {
     if (!m_enabled) return;
     m_thread = std::thread([this] {
@@ -42,15 +44,18 @@ void Progress::finish() {
 
 void Progress::draw(bool final) {
     const double f = std::min(1.0, double(m_done.load()) / double(m_total));
-    const double t = std::chrono::duration<double>(std::chrono::steady_clock::now() - m_start).count();
+    const double t =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - m_start).count();
     constexpr int width = 30;
     char bar[width + 1];
     for (int i = 0; i < width; ++i) bar[i] = i < int(f * width) ? '#' : ' ';
     bar[width] = 0;
     if (f > 0 && f < 1)
-        std::fprintf(stderr, "\r%s [%s] %3d%%  ETA %.0f s   ", m_label.c_str(), bar, int(100 * f), t * (1 - f) / f);
+        std::fprintf(stderr, "\r%s [%s] %3d%%  ETA %.0f s   ", m_label.c_str(), bar,
+                     int(100 * f), t * (1 - f) / f);
     else
-        std::fprintf(stderr, "\r%s [%s] %3d%%  %.1f s        ", m_label.c_str(), bar, int(100 * f), t);
+        std::fprintf(stderr, "\r%s [%s] %3d%%  %.1f s        ", m_label.c_str(), bar,
+                     int(100 * f), t);
     if (final) std::fprintf(stderr, "\n");
     std::fflush(stderr);
 }

@@ -24,11 +24,13 @@ RenderResult render(const Scene &scene, const RenderOptions &opt) {
 
     RenderResult result;
     result.film = std::make_unique<Film>(W, H);
-    const int tiles_x = (W + tile_size - 1) / tile_size, tiles_y = (H + tile_size - 1) / tile_size;
+    const int tiles_x = (W + tile_size - 1) / tile_size,
+              tiles_y = (H + tile_size - 1) / tile_size;
     const int num_tiles = tiles_x * tiles_y;
     // Passes of 1, 1, 2, 4, 8 ... samples: an early stop still has a whole image.
     std::vector<int> bounds = {0};
-    while (bounds.back() < spp) bounds.push_back(std::min(spp, std::max(1, 2 * bounds.back())));
+    while (bounds.back() < spp)
+        bounds.push_back(std::min(spp, std::max(1, 2 * bounds.back())));
     const int passes = int(bounds.size()) - 1;
 
     tbb::enumerable_thread_specific<RenderStats> stats;
@@ -38,22 +40,25 @@ RenderResult render(const Scene &scene, const RenderOptions &opt) {
 
     for (int pass = 0; pass < passes && !stopped.load(); ++pass) {
         const int s0 = bounds[pass], s1 = bounds[pass + 1];
-        tbb::parallel_for(tbb::blocked_range<int>(0, num_tiles, 1), [&](const tbb::blocked_range<int> &range) {
-            RenderStats &st = stats.local();
-            std::vector<RecordedRay> *log = opt.record_rays ? &logs.local() : nullptr;
-            Sampler sampler(opt.seed, opt.frame);
-            for (int tile = range.begin(); tile != range.end(); ++tile) {
-                if (opt.cancel && opt.cancel->load(std::memory_order_relaxed)) {
-                    stopped.store(true);
-                    return;
+        tbb::parallel_for(
+            tbb::blocked_range<int>(0, num_tiles, 1),
+            [&](const tbb::blocked_range<int> &range) {
+                RenderStats &st = stats.local();
+                std::vector<RecordedRay> *log = opt.record_rays ? &logs.local() : nullptr;
+                Sampler sampler(opt.seed, opt.frame);
+                for (int tile = range.begin(); tile != range.end(); ++tile) {
+                    if (opt.cancel && opt.cancel->load(std::memory_order_relaxed)) {
+                        stopped.store(true);
+                        return;
+                    }
+                    const int tx = tile % tiles_x, ty = tile / tiles_x;
+                    const int x0 = tx * tile_size, y0 = ty * tile_size;
+                    integrator.render_tile(*result.film, sampler, x0, y0,
+                                           std::min(W, x0 + tile_size),
+                                           std::min(H, y0 + tile_size), s0, s1, st, log);
+                    progress.advance();
                 }
-                const int tx = tile % tiles_x, ty = tile / tiles_x;
-                const int x0 = tx * tile_size, y0 = ty * tile_size;
-                integrator.render_tile(*result.film, sampler, x0, y0, std::min(W, x0 + tile_size),
-                                       std::min(H, y0 + tile_size), s0, s1, st, log);
-                progress.advance();
-            }
-        });
+            });
         scene.geometry().check();  // an Embree error fails the run
         if (!stopped.load()) result.spp_done = s1;
     }
@@ -62,7 +67,8 @@ RenderResult render(const Scene &scene, const RenderOptions &opt) {
     for (const RenderStats &s : stats) result.stats.add(s);
     if (opt.record_rays)
         for (auto &l : logs) result.rays.push_back(std::move(l));
-    result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    result.seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     return result;
 }
 

@@ -1,8 +1,9 @@
-// Rendering a scene: progressive passes of 1, 1, 2, 4, 8 ... samples over all pixels, each pass a TBB
-// parallel loop over 16×16 tiles. Every pixel's samples are summed in sample order, and
-// random numbers depend only on (seed, frame, x, y, sample), so the image is bit-identical
-// at any thread count. A cancel request stops at the next tile; the film then holds all
-// completed work (each pixel is normalized by its own weight sum).
+// Rendering a scene: progressive passes of 1, 1, 2, 4, 8 ... samples over all pixels,
+// each pass a TBB parallel loop over 16×16 tiles. Every pixel's samples are summed in
+// sample order, and random numbers depend only on (seed, frame, x, y, sample), so the
+// image is bit-identical at any thread count. A cancel request stops at the next tile;
+// the film then holds all completed work (each pixel is normalized by its own weight
+// sum).
 #pragma once
 
 #include <atomic>
@@ -19,14 +20,14 @@ struct RenderOptions {
     uint64_t seed = 0;
     uint32_t frame = 0;
     const std::atomic<bool> *cancel = nullptr;
-    bool progress = false;      // draw a progress bar (the caller checks for a TTY)
-    bool record_rays = false;   // keep every ray cast (benchmarks only)
+    bool progress = false;     // draw a progress bar (the caller checks for a TTY)
+    bool record_rays = false;  // keep every ray cast (benchmarks only)
 };
 
 struct RenderResult {
     std::unique_ptr<Film> film;
     RenderStats stats;
-    int spp_done = 0;           // samples every pixel received
+    int spp_done = 0;  // samples every pixel received
     bool interrupted = false;
     double seconds = 0;
     std::vector<std::vector<RecordedRay>> rays;  // per thread, when record_rays

@@ -17,7 +17,8 @@ constexpr uint64_t mix64(uint64_t z) {
 
 class Sampler {
   public:
-    Sampler(uint64_t seed, uint32_t frame) : m_base(mix64(seed ^ mix64(0x9e3779b97f4a7c15ull + frame))) {}
+    Sampler(uint64_t seed, uint32_t frame)
+        : m_base(mix64(seed ^ mix64(0x9e3779b97f4a7c15ull + frame))) {}
 
     // Starts the stream of one pixel sample; dimensions restart at 0.
     void start_pixel_sample(uint32_t x, uint32_t y, uint32_t sample) {

@@ -1,5 +1,6 @@
 #include "renderer/scene.h"
 
+#include <filesystem>
 #include <stdexcept>
 
 #include "sim/input_error.h"
@@ -12,10 +13,18 @@ Scene::Scene(const SceneDesc &desc, const PluginRegistry &plugins) : m_desc(desc
     std::vector<PluginParams> params;
     for (size_t i = 0; i < desc.objects.size(); ++i) {
         const std::string field = "objects[" + std::to_string(i) + "].material";
-        const LoadedPlugin &p = plugins.get(desc.objects[i].material.shader, desc.path, field + ".shader");
-        params.push_back(validate_plugin_params(*p.desc, desc.objects[i].material.params, desc.path, field + ".params"));
+        const LoadedPlugin &p =
+            plugins.get(desc.objects[i].material.shader, desc.path, field + ".shader");
+        params.push_back(validate_plugin_params(*p.desc, desc.objects[i].material.params,
+                                                desc.path, field + ".params"));
         chosen.push_back(&p);
     }
+    for (size_t i = 0; i < desc.objects.size(); ++i)
+        if (const std::string &c = desc.objects[i].cells;
+            !c.empty() && !std::filesystem::is_regular_file(c))
+            throw InputError(c, 0, "",
+                             "cannot open file (objects[" + std::to_string(i) +
+                                 "].cells in " + desc.path + ")");
     m_geometry = std::make_unique<EmbreeScene>(desc);
     m_lights = std::make_unique<Lights>(desc.lights);
 
@@ -41,8 +50,9 @@ Scene::Scene(const SceneDesc &desc, const PluginRegistry &plugins) : m_desc(desc
         if (!m.instance) {
             err.message[sizeof(err.message) - 1] = 0;
             throw InputError(desc.path, 0, "objects[" + std::to_string(i) + "].material",
-                             std::string("shader \"") + m.plugin->name + "\" (" + chosen[i]->file +
-                                 ") refused its parameters: " + (err.message[0] ? err.message : "no reason given"));
+                             std::string("shader \"") + m.plugin->name + "\" (" +
+                                 chosen[i]->file + ") refused its parameters: " +
+                                 (err.message[0] ? err.message : "no reason given"));
         }
         m.bsdf = o.material.bsdf;
         m.roughness = o.material.roughness;

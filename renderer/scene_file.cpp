@@ -17,15 +17,23 @@ using json = nlohmann::json;
 
 const char *type_name(const json &j) {
     switch (j.type()) {
-        case json::value_t::null: return "null";
-        case json::value_t::boolean: return "a boolean";
-        case json::value_t::string: return "a string";
-        case json::value_t::array: return "an array";
-        case json::value_t::object: return "an object";
+        case json::value_t::null:
+            return "null";
+        case json::value_t::boolean:
+            return "a boolean";
+        case json::value_t::string:
+            return "a string";
+        case json::value_t::array:
+            return "an array";
+        case json::value_t::object:
+            return "an object";
         case json::value_t::number_integer:
-        case json::value_t::number_unsigned: return "an integer";
-        case json::value_t::number_float: return "a number";
-        default: return "an unknown value";
+        case json::value_t::number_unsigned:
+            return "an integer";
+        case json::value_t::number_float:
+            return "a number";
+        default:
+            return "an unknown value";
     }
 }
 
@@ -35,7 +43,8 @@ class Reader {
   public:
     Reader(const json &j, std::string path, const SceneDesc &scene)
         : m_j(j), m_path(std::move(path)), m_scene(scene) {
-        if (!j.is_object()) fail(m_path, std::string("expected an object, got ") + type_name(j));
+        if (!j.is_object())
+            fail(m_path, std::string("expected an object, got ") + type_name(j));
     }
 
     [[noreturn]] void fail(const std::string &field, const std::string &message) const {
@@ -56,7 +65,8 @@ class Reader {
         return *v;
     }
 
-    double number(const std::string &key, double def, double lo, double hi, bool required = false) {
+    double number(const std::string &key, double def, double lo, double hi,
+                  bool required = false) {
         const json *v = required ? &require(key) : take(key);
         if (!v) return def;
         return check_number(*v, field(key), lo, hi);
@@ -64,30 +74,36 @@ class Reader {
     int integer(const std::string &key, int def, long lo, long hi) {
         const json *v = take(key);
         if (!v) return def;
-        if (!v->is_number_integer()) fail(field(key), std::string("expected an integer, got ") + type_name(*v));
+        if (!v->is_number_integer())
+            fail(field(key), std::string("expected an integer, got ") + type_name(*v));
         const long x = v->get<long>();
         if (x < lo || x > hi)
-            fail(field(key), "= " + std::to_string(x) + ": must be in [" + std::to_string(lo) + ", " +
-                                 std::to_string(hi) + "]");
+            fail(field(key), "= " + std::to_string(x) + ": must be in [" +
+                                 std::to_string(lo) + ", " + std::to_string(hi) + "]");
         return int(x);
     }
     bool boolean(const std::string &key, bool def) {
         const json *v = take(key);
         if (!v) return def;
-        if (!v->is_boolean()) fail(field(key), std::string("expected true or false, got ") + type_name(*v));
+        if (!v->is_boolean())
+            fail(field(key), std::string("expected true or false, got ") + type_name(*v));
         return v->get<bool>();
     }
-    std::string string(const std::string &key, const std::string &def, bool required = false) {
+    std::string string(const std::string &key, const std::string &def,
+                       bool required = false) {
         const json *v = required ? &require(key) : take(key);
         if (!v) return def;
-        if (!v->is_string()) fail(field(key), std::string("expected a string, got ") + type_name(*v));
+        if (!v->is_string())
+            fail(field(key), std::string("expected a string, got ") + type_name(*v));
         return v->get<std::string>();
     }
     template <typename E>
-    E choice(const std::string &key, E def, const std::vector<std::pair<std::string, E>> &options) {
+    E choice(const std::string &key, E def,
+             const std::vector<std::pair<std::string, E>> &options) {
         const json *v = take(key);
         if (!v) return def;
-        if (!v->is_string()) fail(field(key), std::string("expected a string, got ") + type_name(*v));
+        if (!v->is_string())
+            fail(field(key), std::string("expected a string, got ") + type_name(*v));
         const std::string s = v->get<std::string>();
         std::string all;
         for (const auto &[name, e] : options) {
@@ -96,7 +112,8 @@ class Reader {
         }
         fail(field(key), "unknown value \"" + s + "\" (expected one of " + all + ")");
     }
-    Vec3f vec3(const std::string &key, Vec3f def, double lo = -1e30, double hi = 1e30, bool required = false) {
+    Vec3f vec3(const std::string &key, Vec3f def, double lo = -1e30, double hi = 1e30,
+               bool required = false) {
         const json *v = required ? &require(key) : take(key);
         if (!v) return def;
         return check_vec3(*v, field(key), lo, hi);
@@ -122,7 +139,8 @@ class Reader {
     }
     std::string resolve(const std::string &s) const {
         const fs::path p(s);
-        return p.is_absolute() ? s : (fs::path(m_scene.dir) / p).lexically_normal().string();
+        return p.is_absolute() ? s
+                               : (fs::path(m_scene.dir) / p).lexically_normal().string();
     }
 
     void finish() const {
@@ -132,7 +150,8 @@ class Reader {
     const std::string &path_prefix() const { return m_path; }
 
     double check_number(const json &v, const std::string &f, double lo, double hi) const {
-        if (!v.is_number()) fail(f, std::string("expected a number, got ") + type_name(v));
+        if (!v.is_number())
+            fail(f, std::string("expected a number, got ") + type_name(v));
         const double x = v.get<double>();
         if (!std::isfinite(x) || x < lo || x > hi) {
             std::ostringstream s;
@@ -143,9 +162,11 @@ class Reader {
     }
     Vec3f check_vec3(const json &v, const std::string &f, double lo, double hi) const {
         if (!v.is_array() || v.size() != 3)
-            fail(f, std::string("expected an array of 3 numbers, got ") + type_name(v) +
-                        (v.is_array() ? " of " + std::to_string(v.size()) : std::string()));
-        return {float(check_number(v[0], f + "[0]", lo, hi)), float(check_number(v[1], f + "[1]", lo, hi)),
+            fail(f,
+                 std::string("expected an array of 3 numbers, got ") + type_name(v) +
+                     (v.is_array() ? " of " + std::to_string(v.size()) : std::string()));
+        return {float(check_number(v[0], f + "[0]", lo, hi)),
+                float(check_number(v[1], f + "[1]", lo, hi)),
                 float(check_number(v[2], f + "[2]", lo, hi))};
     }
 
@@ -158,15 +179,17 @@ class Reader {
 
 CameraDesc read_camera(Reader r) {
     CameraDesc c;
-    c.type = r.choice<CameraDesc::Type>("type", c.type, {{"pinhole", CameraDesc::Type::pinhole},
-                                                          {"thin_lens", CameraDesc::Type::thin_lens}});
+    c.type = r.choice<CameraDesc::Type>("type", c.type,
+                                        {{"pinhole", CameraDesc::Type::pinhole},
+                                         {"thin_lens", CameraDesc::Type::thin_lens}});
     c.position = r.vec3("position", c.position);
     c.look_at = r.vec3("look_at", c.look_at);
     c.up = r.vec3("up", c.up);
     c.fov_deg = float(r.number("fov", c.fov_deg, 0.01, 179.0));
     c.aperture_radius = float(r.number("aperture_radius", 0, 0, 1e9));
     c.focus_distance = float(r.number("focus_distance", 0, 0, 1e9));
-    if (c.type == CameraDesc::Type::pinhole && (r.has("aperture_radius") || r.has("focus_distance")))
+    if (c.type == CameraDesc::Type::pinhole &&
+        (r.has("aperture_radius") || r.has("focus_distance")))
         r.fail(r.field(r.has("aperture_radius") ? "aperture_radius" : "focus_distance"),
                "only a thin_lens camera has an aperture (set \"type\": \"thin_lens\")");
     r.finish();
@@ -180,11 +203,17 @@ CameraDesc read_camera(Reader r) {
 LightDesc read_light(Reader r) {
     LightDesc l;
     const std::string type = r.string("type", "", true);
-    if (type == "environment") l.type = LightDesc::Type::environment;
-    else if (type == "distant") l.type = LightDesc::Type::distant;
-    else if (type == "sphere") l.type = LightDesc::Type::sphere;
-    else if (type == "quad") l.type = LightDesc::Type::quad;
-    else r.fail(r.field("type"), "unknown light type \"" + type + "\" (expected environment, distant, sphere or quad)");
+    if (type == "environment")
+        l.type = LightDesc::Type::environment;
+    else if (type == "distant")
+        l.type = LightDesc::Type::distant;
+    else if (type == "sphere")
+        l.type = LightDesc::Type::sphere;
+    else if (type == "quad")
+        l.type = LightDesc::Type::quad;
+    else
+        r.fail(r.field("type"), "unknown light type \"" + type +
+                                    "\" (expected environment, distant, sphere or quad)");
     l.color = r.color("color", l.color);
     l.intensity = float(r.number("intensity", l.intensity, 0, 1e12));
     switch (l.type) {
@@ -192,11 +221,13 @@ LightDesc read_light(Reader r) {
             l.image = r.path("image");
             l.rotation_deg = float(r.number("rotation", 0, -360, 360));
             if (!l.image.empty() && r.has("color"))
-                r.fail(r.field("color"), "conflicts with \"image\" (scale an image with \"intensity\")");
+                r.fail(r.field("color"),
+                       "conflicts with \"image\" (scale an image with \"intensity\")");
             break;
         case LightDesc::Type::distant:
             l.direction = r.vec3("direction", l.direction, -1e30, 1e30, true);
-            if (length(l.direction) <= 0) r.fail(r.field("direction"), "must not be zero");
+            if (length(l.direction) <= 0)
+                r.fail(r.field("direction"), "must not be zero");
             l.direction = normalize(l.direction);
             l.angle_deg = float(r.number("angle", 0, 0, 90));
             break;
@@ -226,7 +257,8 @@ Affine read_transform(Reader r) {
         if (!v.is_array() || v.size() != 12)
             r.fail(r.field("matrix"), "expected 12 numbers (a row-major 3x4 matrix)");
         for (int i = 0; i < 12; ++i)
-            m.m[i / 4][i % 4] = float(r.check_number(v[i], r.field("matrix") + "[" + std::to_string(i) + "]", -1e30, 1e30));
+            m.m[i / 4][i % 4] = float(r.check_number(
+                v[i], r.field("matrix") + "[" + std::to_string(i) + "]", -1e30, 1e30));
     } else {
         Vec3f s{1, 1, 1};
         if (const json *sv = r.take("scale")) {
@@ -238,33 +270,43 @@ Affine read_transform(Reader r) {
             }
         }
         Affine sm;
-        sm.m[0][0] = s.x; sm.m[1][1] = s.y; sm.m[2][2] = s.z;
+        sm.m[0][0] = s.x;
+        sm.m[1][1] = s.y;
+        sm.m[2][2] = s.z;
         Affine rm;
         if (const json *rv = r.take("rotate")) {
             // [angle in degrees, axis x, y, z]
             if (!rv->is_array() || rv->size() != 4)
-                r.fail(r.field("rotate"), "expected [angle_degrees, axis_x, axis_y, axis_z]");
+                r.fail(r.field("rotate"),
+                       "expected [angle_degrees, axis_x, axis_y, axis_z]");
             float a[4];
             for (int i = 0; i < 4; ++i)
-                a[i] = float(r.check_number((*rv)[i], r.field("rotate") + "[" + std::to_string(i) + "]", -1e30, 1e30));
+                a[i] = float(r.check_number(
+                    (*rv)[i], r.field("rotate") + "[" + std::to_string(i) + "]", -1e30,
+                    1e30));
             Vec3f axis{a[1], a[2], a[3]};
             if (length(axis) <= 0) r.fail(r.field("rotate"), "zero rotation axis");
             axis = normalize(axis);
-            const float th = a[0] * pi / 180, c = std::cos(th), sn = std::sin(th), t = 1 - c;
+            const float th = a[0] * pi / 180, c = std::cos(th), sn = std::sin(th),
+                        t = 1 - c;
             const float x = axis.x, y = axis.y, z = axis.z;
-            const float rot[3][3] = {{t * x * x + c, t * x * y - sn * z, t * x * z + sn * y},
-                                     {t * x * y + sn * z, t * y * y + c, t * y * z - sn * x},
-                                     {t * x * z - sn * y, t * y * z + sn * x, t * z * z + c}};
+            const float rot[3][3] = {
+                {t * x * x + c, t * x * y - sn * z, t * x * z + sn * y},
+                {t * x * y + sn * z, t * y * y + c, t * y * z - sn * x},
+                {t * x * z - sn * y, t * y * z + sn * x, t * z * z + c}};
             for (int i = 0; i < 3; ++i)
                 for (int j = 0; j < 3; ++j) rm.m[i][j] = rot[i][j];
         }
         const Vec3f tr = r.vec3("translate", {});
         Affine tm;
-        tm.m[0][3] = tr.x; tm.m[1][3] = tr.y; tm.m[2][3] = tr.z;
+        tm.m[0][3] = tr.x;
+        tm.m[1][3] = tr.y;
+        tm.m[2][3] = tr.z;
         m = tm * (rm * sm);
     }
     r.finish();
-    if (!(std::abs(m.determinant3()) > 1e-30f)) r.fail(r.path_prefix(), "singular transform");
+    if (!(std::abs(m.determinant3()) > 1e-30f))
+        r.fail(r.path_prefix(), "singular transform");
     return m;
 }
 
@@ -273,11 +315,14 @@ MaterialDesc read_material(Reader r) {
     m.shader = r.string("shader", m.shader);
     if (m.shader.empty()) r.fail(r.field("shader"), "empty shader name");
     if (const json *p = r.take("params")) {
-        if (!p->is_object()) r.fail(r.field("params"), std::string("expected an object, got ") + type_name(*p));
+        if (!p->is_object())
+            r.fail(r.field("params"),
+                   std::string("expected an object, got ") + type_name(*p));
         m.params = *p;
     }
-    m.bsdf = r.choice<MaterialDesc::Bsdf>("bsdf", m.bsdf, {{"lambert", MaterialDesc::Bsdf::lambert},
-                                                          {"coated", MaterialDesc::Bsdf::coated}});
+    m.bsdf = r.choice<MaterialDesc::Bsdf>("bsdf", m.bsdf,
+                                          {{"lambert", MaterialDesc::Bsdf::lambert},
+                                           {"coated", MaterialDesc::Bsdf::coated}});
     if (m.bsdf == MaterialDesc::Bsdf::lambert && (r.has("roughness") || r.has("ior")))
         r.fail(r.field(r.has("roughness") ? "roughness" : "ior"),
                "only the \"coated\" bsdf has a coat (set \"bsdf\": \"coated\")");
@@ -318,11 +363,15 @@ SceneDesc parse_scene(const std::string &text, const std::string &path) {
         const size_t line = 1 + std::count(text.begin(), text.begin() + long(at), '\n');
         std::string what = e.what();
         const auto pos = what.find("parse error");
-        throw InputError(path, line, "", "invalid JSON: " + (pos == std::string::npos ? what : what.substr(pos)));
+        throw InputError(
+            path, line, "",
+            "invalid JSON: " + (pos == std::string::npos ? what : what.substr(pos)));
     }
     Reader r(root, "", scene);
-    if (const json *v = r.take("camera")) scene.camera = read_camera(Reader(*v, "camera", scene));
-    else r.fail("camera", "missing required field");
+    if (const json *v = r.take("camera"))
+        scene.camera = read_camera(Reader(*v, "camera", scene));
+    else
+        r.fail("camera", "missing required field");
 
     if (const json *v = r.take("film")) {
         Reader fr(*v, "film", scene);
@@ -332,10 +381,14 @@ SceneDesc parse_scene(const std::string &text, const std::string &path) {
         f.spp = fr.integer("spp", f.spp, 1, 1 << 20);
         if (const json *fv = fr.take("filter")) {
             Reader flt(*fv, "film.filter", scene);
-            f.filter = flt.choice<FilterType>("type", f.filter, {{"box", FilterType::box},
-                                                                   {"gaussian", FilterType::gaussian},
-                                                                   {"blackman_harris", FilterType::blackman_harris}});
-            const float def = f.filter == FilterType::box ? 0.5f : (f.filter == FilterType::gaussian ? 1.5f : 2.0f);
+            f.filter = flt.choice<FilterType>(
+                "type", f.filter,
+                {{"box", FilterType::box},
+                 {"gaussian", FilterType::gaussian},
+                 {"blackman_harris", FilterType::blackman_harris}});
+            const float def = f.filter == FilterType::box
+                                  ? 0.5f
+                                  : (f.filter == FilterType::gaussian ? 1.5f : 2.0f);
             f.filter_radius = float(flt.number("radius", def, 0.5, 8));
             flt.finish();
         }
@@ -347,22 +400,28 @@ SceneDesc parse_scene(const std::string &text, const std::string &path) {
     }
 
     if (const json *v = r.take("lights")) {
-        if (!v->is_array()) r.fail("lights", std::string("expected an array, got ") + type_name(*v));
+        if (!v->is_array())
+            r.fail("lights", std::string("expected an array, got ") + type_name(*v));
         for (size_t i = 0; i < v->size(); ++i)
-            scene.lights.push_back(read_light(Reader((*v)[i], "lights[" + std::to_string(i) + "]", scene)));
+            scene.lights.push_back(
+                read_light(Reader((*v)[i], "lights[" + std::to_string(i) + "]", scene)));
     }
     size_t environments = 0;
-    for (const auto &l : scene.lights) environments += l.type == LightDesc::Type::environment;
+    for (const auto &l : scene.lights)
+        environments += l.type == LightDesc::Type::environment;
     if (environments > 1) r.fail("lights", "more than one environment light");
 
     const json &objs = r.require("objects");
-    if (!objs.is_array()) r.fail("objects", std::string("expected an array, got ") + type_name(objs));
+    if (!objs.is_array())
+        r.fail("objects", std::string("expected an array, got ") + type_name(objs));
     for (size_t i = 0; i < objs.size(); ++i) {
         const std::string p = "objects[" + std::to_string(i) + "]";
         Reader orr(objs[i], p, scene);
         ObjectDesc o;
-        if (const json *t = orr.take("transform")) o.transform = read_transform(Reader(*t, p + ".transform", scene));
-        if (const json *m = orr.take("material")) o.material = read_material(Reader(*m, p + ".material", scene));
+        if (const json *t = orr.take("transform"))
+            o.transform = read_transform(Reader(*t, p + ".transform", scene));
+        if (const json *m = orr.take("material"))
+            o.material = read_material(Reader(*m, p + ".material", scene));
         const Affine t = o.transform;
         const MaterialDesc mat = o.material;
         // The remaining keys: name, mesh, cells, normals.
@@ -374,12 +433,15 @@ SceneDesc parse_scene(const std::string &text, const std::string &path) {
 
     if (const json *v = r.take("integrator")) {
         Reader ir(*v, "integrator", scene);
-        scene.integrator.max_depth = ir.integer("max_depth", scene.integrator.max_depth, 1, 1024);
-        scene.integrator.rr_depth = ir.integer("rr_depth", scene.integrator.rr_depth, 1, 1024);
+        scene.integrator.max_depth =
+            ir.integer("max_depth", scene.integrator.max_depth, 1, 1024);
+        scene.integrator.rr_depth =
+            ir.integer("rr_depth", scene.integrator.rr_depth, 1, 1024);
         ir.finish();
     }
     r.finish();
-    if (scene.objects.empty() && scene.lights.empty()) r.fail("objects", "the scene is empty (no objects, no lights)");
+    if (scene.objects.empty() && scene.lights.empty())
+        r.fail("objects", "the scene is empty (no objects, no lights)");
     return scene;
 }
 

@@ -7,11 +7,10 @@
 #pragma once
 
 #include <array>
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
 #include <vector>
-
-#include <nlohmann/json.hpp>
 
 #include "renderer/math.h"
 
@@ -20,9 +19,9 @@ namespace pelage::renderer {
 struct CameraDesc {
     enum class Type { pinhole, thin_lens } type = Type::pinhole;
     Vec3f position{0, 1, 5}, look_at{0, 0, 0}, up{0, 1, 0};
-    float fov_deg = 40;          // vertical field of view
-    float aperture_radius = 0;   // thin lens only, scene units
-    float focus_distance = 0;    // thin lens only; 0 = distance to look_at
+    float fov_deg = 40;         // vertical field of view
+    float aperture_radius = 0;  // thin lens only, scene units
+    float focus_distance = 0;   // thin lens only; 0 = distance to look_at
 };
 
 enum class FilterType { box, gaussian, blackman_harris };
@@ -33,7 +32,7 @@ struct FilmDesc {
     float filter_radius = 1.5f;  // pixels
     std::string output;          // absolute, "" = none given
     std::string preview;         // absolute, "" = none
-    bool half = true;            // beauty/albedo/normal as half; depth/ids/shader always float
+    bool half = true;  // beauty/albedo/normal as half; depth/ids/shader always float
     std::string view = "Standard";  // OCIO view of the preview
 };
 
@@ -41,14 +40,15 @@ struct LightDesc {
     enum class Type { environment, distant, sphere, quad } type = Type::environment;
     Rgb color{1, 1, 1};
     float intensity = 1;
-    std::string image;           // environment: absolute path of a lat-long image, or ""
-    float rotation_deg = 0;      // environment: about +y
-    Vec3f direction{0, -1, 0};   // distant: the direction light travels
-    float angle_deg = 0;         // distant: apparent diameter (0.53 for the sun)
-    Vec3f center{};              // sphere
-    float radius = 1;            // sphere
-    Vec3f corner{}, edge_u{1, 0, 0}, edge_v{0, 0, 1};  // quad; emits towards edge_u × edge_v
-    bool two_sided = false;      // quad
+    std::string image;          // environment: absolute path of a lat-long image, or ""
+    float rotation_deg = 0;     // environment: about +y
+    Vec3f direction{0, -1, 0};  // distant: the direction light travels
+    float angle_deg = 0;        // distant: apparent diameter (0.53 for the sun)
+    Vec3f center{};             // sphere
+    float radius = 1;           // sphere
+    Vec3f corner{}, edge_u{1, 0, 0},
+        edge_v{0, 0, 1};     // quad; emits towards edge_u × edge_v
+    bool two_sided = false;  // quad
 };
 
 struct ParamValue {
@@ -61,28 +61,29 @@ struct ParamValue {
 
 struct MaterialDesc {
     std::string shader = "diffuse";
-    nlohmann::json params = nlohmann::json::object();  // validated against the plugin later
+    nlohmann::json params =
+        nlohmann::json::object();  // validated against the plugin later
     enum class Bsdf { lambert, coated } bsdf = Bsdf::lambert;
     float roughness = 0.3f, ior = 1.5f;
 };
 
 struct ObjectDesc {
     std::string name;
-    std::string mesh;            // absolute path or "procedural:..."
+    std::string mesh;  // absolute path or "procedural:..."
     Affine transform;
     MaterialDesc material;
-    std::string cells;           // absolute path or ""
+    std::string cells;  // absolute path or ""
     enum class Normals { automatic, flat, smooth } normals = Normals::automatic;
 };
 
 struct IntegratorDesc {
-    int max_depth = 8;     // path vertices after the camera
-    int rr_depth = 3;      // Russian roulette from this depth on
+    int max_depth = 8;  // path vertices after the camera
+    int rr_depth = 3;   // Russian roulette from this depth on
 };
 
 struct SceneDesc {
-    std::string path;      // the scene file ("" when parsed from a string)
-    std::string dir;       // its folder: relative paths resolve against it
+    std::string path;  // the scene file ("" when parsed from a string)
+    std::string dir;   // its folder: relative paths resolve against it
     CameraDesc camera;
     FilmDesc film;
     std::vector<LightDesc> lights;

@@ -6,10 +6,10 @@
  * it differs from PELAGE_SHADER_ABI; only then does it touch anything else.
  *
  * Lifetime: `create` is called once per scene object using the plugin, with the object's
- * validated parameters (every entry of `params`, defaults filled in, in table order) and a
- * read-only view of its mesh; it returns an instance or NULL with `err` filled.
- * `shade` is called at every hit, concurrently from many threads, with the same instance:
- * it must be thread-safe, must not allocate, block or throw. `destroy` frees the instance.
+ * validated parameters (every entry of `params`, defaults filled in, in table order) and
+ * a read-only view of its mesh; it returns an instance or NULL with `err` filled. `shade`
+ * is called at every hit, concurrently from many threads, with the same instance: it must
+ * be thread-safe, must not allocate, block or throw. `destroy` frees the instance.
  *
  * Conventions: positions and normals in world space, normals unit length and facing the
  * incoming ray; colours are scene-linear Rec.709; lengths in scene units.
@@ -34,20 +34,20 @@ extern "C" {
 #endif
 
 typedef enum PelageParamType {
-    PELAGE_PARAM_FLOAT = 1,  /* one number                                  */
-    PELAGE_PARAM_INT = 2,    /* one integer                                 */
-    PELAGE_PARAM_RGB = 3,    /* [r, g, b], scene-linear                     */
-    PELAGE_PARAM_STRING = 4  /* a string; paths are resolved by the plugin  */
+    PELAGE_PARAM_FLOAT = 1, /* one number */
+    PELAGE_PARAM_INT = 2,   /* one integer */
+    PELAGE_PARAM_RGB = 3,   /* [r, g, b], scene-linear */
+    PELAGE_PARAM_STRING = 4 /* a string; paths are resolved by the plugin */
 } PelageParamType;
 
 /* One entry of a plugin's parameter table; a zeroed entry (name == NULL) ends it. */
 typedef struct PelageParamSpec {
     const char *name;
     PelageParamType type;
-    float default_value[3];     /* FLOAT uses [0], INT uses (int)[0], RGB uses all three */
-    const char *default_string; /* STRING only                                          */
-    float min_value, max_value; /* inclusive range for FLOAT/INT/RGB components          */
-    const char *doc;            /* one line                                             */
+    float default_value[3]; /* FLOAT uses [0], INT uses (int)[0], RGB uses all three */
+    const char *default_string; /* STRING only */
+    float min_value, max_value; /* inclusive range for FLOAT/INT/RGB components */
+    const char *doc;            /* one line */
 } PelageParamSpec;
 
 /* A parameter value as handed to `create`. */
@@ -85,33 +85,34 @@ typedef struct PelageError {
 /* What the renderer knows at a hit. */
 typedef struct PelageHit {
     uint32_t object_id, primitive_id;
-    float b1, b2;        /* barycentrics of corners 1 and 2; corner 0 has 1 - b1 - b2 */
-    float p[3];          /* world-space position                                      */
-    float n[3];          /* world-space shading normal                                */
-    float uv[2];         /* interpolated uv, (0, 0) unless has_uv                     */
+    float b1, b2; /* barycentrics of corners 1 and 2; corner 0 has 1 - b1 - b2 */
+    float p[3];   /* world-space position */
+    float n[3];   /* world-space shading normal */
+    float uv[2];  /* interpolated uv, (0, 0) unless has_uv */
     uint32_t has_uv;
-    float footprint;     /* approximate ray footprint width at the hit, scene units    */
-    uint32_t depth;      /* path vertex index, 0 for camera rays                       */
-    uint32_t reserved;   /* zero                                                       */
+    float footprint;   /* approximate ray footprint width at the hit, scene units */
+    uint32_t depth;    /* path vertex index, 0 for camera rays */
+    uint32_t reserved; /* zero */
 } PelageHit;
 
 /* What a plugin returns. The renderer fills defaults before calling `shade`. */
 typedef struct PelageShade {
-    float albedo[3];       /* diffuse reflectance, [0, 1]; default (0.5, 0.5, 0.5)      */
-    float roughness;       /* coat roughness override, < 0 keeps the material's         */
-    float eumelanin;       /* pigment concentrations for fur; 0 by default              */
+    float albedo[3]; /* diffuse reflectance, [0, 1]; default (0.5, 0.5, 0.5) */
+    float roughness; /* coat roughness override, < 0 keeps the material's */
+    float eumelanin; /* pigment concentrations for fur; 0 by default */
     float pheomelanin;
-    float aov[PELAGE_SHADER_AOV_SLOTS]; /* values of the `shader` AOV layer; 0 default  */
-    uint32_t aov_written;  /* set to 1 when aov[] was written                            */
-    uint32_t reserved[5];  /* zero; room to grow without changing the size              */
+    float aov[PELAGE_SHADER_AOV_SLOTS]; /* values of the `shader` AOV layer; 0 default */
+    uint32_t aov_written;               /* set to 1 when aov[] was written */
+    uint32_t reserved[5];               /* zero; room to grow without changing the size */
 } PelageShade;
 
 typedef struct PelageShaderPlugin {
-    uint32_t abi;                       /* == PELAGE_SHADER_ABI, checked at load          */
-    const char *name, *summary;         /* "diffuse"; one line for `pelage shaders`       */
-    const PelageParamSpec *params;      /* {0}-terminated; drives validation and docs     */
-    const char *const *aov_names;       /* NULL-terminated, at most 4 names, or NULL      */
-    void *(*create)(const PelageParamSet *ps, PelageError *err); /* NULL + err on failure  */
+    uint32_t abi;                  /* == PELAGE_SHADER_ABI, checked at load */
+    const char *name, *summary;    /* "diffuse"; one line for `pelage shaders` */
+    const PelageParamSpec *params; /* {0}-terminated; drives validation and docs */
+    const char *const *aov_names;  /* NULL-terminated, at most 4 names, or NULL */
+    void *(*create)(const PelageParamSet *ps,
+                    PelageError *err); /* NULL + err on failure */
     void (*shade)(const void *self, const PelageHit *hit, PelageShade *out);
     void (*destroy)(void *self);
 } PelageShaderPlugin;
@@ -120,8 +121,10 @@ typedef const PelageShaderPlugin *(*PelageShaderEntry)(void);
 
 #ifdef __cplusplus
 }
-static_assert(sizeof(PelageShade) == 64, "PelageShade is part of the ABI: bump PELAGE_SHADER_ABI");
-static_assert(sizeof(PelageHit) == 64, "PelageHit is part of the ABI: bump PELAGE_SHADER_ABI");
+static_assert(sizeof(PelageShade) == 64,
+              "PelageShade is part of the ABI: bump PELAGE_SHADER_ABI");
+static_assert(sizeof(PelageHit) == 64,
+              "PelageHit is part of the ABI: bump PELAGE_SHADER_ABI");
 #else
 _Static_assert(sizeof(PelageShade) == 64, "PelageShade is part of the ABI");
 _Static_assert(sizeof(PelageHit) == 64, "PelageHit is part of the ABI");

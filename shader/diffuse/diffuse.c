@@ -13,7 +13,12 @@ typedef struct Diffuse {
 } Diffuse;
 
 static const PelageParamSpec diffuse_params[] = {
-    {"albedo", PELAGE_PARAM_RGB, {0.5f, 0.5f, 0.5f}, NULL, 0.0f, 1.0f,
+    {"albedo",
+     PELAGE_PARAM_RGB,
+     {0.5f, 0.5f, 0.5f},
+     NULL,
+     0.0f,
+     1.0f,
      "diffuse reflectance (scene-linear Rec.709)"},
     {0},
 };
@@ -37,8 +42,10 @@ static void diffuse_shade(const void *self, const PelageHit *hit, PelageShade *o
 static void diffuse_destroy(void *self) { free(self); }
 
 static const PelageShaderPlugin diffuse_plugin = {
-    PELAGE_SHADER_ABI, "diffuse", "constant diffuse albedo", diffuse_params, NULL,
+    PELAGE_SHADER_ABI, "diffuse",     "constant diffuse albedo", diffuse_params, NULL,
     diffuse_create,    diffuse_shade, diffuse_destroy,
 };
 
-PELAGE_EXPORT const PelageShaderPlugin *pelage_shader_plugin(void) { return &diffuse_plugin; }
+PELAGE_EXPORT const PelageShaderPlugin *pelage_shader_plugin(void) {
+    return &diffuse_plugin;
+}

@@ -1,9 +1,7 @@
 // `pelage render`, `pelage shaders` end to end: the --stats-json output contract, the
 // EXR from the CLI, bit-identical output at 1 and 2 threads, plugin refusal.
-#include <gtest/gtest.h>
-
 #include <OpenImageIO/imageio.h>
-
+#include <gtest/gtest.h>
 #include <sys/wait.h>
 
 #include <cstring>
@@ -25,7 +23,8 @@ const char *small_scene = R"({
               {"mesh": "procedural:plane:1x1", "transform": {"scale": 5, "translate": [0, -1, 0]}}]
 })";
 
-std::vector<float> read_pixels(const std::string &path, std::vector<std::string> *names = nullptr) {
+std::vector<float> read_pixels(const std::string &path,
+                               std::vector<std::string> *names = nullptr) {
     auto in = OIIO::ImageInput::open(path);
     if (!in) return {};
     const OIIO::ImageSpec &s = in->spec();
@@ -38,11 +37,13 @@ std::vector<float> read_pixels(const std::string &path, std::vector<std::string>
 TEST(RenderCli, StatsJsonHasTheContractKeys) {
     TempDir tmp;
     const std::string scene = tmp.write("s.json", small_scene);
-    ASSERT_EQ(run_pelage("render " + scene + " -o " + tmp.file("o.exr") + " --spp 2 --res 20x10 --stats-json " +
-                         tmp.file("st.json") + " --preview " + tmp.file("p.png")),
+    ASSERT_EQ(run_pelage("render " + scene + " -o " + tmp.file("o.exr") +
+                         " --spp 2 --res 20x10 --stats-json " + tmp.file("st.json") +
+                         " --preview " + tmp.file("p.png")),
               0);
     const auto s = nlohmann::json::parse(std::ifstream(tmp.file("st.json")));
-    for (const char *k : {"seconds", "spp", "width", "height", "rays", "rays_per_second", "plugin_seconds"})
+    for (const char *k : {"seconds", "spp", "width", "height", "rays", "rays_per_second",
+                          "plugin_seconds"})
         EXPECT_TRUE(s.contains(k)) << k;
     EXPECT_EQ(s["spp"], 2);
     EXPECT_EQ(s["width"], 20);
@@ -56,8 +57,12 @@ TEST(RenderCli, StatsJsonHasTheContractKeys) {
 TEST(RenderCli, OneAndTwoThreadsGiveBitIdenticalExrs) {
     TempDir tmp;
     const std::string scene = tmp.write("s.json", small_scene);
-    ASSERT_EQ(run_pelage("render " + scene + " -q --threads 1 --seed 3 -o " + tmp.file("a.exr")), 0);
-    ASSERT_EQ(run_pelage("render " + scene + " -q --threads 2 --seed 3 -o " + tmp.file("b.exr")), 0);
+    ASSERT_EQ(run_pelage("render " + scene + " -q --threads 1 --seed 3 -o " +
+                         tmp.file("a.exr")),
+              0);
+    ASSERT_EQ(run_pelage("render " + scene + " -q --threads 2 --seed 3 -o " +
+                         tmp.file("b.exr")),
+              0);
     const auto a = read_pixels(tmp.file("a.exr")), b = read_pixels(tmp.file("b.exr"));
     ASSERT_FALSE(a.empty());
     ASSERT_EQ(a.size(), b.size());
@@ -72,6 +77,36 @@ TEST(RenderCli, NoOutputIsExit2NamingTheField) {
     EXPECT_NE(err.find("film.output"), std::string::npos) << err;
     EXPECT_EQ(run_pelage("render " + scene + " -o x.exr --res 10by10", nullptr, &err), 2);
     EXPECT_NE(err.find("--res"), std::string::npos) << err;
+    EXPECT_EQ(
+        run_pelage("render " + scene + " -o " + tmp.file("nope/x.exr"), nullptr, &err),
+        2);
+    EXPECT_NE(err.find("nope"), std::string::npos) << err;
+}
+
+TEST(RenderCli, InterruptWritesTheCompletedPassesAtomically) {
+    TempDir tmp;
+    // Far more samples than can finish: Ctrl-C (SIGINT, sent by timeout after 3 s) must
+    // stop the render and still write a whole image, marked as interrupted.
+    const std::string scene =
+        tmp.write("s.json", R"({"camera": {}, "film": {"width": 32, "height": 32,
+        "spp": 1000000}, "lights": [{"type": "environment"}], "objects": [{"mesh": "procedural:icosphere:2"}]})");
+    const std::string cmd = "timeout --preserve-status -s INT 3 " +
+                            std::string(PELAGE_BINARY) + " render " + scene + " -q -o " +
+                            tmp.file("o.exr") + " --stats-json " + tmp.file("s.json") +
+                            " 2>" + tmp.file("err");
+    const int rc = std::system(cmd.c_str());
+    EXPECT_EQ(WEXITSTATUS(rc), 1);
+    auto in = OIIO::ImageInput::open(tmp.file("o.exr"));
+    ASSERT_TRUE(in);
+    EXPECT_EQ(in->spec().get_int_attribute("pelage:interrupted"), 1);
+    EXPECT_GE(in->spec().get_int_attribute("pelage:spp"), 1);
+    const auto st = nlohmann::json::parse(std::ifstream(tmp.file("s.json")));
+    EXPECT_TRUE(st["interrupted"].get<bool>());
+    // Only the final files remain: no temporaries.
+    size_t files = 0;
+    for (const auto &e : std::filesystem::directory_iterator(tmp.path()))
+        files += e.path().filename().string()[0] == '.';
+    EXPECT_EQ(files, 0u);
 }
 
 TEST(ShadersCli, ListsDiffuseAndItsParameters) {
@@ -96,9 +131,11 @@ TEST(ShadersCli, WrongAbiPluginIsRefusedNamingTheFile) {
     const std::string scene = tmp.write("s.json", R"({"camera": {}, "objects": [
         {"mesh": "procedural:icosphere:1", "material": {"shader": "bad_abi"}}]})");
     std::string err;
-    const std::string env = "PELAGE_SHADER_PATH=" + std::string(PELAGE_TEST_PLUGIN_DIR) + " ";
-    const int rc = std::system((env + PELAGE_BINARY + " render " + scene + " -o " + tmp.file("o.exr") + " 2>" +
-                                tmp.file("err")).c_str());
+    const std::string env =
+        "PELAGE_SHADER_PATH=" + std::string(PELAGE_TEST_PLUGIN_DIR) + " ";
+    const int rc = std::system((env + PELAGE_BINARY + " render " + scene + " -o " +
+                                tmp.file("o.exr") + " 2>" + tmp.file("err"))
+                                   .c_str());
     std::ifstream in(tmp.file("err"));
     err.assign(std::istreambuf_iterator<char>(in), {});
     EXPECT_NE(WEXITSTATUS(rc), 0);

@@ -4,6 +4,7 @@
 
 #include "renderer/bsdf_coated.h"
 #include "renderer/bsdf_lambert.h"
+#include "renderer/filters.h"
 #include "renderer/sampler.h"
 #include "renderer/sampling.h"
 
@@ -31,7 +32,8 @@ void check_consistency(const B &bsdf, Vec3f wo, double *by_sampling, double *by_
             a += luminance(bs->weight);
             EXPECT_NEAR(bs->pdf, bsdf.pdf(wo, bs->wi), 1e-3f * bs->pdf);
         }
-        const Vec3f wi = direction(u1, 2 * pi * u2);  // uniform hemisphere, density 1/(2π)
+        const Vec3f wi =
+            direction(u1, 2 * pi * u2);  // uniform hemisphere, density 1/(2π)
         b += luminance(bsdf.eval(wo, wi)) * wi.z * 2 * pi;
     }
     *by_sampling = a / n;
@@ -67,8 +69,34 @@ TEST(BsdfCoated, WhiteFurnaceNeverGainsEnergy) {
             EXPECT_LE(a, 1.01) << "roughness " << rough << " cos_o " << cos_o;
             // The model drops coat-base inter-reflection, so it loses energy, most at
             // grazing angles; at normal incidence it keeps most of it.
-            if (cos_o == 1.0f) EXPECT_GT(a, 0.8) << "roughness " << rough;
+            if (cos_o == 1.0f) {
+                EXPECT_GT(a, 0.8) << "roughness " << rough;
+            }
         }
+}
+
+TEST(PixelFilter, SamplesStayInTheSupportAndFollowTheFilter) {
+    for (FilterType t :
+         {FilterType::box, FilterType::gaussian, FilterType::blackman_harris}) {
+        const PixelFilter f(t, 1.5f);
+        double mean = 0, mean_abs = 0;
+        constexpr int n = 100000;
+        for (int i = 0; i < n; ++i) {
+            const float d = f.sample_1d((i + 0.5f) / n);
+            ASSERT_LE(std::abs(d), 1.5f);
+            mean += d;
+            mean_abs += std::abs(d);
+        }
+        EXPECT_NEAR(mean / n, 0.0, 1e-3);  // symmetric
+        // E|d| of the normalized filter, by quadrature of eval_1d.
+        double num = 0, den = 0;
+        for (int i = 0; i < 3000; ++i) {
+            const float d = -1.5f + (i + 0.5f) * 3.0f / 3000;
+            num += std::abs(d) * f.eval_1d(d);
+            den += f.eval_1d(d);
+        }
+        EXPECT_NEAR(mean_abs / n, num / den, 2e-3) << int(t);
+    }
 }
 
 TEST(Sampler, StreamsDependOnlyOnTheirCoordinates) {

@@ -1,8 +1,9 @@
 // EXR layers, channel names and metadata survive a round trip through OpenImageIO; the
 // PNG preview goes through OpenColorIO.
-#include <gtest/gtest.h>
+#include "renderer/image_output.h"
 
 #include <OpenImageIO/imageio.h>
+#include <gtest/gtest.h>
 
 #include <cmath>
 #include <cstdlib>
@@ -10,7 +11,6 @@
 
 #include "renderer/color_management.h"
 #include "renderer/film.h"
-#include "renderer/image_output.h"
 #include "sim/input_error.h"
 #include "tests/test_paths.h"
 
@@ -41,8 +41,9 @@ TEST(ImageOutput, ExrRoundTripKeepsLayersChannelNamesAndMetadata) {
     std::sort(got.begin(), got.end());
     std::sort(want.begin(), want.end());
     EXPECT_EQ(got, want);
-    for (const char *n : {"R", "G", "B", "A", "albedo.R", "N.X", "depth.Z", "id.object", "id.primitive",
-                          "shader.cell_id", "shader.cell_type", "shader.2"})
+    for (const char *n :
+         {"R", "G", "B", "A", "albedo.R", "N.X", "depth.Z", "id.object", "id.primitive",
+          "shader.cell_id", "shader.cell_type", "shader.2"})
         EXPECT_NE(std::find(got.begin(), got.end(), n), got.end()) << n;
     EXPECT_EQ(spec.get_int_attribute("pelage:spp"), 64);
     EXPECT_EQ(spec.get_string_attribute("pelage:seed"), "12345678901");
@@ -55,15 +56,21 @@ TEST(ImageOutput, ExrRoundTripKeepsLayersChannelNamesAndMetadata) {
     for (int c = 0; c < nc; ++c) {
         const std::string &n = spec.channelnames[c];
         const int src = int(std::find(names.begin(), names.end(), n) - names.begin());
-        const OIIO::TypeDesc fmt = spec.channelformats.empty() ? spec.format : spec.channelformats[c];
-        const bool exact = n.rfind("id.", 0) == 0 || n.rfind("depth.", 0) == 0 || n.rfind("shader.", 0) == 0;
+        const OIIO::TypeDesc fmt =
+            spec.channelformats.empty() ? spec.format : spec.channelformats[c];
+        const bool exact = n.rfind("id.", 0) == 0 || n.rfind("depth.", 0) == 0 ||
+                           n.rfind("shader.", 0) == 0;
         EXPECT_EQ(fmt, exact ? OIIO::TypeDesc::FLOAT : OIIO::TypeDesc::HALF) << n;
         for (int i = 0; i < W * H; ++i)
-            EXPECT_FLOAT_EQ(back[size_t(i) * nc + c], px[size_t(i) * nc + src]) << n;  // values are exact in half
+            EXPECT_FLOAT_EQ(back[size_t(i) * nc + c], px[size_t(i) * nc + src])
+                << n;  // values are exact in half
     }
     // Nothing but the final file is left in the folder (atomic write).
     size_t files = 0;
-    for (const auto &e : std::filesystem::directory_iterator(tmp.path())) { (void)e; ++files; }
+    for (const auto &e : std::filesystem::directory_iterator(tmp.path())) {
+        (void)e;
+        ++files;
+    }
     EXPECT_EQ(files, 1u);
 }
 
@@ -85,14 +92,15 @@ TEST(ColorManagement, LinearMidGreyMapsToSrgbCode118ThroughTheStandardView) {
 
 TEST(ColorManagement, FilmicViewIsMonotonicAndRollsOffHighlights) {
     const DisplayTransform filmic("Filmic", "sRGB");
-    float rgb[] = {0.01f, 0.01f, 0.01f, 0.18f, 0.18f, 0.18f, 1.0f, 1.0f, 1.0f, 16.0f, 16.0f, 16.0f};
+    float rgb[] = {0.01f, 0.01f, 0.01f, 0.18f, 0.18f, 0.18f,
+                   1.0f,  1.0f,  1.0f,  16.0f, 16.0f, 16.0f};
     filmic.apply_rgb(rgb, 4);
     EXPECT_LT(rgb[0], rgb[3]);
     EXPECT_LT(rgb[3], rgb[6]);
     EXPECT_LT(rgb[6], rgb[9]);
-    EXPECT_GT(rgb[3], 0.3f);   // mid grey stays mid
+    EXPECT_GT(rgb[3], 0.3f);  // mid grey stays mid
     EXPECT_LT(rgb[3], 0.6f);
-    EXPECT_LE(rgb[9], 1.0f);   // 16× mid-grey-ish is not clipped flat below 1
+    EXPECT_LE(rgb[9], 1.0f);  // 16× mid-grey-ish is not clipped flat below 1
 }
 
 TEST(ColorManagement, UnknownViewIsAnInputErrorNamingTheField) {

@@ -16,10 +16,13 @@ using renderer::Vec3f;
 std::string furnace_scene(float albedo, float L, int spp) {
     return R"({
       "camera": {"position": [0, 0, 3.2], "look_at": [0, 0, 0], "fov": 45},
-      "film": {"width": 24, "height": 24, "spp": )" + std::to_string(spp) + R"(, "filter": {"type": "box"}},
-      "lights": [{"type": "environment", "color": )" + std::to_string(L) + R"(}],
+      "film": {"width": 24, "height": 24, "spp": )" +
+           std::to_string(spp) + R"(, "filter": {"type": "box"}},
+      "lights": [{"type": "environment", "color": )" +
+           std::to_string(L) + R"(}],
       "objects": [{"mesh": "procedural:icosphere:3", "normals": "flat",
-                   "material": {"shader": "diffuse", "params": {"albedo": )" + std::to_string(albedo) + R"(}}}],
+                   "material": {"shader": "diffuse", "params": {"albedo": )" +
+           std::to_string(albedo) + R"(}}}],
       "integrator": {"max_depth": 16}
     })";
 }
@@ -59,6 +62,26 @@ TEST(PathIntegrator, WhiteFurnaceNonAbsorbingSphereConvergesToEnvironment) {
     EXPECT_NEAR(mean, 1.0, 0.01);
 }
 
+TEST(PathIntegrator, WhiteFurnaceWithInterreflectionConvergesToEnvironment) {
+    TempDir tmp;
+    // A non-convex torus: paths bounce between its parts. With albedo 1 under uniform L
+    // every surface must render as L, whatever the number of bounces (Russian roulette
+    // keeps it unbiased; the depth cap truncates, so it is set far beyond what matters).
+    const std::string json = R"({
+      "camera": {"position": [0, 2.2, 2.2], "look_at": [0, 0, 0], "fov": 50},
+      "film": {"width": 24, "height": 24, "spp": 256, "filter": {"type": "box"}},
+      "lights": [{"type": "environment", "color": 1}],
+      "objects": [{"mesh": "procedural:torus:48x24", "normals": "flat",
+                   "material": {"params": {"albedo": 1}}}],
+      "integrator": {"max_depth": 200}
+    })";
+    const RenderedImage img = render_json(json, tmp);
+    int n = 0;
+    const double mean = covered_mean(img, &n);
+    ASSERT_GT(n, 100);
+    EXPECT_NEAR(mean, 1.0, 0.01);
+}
+
 TEST(PathIntegrator, UncoveredPixelsSeeTheEnvironmentWithZeroAlpha) {
     TempDir tmp;
     const RenderedImage img = render_json(furnace_scene(0.5f, 2.0f, 4), tmp);
@@ -69,13 +92,16 @@ TEST(PathIntegrator, UncoveredPixelsSeeTheEnvironmentWithZeroAlpha) {
 
 // Irradiance at p (normal n) from a uniform Lambertian polygon of radiance Le:
 // E = Le/2 · Σ_i Θ_i (n · Γ_i), Γ_i = unit(v_i × v_{i+1}), Θ_i the angle between the unit
-// vectors v_i, v_{i+1} from p to consecutive corners (Lambert 1760; Arvo 1995, "Applications
-// of Irradiance Tensors to the Simulation of Non-Lambertian Phenomena", SIGGRAPH, eq. 7).
+// vectors v_i, v_{i+1} from p to consecutive corners (Lambert 1760; Arvo 1995,
+// "Applications of Irradiance Tensors to the Simulation of Non-Lambertian Phenomena",
+// SIGGRAPH, eq. 7).
 double polygon_irradiance(const Vec3f *corners, int n, Vec3f p, Vec3f normal, double Le) {
     double sum = 0;
     for (int i = 0; i < n; ++i) {
-        const Vec3f a = renderer::normalize(corners[i] - p), b = renderer::normalize(corners[(i + 1) % n] - p);
-        const double theta = std::acos(std::clamp(double(renderer::dot(a, b)), -1.0, 1.0));
+        const Vec3f a = renderer::normalize(corners[i] - p),
+                    b = renderer::normalize(corners[(i + 1) % n] - p);
+        const double theta =
+            std::acos(std::clamp(double(renderer::dot(a, b)), -1.0, 1.0));
         sum += theta * renderer::dot(normal, renderer::normalize(renderer::cross(a, b)));
     }
     return Le * 0.5 * std::abs(sum);
@@ -96,7 +122,8 @@ TEST(PathIntegrator, QuadLightOverDiffusePlaneMatchesClosedFormIrradiance) {
       "integrator": {"max_depth": 1}
     })";
     const RenderedImage img = render_json(json, tmp);
-    const Vec3f corners[4] = {{-0.5f, h, -0.5f}, {0.5f, h, -0.5f}, {0.5f, h, 0.5f}, {-0.5f, h, 0.5f}};
+    const Vec3f corners[4] = {
+        {-0.5f, h, -0.5f}, {0.5f, h, -0.5f}, {0.5f, h, 0.5f}, {-0.5f, h, 0.5f}};
     // Pixel (x, y) covers ground points with X in [-0.9, 0.9] left to right and Z from
     // -0.9 (top) to 0.9 (bottom): fov 90 at height 0.9. Average the closed form over the
     // pixel footprint (8×8 points) rather than taking the centre.
@@ -106,9 +133,11 @@ TEST(PathIntegrator, QuadLightOverDiffusePlaneMatchesClosedFormIrradiance) {
             double expected = 0;
             for (int j = 0; j < 8; ++j)
                 for (int i = 0; i < 8; ++i) {
-                    const float sx = (x + (i + 0.5f) / 8) / W, sy = (y + (j + 0.5f) / 8) / H;
+                    const float sx = (x + (i + 0.5f) / 8) / W,
+                                sy = (y + (j + 0.5f) / 8) / H;
                     const Vec3f p{(2 * sx - 1) * half, 0, (2 * sy - 1) * half};
-                    expected += rho / renderer::pi * polygon_irradiance(corners, 4, p, {0, 1, 0}, Le) / 64;
+                    expected += rho / renderer::pi *
+                                polygon_irradiance(corners, 4, p, {0, 1, 0}, Le) / 64;
                 }
             const double got = (img.at(x, y, 0) + img.at(x, y, 1) + img.at(x, y, 2)) / 3;
             // 2 %: the issue's tolerance (the Monte Carlo error at 8192 spp is ~0.3 %).
@@ -133,9 +162,13 @@ TEST(PathIntegrator, OneAndTwoThreadsGiveBitIdenticalImages) {
     const RenderedImage one = render_json(json, tmp, 1, 7);
     const RenderedImage two = render_json(json, tmp, 2, 7);
     ASSERT_EQ(one.pixels.size(), two.pixels.size());
-    EXPECT_EQ(std::memcmp(one.pixels.data(), two.pixels.data(), one.pixels.size() * sizeof(float)), 0);
+    EXPECT_EQ(std::memcmp(one.pixels.data(), two.pixels.data(),
+                          one.pixels.size() * sizeof(float)),
+              0);
     const RenderedImage other_seed = render_json(json, tmp, 2, 8);
-    EXPECT_NE(std::memcmp(one.pixels.data(), other_seed.pixels.data(), one.pixels.size() * sizeof(float)), 0);
+    EXPECT_NE(std::memcmp(one.pixels.data(), other_seed.pixels.data(),
+                          one.pixels.size() * sizeof(float)),
+              0);
 }
 
 TEST(PathIntegrator, ReusedMeshIsInstancedAndRendersLikeCopies) {
@@ -155,6 +188,41 @@ TEST(PathIntegrator, ReusedMeshIsInstancedAndRendersLikeCopies) {
     EXPECT_EQ(img.at(20, 8, 11), 1.0f);  // right sphere: object 1
     EXPECT_NEAR(img.at(11, 8, 0), 0.5f, 0.05f);
     EXPECT_NEAR(img.at(20, 8, 0), 0.25f, 0.03f);
+}
+
+TEST(PathIntegrator, PluginAovsReachTheFilmAndNanAlbedosDoNot) {
+    TempDir tmp;
+    setenv("PELAGE_SHADER_PATH", (std::string(PELAGE_TEST_PLUGIN_DIR) + "/probe").c_str(),
+           1);
+    const std::string json = R"({
+      "camera": {"position": [0, 0, 3.2], "look_at": [0, 0, 0], "fov": 45},
+      "film": {"width": 24, "height": 24, "spp": 8},
+      "lights": [{"type": "environment", "color": 1}],
+      "objects": [{"mesh": "procedural:icosphere:2", "material": {"shader": "aov_probe",
+                   "params": {"offset": 3}}}]
+    })";
+    const renderer::SceneDesc desc = renderer::load_scene_file(tmp.write("s.json", json));
+    const renderer::PluginRegistry plugins;
+    unsetenv("PELAGE_SHADER_PATH");
+    const renderer::Scene scene(desc, plugins);
+    ASSERT_EQ(scene.shader_aov_names().size(), 2u);
+    EXPECT_EQ(scene.shader_aov_names()[1], "object_plus_offset");
+    const renderer::RenderResult r = renderer::render(scene, {});
+    const std::vector<float> px = r.film->resolve();
+    const int nc = renderer::Film::num_channels;
+    int covered = 0;
+    for (size_t i = 0; i < px.size() / nc; ++i) {
+        const float *p = &px[i * nc];
+        for (int c = 0; c < nc; ++c) ASSERT_TRUE(std::isfinite(p[c])) << "channel " << c;
+        if (p[11] == 0.0f) {  // id.object: the sphere
+            ++covered;
+            EXPECT_EQ(p[13], p[12]);  // shader.prim == id.primitive (both from sample 0)
+            EXPECT_EQ(p[14], 3.0f);   // object 0 + offset 3
+        }
+    }
+    EXPECT_GT(covered, 50);
+    EXPECT_EQ(r.stats.nonfinite_samples,
+              0u);  // the NaN albedo was clamped to 0 at the hit
 }
 
 }  // namespace

@@ -1,10 +1,10 @@
 // The lat-long environment: its sampling density is a density, agrees with pdf(), and a
 // constant image behaves like a constant environment in the furnace.
-#include <gtest/gtest.h>
+#include "renderer/light_environment.h"
 
 #include <OpenImageIO/imageio.h>
+#include <gtest/gtest.h>
 
-#include "renderer/light_environment.h"
 #include "renderer/sampler.h"
 #include "renderer/sampling.h"
 #include "tests/renderer/render_helpers.h"
@@ -22,8 +22,12 @@ std::string write_env(const TempDir &dir, bool constant) {
         for (int x = 0; x < W; ++x) {
             float *p = &px[(size_t(y) * W + x) * 3];
             p[0] = p[1] = p[2] = constant ? 1.5f : 0.2f;
-            if (!constant && y >= 3 && y <= 4 && x >= 10 && x <= 11) p[0] = p[1] = p[2] = 50.0f;
-            if (!constant && y == 8) { p[0] = 1.0f; p[1] = 0.5f; }
+            if (!constant && y >= 3 && y <= 4 && x >= 10 && x <= 11)
+                p[0] = p[1] = p[2] = 50.0f;
+            if (!constant && y == 8) {
+                p[0] = 1.0f;
+                p[1] = 0.5f;
+            }
         }
     const std::string path = dir.file(constant ? "const.exr" : "sky.exr");
     auto out = OIIO::ImageOutput::create(path);
@@ -69,22 +73,28 @@ TEST(EnvironmentLight, ConstantImageFurnaceRendersAlbedoTimesRadiance) {
     const RenderedImage r = render_json(R"({
       "camera": {"position": [0, 0, 3.2], "look_at": [0, 0, 0], "fov": 45},
       "film": {"width": 16, "height": 16, "spp": 256, "filter": {"type": "box"}},
-      "lights": [{"type": "environment", "image": ")" + img + R"(", "intensity": 2}],
+      "lights": [{"type": "environment", "image": ")" +
+                                            img + R"(", "intensity": 2}],
       "objects": [{"mesh": "procedural:icosphere:3", "normals": "flat",
                    "material": {"params": {"albedo": 0.5}}}]
-    })", tmp);
+    })",
+                                        tmp);
     double sum = 0;
     int n = 0;
     for (int y = 0; y < 16; ++y)
         for (int x = 0; x < 16; ++x)
-            if (r.at(x, y, 3) == 1.0f) { sum += r.at(x, y, 1); ++n; }
+            if (r.at(x, y, 3) == 1.0f) {
+                sum += r.at(x, y, 1);
+                ++n;
+            }
     ASSERT_GT(n, 30);
     EXPECT_NEAR(sum / n, 0.5 * 1.5 * 2, 0.01 * 1.5);  // a · L within 1 %
 }
 
 TEST(PathIntegrator, CancelledRenderStopsAndReportsNoCompletedPass) {
     TempDir tmp;
-    const std::string path = tmp.write("s.json", R"({"camera": {}, "film": {"width": 8, "height": 8, "spp": 64},
+    const std::string path = tmp.write(
+        "s.json", R"({"camera": {}, "film": {"width": 8, "height": 8, "spp": 64},
         "objects": [{"mesh": "procedural:icosphere:1"}]})");
     const renderer::SceneDesc desc = renderer::load_scene_file(path);
     const renderer::PluginRegistry plugins;

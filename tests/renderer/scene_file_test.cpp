@@ -1,7 +1,8 @@
 // Scene files: defaults, relative paths, and errors that name the JSON path.
+#include "renderer/scene_file.h"
+
 #include <gtest/gtest.h>
 
-#include "renderer/scene_file.h"
 #include "sim/input_error.h"
 #include "tests/test_paths.h"
 
@@ -20,9 +21,10 @@ std::string field_of(const std::string &json) {
 }
 
 TEST(SceneFile, DefaultsAndPathsRelativeToTheSceneFile) {
-    const SceneDesc s = parse_scene(R"({"camera": {}, "objects": [{"mesh": "meshes/cow.off", "cells": "../c/cow.cells"}],
+    const SceneDesc s = parse_scene(
+        R"({"camera": {}, "objects": [{"mesh": "meshes/cow.off", "cells": "../c/cow.cells"}],
                                         "film": {"output": "out/x.exr"}})",
-                                    "/data/scenes/s.json");
+        "/data/scenes/s.json");
     EXPECT_EQ(s.objects[0].mesh, "/data/scenes/meshes/cow.off");
     EXPECT_EQ(s.objects[0].cells, "/data/c/cow.cells");
     EXPECT_EQ(s.film.output, "/data/scenes/out/x.exr");
@@ -32,30 +34,49 @@ TEST(SceneFile, DefaultsAndPathsRelativeToTheSceneFile) {
 }
 
 TEST(SceneFile, ProceduralMeshesAreNotPaths) {
-    const SceneDesc s = parse_scene(R"({"camera": {}, "objects": [{"mesh": "procedural:sphere:8x8"}]})", "/a/s.json");
+    const SceneDesc s = parse_scene(
+        R"({"camera": {}, "objects": [{"mesh": "procedural:sphere:8x8"}]})", "/a/s.json");
     EXPECT_EQ(s.objects[0].mesh, "procedural:sphere:8x8");
 }
 
 TEST(SceneFile, ErrorsNameTheJsonPath) {
     EXPECT_EQ(field_of(R"({"camera": {"fovv": 3}, "objects": []})"), "camera.fovv");
-    EXPECT_EQ(field_of(R"({"camera": {}, "objects": [{"mesh": "a.off"}, {"mesh": "b.off", "material": {"bsdf": "glass"}}]})"),
-              "objects[1].material.bsdf");
-    EXPECT_EQ(field_of(R"({"camera": {}, "film": {"width": 0}, "objects": []})"), "film.width");
-    EXPECT_EQ(field_of(R"({"camera": {}, "film": {"width": 1.5}, "objects": []})"), "film.width");
-    EXPECT_EQ(field_of(R"({"camera": {"position": [1, 2]}, "objects": []})"), "camera.position");
-    EXPECT_EQ(field_of(R"({"camera": {"position": [1, "x", 2]}, "objects": []})"), "camera.position[1]");
-    EXPECT_EQ(field_of(R"({"camera": {}, "lights": [{"type": "point"}], "objects": []})"), "lights[0].type");
-    EXPECT_EQ(field_of(R"({"camera": {}, "lights": [{"type": "quad", "corner": [0,0,0], "edge_u": [1,0,0], "edge_v": [2,0,0]}], "objects": []})"),
-              "lights[0].edge_v");
-    EXPECT_EQ(field_of(R"({"camera": {}, "objects": [{"mesh": "a.off", "transform": {"matrix": [1,0,0,0, 0,1,0,0, 0,0,1,0], "scale": 2}}]})"),
-              "objects[0].transform.scale");
-    EXPECT_EQ(field_of(R"({"camera": {}, "objects": [{"mesh": "a.off", "material": {"roughness": 0.2}}]})"),
-              "objects[0].material.roughness");
+    EXPECT_EQ(
+        field_of(
+            R"({"camera": {}, "objects": [{"mesh": "a.off"}, {"mesh": "b.off", "material": {"bsdf": "glass"}}]})"),
+        "objects[1].material.bsdf");
+    EXPECT_EQ(field_of(R"({"camera": {}, "film": {"width": 0}, "objects": []})"),
+              "film.width");
+    EXPECT_EQ(field_of(R"({"camera": {}, "film": {"width": 1.5}, "objects": []})"),
+              "film.width");
+    EXPECT_EQ(field_of(R"({"camera": {"position": [1, 2]}, "objects": []})"),
+              "camera.position");
+    EXPECT_EQ(field_of(R"({"camera": {"position": [1, "x", 2]}, "objects": []})"),
+              "camera.position[1]");
+    EXPECT_EQ(field_of(R"({"camera": {}, "lights": [{"type": "point"}], "objects": []})"),
+              "lights[0].type");
+    EXPECT_EQ(
+        field_of(
+            R"({"camera": {}, "lights": [{"type": "quad", "corner": [0,0,0], "edge_u": [1,0,0], "edge_v": [2,0,0]}], "objects": []})"),
+        "lights[0].edge_v");
+    EXPECT_EQ(
+        field_of(
+            R"({"camera": {}, "objects": [{"mesh": "a.off", "transform": {"matrix": [1,0,0,0, 0,1,0,0, 0,0,1,0], "scale": 2}}]})"),
+        "objects[0].transform.scale");
+    EXPECT_EQ(
+        field_of(
+            R"({"camera": {}, "objects": [{"mesh": "a.off", "material": {"roughness": 0.2}}]})"),
+        "objects[0].material.roughness");
     EXPECT_EQ(field_of(R"({"camera": {}})"), "objects");
     EXPECT_EQ(field_of(R"({"camera": {}, "objects": [], "extra": 1})"), "extra");
-    EXPECT_EQ(field_of(R"({"camera": {"position": [0,0,0], "look_at": [0,0,0]}, "objects": []})"), "camera.look_at");
-    EXPECT_EQ(field_of(R"({"camera": {}, "objects": [{"mesh": "a.off", "transform": {"scale": [1, 0, 1]}}]})"),
-              "objects[0].transform");
+    EXPECT_EQ(
+        field_of(
+            R"({"camera": {"position": [0,0,0], "look_at": [0,0,0]}, "objects": []})"),
+        "camera.look_at");
+    EXPECT_EQ(
+        field_of(
+            R"({"camera": {}, "objects": [{"mesh": "a.off", "transform": {"scale": [1, 0, 1]}}]})"),
+        "objects[0].transform");
 }
 
 TEST(SceneFile, InvalidJsonNamesTheLine) {
