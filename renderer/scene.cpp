@@ -43,6 +43,7 @@ Scene::Scene(const SceneDesc &desc, const PluginRegistry &plugins) : m_desc(desc
         ps.mesh.corner_uvs = mesh.corner_uvs.empty() ? nullptr : mesh.corner_uvs.data();
         ps.mesh.cells_path = o.cells.empty() ? nullptr : o.cells.c_str();
         ps.mesh.mesh_path = o.mesh.c_str();
+        ps.scene_dir = desc.dir.c_str();
         PelageError err{};
         Material &m = m_materials[i];
         m.plugin = chosen[i]->desc;

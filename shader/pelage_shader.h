@@ -76,6 +76,8 @@ typedef struct PelageParamSet {
     const PelageParamValue *values; /* the plugin's table order */
     uint32_t object_id;
     PelageMeshView mesh;
+    const char *scene_dir;          /* folder of the scene file: relative paths in STRING
+                                       parameters resolve against it; "" when unknown */
 } PelageParamSet;
 
 typedef struct PelageError {
