@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # pelage quick start. On a fresh Debian 12 machine (as root, or with sudo):
-#   ./quickstart.sh run    install what is missing, build, fetch sample meshes, run the default job
+#   ./quickstart.sh run    install what is missing, build, fetch sample meshes, grow a giraffe
+#                          coat on the cow and render it (images/cow_giraffe.exr + preview PNG)
 #   ./quickstart.sh test   the same set-up, then the whole test suite (ctest)
 set -euo pipefail
 cd "$(dirname "$0")"
@@ -38,7 +39,11 @@ cmake --build build -j2
 scenes/fetch_meshes.sh
 
 if [ "$mode" = run ]; then
-    build/bin/pelage crps --mesh scenes/meshes/cow.off
+    # The default job: a giraffe (reticulata) coat grown on the cow, rendered.
+    build/bin/pelage sim --mesh scenes/meshes/cow.off --preset giraffe-reticulata --seed 1 \
+        -o build/cow_giraffe.cells
+    build/bin/pelage render scenes/cow_giraffe.json --stats-json build/cow_giraffe_render.json
+    echo "quickstart: wrote images/cow_giraffe.exr and images/cow_giraffe_preview.png"
 else
     cd build && ctest --output-on-failure -j2
 fi

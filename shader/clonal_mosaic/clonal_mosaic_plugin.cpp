@@ -152,7 +152,9 @@ void shade(const void *self, const PelageHit *hit, PelageShade *out) {
     const shader::Vec2f q = cm.pattern->point(hit->primitive_id, hit->b1, hit->b2);
 
     // Boundaries are blended over w: the user's soft width, or at least the footprint.
-    const float w = std::max(cm.edge_width, cm.antialias ? hit->footprint : 0.0f);
+    // Antialiasing matters for what the camera sees; indirect bounces average over wide
+    // footprints anyway, so they take the cheaper nearest-cell path.
+    const float w = std::max(cm.edge_width, cm.antialias && hit->depth == 0 ? hit->footprint : 0.0f);
     // Most hits are farther than 2w from any cell edge: F1 and F2 settle it (or F1 alone
     // without blending); only the rest pay for the three-cell blend.
     const shader::ClosestCell c = w > 0 ? cm.index->find(hit->primitive_id, q)
