@@ -26,13 +26,19 @@ constexpr float ln_2 = 0.693147181f;
 // Modified Bessel function of the first kind, order 0, by its power series
 // Σ_k (x²/4)^k / (k!)², summed in double until the terms stop mattering (used for
 // x <= 12). Deviates from pbrt, which stops after 10 terms: that underestimates I0 by
-// 0.3 % at x = 10 and 2 % at x = 12, and the lost M_p mass showed up as a pdf integral of
+// 0.3 % at x = 10 and 2 % at x = 12 (for x <= 12, 40 terms reach 1e-8), and the lost M_p mass showed up as a pdf integral of
 // 0.998 in PdfIntegratesToOne.
 float bessel_i0(float x) {
+    // 1/k², so the recurrence is a chain of multiplies, not divides
+    static constexpr auto inv_k2 = [] {
+        std::array<double, 40> t{};
+        for (int k = 1; k < 40; ++k) t[k] = 1.0 / (double(k) * k);
+        return t;
+    }();
     const double q = 0.25 * double(x) * double(x);
     double term = 1, sum = 1;
-    for (int k = 1; k < 64 && term > 1e-9 * sum; ++k) {
-        term *= q / (double(k) * k);
+    for (int k = 1; k < 40 && term > 1e-8 * sum; ++k) {
+        term *= q * inv_k2[k];
         sum += term;
     }
     return static_cast<float>(sum);
@@ -240,43 +246,49 @@ Rgb HairBsdf::albedo() const {
     return sum;
 }
 
-Rgb HairBsdf::eval(Vec3f wo, Vec3f wi) const {
+void HairBsdf::evaluate(Vec3f wo, Vec3f wi, Rgb *f, float *pdf) const {
     const Refraction r = refract(wo.x, m_params.eta, m_h);
     const float sin_theta_i = std::clamp(wi.x, -1.0f, 1.0f);
     const float cos_theta_i = safe_sqrt(1 - sqr(sin_theta_i));
     const float phi = std::atan2(wi.z, wi.y) - std::atan2(wo.z, wo.y);
     const auto a = attenuation(wo.x);
-
-    // --- S = Σ_p M_p A_p N_p, then the residual with uniform N ---
-    Rgb s_sum;
-    for (int p = 0; p < p_max; ++p) {
-        const Tilted o = tilt(p, r.sin_theta_o, r.cos_theta_o, m_sin_2k_alpha, m_cos_2k_alpha);
-        s_sum += longitudinal_scattering(cos_theta_i, o.cos_theta, sin_theta_i, o.sin_theta, m_v[p]) *
-                 azimuthal_scattering(phi, p, m_s, m_gamma_o, r.gamma_t) * a[p];
+    std::array<float, p_max + 1> w{};
+    if (pdf) {
+        // Lobe selection probabilities: A_p luminance, normalised (as lobe_pdf)
+        float sum = 0;
+        for (int p = 0; p <= p_max; ++p) sum += (w[p] = std::max(luminance(a[p]), 0.0f));
+        if (sum > 0)
+            for (float &x : w) x /= sum;
     }
-    s_sum += longitudinal_scattering(cos_theta_i, r.cos_theta_o, sin_theta_i, r.sin_theta_o, m_v[p_max]) *
-             (1 / two_pi) * a[p_max];
+
+    // --- S = Σ_p M_p A_p N_p and pdf = Σ_p M_p w_p N_p, then the residual with uniform N ---
+    Rgb s_sum;
+    float pdf_sum = 0;
+    for (int p = 0; p <= p_max; ++p) {
+        const Tilted o = tilt(p, r.sin_theta_o, r.cos_theta_o, m_sin_2k_alpha, m_cos_2k_alpha);
+        const float n_p = p < p_max ? azimuthal_scattering(phi, p, m_s, m_gamma_o, r.gamma_t) : 1 / two_pi;
+        const float mn = longitudinal_scattering(cos_theta_i, o.cos_theta, sin_theta_i, o.sin_theta, m_v[p]) * n_p;
+        s_sum += mn * a[p];
+        pdf_sum += mn * w[p];
+    }
 
     // f = S / |cos θ_i| w.r.t. the shading normal z, so the integrator's |wi.z| cancels
-    const float abs_cos = std::abs(wi.z);
-    return abs_cos > 0 ? s_sum / abs_cos : Rgb{};
+    if (f) {
+        const float abs_cos = std::abs(wi.z);
+        *f = abs_cos > 0 ? s_sum / abs_cos : Rgb{};
+    }
+    if (pdf) *pdf = pdf_sum;
+}
+
+Rgb HairBsdf::eval(Vec3f wo, Vec3f wi) const {
+    Rgb f;
+    evaluate(wo, wi, &f, nullptr);
+    return f;
 }
 
 float HairBsdf::pdf(Vec3f wo, Vec3f wi) const {
-    const Refraction r = refract(wo.x, m_params.eta, m_h);
-    const float sin_theta_i = std::clamp(wi.x, -1.0f, 1.0f);
-    const float cos_theta_i = safe_sqrt(1 - sqr(sin_theta_i));
-    const float phi = std::atan2(wi.z, wi.y) - std::atan2(wo.z, wo.y);
-    const auto w = lobe_pdf(wo.x);
-
-    float pdf = 0;
-    for (int p = 0; p < p_max; ++p) {
-        const Tilted o = tilt(p, r.sin_theta_o, r.cos_theta_o, m_sin_2k_alpha, m_cos_2k_alpha);
-        pdf += longitudinal_scattering(cos_theta_i, o.cos_theta, sin_theta_i, o.sin_theta, m_v[p]) *
-               azimuthal_scattering(phi, p, m_s, m_gamma_o, r.gamma_t) * w[p];
-    }
-    pdf += longitudinal_scattering(cos_theta_i, r.cos_theta_o, sin_theta_i, r.sin_theta_o, m_v[p_max]) *
-           (1 / two_pi) * w[p_max];
+    float pdf;
+    evaluate(wo, wi, nullptr, &pdf);
     return pdf;
 }
 
@@ -312,10 +324,11 @@ std::optional<HairSample> HairBsdf::sample(Vec3f wo, float u_lobe, float u1, flo
     const float phi_i = std::atan2(wo.z, wo.y) + dphi;
     const Vec3f wi{sin_theta_i, cos_theta_i * std::cos(phi_i), cos_theta_i * std::sin(phi_i)};
 
-    const float pdf_wi = pdf(wo, wi);
+    Rgb f;
+    float pdf_wi;
+    evaluate(wo, wi, &f, &pdf_wi);
     const float abs_cos = std::abs(wi.z);
     if (!(pdf_wi > 0) || !(abs_cos > 0)) return std::nullopt;
-    const Rgb f = eval(wo, wi);
     return HairSample{wi, f, pdf_wi, f * (abs_cos / pdf_wi), p};
 }
 

@@ -78,6 +78,9 @@ class HairBsdf {
     std::array<float, p_max + 1> lobe_pdf(float sin_theta_o) const;
 
   private:
+    // f and/or pdf (null pointers are skipped) sharing A_p, M_p and N_p.
+    void evaluate(Vec3f wo, Vec3f wi, Rgb *f, float *pdf) const;
+
     HairParams m_params;
     float m_h, m_gamma_o;
     std::array<float, p_max + 1> m_v;     // M_p variance per lobe
