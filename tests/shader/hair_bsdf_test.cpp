@@ -197,6 +197,8 @@ TEST(HairBsdf, ChiSquareSampleMatchesPdf) {
         if (pooled_e > 0) { chi2 += (pooled_o - pooled_e) * (pooled_o - pooled_e) / std::max(pooled_e, 5.0); ++dof; }
         dof -= 1;
         const double pval = chi2_p_value(chi2, dof);
+        std::cout << "chi2: beta_m " << cs.beta_m << " beta_n " << cs.beta_n << ": " << chi2 << " on " << dof
+                  << " dof, p = " << pval << "\n";
         EXPECT_GT(pval, 0.01 / cases.size())
             << "beta_m " << cs.beta_m << " beta_n " << cs.beta_n << " chi2 " << chi2 << " dof " << dof;
     }
@@ -326,3 +328,22 @@ TEST(HairBsdf, BadParametersThrow) {
 
 }  // namespace
 }  // namespace pelage::hair
+
+// `pelage bench hair` output contract (issue 6): one JSON object with furnace_max_error.
+// A small, fast set (2 fibres, 128 × 256 grid); the error bound is the issue's 1 %.
+#include <nlohmann/json.hpp>
+
+#include "tests/test_paths.h"
+
+namespace pelage::test {
+
+TEST(HairBsdf, BenchHairPrintsFurnaceMaxError) {
+    std::string out;
+    ASSERT_EQ(run_pelage("bench hair --configs 2 --theta-steps 128", &out), 0);
+    const auto j = nlohmann::json::parse(out);
+    ASSERT_TRUE(j.contains("furnace_max_error"));
+    EXPECT_LT(j["furnace_max_error"].get<double>(), 0.01);
+    for (const char *k : {"eval_ns", "sample_ns", "pdf_ns", "pdf_integral_max_error"}) EXPECT_TRUE(j.contains(k)) << k;
+}
+
+}  // namespace pelage::test
