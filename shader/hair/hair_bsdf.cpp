@@ -115,16 +115,41 @@ float fresnel_dielectric(float cos_theta_i, float eta) {
     return (sqr(r_parl) + sqr(r_perp)) / 2;
 }
 
-float longitudinal_scattering(float cos_theta_i, float cos_theta_o, float sin_theta_i,
-                              float sin_theta_o, float v) {
+namespace {
+
+// M_p's normalisation 1/(2v sinh(1/v)), or its logarithm when v <= 0.1: there sinh(1/v)
+// and I0(a) overflow float, so M_p is evaluated as exp(log I0(a) − b + log_scale) with
+// sinh(1/v) ≈ e^{1/v}/2 (relative error e^{−2/v} <= 2e-9). pbrt writes ln 2 as 0.6931,
+// 5e-5 low; we use the full value. Depends on v only: HairBsdf precomputes it per lobe.
+struct MpNorm {
+    bool log_space;
+    float scale;  // log_space ? −1/v + ln 2 + ln(1/(2v)) : 1/(2v sinh(1/v))
+};
+
+MpNorm mp_norm(float v) {
+    if (v <= 0.1f) return {true, -1 / v + ln_2 + std::log(1 / (2 * v))};
+    return {false, 1 / (std::sinh(1 / v) * 2 * v)};
+}
+
+float mp_eval(float cos_theta_i, float cos_theta_o, float sin_theta_i, float sin_theta_o, float v, MpNorm n) {
     const float a = cos_theta_i * cos_theta_o / v;
     const float b = sin_theta_i * sin_theta_o / v;
-    // For v <= 0.1, sinh(1/v) and I0(a) overflow float: evaluate
-    // exp(log I0(a) − b − 1/v + ln 2 + ln(1/(2v))), i.e. sinh(1/v) ≈ e^{1/v}/2 (relative
-    // error e^{−2/v} <= 2e-9). pbrt writes ln 2 as 0.6931, 5e-5 low; we use the full value.
-    if (v <= 0.1f)
-        return std::exp(log_bessel_i0(a) - b - 1 / v + ln_2 + std::log(1 / (2 * v)));
-    return std::exp(-b) * bessel_i0(a) / (std::sinh(1 / v) * 2 * v);
+    if (n.log_space) return std::exp(log_bessel_i0(a) - b + n.scale);
+    return std::exp(-b) * bessel_i0(a) * n.scale;
+}
+
+// N_p with the trimmed logistic's normalisation 1/(CDF(π) − CDF(−π)) precomputed.
+float np_eval(float phi, int p, float s, float inv_trim, float gamma_o, float gamma_t) {
+    // Remap Δφ to [−π, π]
+    const float dphi = std::remainder(phi - azimuthal_deflection(p, gamma_o, gamma_t), two_pi);
+    return logistic(dphi, s) * inv_trim;
+}
+
+}  // namespace
+
+float longitudinal_scattering(float cos_theta_i, float cos_theta_o, float sin_theta_i,
+                              float sin_theta_o, float v) {
+    return mp_eval(cos_theta_i, cos_theta_o, sin_theta_i, sin_theta_o, v, mp_norm(v));
 }
 
 float azimuthal_scattering(float phi, int p, float s, float gamma_o, float gamma_t) {
@@ -170,10 +195,16 @@ HairBsdf::HairBsdf(const HairParams &params, float h) : m_params(params), m_h(h)
     m_v[1] = 0.25f * m_v[0];
     m_v[2] = 4 * m_v[0];
     m_v[3] = m_v[2];
+    for (int p = 0; p <= p_max; ++p) {
+        const MpNorm n = mp_norm(m_v[p]);
+        m_mp_log_space[p] = n.log_space;
+        m_mp_scale[p] = n.scale;
+    }
 
     // --- Azimuthal logistic scale s from beta_n (Chiang et al. 2016 fit) ---
     const float bn = params.beta_n;
     m_s = std::sqrt(pi / 8) * (0.265f * bn + 1.194f * sqr(bn) + 5.372f * std::pow(bn, 22.0f));
+    m_inv_trim = 1 / (logistic_cdf(pi, m_s) - logistic_cdf(-pi, m_s));
 
     // --- Cuticle tilt: sin/cos of α, 2α, 4α ---
     m_sin_2k_alpha[0] = std::sin(params.alpha);
@@ -266,8 +297,10 @@ void HairBsdf::evaluate(Vec3f wo, Vec3f wi, Rgb *f, float *pdf) const {
     float pdf_sum = 0;
     for (int p = 0; p <= p_max; ++p) {
         const Tilted o = tilt(p, r.sin_theta_o, r.cos_theta_o, m_sin_2k_alpha, m_cos_2k_alpha);
-        const float n_p = p < p_max ? azimuthal_scattering(phi, p, m_s, m_gamma_o, r.gamma_t) : 1 / two_pi;
-        const float mn = longitudinal_scattering(cos_theta_i, o.cos_theta, sin_theta_i, o.sin_theta, m_v[p]) * n_p;
+        const float n_p = p < p_max ? np_eval(phi, p, m_s, m_inv_trim, m_gamma_o, r.gamma_t) : 1 / two_pi;
+        const float m_p = mp_eval(cos_theta_i, o.cos_theta, sin_theta_i, o.sin_theta, m_v[p],
+                                  {m_mp_log_space[p], m_mp_scale[p]});
+        const float mn = m_p * n_p;
         s_sum += mn * a[p];
         pdf_sum += mn * w[p];
     }

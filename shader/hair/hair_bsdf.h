@@ -84,7 +84,10 @@ class HairBsdf {
     HairParams m_params;
     float m_h, m_gamma_o;
     std::array<float, p_max + 1> m_v;     // M_p variance per lobe
+    std::array<bool, p_max + 1> m_mp_log_space;  // M_p normalisation per lobe (v <= 0.1: log)
+    std::array<float, p_max + 1> m_mp_scale;
     float m_s;                            // N_p logistic scale
+    float m_inv_trim;                     // 1/(CDF(π) − CDF(−π)) of that logistic
     std::array<float, 3> m_sin_2k_alpha;  // sin(2^k α), k = 0, 1, 2
     std::array<float, 3> m_cos_2k_alpha;
 };
