@@ -25,6 +25,7 @@
 #pragma once
 
 #include <array>
+#include <concepts>
 #include <optional>
 
 #include "shader/hair/hair_math.h"
@@ -91,6 +92,15 @@ class HairBsdf {
     std::array<float, 3> m_sin_2k_alpha;  // sin(2^k α), k = 0, 1, 2
     std::array<float, 3> m_cos_2k_alpha;
 };
+
+// The signatures renderer/bsdf.h's Bsdf concept expects (with this folder's own types,
+// which shader/ cannot take from the renderer): a wrapper only converts types.
+static_assert(requires(const HairBsdf &b, Vec3f w, float u) {
+    { b.eval(w, w) } -> std::same_as<Rgb>;
+    { b.pdf(w, w) } -> std::same_as<float>;
+    { b.sample(w, u, u, u) } -> std::same_as<std::optional<HairSample>>;
+    { b.albedo() } -> std::same_as<Rgb>;
+});
 
 // M_p, d'Eon et al. 2011 as written by Chiang et al. 2016: normalised so that
 // ∫ M_p cos θ_i dθ_i = 1; log-space Bessel I0 for v <= 0.1. Symmetric in (i, o).
