@@ -159,6 +159,15 @@ float azimuthal_scattering(float phi, int p, float s, float gamma_o, float gamma
     return trimmed_logistic(dphi, s, -pi, pi);
 }
 
+float offset_h(Vec3f x, Vec3f n, Vec3f wo) {
+    const auto dot = [](Vec3f a, Vec3f b) { return a.x * b.x + a.y * b.y + a.z * b.z; };
+    const Vec3f n_cross_wo{n.y * wo.z - n.z * wo.y, n.z * wo.x - n.x * wo.z, n.x * wo.y - n.y * wo.x};
+    const Vec3f wo_perp = wo - x * dot(wo, x);
+    const float len = std::sqrt(dot(wo_perp, wo_perp));
+    if (!(len > 0)) return 0;  // wo along the fibre: every h sees the same geometry
+    return std::clamp(dot(x, n_cross_wo) / len, -1.0f, 1.0f);
+}
+
 HairParams HairParams::from_melanin(float eumelanin, float pheomelanin, float beta_m, float beta_n) {
     HairParams p;
     p.beta_m = beta_m;

@@ -19,6 +19,12 @@
 //   * pdf(wo, wi) is the solid-angle density of sample().
 //   * sample() returns nullopt for "no sample" (never a zero pdf); its weight is
 //     f·|cos θ_i|/pdf. wo and wi point away from the fibre.
+// Unlike the renderer's built-in BSDFs it is two-sided and transmissive: wo and wi may lie
+// on either side of z (TT sends light through the fibre), so an integrator must not reject
+// wi.z < 0 and should offset the next ray along wi, not along the normal.
+// h's sign matters (R reflects towards φ_o − 2γ_o): for a round curve, compute it with
+// offset_h(x, n, wo) below from the cylinder normal n at the hit; z itself may be any unit
+// vector ⊥ x (the model uses only φ_i − φ_o), as long as the integrator's cosine uses it.
 // σ_a is per fibre radius (see hair_pigments.h to build it from melanin or colour).
 // HairBsdf is an immutable value type: all methods are const and thread-safe; build one
 // per hit (the constructor precomputes v_p, s and the tilt terms, ~100 ns).
@@ -101,6 +107,11 @@ static_assert(requires(const HairBsdf &b, Vec3f w, float u) {
     { b.sample(w, u, u, u) } -> std::same_as<std::optional<HairSample>>;
     { b.albedo() } -> std::same_as<Rgb>;
 });
+
+// h = sin(φ_o − φ_n) = x·(n × wo) / |wo projected ⊥ x|, for the fibre tangent x, the
+// cylinder's outward unit normal n at the hit (⊥ x) and wo, all in one frame (e.g. world),
+// clamped to [−1, 1]. With it, R's mirror direction about n lands on Φ(0) = −2γ_o.
+float offset_h(Vec3f x, Vec3f n, Vec3f wo);
 
 // M_p, d'Eon et al. 2011 as written by Chiang et al. 2016: normalised so that
 // ∫ M_p cos θ_i dθ_i = 1; log-space Bessel I0 for v <= 0.1. Symmetric in (i, o).

@@ -241,6 +241,33 @@ TEST(HairBsdf, SwappingDirectionsEqualsMirroringHWithoutTilt) {
     }
 }
 
+// offset_h's sign agrees with the model: on a cylinder, the mirror reflection of wo about
+// the hit normal n has azimuth φ_o + Φ(0) = φ_o − 2 asin(h) (float: 1e-3 rad).
+TEST(HairBsdf, OffsetHPutsTheMirrorDirectionOnTheRLobe) {
+    Rng rng(41);
+    auto dot = [](Vec3f a, Vec3f b) { return a.x * b.x + a.y * b.y + a.z * b.z; };
+    auto cross = [](Vec3f a, Vec3f b) {
+        return Vec3f{a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
+    };
+    auto normalize = [&](Vec3f a) { return a / std::sqrt(dot(a, a)); };
+    for (int k = 0; k < 2000; ++k) {
+        const Vec3f x = rng.direction();
+        const Vec3f n = normalize(cross(x, rng.direction()));
+        Vec3f wo = rng.direction();
+        if (dot(wo, n) < 0) wo = wo * -1.0f;  // the viewer sees the side n faces
+        const float h = offset_h(x, n, wo);
+        const Vec3f mirror = n * (2 * dot(wo, n)) - wo;
+        // Local frame: x, y = z × x, z = n
+        const Vec3f y = cross(n, x);
+        auto local = [&](Vec3f w) { return Vec3f{dot(w, x), dot(w, y), dot(w, n)}; };
+        const Vec3f lo = local(wo), li = local(mirror);
+        if (lo.y * lo.y + lo.z * lo.z < 1e-4f) continue;  // wo nearly along the fibre
+        const float dphi = std::atan2(li.z, li.y) - std::atan2(lo.z, lo.y);
+        EXPECT_NEAR(std::remainder(dphi + 2 * std::asin(h), 2 * pi), 0.0f, 1e-3f) << "case " << k;
+        EXPECT_NEAR(li.x, -lo.x, 1e-5f);  // and θ_i = −θ_o, where M_0 peaks (α = 0)
+    }
+}
+
 // Low roughness stays finite (the log-space M_p) and sampling still works.
 TEST(HairBsdf, LowRoughnessIsFinite) {
     Rng rng(31);
