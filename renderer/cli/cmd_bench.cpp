@@ -18,6 +18,7 @@ Runner add_bench_command(CLI::App &app) {
     add(add_bench_lookup);
     add(add_bench_sim);
     add(add_bench_render);
+    add(add_bench_hair);
     return [children] {
         for (const auto &[sub, run] : children)
             if (sub->parsed()) return run();

@@ -1,0 +1,376 @@
+// Property tests of the Chiang et al. 2016 hair BSDF (shader/hair): white furnace,
+// eval/pdf/sample agreement, a chi-square test of sample() against pdf(), reciprocity,
+// pigments, parameter validation. Every RNG is seeded; tolerances say why.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <iostream>
+#include <random>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "shader/hair/hair_bsdf.h"
+#include "shader/hair/hair_furnace.h"
+#include "shader/hair/hair_pigments.h"
+
+namespace pelage::hair {
+namespace {
+
+constexpr float deg = pi / 180;
+
+struct Rng {
+    explicit Rng(uint32_t seed) : gen(seed) {}
+    float operator()() { return std::uniform_real_distribution<float>(0.0f, 1.0f)(gen); }
+    float in(float a, float b) { return a + (b - a) * (*this)(); }
+    // Uniform on the sphere.
+    Vec3f direction() {
+        const float z = 1 - 2 * (*this)(), r = std::sqrt(std::max(0.0f, 1 - z * z)), phi = 2 * pi * (*this)();
+        return {r * std::cos(phi), r * std::sin(phi), z};
+    }
+    std::mt19937 gen;
+};
+
+float rel_diff(float a, float b) { return std::abs(a - b) / std::max({std::abs(a), std::abs(b), 1e-6f}); }
+
+// --- White furnace ---
+
+// σ_a = 0: ∫ f |cos θ_i| dω_i = 1 for 40 random (β_m, β_n ∈ [0.1, 1], α ∈ [−5°, 5°],
+// h ∈ [−1, 1], wo uniform on the sphere), by the 512 × 1024 midpoint quadrature of
+// hair_furnace.h. Bound 1e-3, ten times tighter than the issue's 1 %: the quadrature
+// is converged to ~1e-5 at this grid (same value at 256 × 512), measured worst 4.2e-5.
+TEST(HairBsdf, WhiteFurnaceConservesEnergy) {
+    Rng rng(20160101);
+    float worst = 0;
+    for (int k = 0; k < 40; ++k) {
+        HairParams p;
+        p.beta_m = rng.in(0.1f, 1.0f);
+        p.beta_n = rng.in(0.1f, 1.0f);
+        p.alpha = rng.in(-5 * deg, 5 * deg);
+        const HairBsdf bsdf(p, rng.in(-1, 1));
+        const Vec3f wo = rng.direction();
+        const FurnaceResult r = furnace_quadrature(bsdf, wo);
+        for (int c = 0; c < 3; ++c) {
+            worst = std::max(worst, std::abs(r.f_cos_integral[c] - 1));
+            EXPECT_NEAR(r.f_cos_integral[c], 1.0f, 1e-3f)
+                << "beta_m " << p.beta_m << " beta_n " << p.beta_n << " alpha " << p.alpha << " h " << bsdf.h()
+                << " wo.x " << wo.x;
+        }
+    }
+    RecordProperty("furnace_max_error", std::to_string(worst));
+    std::cout << "white furnace: worst |integral - 1| = " << worst << " over 40 configurations\n";
+}
+
+// The same integral by importance sampling: with σ_a = 0 the lobe weights are exactly A_p
+// and each sampled M_p, N_p matches eval, so every weight is 1 (to float rounding: 1e-3).
+TEST(HairBsdf, WhiteFurnaceSampleWeightsAreOne) {
+    Rng rng(7);
+    for (int k = 0; k < 20000; ++k) {
+        HairParams p;
+        p.beta_m = rng.in(0.1f, 1.0f);
+        p.beta_n = rng.in(0.1f, 1.0f);
+        p.alpha = rng.in(-5 * deg, 5 * deg);
+        const HairBsdf bsdf(p, rng.in(-1, 1));
+        const auto s = bsdf.sample(rng.direction(), rng(), rng(), rng());
+        if (!s) continue;
+        for (int c = 0; c < 3; ++c) ASSERT_NEAR(s->weight[c], 1.0f, 1e-3f) << "sample " << k;
+    }
+}
+
+// --- eval / pdf / sample agreement ---
+
+TEST(HairBsdf, SampleWeightEqualsEvalCosOverPdf) {
+    Rng rng(11);
+    int produced = 0;
+    for (int k = 0; k < 20000; ++k) {
+        HairParams p = HairParams::from_melanin(rng.in(0, 4), rng.in(0, 4), rng.in(0.1f, 1), rng.in(0.1f, 1));
+        p.alpha = rng.in(-5 * deg, 5 * deg);
+        const HairBsdf bsdf(p, rng.in(-1, 1));
+        const Vec3f wo = rng.direction();
+        const auto s = bsdf.sample(wo, rng(), rng(), rng());
+        if (!s) continue;
+        ++produced;
+        const float pdf = bsdf.pdf(wo, s->wi);
+        const Rgb f = bsdf.eval(wo, s->wi);
+        ASSERT_GT(pdf, 0);
+        EXPECT_LT(rel_diff(s->pdf, pdf), 1e-5f);
+        for (int c = 0; c < 3; ++c) {
+            EXPECT_LT(rel_diff(s->f[c], f[c]), 1e-5f);
+            EXPECT_LT(rel_diff(s->weight[c], f[c] * std::abs(s->wi.z) / pdf), 1e-4f);
+        }
+        EXPECT_NEAR(s->wi.x * s->wi.x + s->wi.y * s->wi.y + s->wi.z * s->wi.z, 1.0f, 1e-4f);
+    }
+    EXPECT_GT(produced, 19900);  // nullopt only at measure-zero wi.z == 0
+}
+
+// ∫ pdf dω = 1 for random parameters (absorbing fibres too: lobe weights then differ from
+// A_p) by the same quadrature as the furnace, within 1e-3 as the furnace.
+TEST(HairBsdf, PdfIntegratesToOne) {
+    Rng rng(3);
+    for (int k = 0; k < 12; ++k) {
+        HairParams p = HairParams::from_melanin(rng.in(0, 3), rng.in(0, 3), rng.in(0.1f, 1), rng.in(0.1f, 1));
+        p.alpha = rng.in(-5 * deg, 5 * deg);
+        const HairBsdf bsdf(p, rng.in(-1, 1));
+        EXPECT_NEAR(furnace_quadrature(bsdf, rng.direction(), 512, 1024, true).pdf_integral, 1.0, 1e-3)
+            << "beta_m " << p.beta_m << " beta_n " << p.beta_n;
+    }
+}
+
+// Absorbing fibre: the mean sample weight estimates ∫ f|cos| dω; it must match the
+// quadrature within 5 standard errors (N = 200 000 samples).
+TEST(HairBsdf, MeanSampleWeightMatchesQuadratureAlbedo) {
+    Rng rng(5);
+    HairParams p = HairParams::from_melanin(1.3f, 0.5f, 0.35f, 0.45f);
+    const HairBsdf bsdf(p, 0.3f);
+    const Vec3f wo{0.4f, 0.5f, std::sqrt(1 - 0.16f - 0.25f)};
+    const Rgb albedo = furnace_quadrature(bsdf, wo).f_cos_integral;
+    const int n = 200000;
+    double sum[3] = {0, 0, 0}, sum2[3] = {0, 0, 0};
+    for (int k = 0; k < n; ++k) {
+        const auto s = bsdf.sample(wo, rng(), rng(), rng());
+        if (!s) continue;
+        for (int c = 0; c < 3; ++c) { sum[c] += s->weight[c]; sum2[c] += sqr(s->weight[c]); }
+    }
+    for (int c = 0; c < 3; ++c) {
+        const double mean = sum[c] / n, se = std::sqrt((sum2[c] / n - mean * mean) / n);
+        EXPECT_NEAR(mean, albedo[c], 5 * se + 1e-4) << "channel " << c;
+        EXPECT_LT(albedo[c], 1.0f);
+    }
+}
+
+// --- Chi-square: sample() against pdf() ---
+
+// Wilson–Hilferty: P(χ²_k >= x) via the normal approximation of (χ²/k)^(1/3), accurate
+// to ~1e-3 in p for the k of hundreds used here.
+double chi2_p_value(double x, int k) {
+    const double m = 1 - 2.0 / (9 * k), sd = std::sqrt(2.0 / (9 * k));
+    const double z = (std::cbrt(x / k) - m) / sd;
+    return 0.5 * std::erfc(z / std::sqrt(2.0));
+}
+
+// Bins: 20 in u = sin θ_i (equal area) × 40 in φ_i; expected counts from the pdf by an
+// 8 × 8 midpoint rule per bin (dω = du dφ); bins expecting < 5 are pooled. 10^6 samples
+// per case; reject at p < 0.01 / cases (Bonferroni, as Mitsuba's chi2 tests).
+TEST(HairBsdf, ChiSquareSampleMatchesPdf) {
+    struct Case { float beta_m, beta_n, alpha, h, eu; Vec3f wo; };
+    const std::vector<Case> cases = {
+        {0.3f, 0.3f, 2 * deg, 0.2f, 0.5f, {0.3f, 0.6f, 0.7416f}},
+        {0.5f, 0.6f, -3 * deg, -0.7f, 2.0f, {-0.6f, -0.48f, 0.64f}},
+        {0.8f, 0.9f, 2 * deg, 0.95f, 0.0f, {0.0f, 0.0f, 1.0f}},
+        {0.25f, 0.5f, 4 * deg, -0.1f, 8.0f, {0.9f, 0.3f, 0.3162f}},
+    };
+    const int nu = 20, nphi = 40, sub = 8, n_samples = 1000000;
+    Rng rng(99);
+    for (const Case &cs : cases) {
+        HairParams p = HairParams::from_melanin(cs.eu, 0.3f, cs.beta_m, cs.beta_n);
+        p.alpha = cs.alpha;
+        const HairBsdf bsdf(p, cs.h);
+        std::vector<double> expected(nu * nphi, 0.0), observed(nu * nphi, 0.0);
+        const double du = 2.0 / nu, dphi = 2 * M_PI / nphi;
+        for (int i = 0; i < nu; ++i)
+            for (int j = 0; j < nphi; ++j) {
+                double acc = 0;
+                for (int a = 0; a < sub; ++a)
+                    for (int b = 0; b < sub; ++b) {
+                        const double u = -1 + (i + (a + 0.5) / sub) * du;
+                        const double phi = -M_PI + (j + (b + 0.5) / sub) * dphi;
+                        const double r = std::sqrt(std::max(0.0, 1 - u * u));
+                        acc += bsdf.pdf(cs.wo, Vec3f{float(u), float(r * std::cos(phi)), float(r * std::sin(phi))});
+                    }
+                expected[i * nphi + j] = acc * du * dphi / (sub * sub) * n_samples;
+            }
+        for (int k = 0; k < n_samples; ++k) {
+            const auto s = bsdf.sample(cs.wo, rng(), rng(), rng());
+            if (!s) continue;
+            const int i = std::clamp(int((s->wi.x + 1) / du), 0, nu - 1);
+            const int j = std::clamp(int((std::atan2(s->wi.z, s->wi.y) + M_PI) / dphi), 0, nphi - 1);
+            observed[i * nphi + j] += 1;
+        }
+        double chi2 = 0, pooled_e = 0, pooled_o = 0;
+        int dof = 0;
+        for (size_t b = 0; b < expected.size(); ++b) {
+            if (expected[b] < 5) { pooled_e += expected[b]; pooled_o += observed[b]; continue; }
+            chi2 += sqr(float(observed[b] - expected[b])) / expected[b];
+            ++dof;
+        }
+        if (pooled_e > 0) { chi2 += (pooled_o - pooled_e) * (pooled_o - pooled_e) / std::max(pooled_e, 5.0); ++dof; }
+        dof -= 1;
+        const double pval = chi2_p_value(chi2, dof);
+        std::cout << "chi2: beta_m " << cs.beta_m << " beta_n " << cs.beta_n << ": " << chi2 << " on " << dof
+                  << " dof, p = " << pval << "\n";
+        EXPECT_GT(pval, 0.01 / cases.size())
+            << "beta_m " << cs.beta_m << " beta_n " << cs.beta_n << " chi2 " << chi2 << " dof " << dof;
+    }
+}
+
+// --- Reciprocity ---
+
+// M_p is symmetric in (θ_i, θ_o), including the log-space branch (v <= 0.1).
+TEST(HairBsdf, LongitudinalScatteringIsSymmetric) {
+    Rng rng(17);
+    for (int k = 0; k < 10000; ++k) {
+        const float ti = rng.in(-pi / 2, pi / 2), to = rng.in(-pi / 2, pi / 2);
+        const float v = sqr(rng.in(0.05f, 1.0f));
+        const float a = longitudinal_scattering(std::cos(ti), std::cos(to), std::sin(ti), std::sin(to), v);
+        const float b = longitudinal_scattering(std::cos(to), std::cos(ti), std::sin(to), std::sin(ti), v);
+        ASSERT_LT(rel_diff(a, b), 1e-5f) << "v " << v;
+    }
+}
+
+// The near-field model (fixed h) is reciprocal only up to what the paper's single-angle
+// approximations allow: A_p, η' and γ_t use θ_o alone, and N_p is centred on Φ(h). Where
+// those agree — cos θ_i = cos θ_o, untilted — swapping wo, wi is the same as mirroring
+// h → −h: S(wo, wi; h) = S(wi, wo; −h), S = f·|cos θ_i| (the renderer-facing f divides
+// S by the arbitrary |wi.z| of the curve frame; S is what the throughput carries).
+// Exact up to float rounding (1e-3 relative, 1e-6 absolute for the near-zero tails).
+TEST(HairBsdf, SwappingDirectionsEqualsMirroringHWithoutTilt) {
+    Rng rng(23);
+    for (int k = 0; k < 20000; ++k) {
+        HairParams p = HairParams::from_melanin(rng.in(0, 3), rng.in(0, 3), rng.in(0.1f, 1), rng.in(0.1f, 1));
+        p.alpha = 0;
+        const float h = rng.in(-1, 1);
+        const HairBsdf fwd(p, h), mirrored(p, -h);
+        const Vec3f wo = rng.direction();
+        const float sin_i = rng() < 0.5f ? wo.x : -wo.x, cos_i = std::sqrt(std::max(0.0f, 1 - sin_i * sin_i));
+        const float phi = rng.in(-pi, pi);
+        const Vec3f wi{sin_i, cos_i * std::cos(phi), cos_i * std::sin(phi)};
+        const Rgb s_fwd = fwd.eval(wo, wi) * std::abs(wi.z), s_back = mirrored.eval(wi, wo) * std::abs(wo.z);
+        for (int c = 0; c < 3; ++c)
+            ASSERT_NEAR(s_fwd[c], s_back[c], 1e-3f * std::max(s_fwd[c], s_back[c]) + 1e-6f) << "pair " << k;
+    }
+}
+
+// offset_h's sign agrees with the model: on a cylinder, the mirror reflection of wo about
+// the hit normal n has azimuth φ_o + Φ(0) = φ_o − 2 asin(h) (float: 1e-3 rad).
+TEST(HairBsdf, OffsetHPutsTheMirrorDirectionOnTheRLobe) {
+    Rng rng(41);
+    auto dot = [](Vec3f a, Vec3f b) { return a.x * b.x + a.y * b.y + a.z * b.z; };
+    auto cross = [](Vec3f a, Vec3f b) {
+        return Vec3f{a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
+    };
+    auto normalize = [&](Vec3f a) { return a / std::sqrt(dot(a, a)); };
+    for (int k = 0; k < 2000; ++k) {
+        const Vec3f x = rng.direction();
+        const Vec3f n = normalize(cross(x, rng.direction()));
+        Vec3f wo = rng.direction();
+        if (dot(wo, n) < 0) wo = wo * -1.0f;  // the viewer sees the side n faces
+        const float h = offset_h(x, n, wo);
+        const Vec3f mirror = n * (2 * dot(wo, n)) - wo;
+        // Local frame: x, y = z × x, z = n
+        const Vec3f y = cross(n, x);
+        auto local = [&](Vec3f w) { return Vec3f{dot(w, x), dot(w, y), dot(w, n)}; };
+        const Vec3f lo = local(wo), li = local(mirror);
+        if (lo.y * lo.y + lo.z * lo.z < 1e-4f) continue;  // wo nearly along the fibre
+        const float dphi = std::atan2(li.z, li.y) - std::atan2(lo.z, lo.y);
+        EXPECT_NEAR(std::remainder(dphi + 2 * std::asin(h), 2 * pi), 0.0f, 1e-3f) << "case " << k;
+        EXPECT_NEAR(li.x, -lo.x, 1e-5f);  // and θ_i = −θ_o, where M_0 peaks (α = 0)
+    }
+}
+
+// Low roughness stays finite (the log-space M_p) and sampling still works.
+TEST(HairBsdf, LowRoughnessIsFinite) {
+    Rng rng(31);
+    HairParams p;
+    p.beta_m = 0.02f;
+    p.beta_n = 0.02f;
+    const HairBsdf bsdf(p, 0.4f);
+    for (int k = 0; k < 5000; ++k) {
+        const Vec3f wo = rng.direction();
+        const Rgb f = bsdf.eval(wo, rng.direction());
+        ASSERT_TRUE(std::isfinite(f.x) && f.x >= 0);
+        const auto s = bsdf.sample(wo, rng(), rng(), rng());
+        if (s) { ASSERT_TRUE(std::isfinite(s->weight.x) && std::isfinite(s->pdf)); }
+    }
+}
+
+// --- Pigments ---
+
+TEST(HairPigments, ZeroMelaninAbsorbsNothing) {
+    EXPECT_EQ(sigma_a_from_melanin(0, 0), (Rgb{0, 0, 0}));
+    const HairBsdf bsdf(HairParams::from_melanin(0, 0, 0.3f, 0.3f), 0.0f);
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(bsdf.albedo()[c], 1.0f, 1e-5f);
+}
+
+TEST(HairPigments, MoreEumelaninIsDarkerAndBluesAbsorbMost) {
+    float previous = 2;
+    for (float eu : {0.5f, 1.0f, 2.0f, 4.0f, 8.0f}) {
+        const Rgb s = sigma_a_from_melanin(eu, 0);
+        EXPECT_LT(s.x, s.y);  // red absorbed least: brown-black hair
+        EXPECT_LT(s.y, s.z);
+        const float a = luminance(HairBsdf(HairParams::from_melanin(eu, 0, 0.3f, 0.3f), 0.0f).albedo());
+        EXPECT_LT(a, previous) << "eumelanin " << eu;
+        previous = a;
+    }
+}
+
+TEST(HairPigments, ColourRoundTripIsMonotone) {
+    const Rgb white = sigma_a_from_colour({1, 1, 1}, 0.3f);
+    for (int c = 0; c < 3; ++c) EXPECT_EQ(white[c], 0.0f);
+    float previous = 0;
+    for (float grey : {0.9f, 0.6f, 0.3f, 0.1f, 0.02f}) {
+        const Rgb s = sigma_a_from_colour({grey, grey, grey}, 0.3f);
+        EXPECT_GT(s.x, previous) << "colour " << grey;
+        EXPECT_EQ(s.x, s.y);
+        previous = s.x;
+    }
+    // A reddish colour absorbs blue most; its single-scattering albedo keeps the hue
+    const Rgb red = sigma_a_from_colour({0.6f, 0.3f, 0.1f}, 0.3f);
+    EXPECT_LT(red.x, red.y);
+    EXPECT_LT(red.y, red.z);
+    const Rgb a = HairBsdf(HairParams::from_colour({0.6f, 0.3f, 0.1f}, 0.3f, 0.3f), 0.0f).albedo();
+    EXPECT_GT(a.x, a.y);
+    EXPECT_GT(a.y, a.z);
+}
+
+// --- Validation ---
+
+template <typename F>
+void expect_invalid(F &&make, const std::string &name) {
+    try {
+        make();
+        ADD_FAILURE() << "no exception for " << name;
+    } catch (const std::invalid_argument &e) {
+        EXPECT_NE(std::string(e.what()).find(name), std::string::npos) << e.what();
+    }
+}
+
+TEST(HairBsdf, BadParametersThrow) {
+    const HairParams ok;
+    auto with = [&](auto change) { HairParams p = ok; change(p); return p; };
+    expect_invalid([&] { HairBsdf(ok, 1.5f); }, "h = 1.5");
+    expect_invalid([&] { HairBsdf(ok, NAN); }, "h = ");
+    expect_invalid([&] { HairBsdf(with([](HairParams &p) { p.beta_m = 0; }), 0); }, "beta_m = 0");
+    expect_invalid([&] { HairBsdf(with([](HairParams &p) { p.beta_m = 1.2f; }), 0); }, "beta_m = 1.2");
+    expect_invalid([&] { HairBsdf(with([](HairParams &p) { p.beta_n = -0.1f; }), 0); }, "beta_n = -0.1");
+    expect_invalid([&] { HairBsdf(with([](HairParams &p) { p.sigma_a = {0.1f, -1, 0}; }), 0); }, "sigma_a[1] = -1");
+    expect_invalid([&] { HairBsdf(with([](HairParams &p) { p.eta = 0.5f; }), 0); }, "eta = 0.5");
+    expect_invalid([&] { HairBsdf(with([](HairParams &p) { p.alpha = 1; }), 0); }, "alpha = 1");
+    expect_invalid([] { sigma_a_from_melanin(-1, 0); }, "eumelanin = -1");
+    expect_invalid([] { sigma_a_from_melanin(0, INFINITY); }, "pheomelanin = inf");
+    expect_invalid([] { sigma_a_from_colour({0.5f, 0, 0.5f}, 0.3f); }, "colour[1] = 0");
+    expect_invalid([] { sigma_a_from_colour({0.5f, 1.5f, 0.5f}, 0.3f); }, "colour[1] = 1.5");
+    expect_invalid([] { sigma_a_from_colour({0.5f, 0.5f, 0.5f}, 0); }, "beta_n = 0");
+}
+
+}  // namespace
+}  // namespace pelage::hair
+
+// `pelage bench hair` output contract (issue 6): one JSON object with furnace_max_error.
+// A small, fast set (2 fibres, 128 × 256 grid); the error bound is the issue's 1 %.
+#include <nlohmann/json.hpp>
+
+#include "tests/test_paths.h"
+
+namespace pelage::test {
+
+TEST(HairBsdf, BenchHairPrintsFurnaceMaxError) {
+    std::string out;
+    ASSERT_EQ(run_pelage("bench hair --configs 2 --theta-steps 128", &out), 0);
+    const auto j = nlohmann::json::parse(out);
+    ASSERT_TRUE(j.contains("furnace_max_error"));
+    EXPECT_LT(j["furnace_max_error"].get<double>(), 0.01);
+    for (const char *k : {"eval_ns", "sample_ns", "pdf_ns", "pdf_integral_max_error"}) EXPECT_TRUE(j.contains(k)) << k;
+}
+
+}  // namespace pelage::test
