@@ -25,14 +25,7 @@ int run(const CompareCliOptions &o) {
     const auto control = o.threads.apply();
     renderer::SceneDesc desc = renderer::load_scene_file(o.scene);
     if (o.spp > 0) desc.film.spp = o.spp;
-    if (!o.res.empty()) {
-        int w = 0, h = 0;
-        char extra = 0;
-        if (std::sscanf(o.res.c_str(), "%dx%d%c", &w, &h, &extra) != 2 || w < 1 || h < 1 || w > 16384 || h > 16384)
-            throw InputError("", 0, "--res", "\"" + o.res + "\": expected WIDTHxHEIGHT, e.g. 640x360");
-        desc.film.width = w;
-        desc.film.height = h;
-    }
+    if (!o.res.empty()) parse_resolution(o.res, 16384, &desc.film.width, &desc.film.height);
     renderer::CompareOptions co;
     co.seed = o.seed;
     co.lookups = o.lookups;

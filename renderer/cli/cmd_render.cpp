@@ -40,16 +40,7 @@ int run(const RenderCliOptions &o) {
 
     // --- Command-line overrides ---
     if (o.spp > 0) desc.film.spp = o.spp;
-    if (!o.res.empty()) {
-        int w = 0, h = 0;
-        char extra = 0;
-        if (std::sscanf(o.res.c_str(), "%dx%d%c", &w, &h, &extra) != 2 || w < 1 ||
-            h < 1 || w > 65536 || h > 65536)
-            throw InputError("", 0, "--res",
-                             "\"" + o.res + "\": expected WIDTHxHEIGHT, e.g. 1280x720");
-        desc.film.width = w;
-        desc.film.height = h;
-    }
+    if (!o.res.empty()) parse_resolution(o.res, 65536, &desc.film.width, &desc.film.height);
     if (!o.view.empty()) desc.film.view = o.view;
     const std::string output = !o.output.empty() ? o.output : desc.film.output;
     if (output.empty())

@@ -38,6 +38,9 @@ struct ThreadOption {
     std::unique_ptr<tbb::global_control> apply() const;
 };
 
+// "1280x720" -> width, height; InputError at field "--res" otherwise.
+void parse_resolution(const std::string &text, int max_side, int *width, int *height);
+
 // Writes `j` to `path` atomically (pretty-printed, trailing newline).
 void write_json_file(const std::string &path, const nlohmann::json &j);
 

@@ -13,14 +13,8 @@ namespace {
 
 TEST(CellsCli, ExportedCellsLookUpToThemselves) {
     TempDir tmp;
-    const std::string preset = tmp.write("p.json", R"({"name": "t", "types": [
-        {"name": "F", "colour": [0.1, 0.05, 0.02], "division_time": "never", "initial_probability": 0.4},
-        {"name": "B", "colour": [0.9, 0.6, 0.3], "division_time": "never", "initial_probability": 0.6}],
-        "adhesion": [[0.5, 0.0], [0.0, 0.5]],
-        "simulation": {"initial_cells": 400, "initial_relax_steps": 5, "w_r": 2.0, "w_d": 0.1,
-                       "rho": 2, "end_time": 1, "relax": "global"}})");
-    const std::string mesh = "procedural:torus:24x12", cells = tmp.file("s.cells");
-    ASSERT_EQ(run_pelage("sim --mesh " + mesh + " --preset " + preset + " -o " + cells), 0);
+    const std::string mesh = "procedural:torus:24x12";
+    const std::string cells = simulate_two_type_cells(tmp, mesh, 400, 0.4);
     ASSERT_EQ(run_pelage("cells " + cells + " --export " + tmp.file("cells.txt")), 0);
 
     std::ifstream in(tmp.file("cells.txt"));
@@ -54,12 +48,7 @@ TEST(CellsCli, ExportedCellsLookUpToThemselves) {
 
 TEST(CellsCli, BadPointLinesAreExit2WithTheLine) {
     TempDir tmp;
-    const std::string preset = tmp.write("p.json", R"({"name": "t", "types": [
-        {"name": "F", "colour": [0.1, 0.1, 0.1], "division_time": "never", "initial_probability": 1.0}],
-        "adhesion": [[0.0]], "simulation": {"initial_cells": 50, "initial_relax_steps": 1, "w_r": 2.0,
-        "w_d": 0.1, "rho": 1, "end_time": 1, "relax": "global"}})");
-    const std::string cells = tmp.file("s.cells");
-    ASSERT_EQ(run_pelage("sim --mesh procedural:icosphere:1 --preset " + preset + " -o " + cells), 0);
+    const std::string cells = simulate_two_type_cells(tmp, "procedural:icosphere:1", 50);
     std::string err;
     const std::string pts = tmp.write("pts.txt", "0 0.2 0.3 0.5\n# comment\n99 0.2 0.3 0.5\n");
     EXPECT_EQ(run_pelage("lookup " + cells + " --mesh procedural:icosphere:1 --points " + pts, nullptr, &err), 2);

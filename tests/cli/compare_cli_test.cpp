@@ -22,14 +22,7 @@ std::string scene_json(const std::string &cells) {
 
 TEST(CompareCli, ReportsEveryShaderAndWritesASheet) {
     TempDir tmp;
-    const std::string preset = tmp.write("p.json", R"({"name": "t", "types": [
-        {"name": "F", "colour": [0.1, 0.05, 0.02], "division_time": "never", "initial_probability": 0.3},
-        {"name": "B", "colour": [0.9, 0.6, 0.3], "division_time": "never", "initial_probability": 0.7}],
-        "adhesion": [[0.5, 0.0], [0.0, 0.5]],
-        "simulation": {"initial_cells": 300, "initial_relax_steps": 5, "w_r": 2.0, "w_d": 0.1,
-                       "rho": 2, "end_time": 1, "relax": "global"}})");
-    ASSERT_EQ(run_pelage("sim --mesh procedural:icosphere:3 --preset " + preset + " -o " + tmp.file("s.cells")), 0);
-    const std::string scene = tmp.write("scene.json", scene_json(tmp.file("s.cells")));
+    const std::string scene = tmp.write("scene.json", scene_json(simulate_two_type_cells(tmp, "procedural:icosphere:3", 300)));
     std::string err;
     ASSERT_EQ(run_pelage("compare " + scene + " --lookups 1000 --report " + tmp.file("r.json") + " --sheet " +
                              tmp.file("sheet.png"), nullptr, &err),

@@ -11,22 +11,10 @@
 namespace pelage::test {
 namespace {
 
-std::string make_cells(const TempDir &tmp, const std::string &mesh) {
-    const std::string preset = tmp.write("p.json", R"({"name": "t", "types": [
-        {"name": "F", "colour": [0.1, 0.05, 0.02], "division_time": "never", "initial_probability": 0.4},
-        {"name": "B", "colour": [0.9, 0.6, 0.3], "division_time": "never", "initial_probability": 0.6}],
-        "adhesion": [[0.5, 0.0], [0.0, 0.5]],
-        "simulation": {"initial_cells": 500, "initial_relax_steps": 5, "w_r": 2.0, "w_d": 0.1,
-                       "rho": 2, "end_time": 1, "relax": "global"}})");
-    const std::string cells = tmp.file("s.cells");
-    EXPECT_EQ(run_pelage("sim --mesh " + mesh + " --preset " + preset + " -o " + cells), 0);
-    return cells;
-}
-
 TEST(Bake, AtlasTrianglesAreUndistortedCopiesOfTheFaces) {
     TempDir tmp;
     const std::string mesh = "procedural:icosphere:3";
-    const shader::MosaicPattern pattern(make_cells(tmp, mesh), mesh);
+    const shader::MosaicPattern pattern(simulate_two_type_cells(tmp, mesh, 500, 0.4), mesh);
     const shader::Atlas atlas = shader::pack_atlas(pattern.surface().crps, 1024);
     for (sim::TriId t = 0; t < pattern.num_triangles(); ++t)
         for (int c = 0; c < 3; ++c) {
@@ -41,7 +29,7 @@ TEST(Bake, AtlasTrianglesAreUndistortedCopiesOfTheFaces) {
 TEST(Bake, TexelsEqualTheRenderersLookup) {
     TempDir tmp;
     const std::string mesh = "procedural:icosphere:3";
-    const shader::MosaicPattern pattern(make_cells(tmp, mesh), mesh);
+    const shader::MosaicPattern pattern(simulate_two_type_cells(tmp, mesh, 500, 0.4), mesh);
     const int res = 512;
     const shader::BakedPattern baked = shader::bake_pattern(pattern, res);
     const auto id_at = [&](int x, int y) { return baked.pixels[(size_t(y) * res + x) * shader::BakedPattern::channels + 5]; };

@@ -23,19 +23,6 @@ std::string plugin_file() {
         .string();
 }
 
-// A small two-type mosaic on the icosphere, made by `pelage sim` as a user would.
-std::string make_cells(const TempDir &tmp) {
-    const std::string preset = tmp.write("p.json", R"({"name": "t", "types": [
-        {"name": "F", "colour": [0.1, 0.05, 0.02], "eumelanin": 0.8, "division_time": "never", "initial_probability": 0.3},
-        {"name": "B", "colour": [0.9, 0.6, 0.3], "pheomelanin": 0.5, "division_time": "never", "initial_probability": 0.7}],
-        "adhesion": [[0.5, 0.0], [0.0, 0.5]],
-        "simulation": {"initial_cells": 600, "initial_relax_steps": 10, "w_r": 2.0, "w_d": 0.1,
-                       "rho": 5, "end_time": 1, "relax": "global"}})");
-    const std::string cells = tmp.file("s.cells");
-    EXPECT_EQ(run_pelage("sim --mesh " + mesh_spec + " --preset " + preset + " -o " + cells + " --seed 2"), 0);
-    return cells;
-}
-
 struct Instance {
     renderer::LoadedPlugin plugin;
     renderer::PluginParams params;
@@ -78,7 +65,7 @@ struct Instance {
 
 TEST(ClonalMosaicPlugin, ColourAndAovsAreTheNearestCellsType) {
     TempDir tmp;
-    const std::string cells = make_cells(tmp);
+    const std::string cells = simulate_two_type_cells(tmp, mesh_spec, 600);
     const Instance inst({{"antialias", 0}}, cells.c_str());
     ASSERT_NE(inst.self, nullptr) << inst.error;
 
@@ -117,7 +104,7 @@ TEST(ClonalMosaicPlugin, ColourAndAovsAreTheNearestCellsType) {
 // percent of the cell spacing (0.14 here), as for antialiasing, that does not happen.
 TEST(ClonalMosaicPlugin, SoftBoundariesAreContinuous) {
     TempDir tmp;
-    const std::string cells = make_cells(tmp);
+    const std::string cells = simulate_two_type_cells(tmp, mesh_spec, 600);
     const Instance hard({{"antialias", 0}}, cells.c_str());
     const Instance soft({{"antialias", 0}, {"edge_width", 0.005}}, cells.c_str());
     ASSERT_NE(soft.self, nullptr) << soft.error;
@@ -139,7 +126,7 @@ TEST(ClonalMosaicPlugin, SoftBoundariesAreContinuous) {
 
 TEST(ClonalMosaicPlugin, RefusesMissingCellsWrongMeshAndBadParameters) {
     TempDir tmp;
-    const std::string cells = make_cells(tmp);
+    const std::string cells = simulate_two_type_cells(tmp, mesh_spec, 600);
     const Instance no_cells({}, nullptr);
     EXPECT_EQ(no_cells.self, nullptr);
     EXPECT_NE(no_cells.error.find("cells"), std::string::npos) << no_cells.error;
@@ -156,7 +143,7 @@ TEST(ClonalMosaicPlugin, RefusesMissingCellsWrongMeshAndBadParameters) {
 
 TEST(ClonalMosaicPlugin, PerTypeRoughnessOverridesTheMaterial) {
     TempDir tmp;
-    const std::string cells = make_cells(tmp);
+    const std::string cells = simulate_two_type_cells(tmp, mesh_spec, 600);
     const Instance inst({{"antialias", 0}, {"roughness", "F=0.25"}}, cells.c_str());
     ASSERT_NE(inst.self, nullptr) << inst.error;
     int f = 0, b = 0;
