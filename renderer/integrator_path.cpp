@@ -95,7 +95,9 @@ void PathIntegrator::render_tile(Film &film, Sampler &sampler, int x0, int y0, i
                             dy = m_filter.sample_1d(sampler.get_1d());
                 const float lu = sampler.get_1d(), lv = sampler.get_1d();
                 const CameraRay ray =
-                    m_camera.generate(x + 0.5f + dx, y + 0.5f + dy, lu, lv);
+                    m_motion ? m_motion(sampler.get_1d())
+                                   .generate(x + 0.5f + dx, y + 0.5f + dy, lu, lv)
+                             : m_camera.generate(x + 0.5f + dx, y + 0.5f + dy, lu, lv);
                 FilmSample fs;
                 FilmPointAovs aovs;
                 fs.L = radiance(ray, sampler, fs, s == 0 ? &aovs : nullptr, stats, log);
