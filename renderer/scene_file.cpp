@@ -344,6 +344,19 @@ TurntableDesc read_turntable(Reader r) {
         "target", t.target,
         {{"camera", TurntableDesc::Target::camera},
          {"object", TurntableDesc::Target::object}});
+    if (const json *v = r.take("objects")) {
+        const std::string f = r.field("objects");
+        if (t.target != TurntableDesc::Target::object)
+            r.fail(f, "only an object turntable turns objects (set \"target\": \"object\")");
+        if (!v->is_array() || v->empty())
+            r.fail(f, "expected a non-empty array of object names");
+        for (size_t i = 0; i < v->size(); ++i) {
+            if (!(*v)[i].is_string())
+                r.fail(f + "[" + std::to_string(i) + "]",
+                       std::string("expected an object name, got ") + type_name((*v)[i]));
+            t.objects.push_back((*v)[i].get<std::string>());
+        }
+    }
     if (const json *v = r.take("shutter")) {
         const std::string f = r.field("shutter");
         if (!v->is_array() || v->size() != 2)
@@ -493,6 +506,12 @@ SceneDesc parse_scene(const std::string &text, const std::string &path) {
 
     if (const json *v = r.take("animation"))
         scene.animation = read_animation(Reader(*v, "animation", scene));
+    if (const auto &tt = scene.animation.turntable)
+        for (size_t i = 0; i < tt->objects.size(); ++i)
+            if (std::none_of(scene.objects.begin(), scene.objects.end(),
+                             [&](const ObjectDesc &o) { return o.name == tt->objects[i]; }))
+                r.fail("animation.turntable.objects[" + std::to_string(i) + "]",
+                       "no object is named \"" + tt->objects[i] + "\"");
     for (size_t i = 0; i < scene.objects.size(); ++i) {
         const auto &d = scene.objects[i].deform;
         if (d.size() > 1 && int(d.size()) != scene.animation.frames)
@@ -561,7 +580,10 @@ SceneDesc scene_at_frame(const SceneDesc &scene, int frame) {
     if (tt && tt->target == TurntableDesc::Target::object) {
         const Affine m =
             rotation_about(tt->axis, tt->center, turntable_degrees(scene.animation, t0));
-        for (ObjectDesc &o : s.objects) o.transform = m * o.transform;
+        for (ObjectDesc &o : s.objects)
+            if (tt->objects.empty() ||
+                std::find(tt->objects.begin(), tt->objects.end(), o.name) != tt->objects.end())
+                o.transform = m * o.transform;
     }
     for (ObjectDesc &o : s.objects) {
         if (o.deform.empty()) continue;

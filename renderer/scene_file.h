@@ -92,6 +92,7 @@ struct TurntableDesc {
     Vec3f axis{0, 1, 0}, center{0, 0, 0};
     float degrees = 360;
     enum class Target { camera, object } target = Target::camera;
+    std::vector<std::string> objects;  // target object: the names turned ({} = all)
     float shutter_open = 0, shutter_close = 0;
     bool motion_blur() const { return shutter_close > shutter_open; }
 };

@@ -1,5 +1,6 @@
 // Turntables end to end: frame ranges split across runs give the same bytes as one run,
-// --resume skips exactly the complete frames and redoes a damaged one, bad animation
+// --resume skips exactly the complete frames and redoes a damaged one, an interrupted
+// frame is never written under its final name, bad animation
 // fields are exit 2 naming the JSON path, `pelage movie` reports missing frames, and the
 // clonal mosaic does not drift on a deforming mesh while worley and perlin do.
 #include <gtest/gtest.h>
@@ -103,6 +104,23 @@ TEST(TurntableCli, ResumeSkipsCompleteFramesAndRedoesADamagedOne) {
     EXPECT_EQ(st2["frames_skipped"], 4);
     EXPECT_EQ(st2["frames_rendered"], 0);
     // No temporaries are left behind.
+    for (const auto &e : fs::directory_iterator(tmp.path()))
+        EXPECT_NE(e.path().filename().string()[0], '.') << e.path();
+}
+
+TEST(TurntableCli, AnInterruptedFrameNeverLandsUnderItsName) {
+    TempDir tmp;
+    // Frame 0 cheap, frame 1 far too many samples: Ctrl-C (SIGINT after 3 s) stops it.
+    const std::string scene = tmp.write("s.json", turntable_scene(R"({"degrees": 90})"));
+    ASSERT_EQ(run_pelage("render " + scene + " -q --frames 0 -o " + tmp.file("f.####.exr")), 0);
+    const std::string cmd = "timeout --preserve-status -s INT 3 " + std::string(PELAGE_BINARY) +
+                            " render " + scene + " -q --spp 1000000 --frames 1-2 -o " +
+                            tmp.file("f.####.exr") + " 2>" + tmp.file("err.txt");
+    EXPECT_EQ(WEXITSTATUS(std::system(cmd.c_str())), 1);
+    EXPECT_NE(slurp(tmp.file("err.txt")).find("not written"), std::string::npos);
+    EXPECT_TRUE(fs::exists(tmp.file("f.0000.exr")));
+    EXPECT_FALSE(fs::exists(tmp.file("f.0001.exr")));
+    EXPECT_FALSE(fs::exists(tmp.file("f.0002.exr")));
     for (const auto &e : fs::directory_iterator(tmp.path()))
         EXPECT_NE(e.path().filename().string()[0], '.') << e.path();
 }

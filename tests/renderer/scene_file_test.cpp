@@ -116,6 +116,18 @@ TEST(SceneFile, TurntableOrbitsTheCameraOrTurnsTheObjects) {
     EXPECT_NEAR(p.z, -1, 1e-5);
     // Bad fields name their JSON path.
     EXPECT_EQ(field_of(base + R"(camera", "degrees": "a lot"}}})"), "animation.turntable.degrees");
+    EXPECT_EQ(field_of(base + R"(object", "objects": ["cow"]}}})"),
+              "animation.turntable.objects[0]");
+    EXPECT_EQ(field_of(base + R"(camera", "objects": ["object0"]}}})"),
+              "animation.turntable.objects");
+    // Only the named objects turn.
+    const SceneDesc named = parse_scene(
+        R"({"camera": {}, "objects": [{"name": "cow", "mesh": "procedural:icosphere:1"},
+            {"name": "ground", "mesh": "procedural:plane:1x1", "transform": {"translate": [1, 0, 0]}}],
+            "animation": {"frames": 4, "turntable": {"target": "object", "objects": ["cow"]}}})",
+        "/s.json");
+    EXPECT_TRUE(scene_at_frame(named, 1).objects[1].transform.m[0][3] == 1.0f);
+    EXPECT_FALSE(scene_at_frame(named, 1).objects[0].transform.is_identity());
     EXPECT_EQ(field_of(R"({"camera": {}, "objects": [], "lights": [{"type": "environment"}], "animation": {"fps": -1}})"),
               "animation.fps");
 }
