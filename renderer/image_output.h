@@ -24,6 +24,7 @@ struct ImageMetadata {
     double render_seconds = 0;
     bool interrupted = false;
     int frame = -1;            // animation frame (pelage:frame), -1 = a still
+    double fps = 0;            // animation.fps (pelage:fps), 0 = none
     bool record_time = true;   // false: no pelage:render_seconds, so that the same frame
                                // rendered twice (another machine, --resume) is the same file
 };

@@ -73,6 +73,12 @@ std::vector<FrameFile> find_frame_sequence(const std::string &pattern,
     return frames;
 }
 
+double recorded_fps(const std::string &exr) {
+    auto in = OIIO::ImageInput::open(exr);
+    if (!in) return 0;
+    return double(in->spec().get_float_attribute("pelage:fps", 0.0f));
+}
+
 std::string find_ffmpeg() {
     const char *path = std::getenv("PATH");
     if (!path) return "";

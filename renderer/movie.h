@@ -21,6 +21,10 @@ struct FrameFile {
 std::vector<FrameFile> find_frame_sequence(const std::string &pattern,
                                            const std::string &field);
 
+// The frame rate recorded in an EXR by `pelage render --frames` (pelage:fps, from the
+// scene's animation.fps), or 0.
+double recorded_fps(const std::string &exr);
+
 // The ffmpeg executable on $PATH, or "" when there is none.
 std::string find_ffmpeg();
 

@@ -13,7 +13,7 @@ namespace {
 
 struct MovieCliOptions {
     std::string pattern, output, view = "Standard";
-    double fps = 24;
+    double fps = 0;  // 0: the frames' pelage:fps, else 24
     bool quiet = false;
 };
 
@@ -34,10 +34,13 @@ int run(const MovieCliOptions &o) {
                      frames.size());
         return 1;
     }
-    renderer::encode_movie(frames, o.output, o.fps, display, ffmpeg);
+    double fps = o.fps;
+    if (fps <= 0) fps = renderer::recorded_fps(frames.front().path);
+    if (fps <= 0) fps = 24;
+    renderer::encode_movie(frames, o.output, fps, display, ffmpeg);
     if (!o.quiet)
         std::printf("%s: %zu frames (%d-%d) at %g fps, view %s\n", o.output.c_str(),
-                    frames.size(), frames.front().frame, frames.back().frame, o.fps,
+                    frames.size(), frames.front().frame, frames.back().frame, fps,
                     o.view.c_str());
     return 0;
 }
@@ -50,7 +53,10 @@ Runner add_movie_command(CLI::App &app) {
         "movie", "Encode an EXR sequence (out.####.exr) to a movie with ffmpeg");
     sub->add_option("frames", o->pattern, "Frame pattern, e.g. out.####.exr")->required();
     sub->add_option("-o,--output", o->output, "Movie file (.mp4)")->required();
-    sub->add_option("--fps", o->fps, "Frames per second")->check(CLI::Range(0.001, 1000.0));
+    sub->add_option("--fps", o->fps,
+                    "Frames per second (default: the scene's animation.fps recorded in the "
+                    "frames, else 24)")
+        ->check(CLI::Range(0.001, 1000.0));
     sub->add_option("--view", o->view, "OpenColorIO view (Standard, Filmic, Raw)");
     sub->add_flag("-q,--quiet", o->quiet, "No summary line");
     return [o] { return run(*o); };

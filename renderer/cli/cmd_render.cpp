@@ -204,6 +204,7 @@ int run(const RenderCliOptions &o) {
         meta.interrupted = r.interrupted;
         if (animated) {
             meta.frame = f;
+            if (desc.animation.present) meta.fps = desc.animation.fps;
             meta.record_time = false;  // frames are byte-identical wherever rendered
         }
         write_exr(out_f, fd.film.width, fd.film.height, pixels,
