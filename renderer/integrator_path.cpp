@@ -256,7 +256,7 @@ Rgb PathIntegrator::radiance(CameraRay cam, Sampler &sampler, FilmSample &fs,
             fs.albedo = albedo;
             fs.normal = v.ns;
             if (aovs) {
-                aovs->depth = t_hit * dot(d, m_camera.forward());
+                aovs->depth = t_hit * dot(d, cam.forward);  // motion blur: this sample's camera
                 aovs->object_id = float(object);
                 aovs->primitive_id = float(prim);
                 if (sh.aov_written)
