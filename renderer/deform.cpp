@@ -11,16 +11,16 @@ void apply_pose(sim::TriangleMesh &rest, const std::string &pose_path, float wei
     try {
         pose = sim::load_mesh(pose_path);
     } catch (const InputError &e) {
-        throw InputError(e.file(), e.line(), e.field(),
-                         std::string(e.what()).substr(std::string(e.what()).find(": ") +
-                                                      2) +
-                             " (" + field + " in " + scene_path + ")");
+        throw InputError(
+            e.file(), e.line(), e.field(),
+            std::string(e.what()).substr(std::string(e.what()).find(": ") + 2) + " (" +
+                field + " in " + scene_path + ")");
     }
     // --- Same topology: vertex count, triangle count and every index ---
     auto mismatch = [&](const std::string &what) {
-        throw InputError(scene_path, 0, field,
-                         "\"" + pose_path + "\" does not have the rest mesh's topology: " +
-                             what);
+        throw InputError(
+            scene_path, 0, field,
+            "\"" + pose_path + "\" does not have the rest mesh's topology: " + what);
     };
     if (pose.num_vertices() != rest.num_vertices())
         mismatch(std::to_string(pose.num_vertices()) + " vertices, the rest mesh has " +

@@ -23,8 +23,9 @@ std::vector<FrameFile> find_frame_sequence(const std::string &pattern,
     const size_t last = name.find_last_of('#');
     if (last == std::string::npos)
         throw InputError("", 0, field,
-                         "\"" + pattern + "\": expected a frame pattern such as "
-                                          "out.####.exr");
+                         "\"" + pattern +
+                             "\": expected a frame pattern such as "
+                             "out.####.exr");
     size_t first = last;
     while (first > 0 && name[first - 1] == '#') --first;
     const std::string prefix = name.substr(0, first), suffix = name.substr(last + 1);
@@ -49,8 +50,9 @@ std::vector<FrameFile> find_frame_sequence(const std::string &pattern,
     }
     if (frames.empty())
         throw InputError("", 0, field,
-                         "\"" + pattern + "\": no frames found (render them with "
-                                          "pelage render --frames)");
+                         "\"" + pattern +
+                             "\": no frames found (render them with "
+                             "pelage render --frames)");
     std::sort(frames.begin(), frames.end(),
               [](const FrameFile &a, const FrameFile &b) { return a.frame < b.frame; });
     for (size_t i = 1; i < frames.size(); ++i) {
@@ -64,9 +66,9 @@ std::vector<FrameFile> find_frame_sequence(const std::string &pattern,
             throw InputError(
                 "", 0, field,
                 "\"" + pattern + "\": frame" + (a == b ? " " : "s ") + std::to_string(a) +
-                    (a == b ? "" : "-" + std::to_string(b)) + " missing (the sequence has " +
-                    std::to_string(frames.front().frame) + "-" +
-                    std::to_string(frames.back().frame) +
+                    (a == b ? "" : "-" + std::to_string(b)) +
+                    " missing (the sequence has " + std::to_string(frames.front().frame) +
+                    "-" + std::to_string(frames.back().frame) +
                     "; render them, e.g. with pelage render --resume)");
         }
     }
@@ -128,9 +130,11 @@ std::vector<unsigned char> read_display_rgb(const std::string &path, int *w, int
 }  // namespace
 
 void encode_movie(const std::vector<FrameFile> &frames, const std::string &output,
-                  double fps, const DisplayTransform &display, const std::string &ffmpeg) {
+                  double fps, const DisplayTransform &display,
+                  const std::string &ffmpeg) {
     int w = 0, h = 0;
-    std::vector<unsigned char> first = read_display_rgb(frames.front().path, &w, &h, display);
+    std::vector<unsigned char> first =
+        read_display_rgb(frames.front().path, &w, &h, display);
     const fs::path out(output);
     const std::string tmp =
         (out.parent_path() / ("." + out.stem().string() + ".tmp" +
@@ -161,8 +165,9 @@ void encode_movie(const std::vector<FrameFile> &frames, const std::string &outpu
         }
         if (fw != w || fh != h) {
             ok = false;
-            error = frames[i].path + ": " + std::to_string(fw) + "x" + std::to_string(fh) +
-                    ", the first frame is " + std::to_string(w) + "x" + std::to_string(h);
+            error = frames[i].path + ": " + std::to_string(fw) + "x" +
+                    std::to_string(fh) + ", the first frame is " + std::to_string(w) +
+                    "x" + std::to_string(h);
             break;
         }
         if (std::fwrite(rgb.data(), 1, rgb.size(), pipe) != rgb.size()) {
@@ -182,8 +187,8 @@ void encode_movie(const std::vector<FrameFile> &frames, const std::string &outpu
     fs::rename(tmp, output, ec);
     if (ec) {
         fs::remove(tmp, ec);
-        throw std::runtime_error(output + ": cannot move the movie into place: " +
-                                 ec.message());
+        throw std::runtime_error(output +
+                                 ": cannot move the movie into place: " + ec.message());
     }
 }
 

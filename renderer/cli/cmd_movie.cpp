@@ -21,8 +21,9 @@ int run(const MovieCliOptions &o) {
     namespace fs = std::filesystem;
     const fs::path dir = fs::absolute(fs::path(o.output)).parent_path();
     if (!fs::is_directory(dir))
-        throw InputError("", 0, "-o",
-                         "\"" + o.output + "\": folder " + dir.string() + " does not exist");
+        throw InputError(
+            "", 0, "-o",
+            "\"" + o.output + "\": folder " + dir.string() + " does not exist");
     const auto frames = renderer::find_frame_sequence(o.pattern, "frames");
     const renderer::DisplayTransform display(o.view, "");
     const std::string ffmpeg = renderer::find_ffmpeg();
@@ -53,9 +54,10 @@ Runner add_movie_command(CLI::App &app) {
         "movie", "Encode an EXR sequence (out.####.exr) to a movie with ffmpeg");
     sub->add_option("frames", o->pattern, "Frame pattern, e.g. out.####.exr")->required();
     sub->add_option("-o,--output", o->output, "Movie file (.mp4)")->required();
-    sub->add_option("--fps", o->fps,
-                    "Frames per second (default: the scene's animation.fps recorded in the "
-                    "frames, else 24)")
+    sub->add_option(
+           "--fps", o->fps,
+           "Frames per second (default: the scene's animation.fps recorded in the "
+           "frames, else 24)")
         ->check(CLI::Range(0.001, 1000.0));
     sub->add_option("--view", o->view, "OpenColorIO view (Standard, Filmic, Raw)");
     sub->add_flag("-q,--quiet", o->quiet, "No summary line");
