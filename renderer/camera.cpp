@@ -24,13 +24,13 @@ CameraRay Camera::generate(float x, float y, float u1, float u2) const {
     const float sx = x * m_scale_x - m_tan_half_h * m_aspect;
     const float sy = m_tan_half_h - y * m_scale_y;
     Vec3f dir = m_u * sx + m_v * sy + m_w;
-    if (m_lens_radius <= 0) return {m_pos, normalize(dir)};
+    if (m_lens_radius <= 0) return {m_pos, normalize(dir), m_w};
     // --- Thin lens: aim from a lens point at the in-focus point ---
     float lx, ly;
     sample_disk(u1, u2, &lx, &ly);
     const Vec3f lens = m_u * (lx * m_lens_radius) + m_v * (ly * m_lens_radius);
     const Vec3f focus = dir * m_focus;  // the focus plane is at depth m_focus along m_w
-    return {m_pos + lens, normalize(focus - lens)};
+    return {m_pos + lens, normalize(focus - lens), m_w};
 }
 
 }  // namespace pelage::renderer

@@ -1,6 +1,8 @@
 #include "renderer/compare.h"
 
+#include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <random>
 
 #include "renderer/film.h"
@@ -96,6 +98,79 @@ CompareResult compare_shaders(const SceneDesc &desc, const CompareOptions &optio
         result.runs.push_back(std::move(run));
     }
     return result;
+}
+
+DriftResult measure_pattern_drift(const SceneDesc &desc, const CompareOptions &options) {
+    DriftResult result;
+    bool found = false;
+    for (size_t i : patterned_objects(desc))
+        if (!desc.objects[i].deform.empty()) {
+            result.object = i;
+            found = true;
+            break;
+        }
+    if (!found)
+        throw InputError(desc.path, 0, "objects",
+                         "--deform needs a patterned object with a \"deform\" mesh (a "
+                         "second pose with the same topology)");
+    const size_t obj = result.object;
+    result.pose = desc.objects[obj].deform.back();
+    const PluginRegistry plugins;
+    std::vector<PelageHit> hits = sample_hits(desc, obj, options.lookups, options.seed);
+
+    // Each hit's position on a scene's mesh (object space), as the renderer would pass it.
+    auto place = [&](const Scene &scene, std::vector<PelageHit> &hs) {
+        const MeshData &m = *scene.geometry().objects()[obj].mesh;
+        for (PelageHit &h : hs) {
+            const uint32_t *t = &m.triangles[3 * size_t(h.primitive_id)];
+            const float b0 = 1 - h.b1 - h.b2;
+            for (int k = 0; k < 3; ++k)
+                h.p[k] = b0 * m.object_positions[3 * t[0] + k] +
+                         h.b1 * m.object_positions[3 * t[1] + k] +
+                         h.b2 * m.object_positions[3 * t[2] + k];
+        }
+    };
+    for (const std::string &shader : options.shaders) {
+        SceneDesc d = desc;
+        for (size_t i : patterned_objects(desc)) {
+            MaterialDesc &m = d.objects[i].material;
+            if (m.shader != shader) m.params = nlohmann::json::object();
+            m.shader = shader;
+        }
+        d.objects[obj].deform_mesh.clear();
+        d.objects[obj].deform_weight = 0;
+        const Scene rest(d, plugins);
+        d.objects[obj].deform_mesh = result.pose;
+        d.objects[obj].deform_weight = 1;
+        const Scene pose(d, plugins);
+
+        std::vector<PelageHit> at_rest = hits, at_pose = hits;
+        place(rest, at_rest);
+        place(pose, at_pose);
+        const Material &mr = rest.materials()[obj], &mp = pose.materials()[obj];
+        DriftRun run{shader, 0, 0, hits.size()};
+        double sum = 0;
+        for (size_t i = 0; i < hits.size(); ++i) {
+            PelageShade a{}, b{};
+            mr.plugin->shade(mr.instance, &at_rest[i], &a);
+            mp.plugin->shade(mp.instance, &at_pose[i], &b);
+            double d3 = 0;
+            for (int c = 0; c < 3; ++c) d3 += std::abs(double(a.albedo[c]) - b.albedo[c]);
+            d3 /= 3;
+            sum += d3;
+            run.max = std::max(run.max, d3);
+        }
+        run.mean = hits.empty() ? 0 : sum / double(hits.size());
+        result.runs.push_back(run);
+    }
+    return result;
+}
+
+nlohmann::json DriftResult::report() const {
+    nlohmann::json drift = nlohmann::json::object();
+    for (const DriftRun &r : runs)
+        drift[r.shader] = {{"mean", r.mean}, {"max", r.max}, {"points", r.points}};
+    return {{"object", object}, {"pose", pose}, {"pattern_drift", drift}};
 }
 
 nlohmann::json CompareResult::report() const {

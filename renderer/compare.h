@@ -31,6 +31,25 @@ struct CompareResult {
     nlohmann::json report() const;  // the `--report` contract (README, issue 5)
 };
 
+// Pattern drift under deformation: for each shader, the mean (and max) over `points`
+// area-uniform surface points (triangle, barycentrics) of the rest mesh of
+// |albedo(rest) - albedo(pose)|, averaged over R, G, B. The pose is the object's last
+// "deform" mesh. A pattern attached to the surface (clonal_mosaic) has drift 0; one on
+// object-space position (worley, perlin) swims.
+struct DriftRun {
+    std::string shader;
+    double mean = 0, max = 0;
+    size_t points = 0;
+};
+struct DriftResult {
+    size_t object = 0;  // the deforming patterned object measured
+    std::string pose;   // its pose mesh
+    std::vector<DriftRun> runs;
+    nlohmann::json report() const;
+};
+// InputError when no patterned object has a "deform".
+DriftResult measure_pattern_drift(const SceneDesc &desc, const CompareOptions &options);
+
 // The patterned objects are those with a "cells" file or the clonal_mosaic shader; each
 // shader is applied to them with the scene's params when the scene names that shader and
 // the plugin's defaults otherwise. InputError when the scene has no patterned object.

@@ -3,7 +3,9 @@
 #include <cmath>
 #include <map>
 #include <stdexcept>
+#include <tuple>
 
+#include "renderer/deform.h"
 #include "sim/input_error.h"
 #include "sim/mesh_load.h"
 
@@ -23,6 +25,9 @@ std::shared_ptr<MeshData> load_mesh_data(const ObjectDesc &o,
             std::string(e.what()).substr(std::string(e.what()).find(": ") + 2) +
                 " (objects[" + std::to_string(index) + "].mesh in " + scene_path + ")");
     }
+    if (!o.deform_mesh.empty() && o.deform_weight > 0)
+        apply_pose(mesh, o.deform_mesh, o.deform_weight, scene_path,
+                   "objects[" + std::to_string(index) + "].deform");
     auto m = std::make_shared<MeshData>();
     m->source = o.mesh;
     m->num_vertices = uint32_t(mesh.num_vertices());
@@ -133,14 +138,21 @@ EmbreeScene::EmbreeScene(const SceneDesc &scene) {
     rtcSetSceneBuildQuality(m_scene, RTC_BUILD_QUALITY_HIGH);
 
     // --- Load each distinct mesh once; count its users ---
-    std::map<std::pair<std::string, int>, std::shared_ptr<MeshData>> loaded;
-    std::map<std::pair<std::string, int>, int> users;
-    for (const auto &o : scene.objects) ++users[{o.mesh, int(o.normals)}];
-    std::map<std::pair<std::string, int>, RTCScene> child_of;
+    // A mesh is its file, its normals and its pose.
+    using Key = std::tuple<std::string, int, std::string, float>;
+    auto key_of = [](const ObjectDesc &o) {
+        return o.deform_weight > 0
+                   ? Key{o.mesh, int(o.normals), o.deform_mesh, o.deform_weight}
+                   : Key{o.mesh, int(o.normals), std::string(), 0.0f};
+    };
+    std::map<Key, std::shared_ptr<MeshData>> loaded;
+    std::map<Key, int> users;
+    for (const auto &o : scene.objects) ++users[key_of(o)];
+    std::map<Key, RTCScene> child_of;
     m_objects.resize(scene.objects.size());
     for (size_t i = 0; i < scene.objects.size(); ++i) {
         const ObjectDesc &o = scene.objects[i];
-        const auto key = std::make_pair(o.mesh, int(o.normals));
+        const Key key = key_of(o);
         auto &mesh = loaded[key];
         if (!mesh) mesh = load_mesh_data(o, scene.path, i);
         ObjectGeometry &og = m_objects[i];

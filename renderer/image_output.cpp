@@ -1,10 +1,13 @@
 #include "renderer/image_output.h"
 
+#include <Imath/half.h>
 #include <OpenImageIO/imageio.h>
 #include <unistd.h>
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <stdexcept>
 
@@ -47,7 +50,68 @@ void write_atomically(const std::string &path, const OIIO::ImageSpec &spec,
     }
 }
 
+std::string fmt_hash(uint64_t h) {
+    char buf[17];
+    std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(h));
+    return buf;
+}
+
 }  // namespace
+
+uint64_t pixel_hash(const void *data, size_t pixels,
+                    const std::vector<std::string> &names,
+                    const std::vector<int> &channel_bytes) {
+    // FNV-1a, 64 bit, over the stored bytes (half or float), channel by channel in name
+    // order: OpenEXR keeps channels sorted, so the order read back may not be the order
+    // written.
+    const size_t nc = names.size();
+    std::vector<size_t> offset(nc, 0), order(nc);
+    size_t stride = 0;
+    for (size_t c = 0; c < nc; ++c) {
+        offset[c] = stride;
+        stride += size_t(channel_bytes[c]);
+        order[c] = c;
+    }
+    std::sort(order.begin(), order.end(),
+              [&](size_t x, size_t y) { return names[x] < names[y]; });
+    uint64_t h = 0xcbf29ce484222325ull;
+    const auto *bytes = static_cast<const unsigned char *>(data);
+    for (const size_t c : order) {
+        for (const char ch : names[c]) h = (h ^ static_cast<unsigned char>(ch)) * 0x100000001b3ull;
+        for (size_t i = 0; i < pixels; ++i) {
+            const unsigned char *p = bytes + i * stride + offset[c];
+            for (int k = 0; k < channel_bytes[c]; ++k) h = (h ^ p[k]) * 0x100000001b3ull;
+        }
+    }
+    return h;
+}
+
+bool exr_is_complete(const std::string &path, std::string *why) {
+    auto no = [why](const std::string &reason) {
+        if (why) *why = reason;
+        return false;
+    };
+    std::error_code ec;
+    if (!fs::is_regular_file(path, ec)) return no("no file");
+    auto in = OIIO::ImageInput::open(path);
+    if (!in) return no("unreadable header: " + OIIO::geterror());
+    const OIIO::ImageSpec spec = in->spec();
+    const std::string want = spec.get_string_attribute("pelage:pixel_hash");
+    if (want.empty()) return no("no pelage:pixel_hash in the header");
+    if (spec.get_int_attribute("pelage:interrupted", 0) != 0)
+        return no("an interrupted render");
+    // Native per-channel data: exactly the bytes write_exr hashed.
+    std::vector<unsigned char> native(spec.image_bytes(true));
+    if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::UNKNOWN, native.data()))
+        return no("unreadable pixels: " + in->geterror());
+    in->close();
+    std::vector<int> sizes(spec.nchannels);
+    for (int c = 0; c < spec.nchannels; ++c) sizes[c] = int(spec.channelformat(c).size());
+    if (fmt_hash(pixel_hash(native.data(), size_t(spec.width) * spec.height,
+                            spec.channelnames, sizes)) != want)
+        return no("pixel checksum mismatch");
+    return true;
+}
 
 void write_exr(const std::string &path, int width, int height,
                const std::vector<float> &pixels, const std::vector<std::string> &names,
@@ -73,9 +137,30 @@ void write_exr(const std::string &path, int width, int height,
     spec.attribute("pelage:scene", meta.scene);
     spec.attribute("pelage:spp", meta.spp);
     spec.attribute("pelage:seed", std::to_string(meta.seed));
-    spec.attribute("pelage:render_seconds", float(meta.render_seconds));
+    if (meta.record_time)
+        spec.attribute("pelage:render_seconds", float(meta.render_seconds));
     spec.attribute("pelage:interrupted", int(meta.interrupted));
-    write_atomically(path, spec, pixels.data(), OIIO::TypeDesc::FLOAT);
+    if (meta.frame >= 0) spec.attribute("pelage:frame", meta.frame);
+    if (meta.fps > 0) spec.attribute("pelage:fps", float(meta.fps));
+    if (!meta.record_time) spec.attribute("DateTime", "");  // no capDate: same bytes
+    // --- Convert to the stored per-channel types here, so the hash is of those bytes ---
+    std::vector<unsigned char> native(spec.image_bytes(true));
+    unsigned char *dst = native.data();
+    for (size_t i = 0; i < pixels.size(); ++i) {
+        if (spec.channelformats[i % nc] == OIIO::TypeDesc::HALF) {
+            const uint16_t bits = Imath::half(pixels[i]).bits();
+            std::memcpy(dst, &bits, 2);
+            dst += 2;
+        } else {
+            std::memcpy(dst, &pixels[i], 4);
+            dst += 4;
+        }
+    }
+    std::vector<int> sizes(nc);
+    for (int c = 0; c < nc; ++c) sizes[c] = int(spec.channelformats[c].size());
+    spec.attribute("pelage:pixel_hash",
+                   fmt_hash(pixel_hash(native.data(), size_t(width) * height, names, sizes)));
+    write_atomically(path, spec, native.data(), OIIO::TypeDesc::UNKNOWN);
 }
 
 void write_preview(const std::string &path, int width, int height,

@@ -8,6 +8,7 @@
 //   * PNG/JPEG preview: the beauty through an OCIO display transform, 8 bits per channel.
 #pragma once
 
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -22,7 +23,21 @@ struct ImageMetadata {
     unsigned long long seed = 0;
     double render_seconds = 0;
     bool interrupted = false;
+    int frame = -1;            // animation frame (pelage:frame), -1 = a still
+    double fps = 0;            // animation.fps (pelage:fps), 0 = none
+    bool record_time = true;   // false: no pelage:render_seconds, so that the same frame
+                               // rendered twice (another machine, --resume) is the same file
 };
+
+// A checksum of the pixels as the EXR stores them (`data`: packed pixels, each channel
+// `channel_bytes` wide), independent of channel order,
+// written as pelage:pixel_hash, so a frame can be checked complete (--resume).
+uint64_t pixel_hash(const void *data, size_t pixels, const std::vector<std::string> &names,
+                    const std::vector<int> &channel_bytes);
+
+// True when `path` is an EXR pelage wrote completely: the header reads, every pixel
+// reads, and the pixels hash to pelage:pixel_hash. Otherwise false with the reason.
+bool exr_is_complete(const std::string &path, std::string *why = nullptr);
 
 // `pixels`: Film::num_channels interleaved floats per pixel (Film::resolve()).
 void write_exr(const std::string &path, int width, int height,

@@ -95,7 +95,9 @@ void PathIntegrator::render_tile(Film &film, Sampler &sampler, int x0, int y0, i
                             dy = m_filter.sample_1d(sampler.get_1d());
                 const float lu = sampler.get_1d(), lv = sampler.get_1d();
                 const CameraRay ray =
-                    m_camera.generate(x + 0.5f + dx, y + 0.5f + dy, lu, lv);
+                    m_motion ? m_motion(sampler.get_1d())
+                                   .generate(x + 0.5f + dx, y + 0.5f + dy, lu, lv)
+                             : m_camera.generate(x + 0.5f + dx, y + 0.5f + dy, lu, lv);
                 FilmSample fs;
                 FilmPointAovs aovs;
                 fs.L = radiance(ray, sampler, fs, s == 0 ? &aovs : nullptr, stats, log);
@@ -254,7 +256,7 @@ Rgb PathIntegrator::radiance(CameraRay cam, Sampler &sampler, FilmSample &fs,
             fs.albedo = albedo;
             fs.normal = v.ns;
             if (aovs) {
-                aovs->depth = t_hit * dot(d, m_camera.forward());
+                aovs->depth = t_hit * dot(d, cam.forward);  // motion blur: this sample's camera
                 aovs->object_id = float(object);
                 aovs->primitive_id = float(prim);
                 if (sh.aov_written)

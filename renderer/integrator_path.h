@@ -6,6 +6,8 @@
 // continuation probability min(0.95, max(β)).
 #pragma once
 
+#include <functional>
+
 #include <cstdint>
 #include <vector>
 
@@ -51,6 +53,12 @@ class PathIntegrator {
     void render_tile(Film &film, Sampler &sampler, int x0, int y0, int x1, int y1, int s0,
                      int s1, RenderStats &stats, std::vector<RecordedRay> *log) const;
 
+    // Camera motion blur: each sample draws a shutter position u in [0, 1) (one sampler
+    // dimension after the lens) and traces from motion(u). Unset: the fixed camera.
+    void set_camera_motion(std::function<Camera(float)> motion) {
+        m_motion = std::move(motion);
+    }
+
   private:
     Rgb radiance(CameraRay ray, Sampler &sampler, FilmSample &fs, FilmPointAovs *aovs,
                  RenderStats &stats, std::vector<RecordedRay> *log) const;
@@ -62,6 +70,7 @@ class PathIntegrator {
     int m_max_depth, m_rr_depth;
     float m_pixel_spread;  // radians per pixel, for ray footprints
     double m_timer_overhead;
+    std::function<Camera(float)> m_motion;
 };
 
 }  // namespace pelage::renderer

@@ -18,9 +18,12 @@ RenderResult render(const Scene &scene, const RenderOptions &opt) {
     const auto t0 = std::chrono::steady_clock::now();
     const FilmDesc &fd = scene.desc().film;
     const int W = fd.width, H = fd.height, spp = fd.spp;
-    const Camera camera(scene.desc().camera, W, H);
+    const Camera camera(opt.camera ? *opt.camera : scene.desc().camera, W, H);
     const PixelFilter filter(fd.filter, fd.filter_radius);
-    const PathIntegrator integrator(scene, camera, filter, W, H);
+    PathIntegrator integrator(scene, camera, filter, W, H);
+    if (opt.camera_motion)
+        integrator.set_camera_motion(
+            [&opt, W, H](float u) { return Camera(opt.camera_motion(u), W, H); });
 
     RenderResult result;
     result.film = std::make_unique<Film>(W, H);

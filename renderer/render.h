@@ -7,6 +7,8 @@
 #pragma once
 
 #include <atomic>
+#include <functional>
+#include <optional>
 #include <memory>
 #include <vector>
 
@@ -22,6 +24,10 @@ struct RenderOptions {
     const std::atomic<bool> *cancel = nullptr;
     bool progress = false;     // draw a progress bar (the caller checks for a TTY)
     bool record_rays = false;  // keep every ray cast (benchmarks only)
+    // Animation: the camera to use instead of the scene's, and camera motion blur (the
+    // camera at shutter position u in [0, 1)); both optional.
+    std::optional<CameraDesc> camera;
+    std::function<CameraDesc(float)> camera_motion;
 };
 
 struct RenderResult {

@@ -148,6 +148,7 @@ class Reader {
             if (!m_taken.count(it.key())) fail(field(it.key()), "unknown field");
     }
     const std::string &path_prefix() const { return m_path; }
+    static const SceneDesc &scene_of(const Reader &r) { return r.m_scene; }
 
     double check_number(const json &v, const std::string &f, double lo, double hi) const {
         if (!v.is_number())
@@ -332,6 +333,57 @@ MaterialDesc read_material(Reader r) {
     return m;
 }
 
+TurntableDesc read_turntable(Reader r) {
+    TurntableDesc t;
+    t.axis = r.vec3("axis", t.axis);
+    if (!(length(t.axis) > 0)) r.fail(r.field("axis"), "must not be zero");
+    t.axis = normalize(t.axis);
+    t.center = r.vec3("center", t.center);
+    t.degrees = float(r.number("degrees", t.degrees, -36000, 36000));
+    t.target = r.choice<TurntableDesc::Target>(
+        "target", t.target,
+        {{"camera", TurntableDesc::Target::camera},
+         {"object", TurntableDesc::Target::object}});
+    if (const json *v = r.take("objects")) {
+        const std::string f = r.field("objects");
+        if (t.target != TurntableDesc::Target::object)
+            r.fail(f, "only an object turntable turns objects (set \"target\": \"object\")");
+        if (!v->is_array() || v->empty())
+            r.fail(f, "expected a non-empty array of object names");
+        for (size_t i = 0; i < v->size(); ++i) {
+            if (!(*v)[i].is_string())
+                r.fail(f + "[" + std::to_string(i) + "]",
+                       std::string("expected an object name, got ") + type_name((*v)[i]));
+            t.objects.push_back((*v)[i].get<std::string>());
+        }
+    }
+    if (const json *v = r.take("shutter")) {
+        const std::string f = r.field("shutter");
+        if (!v->is_array() || v->size() != 2)
+            r.fail(f, "expected [open, close] in frames, within [0, 1]");
+        t.shutter_open = float(r.check_number((*v)[0], f + "[0]", 0, 1));
+        t.shutter_close = float(r.check_number((*v)[1], f + "[1]", 0, 1));
+        if (t.shutter_close < t.shutter_open)
+            r.fail(f + "[1]", "the shutter closes before it opens");
+        if (t.motion_blur() && t.target == TurntableDesc::Target::object)
+            r.fail(f, "motion blur is camera-only: an object turntable takes no open "
+                      "shutter (use \"target\": \"camera\")");
+    }
+    r.finish();
+    return t;
+}
+
+AnimationDesc read_animation(Reader r) {
+    AnimationDesc a;
+    a.present = true;
+    a.frames = r.integer("frames", a.frames, 1, 1000000);
+    a.fps = r.number("fps", a.fps, 0.001, 1000);
+    if (const json *v = r.take("turntable"))
+        a.turntable = read_turntable(Reader(*v, r.field("turntable"), Reader::scene_of(r)));
+    r.finish();
+    return a;
+}
+
 ObjectDesc read_object(Reader r, size_t index) {
     ObjectDesc o;
     o.name = r.string("name", "object" + std::to_string(index));
@@ -343,6 +395,27 @@ ObjectDesc read_object(Reader r, size_t index) {
                                               {{"auto", ObjectDesc::Normals::automatic},
                                                {"flat", ObjectDesc::Normals::flat},
                                                {"smooth", ObjectDesc::Normals::smooth}});
+    // "deform": "pose.obj" or ["frame0.obj", "frame1.obj", ...]
+    if (const json *v = r.take("deform")) {
+        const std::string f = r.field("deform");
+        auto one = [&](const json &e, const std::string &ef) {
+            if (!e.is_string() || e.get<std::string>().empty())
+                r.fail(ef, std::string("expected a mesh path, got ") +
+                               (e.is_string() ? "an empty string" : type_name(e)));
+            o.deform.push_back(r.resolve(e.get<std::string>()));
+        };
+        if (v->is_array()) {
+            if (v->empty()) r.fail(f, "empty list of meshes");
+            for (size_t i = 0; i < v->size(); ++i)
+                one((*v)[i], f + "[" + std::to_string(i) + "]");
+        } else {
+            one(*v, f);
+        }
+        if (o.mesh.rfind("procedural:", 0) == 0)
+            r.fail(f, "a procedural mesh cannot deform (give the rest pose as a file)");
+        o.deform_mesh = o.deform.back();
+        o.deform_weight = 1;
+    }
     r.finish();
     return o;
 }
@@ -431,6 +504,23 @@ SceneDesc parse_scene(const std::string &text, const std::string &path) {
         scene.objects.push_back(std::move(o));
     }
 
+    if (const json *v = r.take("animation"))
+        scene.animation = read_animation(Reader(*v, "animation", scene));
+    if (const auto &tt = scene.animation.turntable)
+        for (size_t i = 0; i < tt->objects.size(); ++i)
+            if (std::none_of(scene.objects.begin(), scene.objects.end(),
+                             [&](const ObjectDesc &o) { return o.name == tt->objects[i]; }))
+                r.fail("animation.turntable.objects[" + std::to_string(i) + "]",
+                       "no object is named \"" + tt->objects[i] + "\"");
+    for (size_t i = 0; i < scene.objects.size(); ++i) {
+        const auto &d = scene.objects[i].deform;
+        if (d.size() > 1 && int(d.size()) != scene.animation.frames)
+            r.fail("objects[" + std::to_string(i) + "].deform",
+                   "a per-frame list of " + std::to_string(d.size()) +
+                       " meshes needs animation.frames = " + std::to_string(d.size()) +
+                       " (it is " + std::to_string(scene.animation.frames) + ")");
+    }
+
     if (const json *v = r.take("integrator")) {
         Reader ir(*v, "integrator", scene);
         scene.integrator.max_depth =
@@ -443,6 +533,71 @@ SceneDesc parse_scene(const std::string &text, const std::string &path) {
     if (scene.objects.empty() && scene.lights.empty())
         r.fail("objects", "the scene is empty (no objects, no lights)");
     return scene;
+}
+
+Affine rotation_about(Vec3f axis, Vec3f center, float degrees) {
+    // Rodrigues' rotation matrix, conjugated by the translation to `center`
+    const double th = double(degrees) * 3.14159265358979323846 / 180;
+    const double c = std::cos(th), sn = std::sin(th), t = 1 - c;
+    const double x = axis.x, y = axis.y, z = axis.z;
+    const double rot[3][3] = {{t * x * x + c, t * x * y - sn * z, t * x * z + sn * y},
+                              {t * x * y + sn * z, t * y * y + c, t * y * z - sn * x},
+                              {t * x * z - sn * y, t * y * z + sn * x, t * z * z + c}};
+    Affine m;
+    for (int i = 0; i < 3; ++i) {
+        double off = center[i];
+        for (int j = 0; j < 3; ++j) {
+            m.m[i][j] = float(rot[i][j]);
+            off -= rot[i][j] * center[j];
+        }
+        m.m[i][3] = float(off);
+    }
+    return m;
+}
+
+float turntable_degrees(const AnimationDesc &a, double frame_time) {
+    if (!a.turntable) return 0;
+    return float(double(a.turntable->degrees) * frame_time / double(a.frames));
+}
+
+CameraDesc camera_at(const SceneDesc &scene, double frame_time) {
+    CameraDesc c = scene.camera;
+    const auto &tt = scene.animation.turntable;
+    if (!tt || tt->target != TurntableDesc::Target::camera) return c;
+    const Affine m = rotation_about(tt->axis, tt->center,
+                                    turntable_degrees(scene.animation, frame_time));
+    c.position = m.point(c.position);
+    c.look_at = m.point(c.look_at);
+    c.up = m.vector(c.up);
+    return c;
+}
+
+SceneDesc scene_at_frame(const SceneDesc &scene, int frame) {
+    SceneDesc s = scene;
+    const auto &tt = scene.animation.turntable;
+    const double t0 = frame + (tt ? tt->shutter_open : 0.0);
+    s.camera = camera_at(scene, t0);
+    if (tt && tt->target == TurntableDesc::Target::object) {
+        const Affine m =
+            rotation_about(tt->axis, tt->center, turntable_degrees(scene.animation, t0));
+        for (ObjectDesc &o : s.objects)
+            if (tt->objects.empty() ||
+                std::find(tt->objects.begin(), tt->objects.end(), o.name) != tt->objects.end())
+                o.transform = m * o.transform;
+    }
+    for (ObjectDesc &o : s.objects) {
+        if (o.deform.empty()) continue;
+        if (o.deform.size() > 1) {
+            o.deform_mesh = o.deform[size_t(frame) % o.deform.size()];
+            o.deform_weight = 1;
+        } else {
+            // One pose: from rest at frame 0 to the pose at the last frame.
+            const int n = scene.animation.frames;
+            o.deform_mesh = o.deform[0];
+            o.deform_weight = n > 1 ? float(frame) / float(n - 1) : 1.0f;
+        }
+    }
+    return s;
 }
 
 SceneDesc load_scene_file(const std::string &path) {

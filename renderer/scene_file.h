@@ -74,6 +74,34 @@ struct ObjectDesc {
     MaterialDesc material;
     std::string cells;  // absolute path or ""
     enum class Normals { automatic, flat, smooth } normals = Normals::automatic;
+    // Deformation (same topology as `mesh`): one pose, or one mesh per animation frame.
+    std::vector<std::string> deform;  // absolute paths; empty = rigid
+    // The pose rendered: positions = lerp(mesh, deform_mesh, deform_weight). Set by the
+    // parser (the last pose, weight 1) and by scene_at_frame().
+    std::string deform_mesh;
+    float deform_weight = 0;
+};
+
+// "animation": {"frames", "fps", "turntable": {...}}. A turntable turns the camera about
+// the axis through `center` (target camera; the scene turns the other way in the image)
+// or every object (target object) by `degrees` over the whole animation: frame f at
+// degrees·f/frames, so a 360° loop does not repeat its first frame. The shutter is in
+// frames, [open, close] ⊂ [0, 1]; an open shutter blurs the camera's motion (camera
+// target only).
+struct TurntableDesc {
+    Vec3f axis{0, 1, 0}, center{0, 0, 0};
+    float degrees = 360;
+    enum class Target { camera, object } target = Target::camera;
+    std::vector<std::string> objects;  // target object: the names turned ({} = all)
+    float shutter_open = 0, shutter_close = 0;
+    bool motion_blur() const { return shutter_close > shutter_open; }
+};
+
+struct AnimationDesc {
+    bool present = false;
+    int frames = 1;
+    double fps = 24;
+    std::optional<TurntableDesc> turntable;
 };
 
 struct IntegratorDesc {
@@ -89,11 +117,22 @@ struct SceneDesc {
     std::vector<LightDesc> lights;
     std::vector<ObjectDesc> objects;
     IntegratorDesc integrator;
+    AnimationDesc animation;
 };
 
 // Reads and validates a scene file. Throws pelage::InputError.
 SceneDesc load_scene_file(const std::string &path);
 // The same, from text; `path` names it in errors and anchors relative paths.
 SceneDesc parse_scene(const std::string &text, const std::string &path);
+
+// Rotation by `degrees` about `axis` (unit) through `center`.
+Affine rotation_about(Vec3f axis, Vec3f center, float degrees);
+// The turntable angle at frame `frame` plus `time` (in frames, the shutter position).
+float turntable_degrees(const AnimationDesc &a, double frame_time);
+// The camera at frame + time (time in frames): orbited for a camera turntable.
+CameraDesc camera_at(const SceneDesc &scene, double frame_time);
+// The scene as frame `frame` shows it (shutter open): camera orbited or objects turned,
+// deforming objects at their pose for the frame.
+SceneDesc scene_at_frame(const SceneDesc &scene, int frame);
 
 }  // namespace pelage::renderer

@@ -18,6 +18,7 @@ struct CompareCliOptions {
     int spp = 0;
     unsigned long long seed = 0;
     size_t lookups = 200000;
+    bool deform = false;
     ThreadOption threads;
 };
 
@@ -34,6 +35,18 @@ int run(const CompareCliOptions &o) {
     for (std::string s; std::getline(ss, s, ',');)
         if (!s.empty()) co.shaders.push_back(s);
     if (co.shaders.empty()) throw InputError("", 0, "--shaders", "no shader named");
+    if (o.deform) {
+        // --- Pattern drift between the rest mesh and the deformed pose; no renders ---
+        if (!o.sheet.empty())
+            throw InputError("", 0, "--sheet", "--deform measures drift; it draws no sheet");
+        const renderer::DriftResult d = renderer::measure_pattern_drift(desc, co);
+        fmt::print("pattern drift, {} -> {} (mean |albedo change| at {} fixed surface points)\n",
+                   desc.objects[d.object].mesh, d.pose, d.runs.empty() ? 0 : d.runs[0].points);
+        for (const auto &run : d.runs)
+            fmt::print("{:<14} drift mean {:.6f}   max {:.6f}\n", run.shader, run.mean, run.max);
+        if (!o.report.empty()) write_json_file(o.report, d.report());
+        return 0;
+    }
     // The display is checked before any rendering, so a bad view fails fast.
     std::optional<renderer::DisplayTransform> display;
     if (!o.sheet.empty()) display.emplace(o.view.empty() ? desc.film.view : o.view, "");
@@ -66,6 +79,9 @@ Runner add_compare_command(CLI::App &app) {
     sub->add_option("--seed", o->seed, "Sampler seed, the same for every shader");
     sub->add_option("--lookups", o->lookups, "Surface points timed per shader")->check(CLI::Range(size_t(1), size_t(100000000)));
     sub->add_option("--report", o->report, "Write the comparison as JSON");
+    sub->add_flag("--deform", o->deform,
+                  "Pattern drift: albedo change at fixed surface points between the rest "
+                  "mesh and the object's \"deform\" pose, per shader (no renders)");
     sub->add_option("--sheet", o->sheet, "Write a labelled contact sheet (.png/.jpg)");
     sub->add_option("--view", o->view, "OCIO view for the sheet (default: the scene's)");
     o->threads.add_to(*sub);

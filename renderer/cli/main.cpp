@@ -32,6 +32,7 @@ int main(int argc, char **argv) {
     add(cli::add_cells_command);
     add(cli::add_lookup_command);
     add(cli::add_bake_command);
+    add(cli::add_movie_command);
     add(cli::add_bench_command);
 
     try {

@@ -88,5 +88,68 @@ TEST(SceneFile, InvalidJsonNamesTheLine) {
     }
 }
 
+TEST(SceneFile, TurntableOrbitsTheCameraOrTurnsTheObjects) {
+    const std::string base =
+        R"({"camera": {"position": [0, 1, 4], "look_at": [0, 1, 0]},
+            "objects": [{"mesh": "procedural:icosphere:1", "transform": {"translate": [1, 0, 0]}}],
+            "animation": {"frames": 8, "turntable": {"axis": [0, 2, 0], "center": [0, 1, 0],
+                          "degrees": 360, "target": ")";
+    const SceneDesc cam = parse_scene(base + R"(camera"}}})", "/s.json");
+    ASSERT_TRUE(cam.animation.turntable);
+    EXPECT_FLOAT_EQ(cam.animation.turntable->axis.y, 1.0f);  // normalized
+    // Frame 0 is the scene's own camera; frame 2 of 8 is a quarter turn about +y through
+    // the centre: +z goes to +x, the distance to the centre and the height stay.
+    const CameraDesc c0 = scene_at_frame(cam, 0).camera, c2 = scene_at_frame(cam, 2).camera;
+    EXPECT_NEAR(c0.position.z, 4, 1e-6);
+    EXPECT_NEAR(c2.position.x, 4, 1e-5);
+    EXPECT_NEAR(c2.position.y, 1, 1e-5);
+    EXPECT_NEAR(c2.position.z, 0, 1e-5);
+    EXPECT_NEAR(c2.look_at.x, 0, 1e-6);
+    EXPECT_TRUE(scene_at_frame(cam, 2).objects[0].transform.m[0][3] == 1.0f);
+    // The object target turns the objects' transforms instead, the camera stays.
+    const SceneDesc obj = parse_scene(base + R"(object"}}})", "/s.json");
+    const SceneDesc o2 = scene_at_frame(obj, 2);
+    EXPECT_NEAR(o2.camera.position.z, 4, 1e-6);
+    const Vec3f p = o2.objects[0].transform.point({0, 0, 0});  // was (1, 0, 0)
+    EXPECT_NEAR(p.x, 0, 1e-5);
+    EXPECT_NEAR(p.y, 0, 1e-5);
+    EXPECT_NEAR(p.z, -1, 1e-5);
+    // Bad fields name their JSON path.
+    EXPECT_EQ(field_of(base + R"(camera", "degrees": "a lot"}}})"), "animation.turntable.degrees");
+    EXPECT_EQ(field_of(base + R"(object", "objects": ["cow"]}}})"),
+              "animation.turntable.objects[0]");
+    EXPECT_EQ(field_of(base + R"(camera", "objects": ["object0"]}}})"),
+              "animation.turntable.objects");
+    // Only the named objects turn.
+    const SceneDesc named = parse_scene(
+        R"({"camera": {}, "objects": [{"name": "cow", "mesh": "procedural:icosphere:1"},
+            {"name": "ground", "mesh": "procedural:plane:1x1", "transform": {"translate": [1, 0, 0]}}],
+            "animation": {"frames": 4, "turntable": {"target": "object", "objects": ["cow"]}}})",
+        "/s.json");
+    EXPECT_TRUE(scene_at_frame(named, 1).objects[1].transform.m[0][3] == 1.0f);
+    EXPECT_FALSE(scene_at_frame(named, 1).objects[0].transform.is_identity());
+    EXPECT_EQ(field_of(R"({"camera": {}, "objects": [], "lights": [{"type": "environment"}], "animation": {"fps": -1}})"),
+              "animation.fps");
+}
+
+TEST(SceneFile, DeformOnePoseBlendsFromRestToThePose) {
+    const SceneDesc s = parse_scene(
+        R"({"camera": {}, "objects": [{"mesh": "rest.obj", "deform": "pose.obj"}],
+            "animation": {"frames": 5}})",
+        "/d/s.json");
+    EXPECT_EQ(s.objects[0].deform_mesh, "/d/pose.obj");
+    EXPECT_EQ(s.objects[0].deform_weight, 1.0f);  // a still shows the pose
+    EXPECT_EQ(scene_at_frame(s, 0).objects[0].deform_weight, 0.0f);
+    EXPECT_EQ(scene_at_frame(s, 2).objects[0].deform_weight, 0.5f);
+    EXPECT_EQ(scene_at_frame(s, 4).objects[0].deform_weight, 1.0f);
+    const SceneDesc l = parse_scene(
+        R"({"camera": {}, "objects": [{"mesh": "rest.obj", "deform": ["a.obj", "b.obj"]}],
+            "animation": {"frames": 2}})",
+        "/d/s.json");
+    EXPECT_EQ(scene_at_frame(l, 1).objects[0].deform_mesh, "/d/b.obj");
+    EXPECT_EQ(field_of(R"({"camera": {}, "objects": [{"mesh": "r.obj", "deform": [3]}]})"),
+              "objects[0].deform[0]");
+}
+
 }  // namespace
 }  // namespace pelage::test
