@@ -83,11 +83,7 @@ double replay(RTCScene scene, const std::vector<std::vector<RecordedRay>> &logs,
 int run(const BenchRenderOptions &o) {
     const std::string path = o.scene.empty() ? data_path("scenes/cow.json") : o.scene;
     SceneDesc desc = load_scene_file(path);
-    int w = 0, h = 0;
-    if (std::sscanf(o.res.c_str(), "%dx%d", &w, &h) != 2 || w < 1 || h < 1)
-        throw InputError("", 0, "--res", "\"" + o.res + "\": expected WIDTHxHEIGHT");
-    desc.film.width = w;
-    desc.film.height = h;
+    parse_resolution(o.res, 16384, &desc.film.width, &desc.film.height);
     desc.film.spp = o.spp;
     const PluginRegistry plugins;
     const Scene scene(desc, plugins);
@@ -138,8 +134,8 @@ int run(const BenchRenderOptions &o) {
     nlohmann::json j = {
         {"benchmark", "render"},
         {"scene", path},
-        {"width", w},
-        {"height", h},
+        {"width", desc.film.width},
+        {"height", desc.film.height},
         {"spp", o.spp},
         {"threads", cores},
         {"triangles", scene.geometry().num_triangles()},
