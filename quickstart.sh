@@ -18,7 +18,6 @@ packages=(
     libgtest-dev libgmock-dev libbenchmark-dev
     ffmpeg               # pelage movie (encodes EXR sequences)
     fonts-dejavu-core    # labels of `pelage compare` contact sheets
-    zlib1g-dev           # PNG previews of .cells files (pelage preview)
 )
 missing=()
 for p in "${packages[@]}"; do

@@ -77,7 +77,8 @@ uint64_t pixel_hash(const void *data, size_t pixels,
     uint64_t h = 0xcbf29ce484222325ull;
     const auto *bytes = static_cast<const unsigned char *>(data);
     for (const size_t c : order) {
-        for (const char ch : names[c]) h = (h ^ static_cast<unsigned char>(ch)) * 0x100000001b3ull;
+        for (const char ch : names[c])
+            h = (h ^ static_cast<unsigned char>(ch)) * 0x100000001b3ull;
         for (size_t i = 0; i < pixels; ++i) {
             const unsigned char *p = bytes + i * stride + offset[c];
             for (int k = 0; k < channel_bytes[c]; ++k) h = (h ^ p[k]) * 0x100000001b3ull;
@@ -158,8 +159,9 @@ void write_exr(const std::string &path, int width, int height,
     }
     std::vector<int> sizes(nc);
     for (int c = 0; c < nc; ++c) sizes[c] = int(spec.channelformats[c].size());
-    spec.attribute("pelage:pixel_hash",
-                   fmt_hash(pixel_hash(native.data(), size_t(width) * height, names, sizes)));
+    spec.attribute(
+        "pelage:pixel_hash",
+        fmt_hash(pixel_hash(native.data(), size_t(width) * height, names, sizes)));
     write_atomically(path, spec, native.data(), OIIO::TypeDesc::UNKNOWN);
 }
 
@@ -175,10 +177,17 @@ void write_preview(const std::string &path, int width, int height,
         const float v = std::isfinite(rgb[i]) ? std::clamp(rgb[i], 0.0f, 1.0f) : 0.0f;
         bytes[i] = static_cast<unsigned char>(std::lround(v * 255.0f));
     }
+    write_rgb8(path, width, height, bytes);
+}
+
+void write_rgb8(const std::string &path, int width, int height,
+                const std::vector<unsigned char> &rgb) {
+    if (rgb.size() != size_t(width) * size_t(height) * 3)
+        throw std::logic_error("write_rgb8: pixel count does not match the size");
     OIIO::ImageSpec spec(width, height, 3, OIIO::TypeDesc::UINT8);
     spec.attribute("Software", "pelage");
     spec.attribute("oiio:ColorSpace", "sRGB");
-    write_atomically(path, spec, bytes.data(), OIIO::TypeDesc::UINT8);
+    write_atomically(path, spec, rgb.data(), OIIO::TypeDesc::UINT8);
 }
 
 }  // namespace pelage::renderer

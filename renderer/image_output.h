@@ -23,16 +23,18 @@ struct ImageMetadata {
     unsigned long long seed = 0;
     double render_seconds = 0;
     bool interrupted = false;
-    int frame = -1;            // animation frame (pelage:frame), -1 = a still
-    double fps = 0;            // animation.fps (pelage:fps), 0 = none
-    bool record_time = true;   // false: no pelage:render_seconds, so that the same frame
-                               // rendered twice (another machine, --resume) is the same file
+    int frame = -1;  // animation frame (pelage:frame), -1 = a still
+    double fps = 0;  // animation.fps (pelage:fps), 0 = none
+    bool record_time =
+        true;  // false: no pelage:render_seconds, so that the same frame
+               // rendered twice (another machine, --resume) is the same file
 };
 
 // A checksum of the pixels as the EXR stores them (`data`: packed pixels, each channel
 // `channel_bytes` wide), independent of channel order,
 // written as pelage:pixel_hash, so a frame can be checked complete (--resume).
-uint64_t pixel_hash(const void *data, size_t pixels, const std::vector<std::string> &names,
+uint64_t pixel_hash(const void *data, size_t pixels,
+                    const std::vector<std::string> &names,
                     const std::vector<int> &channel_bytes);
 
 // True when `path` is an EXR pelage wrote completely: the header reads, every pixel
@@ -50,5 +52,10 @@ void write_exr(const std::string &path, int width, int height,
 void write_preview(const std::string &path, int width, int height,
                    const std::vector<float> &pixels, int channels,
                    const DisplayTransform &display);
+
+// Already display-referred 8-bit RGB (e.g. `pelage preview`), in the format the
+// extension names (PNG, JPEG, …), sRGB-tagged.
+void write_rgb8(const std::string &path, int width, int height,
+                const std::vector<unsigned char> &rgb);
 
 }  // namespace pelage::renderer

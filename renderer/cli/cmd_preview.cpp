@@ -4,7 +4,7 @@
 #include <cmath>
 
 #include "renderer/cli/common.h"
-#include "renderer/cli/png_encode.h"
+#include "renderer/image_output.h"
 #include "sim/cells_file.h"
 #include "sim/cells_preview.h"
 #include "sim/input_error.h"
@@ -21,13 +21,15 @@ struct PreviewCliOptions {
 int run_preview(PreviewCliOptions o) {
     const sim::CellsData data = sim::read_cells_file(o.file);
     if (o.direction.size() == 3) {
-        const double len2 = o.direction[0] * o.direction[0] + o.direction[1] * o.direction[1] +
+        const double len2 = o.direction[0] * o.direction[0] +
+                            o.direction[1] * o.direction[1] +
                             o.direction[2] * o.direction[2];
-        if (!(len2 > 0) || !std::isfinite(len2)) throw InputError("", 0, "--view", "must be a non-zero direction");
+        if (!(len2 > 0) || !std::isfinite(len2))
+            throw InputError("", 0, "--view", "must be a non-zero direction");
         o.view.view = {o.direction[0], o.direction[1], o.direction[2]};
     }
     const sim::PreviewImage img = sim::render_cells_preview(data, o.view);
-    write_png_rgb8(o.output, img.width, img.height, img.rgb);
+    renderer::write_rgb8(o.output, img.width, img.height, img.rgb);
     return 0;
 }
 
@@ -35,12 +37,16 @@ int run_preview(PreviewCliOptions o) {
 
 Runner add_preview_command(CLI::App &app) {
     auto o = std::make_shared<PreviewCliOptions>();
-    CLI::App *sub = app.add_subcommand("preview", "Debugging picture of a .cells file (PNG)");
+    CLI::App *sub =
+        app.add_subcommand("preview", "Debugging picture of a .cells file (PNG)");
     sub->add_option("file", o->file, ".cells file")->required();
     sub->add_option("-o,--output", o->output, "PNG to write")->required();
-    sub->add_option("--size", o->view.size, "Longer side in pixels")->check(CLI::Range(16, 8192));
-    sub->add_option("--view", o->direction, "Viewing direction x y z (default 0 0 -1)")->expected(3);
-    sub->add_option("--dot", o->view.dot_radius, "Dot radius in pixels")->check(CLI::Range(0, 16));
+    sub->add_option("--size", o->view.size, "Longer side in pixels")
+        ->check(CLI::Range(16, 8192));
+    sub->add_option("--view", o->direction, "Viewing direction x y z (default 0 0 -1)")
+        ->expected(3);
+    sub->add_option("--dot", o->view.dot_radius, "Dot radius in pixels")
+        ->check(CLI::Range(0, 16));
     return [o] { return run_preview(*o); };
 }
 

@@ -5,6 +5,8 @@
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <OpenImageIO/imagebuf.h>
+#include <OpenImageIO/imagebufalgo.h>
 #include <sstream>
 
 #include "tests/test_paths.h"
@@ -45,6 +47,13 @@ TEST(SimCli, StatsJsonHasTheContractKeys) {
 
     ASSERT_EQ(run_pelage("preview " + tmp.file("a.cells") + " --size 64 -o " + tmp.file("p.png")), 0);
     EXPECT_EQ(slurp(tmp.file("p.png")).substr(1, 3), "PNG");
+    // The preview decodes (OpenImageIO writes it) and shows more than one colour.
+    OIIO::ImageBuf png(tmp.file("p.png"));
+    ASSERT_TRUE(png.read()) << png.geterror();
+    EXPECT_EQ(png.spec().width, 64);
+    EXPECT_EQ(png.spec().nchannels, 3);
+    const auto range = OIIO::ImageBufAlgo::computePixelStats(png);
+    EXPECT_GT(range.max[0] - range.min[0], 0.1f);
 }
 
 TEST(SimCli, SameSeedGivesIdenticalCellsAtOneAndTwoThreads) {
