@@ -40,14 +40,12 @@ std::string TempDir::write(const std::string &name, const std::string &contents)
     return p;
 }
 
-namespace {
 std::string slurp(const std::string &path) {
     std::ifstream in(path, std::ios::binary);
     std::stringstream ss;
     ss << in.rdbuf();
     return ss.str();
 }
-}  // namespace
 
 std::string simulate_two_type_cells(const TempDir &tmp, const std::string &mesh, int initial_cells,
                                     double f_probability, uint64_t seed) {

@@ -33,6 +33,9 @@ class TempDir {
 std::string simulate_two_type_cells(const TempDir &tmp, const std::string &mesh, int initial_cells,
                                     double f_probability = 0.3, uint64_t seed = 2);
 
+// The whole file as bytes (empty when it cannot be read).
+std::string slurp(const std::string &path);
+
 // Runs the pelage binary with `args` (shell-quoted by the caller); captures stderr into
 // *err when given. Returns the exit code.
 int run_pelage(const std::string &args, std::string *out = nullptr, std::string *err = nullptr);

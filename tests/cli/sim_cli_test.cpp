@@ -14,13 +14,6 @@
 namespace pelage::test {
 namespace {
 
-std::string slurp(const std::string &path) {
-    std::ifstream in(path, std::ios::binary);
-    std::stringstream ss;
-    ss << in.rdbuf();
-    return ss.str();
-}
-
 const std::string small_run =
     "sim --mesh procedural:sphere:20x20 --preset teo-table-7.2 --cells 1500 --seed 4 ";
 

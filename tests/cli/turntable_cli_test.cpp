@@ -30,11 +30,6 @@ std::string turntable_scene(const std::string &turntable) {
            turntable + "}}";
 }
 
-std::string slurp(const std::string &path) {
-    std::ifstream in(path, std::ios::binary);
-    return {std::istreambuf_iterator<char>(in), {}};
-}
-
 // The pelage:pixel_hash attribute (16 hex digits) of an EXR, read from its header bytes.
 std::string pixel_hash_of(const std::string &exr) {
     const std::string bytes = slurp(exr), key = std::string("pelage:pixel_hash\0string\0", 25);
