@@ -42,7 +42,8 @@ std::string scene_text(const BenchFurOptions &o, double density, bool with_fur) 
   "lights": [{"type": "environment", "color": [0.55, 0.68, 0.9], "intensity": 0.8},
              {"type": "distant", "direction": [-0.45, -0.8, -0.4], "angle": 0.53,
               "color": [1.0, 0.93, 0.82], "intensity": 4.0}],
-  "objects": [{"mesh": ")" << sphere_mesh << R"(", "normals": "smooth",
+  "objects": [{"mesh": ")"
+      << sphere_mesh << R"(", "normals": "smooth",
                "material": {"shader": "diffuse", "params": {"albedo": [0.6, 0.4, 0.2]}})";
     if (with_fur)
         s << R"(, "fur": {"density": )" << density << R"(, "length": 0.08, "segments": )"
@@ -125,7 +126,8 @@ int run_child(const BenchFurOptions &o) {
 int run(const BenchFurOptions &o) {
     if (o.child) return run_child(o);
     if (o.curve != "round" && o.curve != "flat")
-        throw InputError("", 0, "--curve", "expected round or flat, got \"" + o.curve + "\"");
+        throw InputError("", 0, "--curve",
+                         "expected round or flat, got \"" + o.curve + "\"");
     int width, height;
     parse_resolution(o.res, 16384, &width, &height);  // fail here, not in a child
     char self[4096];
@@ -138,9 +140,9 @@ int run(const BenchFurOptions &o) {
     nlohmann::json runs = nlohmann::json::array();
     for (uint64_t n : o.strands) {
         std::ostringstream cmd;
-        cmd << "'" << self << "' bench fur --child " << n << " --res " << o.res << " --spp "
-            << o.spp << " --segments " << o.segments << " --curve " << o.curve
-            << " --threads " << o.threads.threads;
+        cmd << "'" << self << "' bench fur --child " << n << " --res " << o.res
+            << " --spp " << o.spp << " --segments " << o.segments << " --curve "
+            << o.curve << " --threads " << o.threads.threads;
         FILE *p = popen(cmd.str().c_str(), "r");
         if (!p) {
             std::cerr << "pelage bench fur: cannot start " << cmd.str() << "\n";
