@@ -48,6 +48,7 @@ class EmbreeScene {
     EmbreeScene &operator=(const EmbreeScene &) = delete;
 
     RTCScene scene() const { return m_scene; }
+    RTCDevice device() const { return m_device; }  // for geometry added later (fur)
     const std::vector<ObjectGeometry> &objects() const { return m_objects; }
     // Object id for an Embree hit: instID[0] for instanced meshes, else geomID.
     uint32_t object_of(unsigned geom_id, unsigned inst_id) const {

@@ -3,9 +3,11 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <utility>
 
 #include "renderer/bsdf_coated.h"
 #include "renderer/bsdf_lambert.h"
+#include "renderer/integrator_fur.h"
 #include "renderer/sampling.h"
 
 namespace pelage::renderer {
@@ -126,6 +128,7 @@ Rgb PathIntegrator::radiance(CameraRay cam, Sampler &sampler, FilmSample &fs,
     bool prev_specular = false;
     Vec3f prev_ng{0, 0, 1};  // geometric normal at the vertex d left
     float footprint = 0;     // ray cone width at the ray origin
+    unsigned fur_skip = 0;   // the strand the ray leaves, + 1 (fur_geometry.h)
 
     for (int depth = 0;; ++depth) {
         // --- Intersect the scene (primary rays are coherent) ---
@@ -135,6 +138,7 @@ Rgb PathIntegrator::radiance(CameraRay cam, Sampler &sampler, FilmSample &fs,
                                : RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT;
         RTCRayHit rh;
         set_ray(rh.ray, o, d, inf);
+        rh.ray.id = std::exchange(fur_skip, 0u);
         rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
         rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
         rtcIntersect1(m_rtc, &ctx, &rh);
@@ -168,6 +172,22 @@ Rgb PathIntegrator::radiance(CameraRay cam, Sampler &sampler, FilmSample &fs,
                 L += beta * hits[k].L * w;
             }
             break;
+        }
+
+        // --- Fur: a strand scatters with the hair BSDF (renderer/integrator_fur.h) ---
+        if (const FurLayer *layer = m_scene.fur() ? m_scene.fur()->layer_of(rh.hit.geomID)
+                                                  : nullptr) {
+            FurPathState st{L, beta, o, d, prev_pdf, prev_specular, prev_ng, fur_skip};
+            if (!scatter_at_strand(m_scene, *layer, rh, depth, depth >= m_max_depth, sampler,
+                                   st, fs, aovs, cam, stats, log) ||
+                is_black(beta))
+                break;
+            if (depth + 1 >= m_rr_depth) {
+                const float p_continue = std::min(0.95f, max_component(beta));
+                if (sampler.get_1d() >= p_continue) break;
+                beta = beta / p_continue;
+            }
+            continue;
         }
 
         // --- Surface geometry at the hit ---

@@ -62,6 +62,13 @@ Scene::Scene(const SceneDesc &desc, const PluginRegistry &plugins) : m_desc(desc
             for (int k = 0; k < PELAGE_SHADER_AOV_SLOTS && m.plugin->aov_names[k]; ++k)
                 m_aov_names.push_back(m.plugin->aov_names[k]);
     }
+    // --- Fur: strands grown from each furry object's skin, added to the Embree scene ---
+    for (const ObjectDesc &o : desc.objects)
+        if (o.fur) {
+            m_fur = std::make_unique<FurGeometry>(desc, *m_geometry, m_materials);
+            if (m_fur->layers().empty()) m_fur.reset();
+            break;
+        }
 }
 
 Scene::~Scene() {

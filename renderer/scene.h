@@ -9,6 +9,7 @@
 
 #include "renderer/camera.h"
 #include "renderer/embree_scene.h"
+#include "renderer/fur_geometry.h"
 #include "renderer/lights.h"
 #include "renderer/plugin_loader.h"
 #include "renderer/scene_file.h"
@@ -35,6 +36,8 @@ class Scene {
     const std::vector<Material> &materials() const { return m_materials; }  // per object
     // Names of the `shader` AOV slots (from the first plugin in the scene that has any).
     const std::vector<std::string> &shader_aov_names() const { return m_aov_names; }
+    // The scene's fur (renderer/fur_geometry.h), or null when no object has any.
+    const FurGeometry *fur() const { return m_fur.get(); }
 
   private:
     SceneDesc m_desc;
@@ -42,6 +45,7 @@ class Scene {
     std::unique_ptr<Lights> m_lights;
     std::vector<Material> m_materials;
     std::vector<std::string> m_aov_names;
+    std::unique_ptr<FurGeometry> m_fur;
 };
 
 }  // namespace pelage::renderer

@@ -7,6 +7,7 @@
 #include <set>
 #include <sstream>
 
+#include "renderer/scene_fur.h"
 #include "sim/input_error.h"
 
 namespace pelage::renderer {
@@ -416,6 +417,7 @@ ObjectDesc read_object(Reader r, size_t index) {
         o.deform_mesh = o.deform.back();
         o.deform_weight = 1;
     }
+    if (const json *v = r.take("fur")) o.fur = read_fur(*v, r.field("fur"), Reader::scene_of(r).path);
     r.finish();
     return o;
 }

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "renderer/math.h"
+#include "shader/fur/fur_params.h"
 
 namespace pelage::renderer {
 
@@ -80,6 +81,7 @@ struct ObjectDesc {
     // parser (the last pose, weight 1) and by scene_at_frame().
     std::string deform_mesh;
     float deform_weight = 0;
+    std::optional<fur::FurParams> fur;  // strands on this object (renderer/scene_fur.h)
 };
 
 // "animation": {"frames", "fps", "turntable": {...}}. A turntable turns the camera about

@@ -10,5 +10,6 @@ Runner add_bench_lookup(CLI::App &bench);
 Runner add_bench_sim(CLI::App &bench);
 Runner add_bench_render(CLI::App &bench);
 Runner add_bench_hair(CLI::App &bench);
+Runner add_bench_fur(CLI::App &bench);
 
 }  // namespace pelage::cli

@@ -19,6 +19,7 @@ Runner add_bench_command(CLI::App &app) {
     add(add_bench_sim);
     add(add_bench_render);
     add(add_bench_hair);
+    add(add_bench_fur);
     return [children] {
         for (const auto &[sub, run] : children)
             if (sub->parsed()) return run();

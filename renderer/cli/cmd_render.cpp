@@ -251,6 +251,11 @@ int run(const RenderCliOptions &o) {
                             {"interrupted", interrupted},
                             {"output", frame_path(output, frames.front())}};
         if (shared_scene) j["triangles"] = shared_scene->geometry().num_triangles();
+        if (shared_scene && shared_scene->fur()) {  // fur (README "Fur")
+            j["fur_strands"] = shared_scene->fur()->num_strands();
+            j["fur_grow_seconds"] = shared_scene->fur()->grow_seconds();
+            j["fur_embree_seconds"] = shared_scene->fur()->embree_seconds();
+        }
         if (animated) {
             j["frames"] = frame_stats;
             j["frames_rendered"] = rendered;

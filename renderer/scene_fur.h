@@ -1,0 +1,17 @@
+// The `"fur": {…}` block of a scene object (README "Fur"): parsed and fully validated
+// into shader/fur's FurParams. Unknown keys and values out of range are
+// pelage::InputError naming the scene file and the JSON path (objects[i].fur.length).
+#pragma once
+
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "shader/fur/fur_params.h"
+
+namespace pelage::renderer {
+
+// `field` is the block's JSON path ("objects[0].fur"), `scene_path` the file.
+fur::FurParams read_fur(const nlohmann::json &j, const std::string &field,
+                        const std::string &scene_path);
+
+}  // namespace pelage::renderer

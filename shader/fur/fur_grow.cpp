@@ -1,0 +1,146 @@
+#include "shader/fur/fur_grow.h"
+
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "shader/fur/clump_guides.h"
+#include "shader/fur/fur_hash.h"
+#include "shader/fur/strand_shape.h"
+
+namespace pelage::fur {
+
+namespace {
+
+float by_type(const std::vector<float> &scale, int type) {
+    return type >= 0 && size_t(type) < scale.size() ? scale[size_t(type)] : 1.0f;
+}
+
+void check(bool ok, const std::string &what) {
+    if (!ok) throw std::invalid_argument("fur: " + what);
+}
+
+}  // namespace
+
+double expected_candidates(const FurParams &params, double area) {
+    float max_scale = 1;
+    if (!params.density_by_type.empty())
+        max_scale = *std::max_element(params.density_by_type.begin(),
+                                      params.density_by_type.end());
+    return params.density * double(max_scale) * area;
+}
+
+Strands grow_fur(const FurParams &params, const SkinMesh &mesh,
+                 const PigmentLookup &lookup) {
+    check(params.segments >= 1 && params.segments <= max_segments,
+          "segments = " + std::to_string(params.segments) + ": must be in [1, 64]");
+    check(params.density >= 0 && std::isfinite(params.density), "density must be >= 0");
+    check(params.length > 0 && params.root_radius > 0 && params.tip_radius > 0,
+          "length and radii must be > 0");
+    const RootSampler sampler(mesh);
+    const double expected = expected_candidates(params, sampler.area());
+    check(expected <= double(params.max_strands),
+          "density × area asks for " + std::to_string(uint64_t(expected)) +
+              " strands, more than max_strands = " + std::to_string(params.max_strands));
+    const uint64_t n = candidate_count(expected, params.seed);
+    float max_scale = 1;
+    if (!params.density_by_type.empty())
+        max_scale = *std::max_element(params.density_by_type.begin(),
+                                      params.density_by_type.end());
+
+    // --- Candidates: root, pigment, and whether per-type thinning keeps them ---
+    std::vector<SurfacePoint> cand(n);
+    std::vector<RootPigment> pigment(n);
+    std::vector<uint8_t> keep(n);
+    tbb::parallel_for(tbb::blocked_range<uint64_t>(0, n, 4096), [&](auto range) {
+        for (uint64_t i = range.begin(); i != range.end(); ++i) {
+            cand[i] = sampler.sample(params.seed, i);
+            Vec3f p, nrm;
+            sampler.point_normal(cand[i], &p, &nrm);
+            pigment[i] = lookup(cand[i], p, nrm);
+            // Thinning keeps a root with probability scale(type) / max scale: the kept
+            // roots are area-uniform within each type's region at its own density.
+            const double keep_p =
+                max_scale > 0
+                    ? by_type(params.density_by_type, pigment[i].cell_type) / max_scale
+                    : 0.0;
+            keep[i] = uniform(params.seed, Stream::thinning, i, 0) < keep_p;
+        }
+    });
+    // --- Compact in candidate order (deterministic) ---
+    std::vector<uint64_t> index;
+    index.reserve(n);
+    for (uint64_t i = 0; i < n; ++i)
+        if (keep[i]) index.push_back(i);
+    std::vector<uint8_t>().swap(keep);
+
+    Strands out;
+    const int S = params.segments;
+    const bool round = params.curve == FurParams::Curve::round;
+    out.segments = S;
+    out.points_per_strand = uint32_t(round ? S + 3 : S + 1);
+    out.candidates = n;
+    const size_t m = index.size();
+    out.points.resize(m * out.points_per_strand * 4);
+    out.melanin.resize(2 * m);
+    out.roots.resize(m);
+
+    const ClumpGuides guides(params, sampler);
+    // --- Grow every kept strand ---
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, m, 1024), [&](auto range) {
+        Vec3f line[max_segments + 1];
+        for (size_t j = range.begin(); j != range.end(); ++j) {
+            const uint64_t i = index[j];
+            const SurfacePoint &root = cand[i];
+            const RootPigment &pg = pigment[i];
+            Vec3f p, nrm;
+            sampler.point_normal(root, &p, &nrm);
+            const float v = params.length_variation;
+            const float L =
+                params.length * by_type(params.length_by_type, pg.cell_type) *
+                float(1 + v * (2 * uniform(params.seed, Stream::shape, i, 0) - 1));
+            const StrandRandom rnd{float(uniform(params.seed, Stream::shape, i, 1)),
+                                   float(uniform(params.seed, Stream::shape, i, 2)),
+                                   float(uniform(params.seed, Stream::shape, i, 3))};
+            grow_centre_line(params, p, nrm, std::max(L, 1e-6f * params.length), rnd,
+                             line);
+            guides.pull(line);
+
+            // --- Control points with radii (linear from root to tip) ---
+            float *P = &out.points[j * out.points_per_strand * 4];
+            auto put = [&](Vec3f q, float r) {
+                P[0] = q.x;
+                P[1] = q.y;
+                P[2] = q.z;
+                P[3] = r;
+                P += 4;
+            };
+            auto radius = [&](int k) {
+                const float s = float(k) / float(S);
+                return params.root_radius * (1 - s) + params.tip_radius * s;
+            };
+            if (round) put(line[0] * 2 - line[1], 2 * radius(0) - radius(1));
+            for (int k = 0; k <= S; ++k) put(line[k], radius(k));
+            if (round)
+                put(line[S] * 2 - line[S - 1],
+                    std::max(2 * radius(S) - radius(S - 1), 0.0f));
+
+            // --- Pigment: the skin's at the root, scaled and jittered per strand ---
+            const float j_eu = float(2 * uniform(params.seed, Stream::pigment, i, 0) - 1);
+            const float j_ph = float(2 * uniform(params.seed, Stream::pigment, i, 1) - 1);
+            auto clean = [](float x) {
+                return std::isfinite(x) ? std::max(x, 0.0f) : 0.0f;
+            };
+            out.melanin[2 * j] = clean(pg.eumelanin * params.melanin_scale *
+                                       (1 + params.melanin_jitter * j_eu));
+            out.melanin[2 * j + 1] = clean(pg.pheomelanin * params.melanin_scale *
+                                           (1 + params.melanin_jitter * j_ph));
+            out.roots[j] = root;
+        }
+    });
+    return out;
+}
+
+}  // namespace pelage::fur

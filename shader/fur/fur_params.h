@@ -1,0 +1,47 @@
+// The fur layer's parameters, as an object's `"fur": {…}` block in a scene file describes
+// them (renderer/scene_fur.cpp parses and validates them; README "Fur" documents each
+// key). Lengths and radii are in world units (after the object's transform), density in
+// strands per world unit of area, angles in degrees.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "shader/hair/hair_math.h"
+
+namespace pelage::fur {
+
+using Vec3f = hair::Vec3f;
+
+struct FurParams {
+    // --- Roots ---
+    double density = 20000;  // strands per unit area
+    std::vector<float>
+        density_by_type;  // multiplier per cell type (darker → denser), {} = 1
+    uint64_t seed = 1;
+    uint64_t max_strands = 20'000'000;  // refuse to build more (memory guard)
+
+    // --- Shape ---
+    float length = 0.05f;
+    std::vector<float> length_by_type;  // multiplier per cell type, {} = 1
+    float length_variation = 0.2f;      // each strand's length × U[1 − v, 1 + v]
+    float root_radius = 0.0015f, tip_radius = 0.0003f;
+    int segments = 8;
+    enum class Comb { world, normal } comb = Comb::world;  // normal: strands stand up
+    Vec3f comb_direction{0, -1, 0};  // projected onto each root's tangent plane
+    float comb_angle_deg = 30;       // between the root direction and the surface
+    float comb_jitter_deg = 8;       // random tilt of each root direction
+    float gravity = 0;               // downward bend over the strand (0 none, ~1 strong)
+    float curl_radius = 0;           // helix radius as a fraction of the length
+    float curl_turns = 0;            // helix turns over the strand
+    float clump = 0;                 // tip pull towards the clump guide, [0, 1]
+    float clump_radius = 0.01f;      // guide spacing: one guide per π·r² of skin
+
+    // --- Pigment and look ---
+    float melanin_scale = 1;      // multiplies the skin's eumelanin and pheomelanin
+    float melanin_jitter = 0.1f;  // each strand's melanin × U[1 − j, 1 + j]
+    float beta_m = 0.25f, beta_n = 0.3f, alpha_deg = 2;  // hair BSDF (shader/hair)
+    enum class Curve { round, flat } curve = Curve::round;
+};
+
+}  // namespace pelage::fur
