@@ -11,8 +11,25 @@ namespace {
 constexpr float min_alpha = 1e-3f;  // below this the lobe is a delta in float precision
 }
 
-BsdfCoated::BsdfCoated(Rgb rho, float roughness, float ior)
-    : m_rho(rho), m_alpha(std::max(min_alpha, roughness * roughness)), m_eta(ior) {}
+BsdfCoated::BsdfCoated(Rgb rho, float roughness, float ior, float F_int)
+    : m_rho(rho), m_alpha(std::max(min_alpha, roughness * roughness)), m_eta(ior) {
+    // Weidlich & Wilkie 2007 §4: the base seen through the coat, inter-reflection summed.
+    const float k = inv_pi / (ior * ior);
+    m_base_scale = {rho.x * k / (1 - rho.x * F_int), rho.y * k / (1 - rho.y * F_int),
+                    rho.z * k / (1 - rho.z * F_int)};
+}
+
+float BsdfCoated::internal_diffuse_reflectance(float eta) {
+    // F̄_ext = 2 ∫_0^1 F(μ) μ dμ by the midpoint rule; F is smooth, 1024 points give
+    // ~1e-6.
+    constexpr int n = 1024;
+    double F_ext = 0;
+    for (int i = 0; i < n; ++i) {
+        const double mu = (i + 0.5) / n;
+        F_ext += 2 * fresnel_dielectric(float(mu), eta) * mu / n;
+    }
+    return float(1 - (1 - F_ext) / (double(eta) * eta));
+}
 
 float BsdfCoated::fresnel_dielectric(float cos_i, float eta) {
     cos_i = std::clamp(cos_i, 0.0f, 1.0f);
@@ -48,25 +65,35 @@ const BsdfCoated::WoTerms &BsdfCoated::wo_terms(Vec3f wo) const {
     return m_wo;
 }
 
-Rgb BsdfCoated::eval(Vec3f wo, Vec3f wi) const {
-    if (wo.z <= 0 || wi.z <= 0) return {};
-    Vec3f h = normalize(wo + wi);
-    const float f_h = fresnel_dielectric(dot(wo, h), m_eta);
+Rgb BsdfCoated::eval_pdf(Vec3f wo, Vec3f wi, float *pdf_out) const {
+    if (wo.z <= 0 || wi.z <= 0) {
+        *pdf_out = 0;
+        return {};
+    }
+    const Vec3f h = normalize(wo + wi);
     const WoTerms &o = wo_terms(wo);
-    const float spec = f_h * distribution(h) * o.G1_o * smith_g1(wi) / (4 * wo.z * wi.z);
+    const float D = distribution(h);
+    // Visible-normal density D_wo(h) = G1(wo) max(0, wo·h) D(h) / cos θ_o, then the
+    // reflection Jacobian 1 / (4 wo·h).
+    const float pdf_spec = o.G1_o * D / (4 * wo.z);
+    *pdf_out = o.p_spec * pdf_spec + (1 - o.p_spec) * wi.z * inv_pi;
+    const float f_h = fresnel_dielectric(dot(wo, h), m_eta);
+    const float spec = f_h * D * o.G1_o * smith_g1(wi) / (4 * wo.z * wi.z);
     const float t = (1 - fresnel_dielectric(wi.z, m_eta)) * (1 - o.F_o);
-    return m_rho * (t * inv_pi) + Rgb{spec, spec, spec};
+    return m_base_scale * t + Rgb{spec, spec, spec};
+}
+
+Rgb BsdfCoated::eval(Vec3f wo, Vec3f wi) const {
+    float pdf_unused;
+    return eval_pdf(wo, wi, &pdf_unused);
 }
 
 float BsdfCoated::pdf(Vec3f wo, Vec3f wi) const {
     if (wo.z <= 0 || wi.z <= 0) return 0.0f;
     const Vec3f h = normalize(wo + wi);
-    // Visible-normal density D_wo(h) = G1(wo) max(0, wo·h) D(h) / cos θ_o, then the
-    // reflection Jacobian 1 / (4 wo·h).
     const WoTerms &o = wo_terms(wo);
     const float pdf_spec = o.G1_o * distribution(h) / (4 * wo.z);
-    const float p = o.p_spec;
-    return p * pdf_spec + (1 - p) * wi.z * inv_pi;
+    return o.p_spec * pdf_spec + (1 - o.p_spec) * wi.z * inv_pi;
 }
 
 std::optional<BsdfSample> BsdfCoated::sample(Vec3f wo, float u_lobe, float u1,
@@ -94,9 +121,9 @@ std::optional<BsdfSample> BsdfCoated::sample(Vec3f wo, float u_lobe, float u1,
         wi = sample_cosine_hemisphere(u1, u2);
     }
     if (wi.z <= 0) return std::nullopt;
-    const float pdf_wi = pdf(wo, wi);
+    float pdf_wi;
+    const Rgb f = eval_pdf(wo, wi, &pdf_wi);
     if (!(pdf_wi > 0)) return std::nullopt;
-    const Rgb f = eval(wo, wi);
     return BsdfSample{wi, f, pdf_wi, f * (wi.z / pdf_wi), false};
 }
 

@@ -192,8 +192,15 @@ EmbreeScene::EmbreeScene(const SceneDesc &scene) {
             m_object_of_instance[id] = uint32_t(i);
         }
     }
+    attach_area_lights(scene.lights);
     rtcCommitScene(m_scene);
     check();
+    RTCBounds b;
+    rtcGetSceneBounds(m_scene, &b);
+    if (b.lower_x <= b.upper_x)
+        m_bounding_radius = 0.5f * length(Vec3f{b.upper_x - b.lower_x,
+                                                 b.upper_y - b.lower_y,
+                                                 b.upper_z - b.lower_z});
 }
 
 EmbreeScene::~EmbreeScene() {

@@ -2,7 +2,9 @@
 // per distinct mesh. Vertex and index buffers are shared with Embree
 // (rtcSetSharedGeometryBuffer) from float copies this class keeps alive. A mesh used by
 // one object has its transform baked into the vertices; a mesh used by several objects
-// is built once as a child scene and instanced.
+// is built once as a child scene and instanced. Area lights are geometry too (quads as
+// RTC_GEOMETRY_TYPE_QUAD, spheres as RTC_GEOMETRY_TYPE_SPHERE_POINT; embree_lights.cpp),
+// so they occlude and are hit like any surface; light_of() tells their hits apart.
 //
 // Errors: the device error callback records the first error; check() throws it as
 // std::runtime_error, so an Embree failure fails the run instead of being printed.
@@ -55,18 +57,29 @@ class EmbreeScene {
         return inst_id != RTC_INVALID_GEOMETRY_ID ? m_object_of_instance[inst_id]
                                                   : m_object_of_geometry[geom_id];
     }
+    // Light index (into SceneDesc::lights) for a hit on an area light, else -1.
+    int light_of(unsigned geom_id, unsigned inst_id) const {
+        return inst_id == RTC_INVALID_GEOMETRY_ID && geom_id < m_light_of_geometry.size()
+                   ? m_light_of_geometry[geom_id]
+                   : -1;
+    }
+    // Radius of the bounding sphere of everything in the scene (0 when empty).
+    float bounding_radius() const { return m_bounding_radius; }
     size_t num_triangles() const { return m_num_triangles; }
     // Throws the first device error recorded so far, if any.
     void check() const;
 
   private:
     static void error_callback(void *user, RTCError code, const char *message);
+    void attach_area_lights(const std::vector<LightDesc> &lights);
 
     RTCDevice m_device = nullptr;
     RTCScene m_scene = nullptr;
     std::vector<RTCScene> m_child_scenes;
     std::vector<ObjectGeometry> m_objects;
     std::vector<uint32_t> m_object_of_geometry, m_object_of_instance;
+    std::vector<int> m_light_of_geometry;  // -1: not a light
+    float m_bounding_radius = 0;
     size_t m_num_triangles = 0;
     mutable std::mutex m_error_mutex;
     std::string m_error;

@@ -59,6 +59,17 @@ double timer_overhead_seconds() {
     return overhead;
 }
 
+// f and the BSDF's pdf for one direction pair, fused when the BSDF offers it.
+template <typename B>
+Rgb eval_with_pdf(const B &bsdf, Vec3f wo, Vec3f wi, float *pdf) {
+    if constexpr (requires { bsdf.eval_pdf(wo, wi, pdf); }) {
+        return bsdf.eval_pdf(wo, wi, pdf);
+    } else {
+        *pdf = bsdf.pdf(wo, wi);
+        return bsdf.eval(wo, wi);
+    }
+}
+
 }  // namespace
 
 void RenderStats::add(const RenderStats &o) {
@@ -93,9 +104,9 @@ void PathIntegrator::render_tile(Film &film, Sampler &sampler, int x0, int y0, i
             for (int s = s0; s < s1; ++s) {
                 sampler.start_pixel_sample(uint32_t(x), uint32_t(y), uint32_t(s));
                 // --- Offsets drawn from the filter: every sample has weight 1 ---
-                const float dx = m_filter.sample_1d(sampler.get_1d()),
-                            dy = m_filter.sample_1d(sampler.get_1d());
-                const float lu = sampler.get_1d(), lv = sampler.get_1d();
+                const auto [fu, fv] = sampler.get_2d();
+                const float dx = m_filter.sample_1d(fu), dy = m_filter.sample_1d(fv);
+                const auto [lu, lv] = sampler.get_2d();
                 const CameraRay ray =
                     m_motion ? m_motion(sampler.get_1d())
                                    .generate(x + 0.5f + dx, y + 0.5f + dy, lu, lv)
@@ -120,7 +131,6 @@ Rgb PathIntegrator::radiance(CameraRay cam, Sampler &sampler, FilmSample &fs,
     const Lights &lights = m_scene.lights();
     const EmbreeScene &geometry = m_scene.geometry();
     const int num_lights = lights.count();
-    const float select_pdf = lights.select_pdf();
 
     Rgb L{}, beta{1, 1, 1};
     Vec3f o = cam.o, d = cam.d;
@@ -151,14 +161,20 @@ Rgb PathIntegrator::radiance(CameraRay cam, Sampler &sampler, FilmSample &fs,
         const float t_hit = hit_geometry ? rh.ray.tfar : inf;
         const bool unweighted = depth == 0 || prev_specular;
 
-        // --- Emitters hit by this ray: area lights in front of the geometry ---
-        if (const AreaLightHit al = lights.intersect(o, d, t_hit); al.light >= 0) {
+        // --- An area light's own geometry: emits (front side), never reflects ---
+        if (const int li = hit_geometry ? geometry.light_of(rh.hit.geomID, rh.hit.instID[0])
+                                        : -1;
+            li >= 0) {
             float pdf_light;
-            const Rgb Le = lights.area_radiance(al.light, o, d, al.t, &pdf_light);
+            const Rgb Le = lights.area_radiance(li, o, d, t_hit, &pdf_light);
             const float w =
-                unweighted ? 1.0f : power_heuristic(prev_pdf, select_pdf * pdf_light);
+                unweighted ? 1.0f
+                           : power_heuristic(prev_pdf, lights.select_pdf(li) * pdf_light);
             L += beta * Le * w;
-            if (depth == 0) fs.alpha = 1;
+            if (depth == 0) {
+                fs.alpha = 1;
+                if (aovs) aovs->depth = t_hit * dot(d, cam.forward);
+            }
             break;
         }
         // --- Escaped: the environment and distant discs ---
@@ -166,9 +182,8 @@ Rgb PathIntegrator::radiance(CameraRay cam, Sampler &sampler, FilmSample &fs,
             Lights::InfiniteHit hits[max_infinite_lights];
             const int n = lights.eval_infinite(d, prev_ng, hits, max_infinite_lights);
             for (int k = 0; k < n; ++k) {
-                const float w = unweighted
-                                    ? 1.0f
-                                    : power_heuristic(prev_pdf, select_pdf * hits[k].pdf);
+                const float w =
+                    unweighted ? 1.0f : power_heuristic(prev_pdf, hits[k].pdf);
                 L += beta * hits[k].L * w;
             }
             break;
@@ -289,18 +304,19 @@ Rgb PathIntegrator::radiance(CameraRay cam, Sampler &sampler, FilmSample &fs,
         // --- Direct lighting and BSDF sampling, for the material's BSDF ---
         const Frame frame = Frame::from_z(v.ns);
         const Vec3f wo_local = frame.to_local(v.wo);
-        const float u_light = sampler.get_1d(), ul1 = sampler.get_1d(),
-                    ul2 = sampler.get_1d();
-        const float u_lobe = sampler.get_1d(), ub1 = sampler.get_1d(),
-                    ub2 = sampler.get_1d();
+        const auto [u_light, u_lobe] = sampler.get_2d();
+        const auto [ul1, ul2] = sampler.get_2d();
+        const auto [ub1, ub2] = sampler.get_2d();
         auto scatter = [&](const auto &bsdf) -> bool {
-            // --- Next-event estimation: one light, chosen uniformly ---
+            // --- Next-event estimation: one light, chosen by its power ---
             LightSample ls;
-            const int li = std::min(int(u_light * num_lights), num_lights - 1);
-            if (num_lights > 0 && lights.sample(li, v.p, v.ng, ul1, ul2, &ls) &&
+            float select_pdf = 0;
+            const int li = num_lights > 0 ? lights.select(u_light, &select_pdf) : -1;
+            if (li >= 0 && lights.sample(li, v.p, v.ng, ul1, ul2, &ls) &&
                 dot(ls.wi, v.ng) > 0) {
                 const Vec3f wi_local = frame.to_local(ls.wi);
-                const Rgb f = bsdf.eval(wo_local, wi_local);
+                float bsdf_pdf;
+                const Rgb f = eval_with_pdf(bsdf, wo_local, wi_local, &bsdf_pdf);
                 if (!is_black(f)) {
                     const Vec3f so = offset_ray_origin(v.p, v.ng, ls.wi);
                     const float tfar = std::isinf(ls.distance)
@@ -317,9 +333,7 @@ Rgb PathIntegrator::radiance(CameraRay cam, Sampler &sampler, FilmSample &fs,
                     if (sr.tfar >= 0) {  // Embree sets tfar = -inf when occluded
                         const float light_pdf = select_pdf * ls.pdf;
                         const float w =
-                            ls.delta ? 1.0f
-                                     : power_heuristic(light_pdf,
-                                                       bsdf.pdf(wo_local, wi_local));
+                            ls.delta ? 1.0f : power_heuristic(light_pdf, bsdf_pdf);
                         L += beta * f * ls.Li * (std::abs(wi_local.z) * w / light_pdf);
                     }
                 }
@@ -341,7 +355,7 @@ Rgb PathIntegrator::radiance(CameraRay cam, Sampler &sampler, FilmSample &fs,
         if (mat.bsdf == MaterialDesc::Bsdf::coated)
             go_on = scatter(BsdfCoated(
                 albedo, sh.roughness >= 0 ? std::min(sh.roughness, 1.0f) : mat.roughness,
-                mat.ior));
+                mat.ior, mat.coat_F_int));
         else
             go_on = scatter(BsdfLambert(albedo));
         if (!go_on || is_black(beta)) break;

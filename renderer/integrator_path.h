@@ -1,6 +1,6 @@
 // Unidirectional path tracing with next-event estimation and multiple importance
 // sampling (Veach 1997, PhD thesis, ch. 9, power heuristic β = 2): at every surface
-// vertex one light is chosen uniformly and sampled (shadow ray by rtcOccluded1), and the
+// vertex one light is chosen by power and sampled (shadow ray by rtcOccluded1), and the
 // BSDF is sampled to continue the path; emitters hit by BSDF-sampled rays are weighted
 // against the light sampling density. Russian roulette from rr_depth on, with
 // continuation probability min(0.95, max(β)).

@@ -81,6 +81,8 @@ EnvironmentLight::EnvironmentLight(const std::string &image, float scale,
     // Density in (u, v) of each pixel: p = f / (∫f du dv) with f = lum · sin θ.
     m_pdf.resize(m_pixels.size());
     const double mean = total / (double(m_width) * m_height);
+    // Σ lum sin θ · (2π² / (W H)) is ∫ L dω; divided by 4π.
+    m_mean_lum = float(total * pi / (2.0 * m_width * m_height));
     for (int y = 0; y < m_height; ++y) {
         const float sin_t = std::sin(pi * (y + 0.5f) / m_height);
         for (int x = 0; x < m_width; ++x) {

@@ -23,6 +23,8 @@ class EnvironmentLight {
     // Samples a direction; returns its radiance, fills *dir and *pdf.
     Rgb sample(float u1, float u2, Vec3f *dir, float *pdf) const;
     bool is_constant() const { return m_width == 0; }
+    // Mean luminance over the sphere of directions (for the light's power).
+    float mean_luminance() const { return is_constant() ? luminance(m_constant) : m_mean_lum; }
 
   private:
     void direction_to_uv(Vec3f d, float *u, float *v) const;
@@ -35,6 +37,7 @@ class EnvironmentLight {
     std::vector<float> m_conditional_cdf;  // height × (width + 1)
     std::vector<float> m_pdf;              // per pixel, density in (u, v)
     float m_cos_rot = 1, m_sin_rot = 0;
+    float m_mean_lum = 0;
 };
 
 }  // namespace pelage::renderer

@@ -11,9 +11,28 @@ namespace {
 constexpr float inf = std::numeric_limits<float>::infinity();
 }
 
-Lights::Lights(const std::vector<LightDesc> &descs) {
+Lights::Lights(const std::vector<LightDesc> &descs, float scene_radius,
+               IntegratorDesc::LightSelection selection) {
+    const float disc = pi * scene_radius * scene_radius;  // the scene's cross-section
     for (const LightDesc &d : descs) {
         Light l;
+        // --- Estimated power: luminance of the flux into the scene (pbrt-v4 Light::Phi)
+        const float lum = luminance(d.color) * d.intensity;
+        switch (d.type) {
+            case LightDesc::Type::environment:
+                m_power.push_back(0);  // set below, once the image is read
+                break;
+            case LightDesc::Type::distant:  // irradiance E across the scene's disc
+                m_power.push_back(lum * disc);
+                break;
+            case LightDesc::Type::sphere:  // π L per unit area over 4π r²
+                m_power.push_back(lum * pi * 4 * pi * d.radius * d.radius);
+                break;
+            case LightDesc::Type::quad:
+                m_power.push_back(lum * pi * length(cross(d.edge_u, d.edge_v)) *
+                                  (d.two_sided ? 2 : 1));
+                break;
+        }
         l.type = d.type;
         l.L = d.color * d.intensity;
         switch (d.type) {
@@ -22,6 +41,8 @@ Lights::Lights(const std::vector<LightDesc> &descs) {
                                         : std::make_shared<EnvironmentLight>(
                                               d.image, d.intensity, d.rotation_deg);
                 m_infinite.push_back(int(m_lights.size()));
+                // Uniform radiance L into a sphere of radius r: 4π r² · π L.
+                m_power.back() = l.env->mean_luminance() * 4 * pi * disc;
                 break;
             case LightDesc::Type::distant: {
                 l.to_light = -normalize(d.direction);
@@ -39,7 +60,6 @@ Lights::Lights(const std::vector<LightDesc> &descs) {
             case LightDesc::Type::sphere:
                 l.center = d.center;
                 l.radius = d.radius;
-                m_area.push_back(int(m_lights.size()));
                 break;
             case LightDesc::Type::quad: {
                 l.corner = d.corner;
@@ -49,12 +69,26 @@ Lights::Lights(const std::vector<LightDesc> &descs) {
                 l.area = length(c);
                 l.n = c / l.area;
                 l.two_sided = d.two_sided;
-                m_area.push_back(int(m_lights.size()));
                 break;
             }
         }
         m_lights.push_back(std::move(l));
     }
+    // --- Selection probabilities and their CDF ---
+    double total = 0;
+    for (float &p : m_power) {
+        if (!std::isfinite(p) || p < 0) p = 0;
+        total += p;
+    }
+    const bool uniform = selection == IntegratorDesc::LightSelection::uniform ||
+                         !(total > 0) || !std::isfinite(total);
+    m_cdf.assign(1, 0.0f);
+    for (size_t i = 0; i < m_lights.size(); ++i) {
+        m_select_pdf.push_back(uniform ? 1.0f / float(m_lights.size())
+                                       : float(m_power[i] / total));
+        m_cdf.push_back(m_cdf.back() + m_select_pdf.back());
+    }
+    if (!m_lights.empty()) m_cdf.back() = 1.0f;
 }
 
 bool Lights::sample(int index, Vec3f p, Vec3f n, float u1, float u2,
@@ -129,40 +163,6 @@ bool Lights::sample(int index, Vec3f p, Vec3f n, float u1, float u2,
     return false;
 }
 
-AreaLightHit Lights::intersect(Vec3f o, Vec3f d, float t_max) const {
-    AreaLightHit best;
-    best.t = t_max;
-    for (int i : m_area) {
-        const Light &l = m_lights[i];
-        float t = -1;
-        if (l.type == LightDesc::Type::sphere) {
-            const Vec3f oc = o - l.center;
-            const float b = dot(oc, d), c = dot(oc, oc) - l.radius * l.radius,
-                        disc = b * b - c;
-            if (disc < 0) continue;
-            const float sq = std::sqrt(disc);
-            t = -b - sq;
-            if (t <= 0) t = -b + sq;
-        } else {
-            const float denom = dot(d, l.n);
-            if (denom == 0) continue;
-            t = dot(l.corner - o, l.n) / denom;
-            if (t <= 0) continue;
-            const Vec3f q = o + d * t - l.corner;
-            // Coordinates along the (possibly non-orthogonal) edges.
-            const float uu = dot(l.eu, l.eu), uv = dot(l.eu, l.ev), vv = dot(l.ev, l.ev);
-            const float qu = dot(q, l.eu), qv = dot(q, l.ev), det = uu * vv - uv * uv;
-            const float a = (qu * vv - qv * uv) / det, b = (qv * uu - qu * uv) / det;
-            if (a < 0 || a > 1 || b < 0 || b > 1) continue;
-        }
-        if (t > 0 && t < best.t) {
-            best.t = t;
-            best.light = i;
-        }
-    }
-    return best;
-}
-
 Rgb Lights::area_radiance(int index, Vec3f o, Vec3f d, float t, float *pdf) const {
     const Light &l = m_lights[index];
     if (l.type == LightDesc::Type::sphere) {
@@ -194,9 +194,9 @@ int Lights::eval_infinite(Vec3f d, Vec3f n_prev, InfiniteHit out[], int max_out)
             const float pdf = l.env->is_constant()
                                   ? std::max(0.0f, dot(n_prev, d)) * inv_pi
                                   : l.env->pdf(d);
-            out[n++] = {l.env->eval(d), pdf};
+            out[n++] = {l.env->eval(d), pdf * m_select_pdf[i]};
         } else if (dot(d, l.to_light) >= l.cos_max) {
-            out[n++] = {l.L, 1 / (2 * pi * (1 - l.cos_max))};
+            out[n++] = {l.L, m_select_pdf[i] / (2 * pi * (1 - l.cos_max))};
         }
     }
     return n;

@@ -1,9 +1,14 @@
 // The scene's lights behind one closed dispatch (a switch on the type, no virtual calls):
 // the environment, distant lights (a delta, or a disc of angular size, e.g. the sun),
-// spheres and quads. Area lights are not in the Embree scene: they neither occlude nor
-// reflect; camera and BSDF rays test them analytically (a scene has few of them).
+// spheres and quads. Area lights are also Embree geometry (EmbreeScene::attach_area_lights):
+// they occlude shadow rays and are found by camera and BSDF rays like any surface; their
+// surface is black (it emits, it never reflects). A quad emits from its front side,
+// towards edge_u × edge_v, unless `two_sided`; its back is black but still occludes.
 // Radiometry: `color × intensity` is radiance for the environment, spheres and quads, and
 // irradiance at normal incidence for distant lights.
+// Light selection for next-event estimation: in proportion to each light's estimated
+// power (luminance of its flux into the scene's bounding sphere, pbrt-v4's Light::Phi),
+// or uniformly; select_pdf(i) is the probability used in both the estimator and MIS.
 #pragma once
 
 #include <memory>
@@ -23,29 +28,35 @@ struct LightSample {
     bool delta;
 };
 
-struct AreaLightHit {
-    int light = -1;
-    float t = 0;
-};
-
 class Lights {
   public:
-    explicit Lights(const std::vector<LightDesc> &descs);
+    // scene_radius: the radius of the scene's bounding sphere (for infinite lights'
+    // power).
+    Lights(const std::vector<LightDesc> &descs, float scene_radius,
+           IntegratorDesc::LightSelection selection);
     Lights(const Lights &) = delete;
     Lights &operator=(const Lights &) = delete;
 
     int count() const { return int(m_lights.size()); }
-    float select_pdf() const { return m_lights.empty() ? 0.0f : 1.0f / m_lights.size(); }
+    // The light next-event estimation uses for u in [0, 1), and its probability.
+    int select(float u, float *pdf) const {
+        int i = 0;
+        while (i + 1 < int(m_cdf.size()) - 1 && u >= m_cdf[i + 1]) ++i;
+        *pdf = m_select_pdf[i];
+        return i;
+    }
+    float select_pdf(int index) const { return m_select_pdf[index]; }
+    // Estimated power (luminance of the flux), for tests and statistics.
+    float power(int index) const { return m_power[index]; }
 
     // Samples light `index` as seen from p, whose geometric normal n faces the side
     // being shaded. False when it cannot contribute. A constant environment is sampled
     // cosine-weighted about n (density cos θ / π), so no sample falls below the surface.
     bool sample(int index, Vec3f p, Vec3f n, float u1, float u2, LightSample *out) const;
 
-    // Nearest area light along the ray closer than t_max.
-    AreaLightHit intersect(Vec3f o, Vec3f d, float t_max) const;
-    // Radiance leaving area light `index` towards -d at the hit, and the solid-angle
-    // density with which sample() would have produced d from o.
+    // Radiance leaving area light `index` towards -d where the ray (o, d) hits it at
+    // distance t, and the solid-angle density with which sample() would have produced d
+    // from o.
     Rgb area_radiance(int index, Vec3f o, Vec3f d, float t, float *pdf) const;
 
     // What an escaping ray sees: the environment plus distant discs containing d, each
@@ -53,7 +64,7 @@ class Lights {
     // caller weights each with its own power-heuristic term).
     struct InfiniteHit {
         Rgb L;
-        float pdf;
+        float pdf;  // sample()'s density, times the light's selection probability
     };
     // n_prev: the geometric normal at the vertex the ray left (for the constant
     // environment's density).
@@ -78,7 +89,8 @@ class Lights {
         std::shared_ptr<EnvironmentLight> env;
     };
     std::vector<Light> m_lights;
-    std::vector<int> m_area, m_infinite;
+    std::vector<int> m_infinite;
+    std::vector<float> m_power, m_select_pdf, m_cdf;  // m_cdf: count() + 1 entries
 };
 
 }  // namespace pelage::renderer

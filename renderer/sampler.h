@@ -31,6 +31,16 @@ class Sampler {
         const uint64_t h = mix64(m_key + (uint64_t(++m_dim) * 0x9e3779b97f4a7c15ull));
         return float(h >> 40) * 0x1p-24f;
     }
+    // Two uniform floats in [0, 1) from one hash: the top and the next 24 bits of a
+    // 64-bit splitmix output are independent to the mix's full avalanche, and one
+    // hash per pair halves the sampler's share of the hot loop.
+    struct Pair {
+        float u1, u2;
+    };
+    Pair get_2d() {
+        const uint64_t h = mix64(m_key + (uint64_t(++m_dim) * 0x9e3779b97f4a7c15ull));
+        return {float(h >> 40) * 0x1p-24f, float((h >> 16) & 0xffffffu) * 0x1p-24f};
+    }
 
   private:
     uint64_t m_base;

@@ -3,6 +3,7 @@
 #include <filesystem>
 #include <stdexcept>
 
+#include "renderer/bsdf_coated.h"
 #include "sim/input_error.h"
 
 namespace pelage::renderer {
@@ -26,7 +27,8 @@ Scene::Scene(const SceneDesc &desc, const PluginRegistry &plugins) : m_desc(desc
                              "cannot open file (objects[" + std::to_string(i) +
                                  "].cells in " + desc.path + ")");
     m_geometry = std::make_unique<EmbreeScene>(desc);
-    m_lights = std::make_unique<Lights>(desc.lights);
+    m_lights = std::make_unique<Lights>(desc.lights, m_geometry->bounding_radius(),
+                                        desc.integrator.light_selection);
 
     m_materials.resize(desc.objects.size());
     for (size_t i = 0; i < desc.objects.size(); ++i) {
@@ -58,6 +60,8 @@ Scene::Scene(const SceneDesc &desc, const PluginRegistry &plugins) : m_desc(desc
         m.bsdf = o.material.bsdf;
         m.roughness = o.material.roughness;
         m.ior = o.material.ior;
+        if (m.bsdf == MaterialDesc::Bsdf::coated)
+            m.coat_F_int = BsdfCoated::internal_diffuse_reflectance(m.ior);
         if (m_aov_names.empty() && m.plugin->aov_names)
             for (int k = 0; k < PELAGE_SHADER_AOV_SLOTS && m.plugin->aov_names[k]; ++k)
                 m_aov_names.push_back(m.plugin->aov_names[k]);

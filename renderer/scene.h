@@ -21,6 +21,7 @@ struct Material {
     void *instance = nullptr;
     MaterialDesc::Bsdf bsdf = MaterialDesc::Bsdf::lambert;
     float roughness = 0.3f, ior = 1.5f;
+    float coat_F_int = 0;  // BsdfCoated::internal_diffuse_reflectance(ior), coated only
 };
 
 class Scene {

@@ -529,6 +529,10 @@ SceneDesc parse_scene(const std::string &text, const std::string &path) {
             ir.integer("max_depth", scene.integrator.max_depth, 1, 1024);
         scene.integrator.rr_depth =
             ir.integer("rr_depth", scene.integrator.rr_depth, 1, 1024);
+        scene.integrator.light_selection = ir.choice<IntegratorDesc::LightSelection>(
+            "light_selection", scene.integrator.light_selection,
+            {{"power", IntegratorDesc::LightSelection::power},
+             {"uniform", IntegratorDesc::LightSelection::uniform}});
         ir.finish();
     }
     r.finish();

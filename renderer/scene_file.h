@@ -109,6 +109,9 @@ struct AnimationDesc {
 struct IntegratorDesc {
     int max_depth = 8;  // path vertices after the camera
     int rr_depth = 3;   // Russian roulette from this depth on
+    // Next-event estimation picks one light per vertex: in proportion to its estimated
+    // power, or uniformly.
+    enum class LightSelection { power, uniform } light_selection = LightSelection::power;
 };
 
 struct SceneDesc {
