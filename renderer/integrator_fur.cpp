@@ -107,10 +107,10 @@ bool scatter_at_strand(const Scene &scene, const FurLayer &layer, const RTCRayHi
 
     // --- Next-event estimation: one light, either side of the fibre ---
     const int num_lights = lights.count();
-    const float select_pdf = lights.select_pdf();
+    float select_pdf = 0;
+    const int li = num_lights > 0 ? lights.select(u_light, &select_pdf) : -1;
     LightSample ls;
-    const int li = std::min(int(u_light * num_lights), num_lights - 1);
-    if (num_lights > 0 && lights.sample(li, p, frame.z, ul1, ul2, &ls)) {
+    if (li >= 0 && lights.sample(li, p, frame.z, ul1, ul2, &ls)) {
         const Vec3f wi_local = frame.to_local(ls.wi);
         const Rgb f = from_hair(bsdf.eval(to_hair(wo_local), to_hair(wi_local)));
         if (!is_black(f)) {
