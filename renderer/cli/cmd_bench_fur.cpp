@@ -50,7 +50,7 @@ std::string scene_text(const BenchFurOptions &o, double density, bool with_fur) 
           << o.segments << R"(, "curve": ")" << o.curve
           << R"(", "root_radius": 0.002, "tip_radius": 0.0005, "comb": [0, -1, 0],
                "comb_angle": 25, "gravity": 0.3, "clump": 0.3, "clump_radius": 0.03,
-               "max_strands": 200000000})";
+               "max_strands": 50000000})";
     s << R"(},
               {"mesh": "procedural:plane:1x1", "transform": {"scale": 40, "translate": [0, -1, 0]},
                "material": {"shader": "diffuse", "params": {"albedo": 0.35}}}],
@@ -181,7 +181,7 @@ Runner add_bench_fur(CLI::App &bench) {
     CLI::App *cmd = bench.add_subcommand(
         "fur", "Fur: strand build time, peak memory, rays/s with and without fur (JSON)");
     cmd->add_option("--strands", o->strands, "Strand counts, one child process each")
-        ->check(CLI::Range(uint64_t(1), uint64_t(100'000'000)))
+        ->check(CLI::Range(uint64_t(1), uint64_t(50'000'000)))
         ->capture_default_str();
     cmd->add_option("--res", o->res, "Render resolution WxH")->capture_default_str();
     cmd->add_option("--spp", o->spp, "Samples per pixel")
