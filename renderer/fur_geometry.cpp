@@ -97,7 +97,14 @@ FurGeometry::FurGeometry(const SceneDesc &desc, EmbreeScene &scene,
     uint64_t offset = 0;
     for (size_t i = 0; i < desc.objects.size(); ++i) {
         if (!desc.objects[i].fur) continue;
-        const fur::FurParams &params = *desc.objects[i].fur;
+        // The comb is in object space, so the coat turns with its object (turntables);
+        // gravity stays world −y.
+        fur::FurParams params = *desc.objects[i].fur;
+        {
+            const fur::Vec3f c = params.comb_direction;
+            const Vec3f w = desc.objects[i].transform.vector({c.x, c.y, c.z});
+            if (length(w) > 0) params.comb_direction = {w.x, w.y, w.z};
+        }
         const std::string field = "objects[" + std::to_string(i) + "].fur";
         const ObjectGeometry &og = scene.objects()[i];
         const WorldMesh wm = world_mesh(og);

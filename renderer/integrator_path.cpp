@@ -190,11 +190,11 @@ Rgb PathIntegrator::radiance(CameraRay cam, Sampler &sampler, FilmSample &fs,
         }
 
         // --- Fur: a strand scatters with the hair BSDF (renderer/integrator_fur.h) ---
-        if (const FurLayer *layer = m_scene.fur() ? m_scene.fur()->layer_of(rh.hit.geomID)
-                                                  : nullptr) {
+        if (const FurLayer *layer =
+                m_scene.fur() ? m_scene.fur()->layer_of(rh.hit.geomID) : nullptr) {
             FurPathState st{L, beta, o, d, prev_pdf, prev_specular, prev_ng, fur_skip};
-            if (!scatter_at_strand(m_scene, *layer, rh, depth, depth >= m_max_depth, sampler,
-                                   st, fs, aovs, cam, stats, log) ||
+            if (!scatter_at_strand(m_scene, *layer, rh, depth, depth >= m_max_depth,
+                                   sampler, st, fs, aovs, cam, stats, log) ||
                 is_black(beta))
                 break;
             if (depth + 1 >= m_rr_depth) {

@@ -417,7 +417,8 @@ ObjectDesc read_object(Reader r, size_t index) {
         o.deform_mesh = o.deform.back();
         o.deform_weight = 1;
     }
-    if (const json *v = r.take("fur")) o.fur = read_fur(*v, r.field("fur"), Reader::scene_of(r).path);
+    if (const json *v = r.take("fur"))
+        o.fur = read_fur(*v, r.field("fur"), Reader::scene_of(r).path);
     r.finish();
     return o;
 }

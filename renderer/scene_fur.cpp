@@ -93,7 +93,7 @@ fur::FurParams read_fur(const json &j, const std::string &field,
         *std::max_element(p.density_by_type.begin(), p.density_by_type.end()) <= 0)
         r.fail(r.at("density_by_type"), "every multiplier is 0: no strand could grow");
     p.seed = r.integer("seed", p.seed, 0, ~0ull);
-    p.max_strands = r.integer("max_strands", p.max_strands, 1, 200'000'000);
+    p.max_strands = r.integer("max_strands", p.max_strands, 1, 50'000'000);
     p.length = r.num("length", p.length, 0, 1e9, true);
     p.length_by_type = r.per_type("length_by_type", false);
     p.length_variation = r.num("length_variation", p.length_variation, 0, 0.99);

@@ -59,6 +59,25 @@ TEST(FurRender, FiniteDiffersFromBareSkinAndSameAtOneAndTwoThreads) {
     EXPECT_EQ(furry.pixels, furry2.pixels);
 }
 
+// Flat ribbons (the distance option) shade through the same hair path: finite, and
+// close to the round tubes' brightness (same strands, same BSDF; the ribbon's h is
+// rebuilt from the hit's offset, so only the silhouettes differ).
+TEST(FurRender, FlatRibbonsLookLikeRoundTubes) {
+    TempDir tmp;
+    std::string flat = coat;
+    flat.insert(flat.find('}'), R"(, "curve": "flat")");
+    const RenderedImage round =
+        render_json(fur_scene(grey_skin, coat, 32, 8, sun_and_sky), tmp);
+    const RenderedImage ribbons =
+        render_json(fur_scene(grey_skin, flat, 32, 8, sun_and_sky), tmp);
+    EXPECT_EQ(ribbons.stats.nonfinite_samples, 0u);
+    EXPECT_NE(ribbons.pixels, round.pixels);
+    for (int c = 0; c < 3; ++c)
+        EXPECT_NEAR(mean_channel(ribbons, c), mean_channel(round, c),
+                    0.15 * mean_channel(round, c))
+            << c;
+}
+
 // σ_a = 0 fibres (the diffuse skin has no melanin) on a white Lambertian skin, inside a
 // uniform environment of radiance 1: nothing absorbs, so every pixel converges to 1
 // (the hair BSDF conserves energy to ~1 %, shader/hair tests). The same coat on a grey
