@@ -11,12 +11,12 @@
 // Fresnel reflectance) is sent back to the base each time, which the geometric series
 // 1 / (1 − ρ F̄_int) sums, and leaving the denser coat divides radiance by η². With
 // ρ = 1 the base term alone reflects exactly 1 − F(cos θ_i).
-// Model limitation (measured by BsdfCoated.WhiteFurnace* in tests/renderer/bsdf_test.cpp):
-// the coat is single-scattering GGX and its transmittance is the smooth 1 − F(cos θ), so
-// light that bounces between microfacets is lost: a white base keeps ≥ 99 % of the
-// energy at normal incidence, less at grazing angles on rough coats.
-// The specular lobe is sampled from the distribution of visible normals (Heitz 2018,
-// "Sampling the GGX Distribution of Visible Normals", JCGT 7(4)).
+// Model limitation (measured by BsdfCoated.WhiteFurnace* in
+// tests/renderer/bsdf_test.cpp): the coat is single-scattering GGX and its transmittance
+// is the smooth 1 − F(cos θ), so light that bounces between microfacets is lost: a white
+// base keeps ≥ 99 % of the energy at normal incidence, less at grazing angles on rough
+// coats. The specular lobe is sampled from the distribution of visible normals (Heitz
+// 2018, "Sampling the GGX Distribution of Visible Normals", JCGT 7(4)).
 #pragma once
 
 #include "renderer/bsdf.h"

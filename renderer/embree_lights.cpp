@@ -1,7 +1,7 @@
 // Area lights as Embree geometry: a quad light is one RTC_GEOMETRY_TYPE_QUAD, a sphere
 // light one RTC_GEOMETRY_TYPE_SPHERE_POINT (Embree intersects both the near and, from
-// inside, the far side of a sphere). Their buffers are Embree's own (rtcSetNewGeometryBuffer):
-// a light is a handful of floats, not worth sharing.
+// inside, the far side of a sphere). Their buffers are Embree's own
+// (rtcSetNewGeometryBuffer): a light is a handful of floats, not worth sharing.
 #include <string>
 
 #include "renderer/embree_scene.h"
@@ -16,8 +16,8 @@ void EmbreeScene::attach_area_lights(const std::vector<LightDesc> &lights) {
             g = rtcNewGeometry(m_device, RTC_GEOMETRY_TYPE_QUAD);
             auto *v = static_cast<float *>(rtcSetNewGeometryBuffer(
                 g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), 4));
-            const Vec3f c[4] = {l.corner, l.corner + l.edge_u, l.corner + l.edge_u + l.edge_v,
-                                l.corner + l.edge_v};
+            const Vec3f c[4] = {l.corner, l.corner + l.edge_u,
+                                l.corner + l.edge_u + l.edge_v, l.corner + l.edge_v};
             for (int k = 0; k < 4; ++k) {
                 v[3 * k] = c[k].x;
                 v[3 * k + 1] = c[k].y;

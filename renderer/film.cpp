@@ -1,12 +1,27 @@
 #include "renderer/film.h"
 
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <memory>
+
 namespace pelage::renderer {
 
 Film::Film(int width, int height)
     : m_width(width),
       m_height(height),
-      m_accum(size_t(width) * height * accum_stride, 0.0f),
-      m_point(size_t(width) * height) {}
+      m_accum(new float[size_t(width) * height * accum_stride]),
+      m_point(static_cast<FilmPointAovs *>(
+          ::operator new[](size_t(width) * height * sizeof(FilmPointAovs)))) {
+    // Zero the buffers row by row in parallel: at 1280×720 they are 66 MB, and touching
+    // them first from one thread made page faults a serial few per cent of a short
+    // render.
+    tbb::parallel_for(0, height, [&](int y) {
+        const size_t row = size_t(y) * width;
+        std::fill_n(&m_accum[row * accum_stride], size_t(width) * accum_stride, 0.0f);
+        std::uninitialized_fill_n(&m_point[row], width, FilmPointAovs{});
+    });
+}
 
 std::vector<float> Film::resolve() const {
     std::vector<float> out(size_t(m_width) * m_height * num_channels, 0.0f);

@@ -10,6 +10,7 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -65,8 +66,12 @@ class Film {
   private:
     static constexpr int accum_stride = 11;
     int m_width, m_height;
-    std::vector<float> m_accum;
-    std::vector<FilmPointAovs> m_point;
+    std::unique_ptr<float[]> m_accum;  // uninitialized by new[], zeroed in parallel
+    struct RawDelete {
+        void operator()(FilmPointAovs *p) const { ::operator delete[](p); }
+    };
+    std::unique_ptr<FilmPointAovs[], RawDelete>
+        m_point;  // raw storage, filled in parallel
 };
 
 }  // namespace pelage::renderer

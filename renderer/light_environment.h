@@ -24,7 +24,9 @@ class EnvironmentLight {
     Rgb sample(float u1, float u2, Vec3f *dir, float *pdf) const;
     bool is_constant() const { return m_width == 0; }
     // Mean luminance over the sphere of directions (for the light's power).
-    float mean_luminance() const { return is_constant() ? luminance(m_constant) : m_mean_lum; }
+    float mean_luminance() const {
+        return is_constant() ? luminance(m_constant) : m_mean_lum;
+    }
 
   private:
     void direction_to_uv(Vec3f d, float *u, float *v) const;

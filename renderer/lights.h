@@ -1,11 +1,11 @@
 // The scene's lights behind one closed dispatch (a switch on the type, no virtual calls):
 // the environment, distant lights (a delta, or a disc of angular size, e.g. the sun),
-// spheres and quads. Area lights are also Embree geometry (EmbreeScene::attach_area_lights):
-// they occlude shadow rays and are found by camera and BSDF rays like any surface; their
-// surface is black (it emits, it never reflects). A quad emits from its front side,
-// towards edge_u × edge_v, unless `two_sided`; its back is black but still occludes.
-// Radiometry: `color × intensity` is radiance for the environment, spheres and quads, and
-// irradiance at normal incidence for distant lights.
+// spheres and quads. Area lights are also Embree geometry
+// (EmbreeScene::attach_area_lights): they occlude shadow rays and are found by camera and
+// BSDF rays like any surface; their surface is black (it emits, it never reflects). A
+// quad emits from its front side, towards edge_u × edge_v, unless `two_sided`; its back
+// is black but still occludes. Radiometry: `color × intensity` is radiance for the
+// environment, spheres and quads, and irradiance at normal incidence for distant lights.
 // Light selection for next-event estimation: in proportion to each light's estimated
 // power (luminance of its flux into the scene's bounding sphere, pbrt-v4's Light::Phi),
 // or uniformly; select_pdf(i) is the probability used in both the estimator and MIS.

@@ -21,6 +21,10 @@ namespace {
 namespace fs = std::filesystem;
 using namespace pelage::renderer;
 
+// Stopped by Ctrl-C: the shell convention 128 + SIGINT, so scripts can tell an
+// interrupted render (whose EXR is whole but marked pelage:interrupted) from a failure.
+constexpr int exit_interrupted = 128 + 2;
+
 struct RenderCliOptions {
     std::string scene, output, preview, stats_json, res, view;
     int spp = 0;
@@ -181,7 +185,7 @@ int run(const RenderCliOptions &o) {
             std::fprintf(stderr,
                          "pelage render: interrupted during frame %d; %s not written\n", f,
                          out_f.c_str());
-            return 1;
+            return exit_interrupted;
         }
 
         // --- Write the outputs, atomically ---
@@ -266,7 +270,7 @@ int run(const RenderCliOptions &o) {
     if (animated && !o.quiet)
         std::printf("%d frame(s) rendered, %d skipped (complete), %.2f s\n", rendered,
                     skipped, total_seconds);
-    return interrupted ? 1 : 0;
+    return interrupted ? exit_interrupted : 0;
 }
 
 }  // namespace

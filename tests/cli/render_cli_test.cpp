@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 #include <sys/wait.h>
 
+#include <cmath>
 #include <cstring>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -95,11 +96,22 @@ TEST(RenderCli, InterruptWritesTheCompletedPassesAtomically) {
                             tmp.file("o.exr") + " --stats-json " + tmp.file("s.json") +
                             " 2>" + tmp.file("err");
     const int rc = std::system(cmd.c_str());
-    EXPECT_EQ(WEXITSTATUS(rc), 1);
+    EXPECT_EQ(WEXITSTATUS(rc), 130);  // 128 + SIGINT, the shell convention
     auto in = OIIO::ImageInput::open(tmp.file("o.exr"));
     ASSERT_TRUE(in);
     EXPECT_EQ(in->spec().get_int_attribute("pelage:interrupted"), 1);
     EXPECT_GE(in->spec().get_int_attribute("pelage:spp"), 1);
+    // Complete and valid: every pixel of every channel reads back finite, and the lit
+    // sphere (default environment, radiance 1) covers the centre with non-zero beauty.
+    const OIIO::ImageSpec &spec = in->spec();
+    ASSERT_EQ(spec.width, 32);
+    std::vector<float> px(size_t(spec.width) * spec.height * spec.nchannels);
+    ASSERT_TRUE(
+        in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, px.data()));
+    for (float v : px) ASSERT_TRUE(std::isfinite(v));
+    const float *centre = &px[(size_t(16) * spec.width + 16) * spec.nchannels];
+    EXPECT_GT(centre[0], 0.0f);
+    EXPECT_EQ(centre[3], 1.0f);  // alpha: covered
     const auto st = nlohmann::json::parse(std::ifstream(tmp.file("s.json")));
     EXPECT_TRUE(st["interrupted"].get<bool>());
     // Only the final files remain: no temporaries.
