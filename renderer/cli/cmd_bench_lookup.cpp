@@ -22,6 +22,7 @@ struct BenchLookupOptions {
     size_t cells = 20000;
     size_t queries = 1000000;
     uint64_t seed = 1;
+    uint32_t subdivision = 3;
     ThreadOption threads;
 };
 
@@ -29,8 +30,8 @@ using Query = std::pair<sim::TriId, shader::Vec2f>;
 
 nlohmann::json measure(const sim::Surface &s, const shader::CellTable &cells,
                        const std::vector<Query> &queries, const std::vector<Query> &coherent,
-                       sim::UnfoldPaths paths) {
-    const shader::ClosestCellIndex index(s.crps, cells, {paths});
+                       sim::UnfoldPaths paths, uint32_t subdivision) {
+    const shader::ClosestCellIndex index(s.crps, cells, {paths, subdivision});
     uint64_t sink = 0;
     const Timer pruned;
     for (const auto &[t, q] : queries) sink += index.find(t, q).index;
@@ -55,6 +56,7 @@ nlohmann::json measure(const sim::Surface &s, const shader::CellTable &cells,
             {"build_seconds", index.stats().build_seconds},
             {"mean_candidates", index.stats().mean_candidates},
             {"mean_candidate_cells", index.stats().mean_candidate_cells},
+            {"index_megabytes", index.stats().bytes / 1e6},
             {"ns_per_lookup", ns},
             {"ns_per_lookup_f1_only", ns_f1},
             {"ns_per_lookup_coherent", ns_coherent},
@@ -97,11 +99,11 @@ int run(const BenchLookupOptions &o) {
         std::stable_sort(coherent.begin(), coherent.end(),
                          [](const Query &a, const Query &b) { return a.first < b.first; });
 
-        nlohmann::json run = measure(s, cells, queries, coherent, sim::UnfoldPaths::edges_only);
+        nlohmann::json run = measure(s, cells, queries, coherent, sim::UnfoldPaths::edges_only, o.subdivision);
         run["mesh"] = mesh;
         run["triangles"] = s.mesh.num_triangles();
         run["cells"] = cells.size();
-        run["teo_unfolding"] = measure(s, cells, queries, coherent, sim::UnfoldPaths::edges_and_vertices);
+        run["teo_unfolding"] = measure(s, cells, queries, coherent, sim::UnfoldPaths::edges_and_vertices, o.subdivision);
         runs.push_back(run);
     }
     const nlohmann::json j = {{"benchmark", "lookup"}, {"queries", o.queries}, {"runs", runs}};
@@ -119,6 +121,8 @@ Runner add_bench_lookup(CLI::App &bench) {
     sub->add_option("--queries", o->queries, "Random surface points to look up")
         ->check(CLI::Range(size_t(1), size_t(1000000000)));
     sub->add_option("--seed", o->seed, "Seed of the cells and queries");
+    sub->add_option("--subdivision", o->subdivision, "Sub-triangles per triangle side, at most (1-3)")
+        ->check(CLI::Range(1, 3));
     o->threads.add_to(*sub);
     return [o] { return run(*o); };
 }
