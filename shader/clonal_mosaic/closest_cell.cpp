@@ -140,17 +140,30 @@ void ClosestCellIndex::build_triangle(const sim::Crps &crps, sim::TriId t,
                 mapped.push_back({u.to_master.apply({cells.x[k], cells.z[k]}), k, u.tri});
         double needed = 0;
         for (Sub &s : subs) {
-            // Distances to the three nearest cells: lists serve searches for up to three.
-            double d[3] = {inf, inf, inf};
-            for (const Mapped &m : mapped) {
-                const double dk = length(m.p - s.centre);
-                if (dk < d[2]) {
-                    d[2] = dk;
-                    if (d[2] < d[1]) std::swap(d[1], d[2]);
-                    if (d[1] < d[0]) std::swap(d[0], d[1]);
+            // For any three cells T, F3(q) <= max_{c in T} |q - c| on all of S, and that
+            // maximum over the triangle S is reached at one of its corners. T = the three
+            // nearest to S's centroid or to one of its corners; the tightest bound wins.
+            // (It is at most d_3 + b_S, the centroid bound.)
+            s.reach_needed = inf;
+            const sim::Vec2d probes[4] = {s.centre, s.v[0], s.v[1], s.v[2]};
+            for (const sim::Vec2d &probe : probes) {
+                const Mapped *near[3] = {nullptr, nullptr, nullptr};
+                double d[3] = {inf, inf, inf};
+                for (const Mapped &m : mapped) {
+                    const double dk = length(m.p - probe);
+                    if (dk < d[2]) {
+                        d[2] = dk;
+                        near[2] = &m;
+                        if (d[2] < d[1]) std::swap(d[1], d[2]), std::swap(near[1], near[2]);
+                        if (d[1] < d[0]) std::swap(d[0], d[1]), std::swap(near[0], near[1]);
+                    }
                 }
+                if (!near[2]) continue;  // fewer than three cells within the radius
+                double reach = 0;
+                for (const Mapped *m : near)
+                    for (const sim::Vec2d &corner : s.v) reach = std::max(reach, length(m->p - corner));
+                s.reach_needed = std::min(s.reach_needed, reach);
             }
-            s.reach_needed = d[2] + s.bound;
             needed = std::max(needed, s.reach_needed);
         }
         if (needed <= radius || radius >= m_max_radius) break;
