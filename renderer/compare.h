@@ -3,10 +3,9 @@
 // the comparison of Teo 2006 Table 7.9 (CM vs Perlin, Worley, texture).
 #pragma once
 
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
-
-#include <nlohmann/json.hpp>
 
 #include "renderer/scene_file.h"
 
@@ -20,9 +19,11 @@ struct CompareOptions {
 
 struct CompareRun {
     std::string shader;
-    double seconds = 0;        // the whole render
-    double ns_per_lookup = 0;  // shade() alone, same points for every shader
-    std::vector<float> rgb;    // resolved beauty, linear RGB, width × height × 3
+    double seconds = 0;      // the whole render, wall clock
+    double cpu_seconds = 0;  // ... CPU time of all threads (the ratios use it)
+    double ns_per_lookup =
+        0;  // shade() alone, same points for every shader, thread CPU time
+    std::vector<float> rgb;  // resolved beauty, linear RGB, width × height × 3
 };
 
 struct CompareResult {

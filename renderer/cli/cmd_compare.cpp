@@ -1,6 +1,6 @@
 // `pelage compare SCENE.json`: one render per shader on the scene's patterned objects,
-// timings and a labelled contact sheet (renderer/compare.h). --report keys are a contract:
-// shaders {NAME: {seconds, ns_per_lookup}}, ratios, lookup_ratios.
+// timings and a labelled contact sheet (renderer/compare.h). --report keys are a
+// contract: shaders {NAME: {seconds, ns_per_lookup}}, ratios, lookup_ratios.
 #include <fmt/core.h>
 
 #include <sstream>
@@ -14,7 +14,8 @@ namespace pelage::cli {
 namespace {
 
 struct CompareCliOptions {
-    std::string scene, shaders = "clonal_mosaic,worley,perlin,diffuse", res, report, sheet, view;
+    std::string scene, shaders = "clonal_mosaic,worley,perlin,diffuse", res, report,
+                       sheet, view;
     int spp = 0;
     unsigned long long seed = 0;
     size_t lookups = 200000;
@@ -26,7 +27,8 @@ int run(const CompareCliOptions &o) {
     const auto control = o.threads.apply();
     renderer::SceneDesc desc = renderer::load_scene_file(o.scene);
     if (o.spp > 0) desc.film.spp = o.spp;
-    if (!o.res.empty()) parse_resolution(o.res, 16384, &desc.film.width, &desc.film.height);
+    if (!o.res.empty())
+        parse_resolution(o.res, 16384, &desc.film.width, &desc.film.height);
     renderer::CompareOptions co;
     co.seed = o.seed;
     co.lookups = o.lookups;
@@ -38,12 +40,15 @@ int run(const CompareCliOptions &o) {
     if (o.deform) {
         // --- Pattern drift between the rest mesh and the deformed pose; no renders ---
         if (!o.sheet.empty())
-            throw InputError("", 0, "--sheet", "--deform measures drift; it draws no sheet");
+            throw InputError("", 0, "--sheet",
+                             "--deform measures drift; it draws no sheet");
         const renderer::DriftResult d = renderer::measure_pattern_drift(desc, co);
-        fmt::print("pattern drift, {} -> {} (mean |albedo change| at {} fixed surface points)\n",
-                   desc.objects[d.object].mesh, d.pose, d.runs.empty() ? 0 : d.runs[0].points);
+        fmt::print(
+            "pattern drift, {} -> {} (mean |albedo change| at {} fixed surface points)\n",
+            desc.objects[d.object].mesh, d.pose, d.runs.empty() ? 0 : d.runs[0].points);
         for (const auto &run : d.runs)
-            fmt::print("{:<14} drift mean {:.6f}   max {:.6f}\n", run.shader, run.mean, run.max);
+            fmt::print("{:<14} drift mean {:.6f}   max {:.6f}\n", run.shader, run.mean,
+                       run.max);
         if (!o.report.empty()) write_json_file(o.report, d.report());
         return 0;
     }
@@ -54,15 +59,20 @@ int run(const CompareCliOptions &o) {
     const renderer::CompareResult r = renderer::compare_shaders(desc, co);
     const nlohmann::json report = r.report();
     for (const auto &run : r.runs)
-        fmt::print("{:<14} render {:8.3f} s   shade {:8.1f} ns/lookup\n", run.shader, run.seconds, run.ns_per_lookup);
-    for (const auto &[k, v] : report["ratios"].items()) fmt::print("  render {:<32} {:.3f}\n", k, v.get<double>());
-    for (const auto &[k, v] : report["lookup_ratios"].items()) fmt::print("  lookup {:<32} {:.3f}\n", k, v.get<double>());
+        fmt::print("{:<14} render {:8.3f} s ({:8.3f} s CPU)   shade {:8.1f} ns/lookup\n",
+                   run.shader, run.seconds, run.cpu_seconds, run.ns_per_lookup);
+    for (const auto &[k, v] : report["ratios"].items())
+        fmt::print("  render {:<32} {:.3f}\n", k, v.get<double>());
+    for (const auto &[k, v] : report["lookup_ratios"].items())
+        fmt::print("  lookup {:<32} {:.3f}\n", k, v.get<double>());
     if (!o.report.empty()) write_json_file(o.report, report);
     if (display) {
         std::vector<renderer::SheetImage> images;
         for (const auto &run : r.runs) images.push_back({run.shader, &run.rgb});
         if (!renderer::write_contact_sheet(o.sheet, r.width, r.height, images, *display))
-            std::fprintf(stderr, "pelage compare: warning: no label font; %s is unlabelled\n", o.sheet.c_str());
+            std::fprintf(stderr,
+                         "pelage compare: warning: no label font; %s is unlabelled\n",
+                         o.sheet.c_str());
     }
     return 0;
 }
@@ -71,13 +81,18 @@ int run(const CompareCliOptions &o) {
 
 Runner add_compare_command(CLI::App &app) {
     auto o = std::make_shared<CompareCliOptions>();
-    CLI::App *sub = app.add_subcommand("compare", "Render a scene once per shader (CM vs Worley, Perlin, ...) and compare");
-    sub->add_option("scene", o->scene, "Scene file (.json) with a patterned object")->required();
+    CLI::App *sub = app.add_subcommand(
+        "compare",
+        "Render a scene once per shader (CM vs Worley, Perlin, ...) and compare");
+    sub->add_option("scene", o->scene, "Scene file (.json) with a patterned object")
+        ->required();
     sub->add_option("--shaders", o->shaders, "Comma-separated shaders, in sheet order");
     sub->add_option("--res", o->res, "Resolution WIDTHxHEIGHT (overrides the scene)");
-    sub->add_option("--spp", o->spp, "Samples per pixel (overrides the scene)")->check(CLI::Range(1, 1 << 20));
+    sub->add_option("--spp", o->spp, "Samples per pixel (overrides the scene)")
+        ->check(CLI::Range(1, 1 << 20));
     sub->add_option("--seed", o->seed, "Sampler seed, the same for every shader");
-    sub->add_option("--lookups", o->lookups, "Surface points timed per shader")->check(CLI::Range(size_t(1), size_t(100000000)));
+    sub->add_option("--lookups", o->lookups, "Surface points timed per shader")
+        ->check(CLI::Range(size_t(1), size_t(100000000)));
     sub->add_option("--report", o->report, "Write the comparison as JSON");
     sub->add_flag("--deform", o->deform,
                   "Pattern drift: albedo change at fixed surface points between the rest "

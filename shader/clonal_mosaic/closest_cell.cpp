@@ -1,13 +1,13 @@
 // Implements Teo 2006 §6.2 (see closest_cell.h).
 #include "shader/clonal_mosaic/closest_cell.h"
 
-#include <algorithm>
-#include <chrono>
-#include <stdexcept>
-#include <cmath>
-
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <stdexcept>
 
 namespace pelage::shader {
 namespace {
@@ -16,9 +16,11 @@ constexpr double inf = std::numeric_limits<double>::infinity();
 constexpr float inf_f = std::numeric_limits<float>::infinity();
 
 // The barycentric (b1, b2) corners of sub-triangle (i, j, upper) of an n-subdivision.
-std::array<std::array<double, 2>, 3> sub_triangle(uint32_t n, uint32_t i, uint32_t j, bool upper) {
+std::array<std::array<double, 2>, 3> sub_triangle(uint32_t n, uint32_t i, uint32_t j,
+                                                  bool upper) {
     const double s = 1.0 / n;
-    if (upper) return {{{(i + 1) * s, j * s}, {(i + 1) * s, (j + 1) * s}, {i * s, (j + 1) * s}}};
+    if (upper)
+        return {{{(i + 1) * s, j * s}, {(i + 1) * s, (j + 1) * s}, {i * s, (j + 1) * s}}};
     return {{{i * s, j * s}, {(i + 1) * s, j * s}, {i * s, (j + 1) * s}}};
 }
 
@@ -59,7 +61,8 @@ ClosestCellIndex::ClosestCellIndex(const sim::Crps &crps, const CellTable &cells
     tbb::parallel_for(tbb::blocked_range<size_t>(0, nt, 64), [&](const auto &range) {
         Scratch &s = scratch.local();
         for (size_t t = range.begin(); t != range.end(); ++t)
-            build_triangle(crps, static_cast<sim::TriId>(t), s.unfold, s.unfolded, built[t]);
+            build_triangle(crps, static_cast<sim::TriId>(t), s.unfold, s.unfolded,
+                           built[t]);
     });
 
     size_t total_blocks = 0, used_slots = 0, entries = 0, distinct = 0;
@@ -81,7 +84,8 @@ ClosestCellIndex::ClosestCellIndex(const sim::Crps &crps, const CellTable &cells
     }
     m_stats.mean_candidates = used_slots ? double(distinct) / used_slots : 0;
     m_stats.mean_candidate_cells = used_slots ? double(entries) / used_slots : 0;
-    m_stats.bytes = m_regions.size() * sizeof(TriangleRegions) + m_blocks.size() * sizeof(Block);
+    m_stats.bytes =
+        m_regions.size() * sizeof(TriangleRegions) + m_blocks.size() * sizeof(Block);
     m_stats.build_seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
@@ -95,12 +99,19 @@ void ClosestCellIndex::build_triangle(const sim::Crps &crps, sim::TriId t,
 
     // --- Subdivision: about one sub-triangle per cell spacing across, at most 3 ---
     const uint32_t n = std::clamp<uint32_t>(
-        static_cast<uint32_t>(std::ceil(2 * ft.bound_radius / std::max(m_spacing, 1e-300))), 1,
-        std::clamp<uint32_t>(m_options.max_subdivision, 1, max_subdivision));
+        static_cast<uint32_t>(
+            std::ceil(2 * ft.bound_radius / std::max(m_spacing, 1e-300))),
+        1, std::clamp<uint32_t>(m_options.max_subdivision, 1, max_subdivision));
     const sim::Vec2d v0 = ft.v[0], e1 = ft.v[1] - ft.v[0], e2 = ft.v[2] - ft.v[0];
     const double det = cross(e1, e2);
-    out.regions = {float(v0.x), float(v0.y), float(e2.y / det), float(-e2.x / det),
-                   float(-e1.y / det), float(e1.x / det), n, {}};
+    out.regions = {float(v0.x),
+                   float(v0.y),
+                   float(e2.y / det),
+                   float(-e2.x / det),
+                   float(-e1.y / det),
+                   float(e1.x / det),
+                   n,
+                   {}};
     struct Sub {
         uint32_t slot;
         sim::Vec2d v[3], centre;
@@ -116,10 +127,12 @@ void ClosestCellIndex::build_triangle(const sim::Crps &crps, sim::TriId t,
                 const auto b = sub_triangle(n, i, j, upper);
                 for (int c = 0; c < 3; ++c) s.v[c] = v0 + e1 * b[c][0] + e2 * b[c][1];
                 s.centre = (s.v[0] + s.v[1] + s.v[2]) / 3.0;
-                for (int c = 0; c < 3; ++c) s.bound = std::max(s.bound, length(s.v[c] - s.centre));
+                for (int c = 0; c < 3; ++c)
+                    s.bound = std::max(s.bound, length(s.v[c] - s.centre));
                 subs.push_back(s);
             }
-    std::sort(subs.begin(), subs.end(), [](const Sub &a, const Sub &b) { return a.slot < b.slot; });
+    std::sort(subs.begin(), subs.end(),
+              [](const Sub &a, const Sub &b) { return a.slot < b.slot; });
 
     // --- Grow t's unfolding until it holds, for every S, all cells within R_S of S ---
     // Every cell of the unfolding carried into t's frame once (Teo's F[j→t]), in double.
@@ -154,20 +167,24 @@ void ClosestCellIndex::build_triangle(const sim::Crps &crps, sim::TriId t,
                     if (dk < d[2]) {
                         d[2] = dk;
                         near[2] = &m;
-                        if (d[2] < d[1]) std::swap(d[1], d[2]), std::swap(near[1], near[2]);
-                        if (d[1] < d[0]) std::swap(d[0], d[1]), std::swap(near[0], near[1]);
+                        if (d[2] < d[1])
+                            std::swap(d[1], d[2]), std::swap(near[1], near[2]);
+                        if (d[1] < d[0])
+                            std::swap(d[0], d[1]), std::swap(near[0], near[1]);
                     }
                 }
                 if (!near[2]) continue;  // fewer than three cells within the radius
                 double reach = 0;
                 for (const Mapped *m : near)
-                    for (const sim::Vec2d &corner : s.v) reach = std::max(reach, length(m->p - corner));
+                    for (const sim::Vec2d &corner : s.v)
+                        reach = std::max(reach, length(m->p - corner));
                 s.reach_needed = std::min(s.reach_needed, reach);
             }
             needed = std::max(needed, s.reach_needed);
         }
         if (needed <= radius || radius >= m_max_radius) break;
-        // A larger radius may reach triangles by other paths: grow with a margin, re-check.
+        // A larger radius may reach triangles by other paths: grow with a margin,
+        // re-check.
         radius = std::isfinite(needed) ? std::min(needed * 1.0001 + 1e-12, m_max_radius)
                                        : std::min(2 * radius, m_max_radius);
     }
@@ -197,10 +214,11 @@ void ClosestCellIndex::build_triangle(const sim::Crps &crps, sim::TriId t,
         out.used_slots += 1;
         for (size_t i = 0; i < list.size(); i += 4) {
             Block b;
-            // The bound is rounded down by more than float's error in the scan's distances
-            // (positions of size |p| + the triangle's radius), so rounding never prunes the
-            // true nearest.
-            const double margin = 1e-5 * (list[i].bound + length(list[i].m->p) + ft.bound_radius);
+            // The bound is rounded down by more than float's error in the scan's
+            // distances (positions of size |p| + the triangle's radius), so rounding
+            // never prunes the true nearest.
+            const double margin =
+                1e-5 * (list[i].bound + length(list[i].m->p) + ft.bound_radius);
             const double lower = std::max(0.0, list[i].bound - margin);
             b.bound2 = float(lower * lower * (1 - 1e-6));
             for (size_t l = 0; l < 4; ++l) {
@@ -239,11 +257,17 @@ const ClosestCellIndex::Block *ClosestCellIndex::blocks_of(sim::TriId t, Vec2f q
 }
 
 template <bool prune, bool dedupe, int K>
-void ClosestCellIndex::scan(const Block *b, const Block *e, Vec2f q, Nearest<K> &n) const {
+void ClosestCellIndex::scan(const Block *b, const Block *e, Vec2f q, Nearest<K> &n,
+                            float band) const {
     const uint32_t *id = m_cells->id.data();
     // D_min² of Teo Fig. 6.2: beyond it no cell matters any more — the squared distance
-    // to the K-th nearest found so far.
-    float d_min2 = n.d2[K - 1];
+    // to the K-th nearest found so far, or to F1 + band when that is nearer (band >= 0).
+    auto radius2 = [&] {
+        if (band < 0) return n.d2[K - 1];
+        const float cap = std::sqrt(n.d2[0]) + band;
+        return std::min(n.d2[K - 1], cap * cap);
+    };
+    float d_min2 = radius2();
     for (; b != e; ++b) {
         // Blocks are sorted by their cells' distance from the sub-triangle: once a block
         // lies beyond D_min, so do all after it.
@@ -254,7 +278,8 @@ void ClosestCellIndex::scan(const Block *b, const Block *e, Vec2f q, Nearest<K> 
             const float dx = b->x[l] - q.x, dy = b->y[l] - q.y;
             d2[l] = dx * dx + dy * dy;
         }
-        if (std::min(std::min(d2[0], d2[1]), std::min(d2[2], d2[3])) > d_min2) continue;  // the common case
+        if (std::min(std::min(d2[0], d2[1]), std::min(d2[2], d2[3])) > d_min2)
+            continue;  // the common case
         for (int l = 0; l < 4; ++l) {
             const uint32_t cell = b->cell[l];
             if (d2[l] > d_min2 || cell == ClosestCell::none) continue;
@@ -264,8 +289,9 @@ void ClosestCellIndex::scan(const Block *b, const Block *e, Vec2f q, Nearest<K> 
             bool seen = false;
             for (int j = K - 1; j >= 0; --j) {
                 if constexpr (dedupe) seen |= n.index[j] == cell;
-                if (d2[l] < n.d2[j] || (d2[l] == n.d2[j] && n.index[j] != ClosestCell::none &&
-                                        id[cell] < id[n.index[j]]))
+                if (d2[l] < n.d2[j] ||
+                    (d2[l] == n.d2[j] && n.index[j] != ClosestCell::none &&
+                     id[cell] < id[n.index[j]]))
                     pos = j;
             }
             if (seen || pos == K) continue;
@@ -275,7 +301,7 @@ void ClosestCellIndex::scan(const Block *b, const Block *e, Vec2f q, Nearest<K> 
             }
             n.d2[pos] = d2[l];
             n.index[pos] = cell;
-            d_min2 = n.d2[K - 1];
+            d_min2 = radius2();
         }
     }
 }
@@ -293,7 +319,8 @@ ClosestCell ClosestCellIndex::find_nearest(sim::TriId t, Vec2f q) const {
     const Block *e;
     const Block *b = blocks_of(t, q, e);
     scan<true, false, 1>(b, e, q, n);
-    return {n.index[0], ClosestCell::none, std::sqrt(n.d2[0]), std::numeric_limits<float>::infinity()};
+    return {n.index[0], ClosestCell::none, std::sqrt(n.d2[0]),
+            std::numeric_limits<float>::infinity()};
 }
 
 ClosestCellIndex::Nearest<3> ClosestCellIndex::find_three(sim::TriId t, Vec2f q) const {
@@ -301,6 +328,22 @@ ClosestCellIndex::Nearest<3> ClosestCellIndex::find_three(sim::TriId t, Vec2f q)
     const Block *e;
     const Block *b = blocks_of(t, q, e);
     scan<true, false, 3>(b, e, q, n);
+    return n;
+}
+
+ClosestCellIndex::Nearest<3> ClosestCellIndex::find_three_within(sim::TriId t, Vec2f q,
+                                                                 float band) const {
+    Nearest<3> n;
+    const Block *e;
+    const Block *b = blocks_of(t, q, e);
+    scan<true, false, 3>(b, e, q, n, std::max(band, 0.0f));
+    // Cells that entered before F1 settled may lie beyond F1 + band: drop them.
+    const float cap = std::sqrt(n.d2[0]) + std::max(band, 0.0f);
+    for (int i = 1; i < 3; ++i)
+        if (!(n.d2[i] <= cap * cap)) {
+            n.d2[i] = std::numeric_limits<float>::infinity();
+            n.index[i] = ClosestCell::none;
+        }
     return n;
 }
 

@@ -47,8 +47,9 @@ struct Vec2f {
 
 struct ClosestCell {
     static constexpr uint32_t none = 0xffffffffu;
-    uint32_t index = none;   // into the CellTable arrays; none when no cell is reachable
-    uint32_t second = none;  // the second-nearest cell (find() and find_exhaustive() only)
+    uint32_t index = none;  // into the CellTable arrays; none when no cell is reachable
+    uint32_t second =
+        none;  // the second-nearest cell (find() and find_exhaustive() only)
     float f1 = std::numeric_limits<float>::infinity();  // distance to the nearest cell
     float f2 = std::numeric_limits<float>::infinity();  // ... to the second nearest
 };
@@ -95,6 +96,10 @@ class ClosestCellIndex {
     };
     // The three nearest: what a blend continuous across Voronoi vertices needs.
     Nearest<3> find_three(sim::TriId t, Vec2f q) const;
+    // The three nearest among the cells within F1 + band; the others are (none, +inf).
+    // What a blend over a band of width `band` past the nearest cell needs, in one scan
+    // that prunes at F1 + band instead of F3 (band = 0: the nearest cell and its ties).
+    Nearest<3> find_three_within(sim::TriId t, Vec2f q, float band) const;
     // The candidate lists of every sub-triangle of t, without any pruning: the reference
     // the tests compare find() against (it checks the sub-triangle radii too).
     ClosestCell find_exhaustive(sim::TriId t, Vec2f q) const;
@@ -117,7 +122,8 @@ class ClosestCellIndex {
     static_assert(sizeof(Block) == 64);
 
     // Where q falls: v0 + [e1 e2] (b1, b2) = q, inverted per triangle; n = subdivision.
-    // Sub-triangle k's blocks: [first_block + (k ? end[k - 1] : 0), first_block + end[k]).
+    // Sub-triangle k's blocks: [first_block + (k ? end[k - 1] : 0), first_block +
+    // end[k]).
     struct alignas(64) TriangleRegions {
         float v0x, v0y, i00, i01, i10, i11;
         uint32_t first_block_and_n;  // first_block << 2 | n (n <= 3)
@@ -128,7 +134,8 @@ class ClosestCellIndex {
 
     const Block *blocks_of(sim::TriId t, Vec2f q, const Block *&end) const;
     template <bool prune, bool dedupe, int K>
-    void scan(const Block *b, const Block *e, Vec2f q, Nearest<K> &n) const;
+    void scan(const Block *b, const Block *e, Vec2f q, Nearest<K> &n,
+              float band = -1) const;
     void build_triangle(const sim::Crps &crps, sim::TriId t, sim::UnfoldScratch &scratch,
                         std::vector<sim::UnfoldedTriangle> &unfolded, Built &out) const;
 
