@@ -12,8 +12,10 @@
 #include "renderer/plugin_loader.h"
 #include "renderer/render.h"
 #include "renderer/scene.h"
+#include "sim/cells_file.h"
 #include "sim/input_error.h"
 #include "sim/mesh_load.h"
+#include "sim/pattern_stats.h"
 
 namespace pelage::renderer {
 namespace {
@@ -75,7 +77,75 @@ std::vector<PelageHit> sample_hits(const SceneDesc &desc, size_t object, size_t 
     return hits;
 }
 
+float luminance(const std::array<float, 3> &c) { return 0.2126f * c[0] + 0.7152f * c[1] + 0.0722f * c[2]; }
+
+// The noise value exceeded on `fraction` of the hits: the perlin threshold that makes
+// that fraction of the (area-uniform) surface spots.
+float noise_quantile(const Scene &scene, size_t object, const std::vector<PelageHit> &hits, double fraction) {
+    const Material &mat = scene.materials()[object];
+    std::vector<float> values;
+    values.reserve(hits.size());
+    for (const PelageHit &h : hits) {
+        PelageShade sh{};
+        mat.plugin->shade(mat.instance, &h, &sh);
+        values.push_back(sh.aov[0]);  // perlin's AOV 0: the fBm value
+    }
+    if (values.empty()) return 0;
+    const size_t k = std::min(values.size() - 1, size_t((1 - fraction) * double(values.size())));
+    std::nth_element(values.begin(), values.begin() + k, values.end());
+    return values[k];
+}
+
 }  // namespace
+
+nlohmann::json matched_baseline_params(const std::string &shader, const std::string &cells_path) {
+    if (shader != "worley" && shader != "perlin") return nlohmann::json::object();
+    const sim::CellsData data = sim::read_cells_file(cells_path);
+    const sim::PatternStats stats = sim::compute_pattern_stats(data);
+    // Spot type: F when present, else the darkest; base: B when present, else the most
+    // common other type.
+    std::vector<size_t> count(data.types.size(), 0);
+    for (uint8_t t : data.type) ++count[t];
+    auto named = [&](const std::string &n) {
+        for (size_t i = 0; i < data.types.size(); ++i)
+            if (data.types[i].name == n) return int(i);
+        return -1;
+    };
+    int spot = named("F"), base = named("B");
+    for (size_t i = 0; i < data.types.size() && spot < 0; ++i)
+        if (spot < 0 || luminance(data.types[i].colour) < luminance(data.types[size_t(spot)].colour)) spot = int(i);
+    for (size_t i = 0; i < data.types.size() && base < 0; ++i)
+        if (int(i) != spot && (base < 0 || count[i] > count[size_t(base)])) base = int(i);
+    if (spot < 0) return nlohmann::json::object();
+    if (base < 0) base = spot;
+    const auto &sc = data.types[size_t(spot)].colour, &bc = data.types[size_t(base)].colour;
+    const double area = std::max(data.area(), 1e-300);
+    double fraction = stats.total_cells ? double(count[size_t(spot)]) / double(stats.total_cells) : 0.3;
+    fraction = std::clamp(fraction, 0.01, 0.99);
+    // Spots per unit area of the mosaic (at least one over the whole surface).
+    const double spots_per_area = double(std::max<size_t>(stats.spots, 1)) / area;
+    nlohmann::json p = {{"spot_colour", {sc[0], sc[1], sc[2]}}, {"base_colour", {bc[0], bc[1], bc[2]}}};
+    if (shader == "worley") {
+        // Section cells per unit area λ_A from the spots per unit area: a plane cuts a
+        // Poisson–Voronoi tessellation of intensity λ into λ_A ≈ 1.4558 λ^(2/3) cells
+        // per unit area (Okabe, Boots, Sugihara, Chiu 2000, Spatial Tessellations, §5.5),
+        // and the plugin's intensity is mean_points · frequency³. Neighbouring spot cells
+        // merge into one spot, so λ_A is a few times spots / fraction: the factor 2.5 is
+        // fitted by eye (spot count and size) on the cheetah sphere's contact sheet.
+        const double mean_points = 3, lambda_a = 2.5 * spots_per_area / fraction;
+        const double lambda = std::pow(lambda_a / 1.4558, 1.5);
+        p["frequency"] = std::cbrt(lambda / mean_points);
+        p["mean_points"] = mean_points;
+        p["spot_fraction"] = fraction;
+    } else {
+        // About 2.5 blobs above the threshold per base-lattice square of the surface:
+        // fitted by eye on the cheetah sphere's contact sheet (fBm's blob count also
+        // depends on the threshold, so it is an approximation).
+        p["frequency"] = 1.6 * std::sqrt(spots_per_area);
+        p["spot_fraction"] = fraction;  // compare_shaders turns it into a threshold
+    }
+    return p;
+}
 
 CompareResult compare_shaders(const SceneDesc &desc, const CompareOptions &options) {
     const std::vector<size_t> subjects = patterned_objects(desc);
@@ -92,12 +162,31 @@ CompareResult compare_shaders(const SceneDesc &desc, const CompareOptions &optio
     result.height = desc.film.height;
     for (const std::string &shader : options.shaders) {
         SceneDesc d = desc;
+        nlohmann::json params = nlohmann::json::object();  // the plugin's defaults
+        if (options.match_baselines && !desc.objects[subjects[0]].cells.empty())
+            params = matched_baseline_params(shader, desc.objects[subjects[0]].cells);
+        const bool atlas = shader == "texture" && !options.texture_file.empty();
+        if (atlas) params = {{"file", options.texture_file}, {"texels_per_unit", options.texels_per_unit}};
+        double perlin_fraction = -1;
+        if (params.contains("spot_fraction") && shader == "perlin") {
+            perlin_fraction = params["spot_fraction"].get<double>();
+            params.erase("spot_fraction");
+        }
         for (size_t i : subjects) {
             MaterialDesc &m = d.objects[i].material;
-            if (m.shader != shader)
-                m.params = nlohmann::json::object();  // the plugin's defaults
+            if (m.shader != shader) {
+                m.params = params;
+                if (atlas) d.objects[i].mesh = options.texture_mesh;
+            }
             m.shader = shader;
         }
+        if (perlin_fraction >= 0 && desc.objects[subjects[0]].material.shader != shader) {
+            // The threshold that makes the mosaic's spot fraction of the surface spots.
+            const float threshold = noise_quantile(Scene(d, plugins), subjects[0], hits, perlin_fraction);
+            for (size_t i : subjects)
+                if (desc.objects[i].material.shader != shader) d.objects[i].material.params["threshold"] = threshold;
+        }
+        result.params[shader] = d.objects[subjects[0]].material.params;
         const Scene scene(d, plugins);
         RenderOptions ro;
         ro.seed = options.seed;
@@ -228,7 +317,8 @@ nlohmann::json CompareResult::report() const {
             {"height", height},
             {"shaders", shaders},
             {"ratios", ratios},
-            {"lookup_ratios", lookup_ratios}};
+            {"lookup_ratios", lookup_ratios},
+            {"params", params}};
 }
 
 }  // namespace pelage::renderer
