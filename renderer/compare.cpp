@@ -77,11 +77,26 @@ std::vector<PelageHit> sample_hits(const SceneDesc &desc, size_t object, size_t 
     return hits;
 }
 
-float luminance(const std::array<float, 3> &c) { return 0.2126f * c[0] + 0.7152f * c[1] + 0.0722f * c[2]; }
+// The mesh's corner UVs interpolated at each hit (for the texture baseline).
+void add_uvs(const sim::TriangleMesh &mesh, std::vector<PelageHit> &hits) {
+    if (mesh.corner_uvs.size() != 3 * mesh.num_triangles()) return;
+    for (PelageHit &h : hits) {
+        const sim::Vec2d *uv = &mesh.corner_uvs[3 * size_t(h.primitive_id)];
+        const double b0 = 1.0 - h.b1 - h.b2;
+        h.uv[0] = float(b0 * uv[0].x + h.b1 * uv[1].x + h.b2 * uv[2].x);
+        h.uv[1] = float(b0 * uv[0].y + h.b1 * uv[1].y + h.b2 * uv[2].y);
+        h.has_uv = 1;
+    }
+}
+
+float luminance(const std::array<float, 3> &c) {
+    return 0.2126f * c[0] + 0.7152f * c[1] + 0.0722f * c[2];
+}
 
 // The noise value exceeded on `fraction` of the hits: the perlin threshold that makes
 // that fraction of the (area-uniform) surface spots.
-float noise_quantile(const Scene &scene, size_t object, const std::vector<PelageHit> &hits, double fraction) {
+float noise_quantile(const Scene &scene, size_t object,
+                     const std::vector<PelageHit> &hits, double fraction) {
     const Material &mat = scene.materials()[object];
     std::vector<float> values;
     values.reserve(hits.size());
@@ -91,14 +106,16 @@ float noise_quantile(const Scene &scene, size_t object, const std::vector<Pelage
         values.push_back(sh.aov[0]);  // perlin's AOV 0: the fBm value
     }
     if (values.empty()) return 0;
-    const size_t k = std::min(values.size() - 1, size_t((1 - fraction) * double(values.size())));
+    const size_t k =
+        std::min(values.size() - 1, size_t((1 - fraction) * double(values.size())));
     std::nth_element(values.begin(), values.begin() + k, values.end());
     return values[k];
 }
 
 }  // namespace
 
-nlohmann::json matched_baseline_params(const std::string &shader, const std::string &cells_path) {
+nlohmann::json matched_baseline_params(const std::string &shader,
+                                       const std::string &cells_path) {
     if (shader != "worley" && shader != "perlin") return nlohmann::json::object();
     const sim::CellsData data = sim::read_cells_file(cells_path);
     const sim::PatternStats stats = sim::compute_pattern_stats(data);
@@ -113,18 +130,23 @@ nlohmann::json matched_baseline_params(const std::string &shader, const std::str
     };
     int spot = named("F"), base = named("B");
     for (size_t i = 0; i < data.types.size() && spot < 0; ++i)
-        if (spot < 0 || luminance(data.types[i].colour) < luminance(data.types[size_t(spot)].colour)) spot = int(i);
+        if (spot < 0 ||
+            luminance(data.types[i].colour) < luminance(data.types[size_t(spot)].colour))
+            spot = int(i);
     for (size_t i = 0; i < data.types.size() && base < 0; ++i)
         if (int(i) != spot && (base < 0 || count[i] > count[size_t(base)])) base = int(i);
     if (spot < 0) return nlohmann::json::object();
     if (base < 0) base = spot;
-    const auto &sc = data.types[size_t(spot)].colour, &bc = data.types[size_t(base)].colour;
+    const auto &sc = data.types[size_t(spot)].colour,
+               &bc = data.types[size_t(base)].colour;
     const double area = std::max(data.area(), 1e-300);
-    double fraction = stats.total_cells ? double(count[size_t(spot)]) / double(stats.total_cells) : 0.3;
+    double fraction =
+        stats.total_cells ? double(count[size_t(spot)]) / double(stats.total_cells) : 0.3;
     fraction = std::clamp(fraction, 0.01, 0.99);
     // Spots per unit area of the mosaic (at least one over the whole surface).
     const double spots_per_area = double(std::max<size_t>(stats.spots, 1)) / area;
-    nlohmann::json p = {{"spot_colour", {sc[0], sc[1], sc[2]}}, {"base_colour", {bc[0], bc[1], bc[2]}}};
+    nlohmann::json p = {{"spot_colour", {sc[0], sc[1], sc[2]}},
+                        {"base_colour", {bc[0], bc[1], bc[2]}}};
     if (shader == "worley") {
         // Section cells per unit area λ_A from the spots per unit area: a plane cuts a
         // Poisson–Voronoi tessellation of intensity λ into λ_A ≈ 1.4558 λ^(2/3) cells
@@ -166,7 +188,9 @@ CompareResult compare_shaders(const SceneDesc &desc, const CompareOptions &optio
         if (options.match_baselines && !desc.objects[subjects[0]].cells.empty())
             params = matched_baseline_params(shader, desc.objects[subjects[0]].cells);
         const bool atlas = shader == "texture" && !options.texture_file.empty();
-        if (atlas) params = {{"file", options.texture_file}, {"texels_per_unit", options.texels_per_unit}};
+        if (atlas)
+            params = {{"file", options.texture_file},
+                      {"texels_per_unit", options.texels_per_unit}};
         double perlin_fraction = -1;
         if (params.contains("spot_fraction") && shader == "perlin") {
             perlin_fraction = params["spot_fraction"].get<double>();
@@ -182,30 +206,41 @@ CompareResult compare_shaders(const SceneDesc &desc, const CompareOptions &optio
         }
         if (perlin_fraction >= 0 && desc.objects[subjects[0]].material.shader != shader) {
             // The threshold that makes the mosaic's spot fraction of the surface spots.
-            const float threshold = noise_quantile(Scene(d, plugins), subjects[0], hits, perlin_fraction);
+            const float threshold =
+                noise_quantile(Scene(d, plugins), subjects[0], hits, perlin_fraction);
             for (size_t i : subjects)
-                if (desc.objects[i].material.shader != shader) d.objects[i].material.params["threshold"] = threshold;
+                if (desc.objects[i].material.shader != shader)
+                    d.objects[i].material.params["threshold"] = threshold;
         }
         result.params[shader] = d.objects[subjects[0]].material.params;
         const Scene scene(d, plugins);
+
+        // --- Shading alone, on the same points for every shader ---
+        // First untimed, which also warms what a plugin sets up lazily (the texture's
+        // mip levels): the render below is then timed on equal terms for every shader.
+        const Material &mat = scene.materials()[subjects[0]];
+        std::vector<PelageHit> shader_hits = hits;
+        if (atlas) add_uvs(sim::load_mesh(options.texture_mesh), shader_hits);
+        float sink = 0;
+        auto shade_all = [&] {
+            for (const PelageHit &h : shader_hits) {
+                PelageShade sh{};
+                mat.plugin->shade(mat.instance, &h, &sh);
+                sink += sh.albedo[0];
+            }
+        };
+        shade_all();
+        const double t0 = thread_cpu_seconds();
+        shade_all();
+        const double ns =
+            1e9 * (thread_cpu_seconds() - t0) / std::max<size_t>(hits.size(), 1);
+        (void)sink;
+
         RenderOptions ro;
         ro.seed = options.seed;
         const double cpu0 = process_cpu_seconds();
         const RenderResult r = render(scene, ro);
         const double cpu_seconds = process_cpu_seconds() - cpu0;
-
-        // --- Shading alone, on the same points for every shader ---
-        const Material &mat = scene.materials()[subjects[0]];
-        float sink = 0;
-        const double t0 = thread_cpu_seconds();
-        for (const PelageHit &h : hits) {
-            PelageShade sh{};
-            mat.plugin->shade(mat.instance, &h, &sh);
-            sink += sh.albedo[0];
-        }
-        const double ns =
-            1e9 * (thread_cpu_seconds() - t0) / std::max<size_t>(hits.size(), 1);
-        (void)sink;
 
         CompareRun run{shader, r.seconds, cpu_seconds, ns, {}};
         const std::vector<float> px = r.film->resolve();

@@ -36,7 +36,8 @@ struct CompareRun {
 struct CompareResult {
     int width = 0, height = 0;
     std::vector<CompareRun> runs;
-    nlohmann::json params = nlohmann::json::object();  // per shader, the params it ran with
+    nlohmann::json params =
+        nlohmann::json::object();   // per shader, the params it ran with
     nlohmann::json report() const;  // the `--report` contract (README, issue 5)
 };
 
@@ -70,6 +71,7 @@ CompareResult compare_shaders(const SceneDesc &desc, const CompareOptions &optio
 // B when present), the spot fraction, and a frequency giving about as many spots per unit
 // area. `worley` or `perlin`; the perlin threshold is set by compare_shaders from the
 // noise's distribution on the surface. An empty object for other shaders.
-nlohmann::json matched_baseline_params(const std::string &shader, const std::string &cells_path);
+nlohmann::json matched_baseline_params(const std::string &shader,
+                                       const std::string &cells_path);
 
 }  // namespace pelage::renderer
