@@ -12,7 +12,8 @@
 namespace pelage::renderer {
 
 struct CompareOptions {
-    std::vector<std::string> shaders{"clonal_mosaic", "worley", "perlin", "diffuse"};
+    std::vector<std::string> shaders{"clonal_mosaic", "worley", "perlin", "texture",
+                                     "diffuse"};
     uint64_t seed = 0;
     size_t lookups = 200000;  // surface points timed per shader
     // Give worley and perlin the mosaic's look (compare.cpp, match_baselines) unless the

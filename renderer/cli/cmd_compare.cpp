@@ -19,8 +19,8 @@ namespace pelage::cli {
 namespace {
 
 struct CompareCliOptions {
-    std::string scene, shaders = "clonal_mosaic,worley,perlin,diffuse", res, report,
-                       sheet, view;
+    std::string scene, shaders = "clonal_mosaic,worley,perlin,texture,diffuse", res,
+                       report, sheet, view;
     int spp = 0, atlas_res = 4096;
     bool no_match = false;
     unsigned long long seed = 0;

@@ -197,7 +197,6 @@ void write_aovs(const ClonalMosaic &cm, uint32_t cell, float f1, PelageShade *ou
 void shade(const void *self, const PelageHit *hit, PelageShade *out) {
     const ClonalMosaic &cm = *static_cast<const ClonalMosaic *>(self);
     if (hit->primitive_id >= cm.cells_ptr->num_triangles()) return;  // defaults stay
-    const shader::Vec2f q = cm.pattern->point(hit->primitive_id, hit->b1, hit->b2);
 
     // Boundaries are blended over w: the user's soft width, or at least the footprint.
     // Antialiasing matters for what the camera sees; indirect bounces average over wide
@@ -205,7 +204,8 @@ void shade(const void *self, const PelageHit *hit, PelageShade *out) {
     const float w =
         std::max(cm.edge_width, cm.antialias && hit->depth == 0 ? hit->footprint : 0.0f);
     if (w <= 0) {
-        const shader::ClosestCell c = cm.index->find_nearest(hit->primitive_id, q);
+        const shader::ClosestCell c =
+            cm.index->find_nearest(hit->primitive_id, hit->b1, hit->b2);
         if (c.index == shader::ClosestCell::none) return;  // a component without cells
         const CellLook &cell = cm.looks[c.index];
         const TypeLook &look = cm.types[cell.type];
@@ -221,7 +221,8 @@ void shade(const void *self, const PelageHit *hit, PelageShade *out) {
     // farther than the nearest. Continuous everywhere except where four cells lie within
     // 2w of each other's distance. One scan finds them: it stops at F1 + 2w, so hits far
     // from any boundary cost little more than the nearest cell alone.
-    const auto n = cm.index->find_three_within(hit->primitive_id, q, 2 * w);
+    const auto n =
+        cm.index->find_three_within(hit->primitive_id, hit->b1, hit->b2, 2 * w);
     if (n.index[0] == shader::ClosestCell::none) return;
     const float f1 = std::sqrt(n.d2[0]);
     float rgb[3] = {0, 0, 0}, eu = 0, pheo = 0, total = 0;

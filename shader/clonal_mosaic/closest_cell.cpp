@@ -103,15 +103,8 @@ void ClosestCellIndex::build_triangle(const sim::Crps &crps, sim::TriId t,
             std::ceil(2 * ft.bound_radius / std::max(m_spacing, 1e-300))),
         1, std::clamp<uint32_t>(m_options.max_subdivision, 1, max_subdivision));
     const sim::Vec2d v0 = ft.v[0], e1 = ft.v[1] - ft.v[0], e2 = ft.v[2] - ft.v[0];
-    const double det = cross(e1, e2);
-    out.regions = {float(v0.x),
-                   float(v0.y),
-                   float(e2.y / det),
-                   float(-e2.x / det),
-                   float(-e1.y / det),
-                   float(e1.x / det),
-                   n,
-                   {}};
+    out.regions = {float(v0.x), float(v0.y), float(e1.x), float(e1.y),
+                   float(e2.x), float(e2.y), n,           {}};
     struct Sub {
         uint32_t slot;
         sim::Vec2d v[3], centre;
@@ -235,15 +228,15 @@ void ClosestCellIndex::build_triangle(const sim::Crps &crps, sim::TriId t,
     }
 }
 
-const ClosestCellIndex::Block *ClosestCellIndex::blocks_of(sim::TriId t, Vec2f q,
+const ClosestCellIndex::Block *ClosestCellIndex::blocks_at(sim::TriId t, float b1,
+                                                           float b2,
                                                            const Block *&end) const {
     const TriangleRegions &r = m_regions[t];
     const uint32_t n = r.first_block_and_n & 3u;
-    const float dx = q.x - r.v0x, dy = q.y - r.v0y;
     const float nf = float(n);
     // Clamp to the triangle: hits may sit a rounding error outside it.
-    const float u = std::clamp((r.i00 * dx + r.i01 * dy) * nf, 0.0f, nf);
-    const float v = std::clamp((r.i10 * dx + r.i11 * dy) * nf, 0.0f, nf - u);
+    const float u = std::clamp(b1 * nf, 0.0f, nf);
+    const float v = std::clamp(b2 * nf, 0.0f, nf - u);
     uint32_t i = std::min(uint32_t(u), n - 1), j = std::min(uint32_t(v), n - 1);
     bool upper = (u - float(i)) + (v - float(j)) > 1.0f;
     if (i + j >= n - 1) {  // the last row of sub-triangles has no upper halves
@@ -254,6 +247,16 @@ const ClosestCellIndex::Block *ClosestCellIndex::blocks_of(sim::TriId t, Vec2f q
     const Block *first = m_blocks.data() + (r.first_block_and_n >> 2);
     end = first + r.end[k];
     return first + (k ? r.end[k - 1] : 0);
+}
+
+const ClosestCellIndex::Block *ClosestCellIndex::blocks_of(sim::TriId t, Vec2f q,
+                                                           const Block *&end) const {
+    // q's barycentric coordinates, by Cramer's rule on q - v0 = b1 e1 + b2 e2.
+    const TriangleRegions &r = m_regions[t];
+    const float dx = q.x - r.v0x, dy = q.y - r.v0y;
+    const float inv_det = 1.0f / (r.e1x * r.e2y - r.e1y * r.e2x);
+    return blocks_at(t, (dx * r.e2y - dy * r.e2x) * inv_det,
+                     (r.e1x * dy - r.e1y * dx) * inv_det, end);
 }
 
 template <bool prune, bool dedupe, int K>
@@ -339,6 +342,32 @@ ClosestCellIndex::Nearest<3> ClosestCellIndex::find_three_within(sim::TriId t, V
     scan<true, false, 3>(b, e, q, n, std::max(band, 0.0f));
     // Cells that entered before F1 settled may lie beyond F1 + band: drop them.
     const float cap = std::sqrt(n.d2[0]) + std::max(band, 0.0f);
+    for (int i = 1; i < 3; ++i)
+        if (!(n.d2[i] <= cap * cap)) {
+            n.d2[i] = std::numeric_limits<float>::infinity();
+            n.index[i] = ClosestCell::none;
+        }
+    return n;
+}
+
+ClosestCell ClosestCellIndex::find_nearest(sim::TriId t, float b1, float b2) const {
+    Nearest<1> n;
+    const Block *e;
+    const Block *b = blocks_at(t, b1, b2, e);
+    scan<true, false, 1>(b, e, point(t, b1, b2), n);
+    return {n.index[0], ClosestCell::none, std::sqrt(n.d2[0]),
+            std::numeric_limits<float>::infinity()};
+}
+
+ClosestCellIndex::Nearest<3> ClosestCellIndex::find_three_within(sim::TriId t, float b1,
+                                                                 float b2,
+                                                                 float band) const {
+    Nearest<3> n;
+    const Block *e;
+    const Block *b = blocks_at(t, b1, b2, e);
+    band = std::max(band, 0.0f);
+    scan<true, false, 3>(b, e, point(t, b1, b2), n, band);
+    const float cap = std::sqrt(n.d2[0]) + band;
     for (int i = 1; i < 3; ++i)
         if (!(n.d2[i] <= cap * cap)) {
             n.d2[i] = std::numeric_limits<float>::infinity();

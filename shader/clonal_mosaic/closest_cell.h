@@ -104,6 +104,17 @@ class ClosestCellIndex {
     // the tests compare find() against (it checks the sub-triangle radii too).
     ClosestCell find_exhaustive(sim::TriId t, Vec2f q) const;
 
+    // The same searches from barycentric coordinates (b1, b2) of triangle t, the way the
+    // renderer reports a hit: the sub-triangle follows from (b1, b2) directly and the
+    // point from the triangle's header, so a lookup reads no other per-triangle data.
+    ClosestCell find_nearest(sim::TriId t, float b1, float b2) const;
+    Nearest<3> find_three_within(sim::TriId t, float b1, float b2, float band) const;
+    // Local CRPS coordinates of barycentric point (b1, b2) of t (what those use).
+    Vec2f point(sim::TriId t, float b1, float b2) const {
+        const TriangleRegions &r = m_regions[t];
+        return {r.v0x + b1 * r.e1x + b2 * r.e2x, r.v0y + b1 * r.e1y + b2 * r.e2y};
+    }
+
     // Distance from (t, q) to one cell as t's unfolding places it; infinity when the cell
     // is not a candidate of q's sub-triangle. For diagnostics (cracks).
     float distance_to_cell(sim::TriId t, Vec2f q, uint32_t cell) const;
@@ -121,11 +132,11 @@ class ClosestCellIndex {
     };
     static_assert(sizeof(Block) == 64);
 
-    // Where q falls: v0 + [e1 e2] (b1, b2) = q, inverted per triangle; n = subdivision.
+    // The triangle in its frame, q = v0 + b1 e1 + b2 e2; n = subdivision.
     // Sub-triangle k's blocks: [first_block + (k ? end[k - 1] : 0), first_block +
     // end[k]).
     struct alignas(64) TriangleRegions {
-        float v0x, v0y, i00, i01, i10, i11;
+        float v0x, v0y, e1x, e1y, e2x, e2y;
         uint32_t first_block_and_n;  // first_block << 2 | n (n <= 3)
         uint32_t end[max_slots];
     };
@@ -133,6 +144,7 @@ class ClosestCellIndex {
     struct Built;  // one triangle's regions while building
 
     const Block *blocks_of(sim::TriId t, Vec2f q, const Block *&end) const;
+    const Block *blocks_at(sim::TriId t, float b1, float b2, const Block *&end) const;
     template <bool prune, bool dedupe, int K>
     void scan(const Block *b, const Block *e, Vec2f q, Nearest<K> &n,
               float band = -1) const;

@@ -123,6 +123,28 @@ TEST(ClosestCell, BandedSearchIsTheThreeNearestCutAtTheBand) {
     EXPECT_GT(kept[3], 1000u);
 }
 
+// The renderer's entry points (barycentric coordinates) give what the point ones give.
+TEST(ClosestCell, BarycentricLookupsEqualPointLookups) {
+    const sim::Surface s = sim::build_surface(test::sample_mesh("cow.off"));
+    const CellTable cells = random_cells(s.crps, 20000, 9);
+    const ClosestCellIndex index(s.crps, cells);
+    std::mt19937 rng(3);
+    std::uniform_real_distribution<float> u(0, 1);
+    for (int k = 0; k < 50000; ++k) {
+        const sim::TriId t = sim::TriId(rng() % s.mesh.num_triangles());
+        float b1 = u(rng), b2 = u(rng);
+        if (b1 + b2 > 1) b1 = 1 - b1, b2 = 1 - b2;
+        const Vec2f q = index.point(t, b1, b2);
+        const ClosestCell a = index.find_nearest(t, b1, b2), b = index.find_nearest(t, q);
+        ASSERT_EQ(a.index, b.index);
+        ASSERT_EQ(a.f1, b.f1);
+        const auto c = index.find_three_within(t, b1, b2, 0.01f),
+                   d = index.find_three_within(t, q, 0.01f);
+        ASSERT_EQ(c.index, d.index);
+        ASSERT_EQ(c.d2, d.d2);
+    }
+}
+
 TEST(ClosestCell, EveryPointFindsACellEvenWithOneCellOnTheSurface) {
     const sim::Surface s = sim::build_surface(sim::make_icosphere(2));
     const CellTable cells = random_cells(s.crps, 1, 1);
