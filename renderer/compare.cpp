@@ -1,5 +1,8 @@
 #include "renderer/compare.h"
 
+#include <sys/resource.h>
+#include <time.h>
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -9,39 +12,61 @@
 #include "renderer/plugin_loader.h"
 #include "renderer/render.h"
 #include "renderer/scene.h"
+#include "sim/cells_file.h"
 #include "sim/input_error.h"
 #include "sim/mesh_load.h"
+#include "sim/pattern_stats.h"
 
 namespace pelage::renderer {
 namespace {
 
+// CPU seconds: this process's (all threads), or this thread's. The machine may be shared;
+// wall time also counts the time other jobs hold the cores, CPU time only ours.
+double process_cpu_seconds() {
+    rusage u{};
+    getrusage(RUSAGE_SELF, &u);
+    return double(u.ru_utime.tv_sec + u.ru_stime.tv_sec) +
+           1e-6 * double(u.ru_utime.tv_usec + u.ru_stime.tv_usec);
+}
+double thread_cpu_seconds() {
+    timespec ts{};
+    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+    return double(ts.tv_sec) + 1e-9 * double(ts.tv_nsec);
+}
+
 std::vector<size_t> patterned_objects(const SceneDesc &desc) {
     std::vector<size_t> out;
     for (size_t i = 0; i < desc.objects.size(); ++i)
-        if (!desc.objects[i].cells.empty() || desc.objects[i].material.shader == "clonal_mosaic")
+        if (!desc.objects[i].cells.empty() ||
+            desc.objects[i].material.shader == "clonal_mosaic")
             out.push_back(i);
     return out;
 }
 
 // Area-uniform points on the first patterned object: the hits every shader is timed on.
-std::vector<PelageHit> sample_hits(const SceneDesc &desc, size_t object, size_t n, uint64_t seed) {
+std::vector<PelageHit> sample_hits(const SceneDesc &desc, size_t object, size_t n,
+                                   uint64_t seed) {
     const sim::TriangleMesh mesh = sim::load_mesh(desc.objects[object].mesh);
     std::vector<double> cdf;
     double sum = 0;
-    for (sim::TriId t = 0; t < mesh.num_triangles(); ++t) cdf.push_back(sum += mesh.triangle_area(t));
+    for (sim::TriId t = 0; t < mesh.num_triangles(); ++t)
+        cdf.push_back(sum += mesh.triangle_area(t));
     std::mt19937_64 rng(seed + 17);
     std::uniform_real_distribution<double> u(0, 1);
     std::vector<PelageHit> hits(n);
     for (PelageHit &h : hits) {
-        const auto t = uint32_t(std::min<size_t>(std::upper_bound(cdf.begin(), cdf.end(), u(rng) * sum) - cdf.begin(),
-                                                 mesh.num_triangles() - 1));
+        const auto t = uint32_t(std::min<size_t>(
+            std::upper_bound(cdf.begin(), cdf.end(), u(rng) * sum) - cdf.begin(),
+            mesh.num_triangles() - 1));
         const double s = std::sqrt(u(rng)), r = u(rng);
         h = PelageHit{};
         h.object_id = uint32_t(object);
         h.primitive_id = t;
         h.b1 = float(s * (1 - r));
         h.b2 = float(s * r);
-        const sim::Vec3d p = mesh.vertex(t, 0) * (1 - s) + mesh.vertex(t, 1) * (s * (1 - r)) + mesh.vertex(t, 2) * (s * r);
+        const sim::Vec3d p = mesh.vertex(t, 0) * (1 - s) +
+                             mesh.vertex(t, 1) * (s * (1 - r)) +
+                             mesh.vertex(t, 2) * (s * r);
         const sim::Vec3d nrm = normalize(mesh.face_normal_unnormalized(t));
         for (int k = 0; k < 3; ++k) {
             h.p[k] = float(p[k]);
@@ -52,49 +77,177 @@ std::vector<PelageHit> sample_hits(const SceneDesc &desc, size_t object, size_t 
     return hits;
 }
 
+// The mesh's corner UVs interpolated at each hit (for the texture baseline).
+void add_uvs(const sim::TriangleMesh &mesh, std::vector<PelageHit> &hits) {
+    if (mesh.corner_uvs.size() != 3 * mesh.num_triangles()) return;
+    for (PelageHit &h : hits) {
+        const sim::Vec2d *uv = &mesh.corner_uvs[3 * size_t(h.primitive_id)];
+        const double b0 = 1.0 - h.b1 - h.b2;
+        h.uv[0] = float(b0 * uv[0].x + h.b1 * uv[1].x + h.b2 * uv[2].x);
+        h.uv[1] = float(b0 * uv[0].y + h.b1 * uv[1].y + h.b2 * uv[2].y);
+        h.has_uv = 1;
+    }
+}
+
+float luminance(const std::array<float, 3> &c) {
+    return 0.2126f * c[0] + 0.7152f * c[1] + 0.0722f * c[2];
+}
+
+// The noise value exceeded on `fraction` of the hits: the perlin threshold that makes
+// that fraction of the (area-uniform) surface spots.
+float noise_quantile(const Scene &scene, size_t object,
+                     const std::vector<PelageHit> &hits, double fraction) {
+    const Material &mat = scene.materials()[object];
+    std::vector<float> values;
+    values.reserve(hits.size());
+    for (const PelageHit &h : hits) {
+        PelageShade sh{};
+        mat.plugin->shade(mat.instance, &h, &sh);
+        values.push_back(sh.aov[0]);  // perlin's AOV 0: the fBm value
+    }
+    if (values.empty()) return 0;
+    const size_t k =
+        std::min(values.size() - 1, size_t((1 - fraction) * double(values.size())));
+    std::nth_element(values.begin(), values.begin() + k, values.end());
+    return values[k];
+}
+
 }  // namespace
+
+nlohmann::json matched_baseline_params(const std::string &shader,
+                                       const std::string &cells_path) {
+    if (shader != "worley" && shader != "perlin") return nlohmann::json::object();
+    const sim::CellsData data = sim::read_cells_file(cells_path);
+    const sim::PatternStats stats = sim::compute_pattern_stats(data);
+    // Spot type: F when present, else the darkest; base: B when present, else the most
+    // common other type.
+    std::vector<size_t> count(data.types.size(), 0);
+    for (uint8_t t : data.type) ++count[t];
+    auto named = [&](const std::string &n) {
+        for (size_t i = 0; i < data.types.size(); ++i)
+            if (data.types[i].name == n) return int(i);
+        return -1;
+    };
+    int spot = named("F"), base = named("B");
+    for (size_t i = 0; i < data.types.size() && spot < 0; ++i)
+        if (spot < 0 ||
+            luminance(data.types[i].colour) < luminance(data.types[size_t(spot)].colour))
+            spot = int(i);
+    for (size_t i = 0; i < data.types.size() && base < 0; ++i)
+        if (int(i) != spot && (base < 0 || count[i] > count[size_t(base)])) base = int(i);
+    if (spot < 0) return nlohmann::json::object();
+    if (base < 0) base = spot;
+    const auto &sc = data.types[size_t(spot)].colour,
+               &bc = data.types[size_t(base)].colour;
+    const double area = std::max(data.area(), 1e-300);
+    double fraction =
+        stats.total_cells ? double(count[size_t(spot)]) / double(stats.total_cells) : 0.3;
+    fraction = std::clamp(fraction, 0.01, 0.99);
+    // Spots per unit area of the mosaic (at least one over the whole surface).
+    const double spots_per_area = double(std::max<size_t>(stats.spots, 1)) / area;
+    nlohmann::json p = {{"spot_colour", {sc[0], sc[1], sc[2]}},
+                        {"base_colour", {bc[0], bc[1], bc[2]}}};
+    if (shader == "worley") {
+        // Section cells per unit area λ_A from the spots per unit area: a plane cuts a
+        // Poisson–Voronoi tessellation of intensity λ into λ_A ≈ 1.4558 λ^(2/3) cells
+        // per unit area (Okabe, Boots, Sugihara, Chiu 2000, Spatial Tessellations, §5.5),
+        // and the plugin's intensity is mean_points · frequency³. Neighbouring spot cells
+        // merge into one spot, so λ_A is a few times spots / fraction: the factor 2.5 is
+        // fitted by eye (spot count and size) on the cheetah sphere's contact sheet.
+        const double mean_points = 3, lambda_a = 2.5 * spots_per_area / fraction;
+        const double lambda = std::pow(lambda_a / 1.4558, 1.5);
+        p["frequency"] = std::cbrt(lambda / mean_points);
+        p["mean_points"] = mean_points;
+        p["spot_fraction"] = fraction;
+    } else {
+        // About 2.5 blobs above the threshold per base-lattice square of the surface:
+        // fitted by eye on the cheetah sphere's contact sheet (fBm's blob count also
+        // depends on the threshold, so it is an approximation).
+        p["frequency"] = 1.6 * std::sqrt(spots_per_area);
+        p["spot_fraction"] = fraction;  // compare_shaders turns it into a threshold
+    }
+    return p;
+}
 
 CompareResult compare_shaders(const SceneDesc &desc, const CompareOptions &options) {
     const std::vector<size_t> subjects = patterned_objects(desc);
     if (subjects.empty())
         throw InputError(desc.path, 0, "objects",
-                         "no patterned object to compare: give an object a \"cells\" file or the clonal_mosaic shader");
+                         "no patterned object to compare: give an object a \"cells\" "
+                         "file or the clonal_mosaic shader");
     const PluginRegistry plugins;
-    const std::vector<PelageHit> hits = sample_hits(desc, subjects[0], options.lookups, options.seed);
+    const std::vector<PelageHit> hits =
+        sample_hits(desc, subjects[0], options.lookups, options.seed);
 
     CompareResult result;
     result.width = desc.film.width;
     result.height = desc.film.height;
     for (const std::string &shader : options.shaders) {
         SceneDesc d = desc;
+        nlohmann::json params = nlohmann::json::object();  // the plugin's defaults
+        if (options.match_baselines && !desc.objects[subjects[0]].cells.empty())
+            params = matched_baseline_params(shader, desc.objects[subjects[0]].cells);
+        const bool atlas = shader == "texture" && !options.texture_file.empty();
+        if (atlas)
+            params = {{"file", options.texture_file},
+                      {"texels_per_unit", options.texels_per_unit}};
+        double perlin_fraction = -1;
+        if (params.contains("spot_fraction") && shader == "perlin") {
+            perlin_fraction = params["spot_fraction"].get<double>();
+            params.erase("spot_fraction");
+        }
         for (size_t i : subjects) {
             MaterialDesc &m = d.objects[i].material;
-            if (m.shader != shader) m.params = nlohmann::json::object();  // the plugin's defaults
+            if (m.shader != shader) {
+                m.params = params;
+                if (atlas) d.objects[i].mesh = options.texture_mesh;
+            }
             m.shader = shader;
         }
+        if (perlin_fraction >= 0 && desc.objects[subjects[0]].material.shader != shader) {
+            // The threshold that makes the mosaic's spot fraction of the surface spots.
+            const float threshold =
+                noise_quantile(Scene(d, plugins), subjects[0], hits, perlin_fraction);
+            for (size_t i : subjects)
+                if (desc.objects[i].material.shader != shader)
+                    d.objects[i].material.params["threshold"] = threshold;
+        }
+        result.params[shader] = d.objects[subjects[0]].material.params;
         const Scene scene(d, plugins);
-        RenderOptions ro;
-        ro.seed = options.seed;
-        const RenderResult r = render(scene, ro);
 
         // --- Shading alone, on the same points for every shader ---
+        // First untimed, which also warms what a plugin sets up lazily (the texture's
+        // mip levels): the render below is then timed on equal terms for every shader.
         const Material &mat = scene.materials()[subjects[0]];
+        std::vector<PelageHit> shader_hits = hits;
+        if (atlas) add_uvs(sim::load_mesh(options.texture_mesh), shader_hits);
         float sink = 0;
-        const auto t0 = std::chrono::steady_clock::now();
-        for (const PelageHit &h : hits) {
-            PelageShade sh{};
-            mat.plugin->shade(mat.instance, &h, &sh);
-            sink += sh.albedo[0];
-        }
-        const double ns = 1e9 * std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count() /
-                          std::max<size_t>(hits.size(), 1);
+        auto shade_all = [&] {
+            for (const PelageHit &h : shader_hits) {
+                PelageShade sh{};
+                mat.plugin->shade(mat.instance, &h, &sh);
+                sink += sh.albedo[0];
+            }
+        };
+        shade_all();
+        const double t0 = thread_cpu_seconds();
+        shade_all();
+        const double ns =
+            1e9 * (thread_cpu_seconds() - t0) / std::max<size_t>(hits.size(), 1);
         (void)sink;
 
-        CompareRun run{shader, r.seconds, ns, {}};
+        RenderOptions ro;
+        ro.seed = options.seed;
+        const double cpu0 = process_cpu_seconds();
+        const RenderResult r = render(scene, ro);
+        const double cpu_seconds = process_cpu_seconds() - cpu0;
+
+        CompareRun run{shader, r.seconds, cpu_seconds, ns, {}};
         const std::vector<float> px = r.film->resolve();
         run.rgb.resize(size_t(d.film.width) * d.film.height * 3);
         for (size_t i = 0; i < size_t(d.film.width) * d.film.height; ++i)
-            for (int c = 0; c < 3; ++c) run.rgb[3 * i + c] = px[i * Film::num_channels + c];
+            for (int c = 0; c < 3; ++c)
+                run.rgb[3 * i + c] = px[i * Film::num_channels + c];
         result.runs.push_back(std::move(run));
     }
     return result;
@@ -118,7 +271,8 @@ DriftResult measure_pattern_drift(const SceneDesc &desc, const CompareOptions &o
     const PluginRegistry plugins;
     std::vector<PelageHit> hits = sample_hits(desc, obj, options.lookups, options.seed);
 
-    // Each hit's position on a scene's mesh (object space), as the renderer would pass it.
+    // Each hit's position on a scene's mesh (object space), as the renderer would pass
+    // it.
     auto place = [&](const Scene &scene, std::vector<PelageHit> &hs) {
         const MeshData &m = *scene.geometry().objects()[obj].mesh;
         for (PelageHit &h : hs) {
@@ -177,17 +331,29 @@ nlohmann::json CompareResult::report() const {
     nlohmann::json shaders = nlohmann::json::object();
     const CompareRun *cm = nullptr;
     for (const CompareRun &r : runs) {
-        shaders[r.shader] = {{"seconds", r.seconds}, {"ns_per_lookup", r.ns_per_lookup}};
+        shaders[r.shader] = {{"seconds", r.seconds},
+                             {"cpu_seconds", r.cpu_seconds},
+                             {"ns_per_lookup", r.ns_per_lookup}};
         if (r.shader == "clonal_mosaic") cm = &r;
     }
-    nlohmann::json ratios = nlohmann::json::object(), lookup_ratios = nlohmann::json::object();
+    nlohmann::json ratios = nlohmann::json::object(),
+                   lookup_ratios = nlohmann::json::object();
     if (cm)
         for (const CompareRun &r : runs) {
             if (&r == cm) continue;
-            ratios["clonal_mosaic_vs_" + r.shader] = r.seconds > 0 ? cm->seconds / r.seconds : 0.0;
-            lookup_ratios["clonal_mosaic_vs_" + r.shader] = r.ns_per_lookup > 0 ? cm->ns_per_lookup / r.ns_per_lookup : 0.0;
+            // CPU time: on a shared machine it is what the render cost us (wall:
+            // seconds).
+            ratios["clonal_mosaic_vs_" + r.shader] =
+                r.cpu_seconds > 0 ? cm->cpu_seconds / r.cpu_seconds : 0.0;
+            lookup_ratios["clonal_mosaic_vs_" + r.shader] =
+                r.ns_per_lookup > 0 ? cm->ns_per_lookup / r.ns_per_lookup : 0.0;
         }
-    return {{"width", width}, {"height", height}, {"shaders", shaders}, {"ratios", ratios}, {"lookup_ratios", lookup_ratios}};
+    return {{"width", width},
+            {"height", height},
+            {"shaders", shaders},
+            {"ratios", ratios},
+            {"lookup_ratios", lookup_ratios},
+            {"params", params}};
 }
 
 }  // namespace pelage::renderer

@@ -1,32 +1,84 @@
 // `pelage compare SCENE.json`: one render per shader on the scene's patterned objects,
-// timings and a labelled contact sheet (renderer/compare.h). --report keys are a contract:
-// shaders {NAME: {seconds, ns_per_lookup}}, ratios, lookup_ratios.
+// timings and a labelled contact sheet (renderer/compare.h). --report keys are a
+// contract: shaders {NAME: {seconds, ns_per_lookup}}, ratios, lookup_ratios.
 #include <fmt/core.h>
+#include <unistd.h>
 
+#include <filesystem>
 #include <sstream>
 
 #include "renderer/cli/common.h"
 #include "renderer/compare.h"
 #include "renderer/contact_sheet.h"
+#include "renderer/image_output.h"
+#include "shader/clonal_mosaic/bake.h"
 #include "sim/input_error.h"
+#include "sim/mesh_write_obj.h"
 
 namespace pelage::cli {
 namespace {
 
 struct CompareCliOptions {
-    std::string scene, shaders = "clonal_mosaic,worley,perlin,diffuse", res, report, sheet, view;
-    int spp = 0;
+    std::string scene, shaders = "clonal_mosaic,worley,perlin,texture,diffuse", res,
+                       report, sheet, view;
+    int spp = 0, atlas_res = 4096;
+    bool no_match = false;
     unsigned long long seed = 0;
     size_t lookups = 200000;
     bool deform = false;
     ThreadOption threads;
 };
 
+// A directory removed with everything in it when the comparison ends.
+struct TempDir {
+    std::filesystem::path path;
+    ~TempDir() {
+        std::error_code ec;
+        if (!path.empty()) std::filesystem::remove_all(path, ec);
+    }
+};
+
+// The texture baseline without a texture of its own: the mosaic baked into the CRPS atlas
+// (`pelage bake`) with the mesh's atlas UVs, so `texture` shows the same pattern as the
+// clonal_mosaic. Bake time is not part of the texture render's time.
+void bake_atlas_for_texture(const renderer::SceneDesc &desc, int res, TempDir &dir,
+                            renderer::CompareOptions &co) {
+    const renderer::ObjectDesc *subject = nullptr;
+    for (const auto &obj : desc.objects)
+        if (!obj.cells.empty()) {
+            subject = &obj;
+            break;
+        }
+    if (!subject || subject->material.shader == "texture") return;
+    dir.path = std::filesystem::temp_directory_path() /
+               fmt::format("pelage_compare_{}", getpid());
+    std::filesystem::create_directories(dir.path);
+    const Timer timer;
+    const shader::MosaicPattern pattern(subject->cells, subject->mesh);
+    const shader::BakedPattern baked = shader::bake_pattern(pattern, res);
+    co.texture_file = (dir.path / "atlas.exr").string();
+    co.texture_mesh = (dir.path / "atlas.obj").string();
+    co.texels_per_unit = float(baked.atlas.texels_per_unit);
+    renderer::write_exr(co.texture_file, res, res, baked.pixels,
+                        {"R", "G", "B", "A", "shader.cell_type", "shader.cell_id"}, false,
+                        {});
+    std::vector<sim::Vec2d> uvs;
+    for (sim::TriId t = 0; t < pattern.num_triangles(); ++t)
+        for (int c = 0; c < 3; ++c) uvs.push_back(baked.atlas.uv(t, c));
+    sim::write_obj(co.texture_mesh, pattern.surface().mesh, uvs,
+                   "pelage compare: CRPS atlas UVs");
+    fmt::print(
+        "texture: baked the mosaic into a {}x{} atlas ({:.1f} texels per unit) in {:.2f} "
+        "s\n",
+        res, res, baked.atlas.texels_per_unit, timer.seconds());
+}
+
 int run(const CompareCliOptions &o) {
     const auto control = o.threads.apply();
     renderer::SceneDesc desc = renderer::load_scene_file(o.scene);
     if (o.spp > 0) desc.film.spp = o.spp;
-    if (!o.res.empty()) parse_resolution(o.res, 16384, &desc.film.width, &desc.film.height);
+    if (!o.res.empty())
+        parse_resolution(o.res, 16384, &desc.film.width, &desc.film.height);
     renderer::CompareOptions co;
     co.seed = o.seed;
     co.lookups = o.lookups;
@@ -35,15 +87,19 @@ int run(const CompareCliOptions &o) {
     for (std::string s; std::getline(ss, s, ',');)
         if (!s.empty()) co.shaders.push_back(s);
     if (co.shaders.empty()) throw InputError("", 0, "--shaders", "no shader named");
+    co.match_baselines = !o.no_match;
     if (o.deform) {
         // --- Pattern drift between the rest mesh and the deformed pose; no renders ---
         if (!o.sheet.empty())
-            throw InputError("", 0, "--sheet", "--deform measures drift; it draws no sheet");
+            throw InputError("", 0, "--sheet",
+                             "--deform measures drift; it draws no sheet");
         const renderer::DriftResult d = renderer::measure_pattern_drift(desc, co);
-        fmt::print("pattern drift, {} -> {} (mean |albedo change| at {} fixed surface points)\n",
-                   desc.objects[d.object].mesh, d.pose, d.runs.empty() ? 0 : d.runs[0].points);
+        fmt::print(
+            "pattern drift, {} -> {} (mean |albedo change| at {} fixed surface points)\n",
+            desc.objects[d.object].mesh, d.pose, d.runs.empty() ? 0 : d.runs[0].points);
         for (const auto &run : d.runs)
-            fmt::print("{:<14} drift mean {:.6f}   max {:.6f}\n", run.shader, run.mean, run.max);
+            fmt::print("{:<14} drift mean {:.6f}   max {:.6f}\n", run.shader, run.mean,
+                       run.max);
         if (!o.report.empty()) write_json_file(o.report, d.report());
         return 0;
     }
@@ -51,18 +107,26 @@ int run(const CompareCliOptions &o) {
     std::optional<renderer::DisplayTransform> display;
     if (!o.sheet.empty()) display.emplace(o.view.empty() ? desc.film.view : o.view, "");
 
+    TempDir atlas_dir;
+    if (std::find(co.shaders.begin(), co.shaders.end(), "texture") != co.shaders.end())
+        bake_atlas_for_texture(desc, o.atlas_res, atlas_dir, co);
     const renderer::CompareResult r = renderer::compare_shaders(desc, co);
     const nlohmann::json report = r.report();
     for (const auto &run : r.runs)
-        fmt::print("{:<14} render {:8.3f} s   shade {:8.1f} ns/lookup\n", run.shader, run.seconds, run.ns_per_lookup);
-    for (const auto &[k, v] : report["ratios"].items()) fmt::print("  render {:<32} {:.3f}\n", k, v.get<double>());
-    for (const auto &[k, v] : report["lookup_ratios"].items()) fmt::print("  lookup {:<32} {:.3f}\n", k, v.get<double>());
+        fmt::print("{:<14} render {:8.3f} s ({:8.3f} s CPU)   shade {:8.1f} ns/lookup\n",
+                   run.shader, run.seconds, run.cpu_seconds, run.ns_per_lookup);
+    for (const auto &[k, v] : report["ratios"].items())
+        fmt::print("  render {:<32} {:.3f}\n", k, v.get<double>());
+    for (const auto &[k, v] : report["lookup_ratios"].items())
+        fmt::print("  lookup {:<32} {:.3f}\n", k, v.get<double>());
     if (!o.report.empty()) write_json_file(o.report, report);
     if (display) {
         std::vector<renderer::SheetImage> images;
         for (const auto &run : r.runs) images.push_back({run.shader, &run.rgb});
         if (!renderer::write_contact_sheet(o.sheet, r.width, r.height, images, *display))
-            std::fprintf(stderr, "pelage compare: warning: no label font; %s is unlabelled\n", o.sheet.c_str());
+            std::fprintf(stderr,
+                         "pelage compare: warning: no label font; %s is unlabelled\n",
+                         o.sheet.c_str());
     }
     return 0;
 }
@@ -71,14 +135,25 @@ int run(const CompareCliOptions &o) {
 
 Runner add_compare_command(CLI::App &app) {
     auto o = std::make_shared<CompareCliOptions>();
-    CLI::App *sub = app.add_subcommand("compare", "Render a scene once per shader (CM vs Worley, Perlin, ...) and compare");
-    sub->add_option("scene", o->scene, "Scene file (.json) with a patterned object")->required();
+    CLI::App *sub = app.add_subcommand(
+        "compare",
+        "Render a scene once per shader (CM vs Worley, Perlin, ...) and compare");
+    sub->add_option("scene", o->scene, "Scene file (.json) with a patterned object")
+        ->required();
     sub->add_option("--shaders", o->shaders, "Comma-separated shaders, in sheet order");
     sub->add_option("--res", o->res, "Resolution WIDTHxHEIGHT (overrides the scene)");
-    sub->add_option("--spp", o->spp, "Samples per pixel (overrides the scene)")->check(CLI::Range(1, 1 << 20));
+    sub->add_option("--spp", o->spp, "Samples per pixel (overrides the scene)")
+        ->check(CLI::Range(1, 1 << 20));
     sub->add_option("--seed", o->seed, "Sampler seed, the same for every shader");
-    sub->add_option("--lookups", o->lookups, "Surface points timed per shader")->check(CLI::Range(size_t(1), size_t(100000000)));
+    sub->add_option("--lookups", o->lookups, "Surface points timed per shader")
+        ->check(CLI::Range(size_t(1), size_t(100000000)));
     sub->add_option("--report", o->report, "Write the comparison as JSON");
+    sub->add_option("--atlas-res", o->atlas_res,
+                    "Atlas resolution baked for the texture shader")
+        ->check(CLI::Range(16, 16384));
+    sub->add_flag("--no-match", o->no_match,
+                  "Baselines with their plugin defaults instead of the mosaic's colours "
+                  "and spot density");
     sub->add_flag("--deform", o->deform,
                   "Pattern drift: albedo change at fixed surface points between the rest "
                   "mesh and the object's \"deform\" pose, per shader (no renders)");

@@ -1,5 +1,5 @@
-// `pelage lookup FILE.cells --mesh M --points PTS.txt`: for each `face b0 b1 b2` line, the
-// nearest cell's `id type distance` as the clonal_mosaic material finds it (the same
+// `pelage lookup FILE.cells --mesh M --points PTS.txt`: for each `face b0 b1 b2` line,
+// the nearest cell's `id type distance` as the clonal_mosaic material finds it (the same
 // MosaicPattern and search). Faces are triangles of the mesh as pelage loads it.
 #include <cmath>
 #include <cstdio>
@@ -23,14 +23,19 @@ int run(const LookupOptions &o) {
     std::ifstream in(o.points, std::ios::binary);
     if (!in) throw InputError(o.points, 0, "", "cannot open file");
     // Parse everything first: a bad line fails the run before anything is printed.
-    struct Query { sim::TriId face; float b1, b2; };
+    struct Query {
+        sim::TriId face;
+        float b1, b2;
+    };
     std::vector<Query> queries;
     std::string line;
     for (size_t line_no = 1;; ++line_no) {
         const sim::LineRead r = sim::read_line(in, line);
         if (r == sim::LineRead::end_of_file) break;
-        if (r == sim::LineRead::too_long) throw InputError(o.points, line_no, "", "line too long");
-        if (const auto hash = line.find('#'); hash != std::string::npos) line.resize(hash);
+        if (r == sim::LineRead::too_long)
+            throw InputError(o.points, line_no, "", "line too long");
+        if (const auto hash = line.find('#'); hash != std::string::npos)
+            line.resize(hash);
         std::istringstream ss(line);
         long long face;
         double b0, b1, b2;
@@ -42,20 +47,24 @@ int run(const LookupOptions &o) {
         if (!(ss >> b0 >> b1 >> b2) || (ss >> extra))
             throw InputError(o.points, line_no, "", "expected `face b0 b1 b2`");
         if (face < 0 || size_t(face) >= pattern.num_triangles())
-            throw InputError(o.points, line_no, "", "face " + std::to_string(face) + " out of range [0, " +
-                                                        std::to_string(pattern.num_triangles()) + ")");
-        if (!std::isfinite(b0) || !std::isfinite(b1) || !std::isfinite(b2) || std::abs(b0 + b1 + b2 - 1) > 1e-4 ||
-            b0 < -1e-4 || b1 < -1e-4 || b2 < -1e-4)
-            throw InputError(o.points, line_no, "", "barycentric coordinates must be >= 0 and sum to 1");
+            throw InputError(o.points, line_no, "",
+                             "face " + std::to_string(face) + " out of range [0, " +
+                                 std::to_string(pattern.num_triangles()) + ")");
+        if (!std::isfinite(b0) || !std::isfinite(b1) || !std::isfinite(b2) ||
+            std::abs(b0 + b1 + b2 - 1) > 1e-4 || b0 < -1e-4 || b1 < -1e-4 || b2 < -1e-4)
+            throw InputError(o.points, line_no, "",
+                             "barycentric coordinates must be >= 0 and sum to 1");
         queries.push_back({sim::TriId(face), float(b1), float(b2)});
     }
     for (const Query &q : queries) {
-        const shader::ClosestCell c = pattern.index().find_nearest(q.face, pattern.point(q.face, q.b1, q.b2));
+        const shader::ClosestCell c =
+            pattern.index().find_nearest(q.face, q.b1, q.b2);  // as the renderer
         if (c.index == shader::ClosestCell::none) {
             std::printf("none none inf\n");
             continue;
         }
-        std::printf("%u %u %.9g\n", pattern.cells().id[c.index], unsigned(pattern.cells().type[c.index]), c.f1);
+        std::printf("%u %u %.9g\n", pattern.cells().id[c.index],
+                    unsigned(pattern.cells().type[c.index]), c.f1);
     }
     return 0;
 }
@@ -64,10 +73,13 @@ int run(const LookupOptions &o) {
 
 Runner add_lookup_command(CLI::App &app) {
     auto o = std::make_shared<LookupOptions>();
-    CLI::App *sub = app.add_subcommand("lookup", "Nearest cell (id type distance) of surface points, as the renderer finds it");
+    CLI::App *sub = app.add_subcommand(
+        "lookup",
+        "Nearest cell (id type distance) of surface points, as the renderer finds it");
     sub->add_option("cells", o->cells, "The .cells file")->required();
     sub->add_option("--mesh", o->mesh, "The mesh the cells were grown on")->required();
-    sub->add_option("--points", o->points, "Text file of `face b0 b1 b2` lines")->required();
+    sub->add_option("--points", o->points, "Text file of `face b0 b1 b2` lines")
+        ->required();
     return [o] { return run(*o); };
 }
 

@@ -11,8 +11,9 @@ CellTable make_cell_table(size_t num_triangles, std::span<const CellOnSurface> c
     table.row.assign(num_triangles + 1, 0);
     for (const CellOnSurface &c : cells) {
         if (c.tri >= num_triangles)
-            throw std::invalid_argument("cell " + std::to_string(c.id) + " lies on triangle " +
-                                        std::to_string(c.tri) + " of a mesh with " +
+            throw std::invalid_argument("cell " + std::to_string(c.id) +
+                                        " lies on triangle " + std::to_string(c.tri) +
+                                        " of a mesh with " +
                                         std::to_string(num_triangles));
         ++table.row[c.tri + 1];
     }
@@ -20,7 +21,8 @@ CellTable make_cell_table(size_t num_triangles, std::span<const CellOnSurface> c
     std::vector<uint32_t> order(cells.size());
     std::iota(order.begin(), order.end(), 0u);
     std::sort(order.begin(), order.end(), [&](uint32_t a, uint32_t b) {
-        return cells[a].tri != cells[b].tri ? cells[a].tri < cells[b].tri : cells[a].id < cells[b].id;
+        return cells[a].tri != cells[b].tri ? cells[a].tri < cells[b].tri
+                                            : cells[a].id < cells[b].id;
     });
     table.x.reserve(cells.size());
     table.z.reserve(cells.size());

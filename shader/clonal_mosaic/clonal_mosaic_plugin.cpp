@@ -1,12 +1,12 @@
 /* clonal_mosaic: the pattern of a `pelage sim` run, looked up at every hit by the
  * closest-cell search of Teo 2006 ch. 6 (closest_cell.h).
  *
- * | parameter  | type   | default | meaning                                                    |
- * | jitter     | float  | 0       | per-cell brightness variation in [0, 1], keyed by stable id |
- * | edge_width | float  | 0       | soft boundary between cells, object-space units             |
- * | antialias  | int    | 1       | also blend boundaries over the ray footprint (no jaggies)   |
- * | roughness  | string | ""      | per-type coat roughness, "F=0.35,B=0.5"; "" keeps material's|
- * | unfolding  | string | "edges" | "edges" (fewer cracks) or "teo" (edge and vertex maps)      |
+ * | parameter  | type   | default | meaning | | jitter     | float  | 0       | per-cell
+ * brightness variation in [0, 1], keyed by stable id | | edge_width | float  | 0       |
+ * soft boundary between cells, object-space units             | | antialias  | int    | 1
+ * | also blend boundaries over the ray footprint (no jaggies)   | | roughness  | string |
+ * ""      | per-type coat roughness, "F=0.35,B=0.5"; "" keeps material's| | unfolding  |
+ * string | "edges" | "edges" (fewer cracks) or "teo" (edge and vertex maps)      |
  *
  * The object needs "cells": a .cells file made by `pelage sim` for the same mesh (checked
  * against the mesh's hash). AOVs: cell_id, cell_type, f1 (distance to the cell centre).
@@ -33,25 +33,58 @@ struct TypeLook {
     float roughness;  // < 0: the material's
 };
 
+// A cell's look, resolved when the instance is created (type colour, jitter, clamp): the
+// hit path reads one 16-byte entry instead of hashing the id and scaling the colour.
+struct CellLook {
+    float rgb[3];
+    uint32_t type;
+};
+
 struct ClonalMosaic {
     std::unique_ptr<shader::MosaicPattern> pattern;
     const shader::CellTable *cells_ptr = nullptr;
     const shader::ClosestCellIndex *index = nullptr;
     std::vector<TypeLook> types;
+    std::vector<CellLook> looks;  // per cell, CellTable order
     float jitter = 0, edge_width = 0;
     bool antialias = true;
 };
 
 const PelageParamSpec params[] = {
-    {"jitter", PELAGE_PARAM_FLOAT, {0, 0, 0}, nullptr, 0.0f, 1.0f,
+    {"jitter",
+     PELAGE_PARAM_FLOAT,
+     {0, 0, 0},
+     nullptr,
+     0.0f,
+     1.0f,
      "per-cell brightness variation, keyed by the stable cell id"},
-    {"edge_width", PELAGE_PARAM_FLOAT, {0, 0, 0}, nullptr, 0.0f, 1e6f,
+    {"edge_width",
+     PELAGE_PARAM_FLOAT,
+     {0, 0, 0},
+     nullptr,
+     0.0f,
+     1e6f,
      "soft boundary between cells, in object-space units"},
-    {"antialias", PELAGE_PARAM_INT, {1, 0, 0}, nullptr, 0.0f, 1.0f,
+    {"antialias",
+     PELAGE_PARAM_INT,
+     {1, 0, 0},
+     nullptr,
+     0.0f,
+     1.0f,
      "blend cell boundaries over the ray footprint"},
-    {"roughness", PELAGE_PARAM_STRING, {0, 0, 0}, "", 0.0f, 0.0f,
+    {"roughness",
+     PELAGE_PARAM_STRING,
+     {0, 0, 0},
+     "",
+     0.0f,
+     0.0f,
      "per-type coat roughness, e.g. \"F=0.35,B=0.5\"; empty keeps the material's"},
-    {"unfolding", PELAGE_PARAM_STRING, {0, 0, 0}, "edges", 0.0f, 0.0f,
+    {"unfolding",
+     PELAGE_PARAM_STRING,
+     {0, 0, 0},
+     "edges",
+     0.0f,
+     0.0f,
      "\"edges\" (edge maps only: fewer cracks) or \"teo\" (edge and vertex maps)"},
     {nullptr, PelageParamType(0), {0, 0, 0}, nullptr, 0, 0, nullptr},
 };
@@ -78,49 +111,21 @@ void parse_roughness(const std::string &spec, const std::vector<sim::CellType> &
         if (item.empty()) continue;
         const size_t eq = item.find('=');
         if (eq == std::string::npos)
-            throw std::invalid_argument("roughness: expected NAME=VALUE, got \"" + item + "\"");
+            throw std::invalid_argument("roughness: expected NAME=VALUE, got \"" + item +
+                                        "\"");
         const std::string name = item.substr(0, eq);
-        auto it = std::find_if(types.begin(), types.end(), [&](const auto &t) { return t.name == name; });
+        auto it = std::find_if(types.begin(), types.end(),
+                               [&](const auto &t) { return t.name == name; });
         if (it == types.end())
-            throw std::invalid_argument("roughness: the .cells file has no cell type \"" + name + "\"");
+            throw std::invalid_argument("roughness: the .cells file has no cell type \"" +
+                                        name + "\"");
         char *end = nullptr;
         const std::string value = item.substr(eq + 1);
         const float r = std::strtof(value.c_str(), &end);
         if (value.empty() || *end || !(r >= 0 && r <= 1))
-            throw std::invalid_argument("roughness: \"" + value + "\" for " + name + " is not in [0, 1]");
+            throw std::invalid_argument("roughness: \"" + value + "\" for " + name +
+                                        " is not in [0, 1]");
         looks[it - types.begin()].roughness = r;
-    }
-}
-
-void *create(const PelageParamSet *ps, PelageError *err) {
-    try {
-        if (!ps->mesh.cells_path)
-            throw std::invalid_argument("needs the object's \"cells\": a .cells file made by pelage sim");
-        if (!ps->mesh.mesh_path) throw std::invalid_argument("the renderer gave no mesh path");
-        auto cm = std::make_unique<ClonalMosaic>();
-        cm->jitter = find_param(ps, "jitter")->f[0];
-        cm->edge_width = find_param(ps, "edge_width")->f[0];
-        cm->antialias = find_param(ps, "antialias")->i != 0;
-        const std::string unfolding = find_param(ps, "unfolding")->s;
-        if (unfolding != "edges" && unfolding != "teo")
-            throw std::invalid_argument("unfolding: \"" + unfolding + "\" is neither \"edges\" nor \"teo\"");
-
-        cm->pattern = std::make_unique<shader::MosaicPattern>(
-            ps->mesh.cells_path, ps->mesh.mesh_path,
-            unfolding == "teo" ? sim::UnfoldPaths::edges_and_vertices : sim::UnfoldPaths::edges_only);
-        if (cm->pattern->num_triangles() != ps->mesh.num_triangles)
-            throw std::invalid_argument("the renderer's mesh has " + std::to_string(ps->mesh.num_triangles) +
-                                        " triangles, the .cells file " +
-                                        std::to_string(cm->pattern->num_triangles()));
-        cm->cells_ptr = &cm->pattern->cells();
-        cm->index = &cm->pattern->index();
-        for (const sim::CellType &t : cm->pattern->types())
-            cm->types.push_back({{t.colour[0], t.colour[1], t.colour[2]}, t.eumelanin, t.pheomelanin, -1.0f});
-        parse_roughness(find_param(ps, "roughness")->s, cm->pattern->types(), cm->types);
-        return cm.release();
-    } catch (const std::exception &e) {
-        set_error(err, e.what());
-        return nullptr;
     }
 }
 
@@ -133,10 +138,53 @@ float id_noise(uint32_t id) {
     return float(h >> 8) * (2.0f / 16777216.0f) - 1.0f;
 }
 
-void cell_colour(const ClonalMosaic &cm, uint32_t cell, float rgb[3]) {
-    const TypeLook &t = cm.types[cm.cells_ptr->type[cell]];
+void cell_colour(const ClonalMosaic &cm, uint32_t cell, CellLook &look) {
+    look.type = cm.cells_ptr->type[cell];
+    const TypeLook &t = cm.types[look.type];
     const float scale = 1.0f + cm.jitter * 0.5f * id_noise(cm.cells_ptr->id[cell]);
-    for (int c = 0; c < 3; ++c) rgb[c] = std::clamp(t.colour[c] * scale, 0.0f, 1.0f);
+    for (int c = 0; c < 3; ++c) look.rgb[c] = std::clamp(t.colour[c] * scale, 0.0f, 1.0f);
+}
+
+void *create(const PelageParamSet *ps, PelageError *err) {
+    try {
+        if (!ps->mesh.cells_path)
+            throw std::invalid_argument(
+                "needs the object's \"cells\": a .cells file made by pelage sim");
+        if (!ps->mesh.mesh_path)
+            throw std::invalid_argument("the renderer gave no mesh path");
+        auto cm = std::make_unique<ClonalMosaic>();
+        cm->jitter = find_param(ps, "jitter")->f[0];
+        cm->edge_width = find_param(ps, "edge_width")->f[0];
+        cm->antialias = find_param(ps, "antialias")->i != 0;
+        const std::string unfolding = find_param(ps, "unfolding")->s;
+        if (unfolding != "edges" && unfolding != "teo")
+            throw std::invalid_argument("unfolding: \"" + unfolding +
+                                        "\" is neither \"edges\" nor \"teo\"");
+
+        cm->pattern = std::make_unique<shader::MosaicPattern>(
+            ps->mesh.cells_path, ps->mesh.mesh_path,
+            unfolding == "teo" ? sim::UnfoldPaths::edges_and_vertices
+                               : sim::UnfoldPaths::edges_only);
+        if (cm->pattern->num_triangles() != ps->mesh.num_triangles)
+            throw std::invalid_argument("the renderer's mesh has " +
+                                        std::to_string(ps->mesh.num_triangles) +
+                                        " triangles, the .cells file " +
+                                        std::to_string(cm->pattern->num_triangles()));
+        cm->cells_ptr = &cm->pattern->cells();
+        cm->index = &cm->pattern->index();
+        for (const sim::CellType &t : cm->pattern->types())
+            cm->types.push_back({{t.colour[0], t.colour[1], t.colour[2]},
+                                 t.eumelanin,
+                                 t.pheomelanin,
+                                 -1.0f});
+        parse_roughness(find_param(ps, "roughness")->s, cm->pattern->types(), cm->types);
+        cm->looks.resize(cm->cells_ptr->size());
+        for (uint32_t k = 0; k < cm->looks.size(); ++k) cell_colour(*cm, k, cm->looks[k]);
+        return cm.release();
+    } catch (const std::exception &e) {
+        set_error(err, e.what());
+        return nullptr;
+    }
 }
 
 void write_aovs(const ClonalMosaic &cm, uint32_t cell, float f1, PelageShade *out) {
@@ -149,20 +197,19 @@ void write_aovs(const ClonalMosaic &cm, uint32_t cell, float f1, PelageShade *ou
 void shade(const void *self, const PelageHit *hit, PelageShade *out) {
     const ClonalMosaic &cm = *static_cast<const ClonalMosaic *>(self);
     if (hit->primitive_id >= cm.cells_ptr->num_triangles()) return;  // defaults stay
-    const shader::Vec2f q = cm.pattern->point(hit->primitive_id, hit->b1, hit->b2);
 
     // Boundaries are blended over w: the user's soft width, or at least the footprint.
     // Antialiasing matters for what the camera sees; indirect bounces average over wide
     // footprints anyway, so they take the cheaper nearest-cell path.
-    const float w = std::max(cm.edge_width, cm.antialias && hit->depth == 0 ? hit->footprint : 0.0f);
-    // Most hits are farther than 2w from any cell edge: F1 and F2 settle it (or F1 alone
-    // without blending); only the rest pay for the three-cell blend.
-    const shader::ClosestCell c = w > 0 ? cm.index->find(hit->primitive_id, q)
-                                        : cm.index->find_nearest(hit->primitive_id, q);
-    if (w <= 0 || !(c.f2 - c.f1 < 2 * w)) {
+    const float w =
+        std::max(cm.edge_width, cm.antialias && hit->depth == 0 ? hit->footprint : 0.0f);
+    if (w <= 0) {
+        const shader::ClosestCell c =
+            cm.index->find_nearest(hit->primitive_id, hit->b1, hit->b2);
         if (c.index == shader::ClosestCell::none) return;  // a component without cells
-        const TypeLook &look = cm.types[cm.cells_ptr->type[c.index]];
-        cell_colour(cm, c.index, out->albedo);
+        const CellLook &cell = cm.looks[c.index];
+        const TypeLook &look = cm.types[cell.type];
+        for (int k = 0; k < 3; ++k) out->albedo[k] = cell.rgb[k];
         out->eumelanin = look.eumelanin;
         out->pheomelanin = look.pheomelanin;
         if (look.roughness >= 0) out->roughness = look.roughness;
@@ -172,8 +219,10 @@ void shade(const void *self, const PelageHit *hit, PelageShade *out) {
     // Blend the three nearest cells with weights 1 - smoothstep(0, 2w, F_i - F1): equal
     // on a Voronoi edge (F1 = F2) and at a vertex (F1 = F2 = F3), zero once a cell is 2w
     // farther than the nearest. Continuous everywhere except where four cells lie within
-    // 2w of each other's distance.
-    const auto n = cm.index->find_three(hit->primitive_id, q);
+    // 2w of each other's distance. One scan finds them: it stops at F1 + 2w, so hits far
+    // from any boundary cost little more than the nearest cell alone.
+    const auto n =
+        cm.index->find_three_within(hit->primitive_id, hit->b1, hit->b2, 2 * w);
     if (n.index[0] == shader::ClosestCell::none) return;
     const float f1 = std::sqrt(n.d2[0]);
     float rgb[3] = {0, 0, 0}, eu = 0, pheo = 0, total = 0;
@@ -181,10 +230,9 @@ void shade(const void *self, const PelageHit *hit, PelageShade *out) {
         const float x = std::min((std::sqrt(n.d2[i]) - f1) / (2 * w), 1.0f);
         const float weight = 1 - x * x * (3 - 2 * x);
         if (weight <= 0) break;
-        float c[3];
-        cell_colour(cm, n.index[i], c);
-        const TypeLook &l = cm.types[cm.cells_ptr->type[n.index[i]]];
-        for (int k = 0; k < 3; ++k) rgb[k] += weight * c[k];
+        const CellLook &cell = cm.looks[n.index[i]];
+        const TypeLook &l = cm.types[cell.type];
+        for (int k = 0; k < 3; ++k) rgb[k] += weight * cell.rgb[k];
         eu += weight * l.eumelanin;
         pheo += weight * l.pheomelanin;
         total += weight;
@@ -192,7 +240,7 @@ void shade(const void *self, const PelageHit *hit, PelageShade *out) {
     for (int k = 0; k < 3; ++k) out->albedo[k] = rgb[k] / total;
     out->eumelanin = eu / total;
     out->pheomelanin = pheo / total;
-    const TypeLook &look = cm.types[cm.cells_ptr->type[n.index[0]]];
+    const TypeLook &look = cm.types[cm.looks[n.index[0]].type];
     if (look.roughness >= 0) out->roughness = look.roughness;
     write_aovs(cm, n.index[0], f1, out);
 }
@@ -200,11 +248,19 @@ void shade(const void *self, const PelageHit *hit, PelageShade *out) {
 void destroy(void *self) { delete static_cast<ClonalMosaic *>(self); }
 
 const PelageShaderPlugin plugin = {
-    PELAGE_SHADER_ABI, "clonal_mosaic",
-    "Clonal Mosaic cells from a .cells file, closest cell by reverse neighbour mapping (Teo 2006 ch. 6)",
-    params, aov_names, create, shade, destroy,
+    PELAGE_SHADER_ABI,
+    "clonal_mosaic",
+    "Clonal Mosaic cells from a .cells file, closest cell by reverse neighbour mapping "
+    "(Teo 2006 ch. 6)",
+    params,
+    aov_names,
+    create,
+    shade,
+    destroy,
 };
 
 }  // namespace
 
-extern "C" PELAGE_EXPORT const PelageShaderPlugin *pelage_shader_plugin(void) { return &plugin; }
+extern "C" PELAGE_EXPORT const PelageShaderPlugin *pelage_shader_plugin(void) {
+    return &plugin;
+}

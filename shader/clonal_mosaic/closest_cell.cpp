@@ -1,33 +1,41 @@
 // Implements Teo 2006 §6.2 (see closest_cell.h).
 #include "shader/clonal_mosaic/closest_cell.h"
 
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-
-#include <tbb/enumerable_thread_specific.h>
-#include <tbb/parallel_for.h>
+#include <stdexcept>
 
 namespace pelage::shader {
 namespace {
 
 constexpr double inf = std::numeric_limits<double>::infinity();
-constexpr uint32_t max_subdivision = 3;
+constexpr float inf_f = std::numeric_limits<float>::infinity();
 
 // The barycentric (b1, b2) corners of sub-triangle (i, j, upper) of an n-subdivision.
-std::array<std::array<double, 2>, 3> sub_triangle(uint32_t n, uint32_t i, uint32_t j, bool upper) {
+std::array<std::array<double, 2>, 3> sub_triangle(uint32_t n, uint32_t i, uint32_t j,
+                                                  bool upper) {
     const double s = 1.0 / n;
-    if (upper) return {{{(i + 1) * s, j * s}, {(i + 1) * s, (j + 1) * s}, {i * s, (j + 1) * s}}};
+    if (upper)
+        return {{{(i + 1) * s, j * s}, {(i + 1) * s, (j + 1) * s}, {i * s, (j + 1) * s}}};
     return {{{i * s, j * s}, {(i + 1) * s, j * s}, {i * s, (j + 1) * s}}};
+}
+
+// Sub-triangles of an n-subdivision numbered row by row: row i holds n - i lower and
+// n - i - 1 upper ones, interleaved, so the n² of them are 0 … n² - 1.
+uint32_t slot_index(uint32_t n, uint32_t i, uint32_t j, bool upper) {
+    return i * (2 * n - i) + 2 * j + (upper ? 1 : 0);
 }
 
 }  // namespace
 
 struct ClosestCellIndex::Built {
     TriangleRegions regions{};
-    std::vector<uint32_t> slot_sizes;  // 2n² slots
-    std::vector<Candidate> candidates;
-    std::vector<sim::TriId> candidate_tri;
+    std::vector<Block> blocks;
+    size_t entries = 0, distinct_triangles = 0, used_slots = 0;
 };
 
 ClosestCellIndex::ClosestCellIndex(const sim::Crps &crps, const CellTable &cells,
@@ -53,28 +61,31 @@ ClosestCellIndex::ClosestCellIndex(const sim::Crps &crps, const CellTable &cells
     tbb::parallel_for(tbb::blocked_range<size_t>(0, nt, 64), [&](const auto &range) {
         Scratch &s = scratch.local();
         for (size_t t = range.begin(); t != range.end(); ++t)
-            build_triangle(crps, static_cast<sim::TriId>(t), s.unfold, s.unfolded, built[t]);
+            build_triangle(crps, static_cast<sim::TriId>(t), s.unfold, s.unfolded,
+                           built[t]);
     });
 
+    size_t total_blocks = 0, used_slots = 0, entries = 0, distinct = 0;
+    for (const Built &b : built) total_blocks += b.blocks.size();
+    if (total_blocks >= (size_t(1) << 30))
+        throw std::length_error("closest-cell index: more than 2^30 candidate blocks");
     m_regions.resize(nt);
-    m_slot_row.assign(1, 0);
-    size_t used_slots = 0, cand_cells = 0;
+    m_blocks.reserve(total_blocks);
     for (size_t t = 0; t < nt; ++t) {
         Built &b = built[t];
-        b.regions.first_slot = static_cast<uint32_t>(m_slot_row.size() - 1);
+        b.regions.first_block_and_n |= static_cast<uint32_t>(m_blocks.size()) << 2;
         m_regions[t] = b.regions;
-        for (uint32_t size : b.slot_sizes) {
-            m_slot_row.push_back(m_slot_row.back() + size);
-            used_slots += size > 0;
-        }
-        for (const Candidate &c : b.candidates) cand_cells += c.end - c.begin;
-        m_candidates.insert(m_candidates.end(), b.candidates.begin(), b.candidates.end());
-        m_candidate_tri.insert(m_candidate_tri.end(), b.candidate_tri.begin(), b.candidate_tri.end());
-        m_stats.triangles_without_cells_in_reach += b.candidates.empty();
+        m_blocks.insert(m_blocks.end(), b.blocks.begin(), b.blocks.end());
+        m_stats.triangles_without_cells_in_reach += b.entries == 0;
+        used_slots += b.used_slots;
+        entries += b.entries;
+        distinct += b.distinct_triangles;
         b = Built{};
     }
-    m_stats.mean_candidates = used_slots ? double(m_candidates.size()) / used_slots : 0;
-    m_stats.mean_candidate_cells = used_slots ? double(cand_cells) / used_slots : 0;
+    m_stats.mean_candidates = used_slots ? double(distinct) / used_slots : 0;
+    m_stats.mean_candidate_cells = used_slots ? double(entries) / used_slots : 0;
+    m_stats.bytes =
+        m_regions.size() * sizeof(TriangleRegions) + m_blocks.size() * sizeof(Block);
     m_stats.build_seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
@@ -88,12 +99,12 @@ void ClosestCellIndex::build_triangle(const sim::Crps &crps, sim::TriId t,
 
     // --- Subdivision: about one sub-triangle per cell spacing across, at most 3 ---
     const uint32_t n = std::clamp<uint32_t>(
-        static_cast<uint32_t>(std::ceil(2 * ft.bound_radius / std::max(m_spacing, 1e-300))), 1,
-        max_subdivision);
+        static_cast<uint32_t>(
+            std::ceil(2 * ft.bound_radius / std::max(m_spacing, 1e-300))),
+        1, std::clamp<uint32_t>(m_options.max_subdivision, 1, max_subdivision));
     const sim::Vec2d v0 = ft.v[0], e1 = ft.v[1] - ft.v[0], e2 = ft.v[2] - ft.v[0];
-    const double det = cross(e1, e2);
-    out.regions = {float(v0.x), float(v0.y), float(e2.y / det), float(-e2.x / det),
-                   float(-e1.y / det), float(e1.x / det), n, 0};
+    out.regions = {float(v0.x), float(v0.y), float(e1.x), float(e1.y),
+                   float(e2.x), float(e2.y), n,           {}};
     struct Sub {
         uint32_t slot;
         sim::Vec2d v[3], centre;
@@ -105,128 +116,185 @@ void ClosestCellIndex::build_triangle(const sim::Crps &crps, sim::TriId t,
             for (int upper = 0; upper < 2; ++upper) {
                 if (upper && i + j + 1 >= n) continue;
                 Sub s;
-                s.slot = (i * n + j) * 2 + upper;
+                s.slot = slot_index(n, i, j, upper);
                 const auto b = sub_triangle(n, i, j, upper);
                 for (int c = 0; c < 3; ++c) s.v[c] = v0 + e1 * b[c][0] + e2 * b[c][1];
                 s.centre = (s.v[0] + s.v[1] + s.v[2]) / 3.0;
-                for (int c = 0; c < 3; ++c) s.bound = std::max(s.bound, length(s.v[c] - s.centre));
+                for (int c = 0; c < 3; ++c)
+                    s.bound = std::max(s.bound, length(s.v[c] - s.centre));
                 subs.push_back(s);
             }
+    std::sort(subs.begin(), subs.end(),
+              [](const Sub &a, const Sub &b) { return a.slot < b.slot; });
 
     // --- Grow t's unfolding until it holds, for every S, all cells within R_S of S ---
-    // When fewer than two cells are reachable the radius doubles up to the size of the
+    // Every cell of the unfolding carried into t's frame once (Teo's F[j→t]), in double.
+    // When fewer than three cells are reachable the radius doubles up to the size of the
     // whole surface, after which the lists hold whatever there is (possibly nothing).
+    struct Mapped {
+        sim::Vec2d p;
+        uint32_t cell;
+        sim::TriId tri;
+    };
+    std::vector<Mapped> mapped;
     double radius = m_initial_radius + ft.bound_radius;
     for (int iteration = 0; iteration < 64; ++iteration) {
         sim::unfold_around_triangle(crps, t, radius, unfolded, scratch, m_options.paths);
+        mapped.clear();
+        for (const sim::UnfoldedTriangle &u : unfolded)
+            for (uint32_t k = cells.row[u.tri]; k < cells.row[u.tri + 1]; ++k)
+                mapped.push_back({u.to_master.apply({cells.x[k], cells.z[k]}), k, u.tri});
         double needed = 0;
         for (Sub &s : subs) {
-            // Distances to the three nearest cells: lists serve searches for up to three.
-            double d[3] = {inf, inf, inf};
-            for (const sim::UnfoldedTriangle &u : unfolded)
-                for (uint32_t k = cells.row[u.tri]; k < cells.row[u.tri + 1]; ++k) {
-                    const double dk = length(u.to_master.apply({cells.x[k], cells.z[k]}) - s.centre);
+            // For any three cells T, F3(q) <= max_{c in T} |q - c| on all of S, and that
+            // maximum over the triangle S is reached at one of its corners. T = the three
+            // nearest to S's centroid or to one of its corners; the tightest bound wins.
+            // (It is at most d_3 + b_S, the centroid bound.)
+            s.reach_needed = inf;
+            const sim::Vec2d probes[4] = {s.centre, s.v[0], s.v[1], s.v[2]};
+            for (const sim::Vec2d &probe : probes) {
+                const Mapped *near[3] = {nullptr, nullptr, nullptr};
+                double d[3] = {inf, inf, inf};
+                for (const Mapped &m : mapped) {
+                    const double dk = length(m.p - probe);
                     if (dk < d[2]) {
                         d[2] = dk;
-                        if (d[2] < d[1]) std::swap(d[1], d[2]);
-                        if (d[1] < d[0]) std::swap(d[0], d[1]);
+                        near[2] = &m;
+                        if (d[2] < d[1])
+                            std::swap(d[1], d[2]), std::swap(near[1], near[2]);
+                        if (d[1] < d[0])
+                            std::swap(d[0], d[1]), std::swap(near[0], near[1]);
                     }
                 }
-            s.reach_needed = d[2] + s.bound;
+                if (!near[2]) continue;  // fewer than three cells within the radius
+                double reach = 0;
+                for (const Mapped *m : near)
+                    for (const sim::Vec2d &corner : s.v)
+                        reach = std::max(reach, length(m->p - corner));
+                s.reach_needed = std::min(s.reach_needed, reach);
+            }
             needed = std::max(needed, s.reach_needed);
         }
         if (needed <= radius || radius >= m_max_radius) break;
-        // A larger radius may reach triangles by other paths: grow with a margin, re-check.
+        // A larger radius may reach triangles by other paths: grow with a margin,
+        // re-check.
         radius = std::isfinite(needed) ? std::min(needed * 1.0001 + 1e-12, m_max_radius)
                                        : std::min(2 * radius, m_max_radius);
     }
 
-    // --- Per sub-triangle: the triangles holding cells within R_S, nearest first ---
-    out.slot_sizes.assign(2 * n * n, 0);
-    std::vector<std::pair<double, size_t>> order;  // (gap, index into unfolded)
-    std::vector<sim::Vec2d> mapped(3 * unfolded.size());
-    for (size_t u = 0; u < unfolded.size(); ++u)
-        for (int c = 0; c < 3; ++c)
-            mapped[3 * u + c] = unfolded[u].to_master.apply(crps.frame(unfolded[u].tri).v[c]);
-    std::sort(subs.begin(), subs.end(), [](const Sub &a, const Sub &b) { return a.slot < b.slot; });
+    // --- Per sub-triangle: the cells within R_S of S, by their distance from S ---
+    struct Entry {
+        double bound;
+        const Mapped *m;
+    };
+    std::vector<Entry> list;
+    std::vector<sim::TriId> tris;
+    uint32_t end = 0;
     for (const Sub &s : subs) {
-        order.clear();
-        for (size_t u = 0; u < unfolded.size(); ++u) {
-            if (cells.count_on(unfolded[u].tri) == 0) continue;
-            const double gap = sim::triangle_triangle_distance(s.v, &mapped[3 * u]);
-            if (gap <= s.reach_needed * (1 + 1e-9)) order.push_back({gap, u});
+        list.clear();
+        for (const Mapped &m : mapped) {
+            const double d = sim::point_triangle_distance(m.p, s.v);
+            if (d <= s.reach_needed * (1 + 1e-9)) list.push_back({d, &m});
         }
-        std::stable_sort(order.begin(), order.end(),
-                         [](const auto &a, const auto &b) { return a.first < b.first; });
-        out.slot_sizes[s.slot] = static_cast<uint32_t>(order.size());
-        for (const auto &[gap, u] : order) {
-            const sim::TriId j = unfolded[u].tri;
-            const uint32_t begin = cells.row[j], end = cells.row[j + 1];
-            float reach = 0;
-            for (uint32_t k = begin; k < end; ++k)
-                reach = std::max(reach, std::sqrt(cells.x[k] * cells.x[k] + cells.z[k] * cells.z[k]));
-            const sim::RigidMap2 to_j = unfolded[u].to_master.inverse();
-            // Round the bounds outward so float rounding can never prune the true nearest.
-            out.candidates.push_back({float(to_j.c), float(to_j.s), float(to_j.ax), float(to_j.ay),
-                                      begin, end, reach * (1 + 1e-5f) + 1e-30f,
-                                      float(gap) * (1 - 1e-5f)});
-            out.candidate_tri.push_back(j);
+        std::sort(list.begin(), list.end(), [](const Entry &a, const Entry &b) {
+            return a.bound < b.bound || (a.bound == b.bound && a.m->cell < b.m->cell);
+        });
+        tris.clear();
+        for (const Entry &e : list) tris.push_back(e.m->tri);
+        std::sort(tris.begin(), tris.end());
+        out.distinct_triangles += std::unique(tris.begin(), tris.end()) - tris.begin();
+        out.entries += list.size();
+        out.used_slots += 1;
+        for (size_t i = 0; i < list.size(); i += 4) {
+            Block b;
+            // The bound is rounded down by more than float's error in the scan's
+            // distances (positions of size |p| + the triangle's radius), so rounding
+            // never prunes the true nearest.
+            const double margin =
+                1e-5 * (list[i].bound + length(list[i].m->p) + ft.bound_radius);
+            const double lower = std::max(0.0, list[i].bound - margin);
+            b.bound2 = float(lower * lower * (1 - 1e-6));
+            for (size_t l = 0; l < 4; ++l) {
+                const bool real = i + l < list.size();
+                b.x[l] = real ? float(list[i + l].m->p.x) : inf_f;
+                b.y[l] = real ? float(list[i + l].m->p.y) : inf_f;
+                b.cell[l] = real ? list[i + l].m->cell : ClosestCell::none;
+            }
+            b.unused[0] = b.unused[1] = b.unused[2] = 0;
+            out.blocks.push_back(b);
         }
+        end = static_cast<uint32_t>(out.blocks.size());
+        out.regions.end[s.slot] = end;
     }
-    // Slots are laid out in slot order; the candidates above were appended in the same
-    // order because `subs` is sorted by slot and unused slots are empty.
 }
 
-uint32_t ClosestCellIndex::slot_of(sim::TriId t, Vec2f q) const {
+const ClosestCellIndex::Block *ClosestCellIndex::blocks_at(sim::TriId t, float b1,
+                                                           float b2,
+                                                           const Block *&end) const {
     const TriangleRegions &r = m_regions[t];
-    const float dx = q.x - r.v0x, dy = q.y - r.v0y;
-    const float nf = float(r.n);
+    const uint32_t n = r.first_block_and_n & 3u;
+    const float nf = float(n);
     // Clamp to the triangle: hits may sit a rounding error outside it.
-    const float u = std::clamp((r.i00 * dx + r.i01 * dy) * nf, 0.0f, nf);
-    const float v = std::clamp((r.i10 * dx + r.i11 * dy) * nf, 0.0f, nf - u);
-    uint32_t i = std::min(uint32_t(u), r.n - 1), j = std::min(uint32_t(v), r.n - 1);
+    const float u = std::clamp(b1 * nf, 0.0f, nf);
+    const float v = std::clamp(b2 * nf, 0.0f, nf - u);
+    uint32_t i = std::min(uint32_t(u), n - 1), j = std::min(uint32_t(v), n - 1);
     bool upper = (u - float(i)) + (v - float(j)) > 1.0f;
-    if (i + j >= r.n - 1) {  // the last row of sub-triangles has no upper halves
-        j = r.n - 1 - std::min(i, r.n - 1);
+    if (i + j >= n - 1) {  // the last row of sub-triangles has no upper halves
+        j = n - 1 - std::min(i, n - 1);
         upper = false;
     }
-    return r.first_slot + (i * r.n + j) * 2 + (upper ? 1 : 0);
+    const uint32_t k = slot_index(n, i, j, upper);
+    const Block *first = m_blocks.data() + (r.first_block_and_n >> 2);
+    end = first + r.end[k];
+    return first + (k ? r.end[k - 1] : 0);
 }
 
-template <bool prune, int K>
-void ClosestCellIndex::scan(uint32_t slot, Vec2f q, Nearest<K> &n) const {
-    const float *x = m_cells->x.data(), *z = m_cells->z.data();
+const ClosestCellIndex::Block *ClosestCellIndex::blocks_of(sim::TriId t, Vec2f q,
+                                                           const Block *&end) const {
+    // q's barycentric coordinates, by Cramer's rule on q - v0 = b1 e1 + b2 e2.
+    const TriangleRegions &r = m_regions[t];
+    const float dx = q.x - r.v0x, dy = q.y - r.v0y;
+    const float inv_det = 1.0f / (r.e1x * r.e2y - r.e1y * r.e2x);
+    return blocks_at(t, (dx * r.e2y - dy * r.e2x) * inv_det,
+                     (r.e1x * dy - r.e1y * dx) * inv_det, end);
+}
+
+template <bool prune, bool dedupe, int K>
+void ClosestCellIndex::scan(const Block *b, const Block *e, Vec2f q, Nearest<K> &n,
+                            float band) const {
     const uint32_t *id = m_cells->id.data();
-    // D_min of Teo Fig. 6.2: the radius beyond which no cell matters any more — the
-    // distance to the K-th nearest found so far.
-    float d_min = std::sqrt(n.d2[K - 1]);
-    for (uint32_t k = m_slot_row[slot]; k < m_slot_row[slot + 1]; ++k) {
-        const Candidate &c = m_candidates[k];
-        if constexpr (prune) {
-            // Candidates are sorted by their distance from the sub-triangle: none further
-            // can enter the K nearest.
-            if (c.gap > d_min) break;
+    // D_min² of Teo Fig. 6.2: beyond it no cell matters any more — the squared distance
+    // to the K-th nearest found so far, or to F1 + band when that is nearer (band >= 0).
+    auto radius2 = [&] {
+        if (band < 0) return n.d2[K - 1];
+        const float cap = std::sqrt(n.d2[0]) + band;
+        return std::min(n.d2[K - 1], cap * cap);
+    };
+    float d_min2 = radius2();
+    for (; b != e; ++b) {
+        // Blocks are sorted by their cells' distance from the sub-triangle: once a block
+        // lies beyond D_min, so do all after it.
+        if constexpr (prune)
+            if (b->bound2 > d_min2) break;
+        float d2[4];
+        for (int l = 0; l < 4; ++l) {
+            const float dx = b->x[l] - q.x, dy = b->y[l] - q.y;
+            d2[l] = dx * dx + dy * dy;
         }
-        // Reverse neighbour mapping: the query into j's frame, 4 mul + 4 add.
-        const float qx = c.c * q.x - c.s * q.y + c.ax;
-        const float qz = c.s * q.x + c.c * q.y + c.ay;
-        if constexpr (prune) {
-            // j's cells lie within `reach` of its centroid (the origin of its frame).
-            const float r = c.reach + d_min;
-            if (qx * qx + qz * qz > r * r) continue;
-        }
-        bool changed = false;
-        for (uint32_t i = c.begin; i < c.end; ++i) {
-            const float dx = x[i] - qx, dz = z[i] - qz;
-            const float d2 = dx * dx + dz * dz;
-            if (d2 > n.d2[K - 1]) continue;  // the common case
-            // Order by (distance, stable id); a cell listed twice (exhaustive scan of
-            // several sub-triangles) enters once.
+        if (std::min(std::min(d2[0], d2[1]), std::min(d2[2], d2[3])) > d_min2)
+            continue;  // the common case
+        for (int l = 0; l < 4; ++l) {
+            const uint32_t cell = b->cell[l];
+            if (d2[l] > d_min2 || cell == ClosestCell::none) continue;
+            // Order by (distance, stable id); a cell listed in several sub-triangles
+            // (the exhaustive scan) enters once.
             int pos = K;
             bool seen = false;
             for (int j = K - 1; j >= 0; --j) {
-                seen |= n.index[j] == i;
-                if (d2 < n.d2[j] || (d2 == n.d2[j] && n.index[j] != ClosestCell::none && id[i] < id[n.index[j]]))
+                if constexpr (dedupe) seen |= n.index[j] == cell;
+                if (d2[l] < n.d2[j] ||
+                    (d2[l] == n.d2[j] && n.index[j] != ClosestCell::none &&
+                     id[cell] < id[n.index[j]]))
                     pos = j;
             }
             if (seen || pos == K) continue;
@@ -234,47 +302,94 @@ void ClosestCellIndex::scan(uint32_t slot, Vec2f q, Nearest<K> &n) const {
                 n.d2[j] = n.d2[j - 1];
                 n.index[j] = n.index[j - 1];
             }
-            n.d2[pos] = d2;
-            n.index[pos] = i;
-            changed = true;
+            n.d2[pos] = d2[l];
+            n.index[pos] = cell;
+            d_min2 = radius2();
         }
-        if (changed) d_min = std::sqrt(n.d2[K - 1]);
     }
 }
 
 ClosestCell ClosestCellIndex::find(sim::TriId t, Vec2f q) const {
     Nearest<2> n;
-    scan<true, 2>(slot_of(t, q), q, n);
+    const Block *e;
+    const Block *b = blocks_of(t, q, e);
+    scan<true, false, 2>(b, e, q, n);
     return {n.index[0], n.index[1], std::sqrt(n.d2[0]), std::sqrt(n.d2[1])};
 }
 
 ClosestCell ClosestCellIndex::find_nearest(sim::TriId t, Vec2f q) const {
     Nearest<1> n;
-    scan<true, 1>(slot_of(t, q), q, n);
-    return {n.index[0], ClosestCell::none, std::sqrt(n.d2[0]), std::numeric_limits<float>::infinity()};
+    const Block *e;
+    const Block *b = blocks_of(t, q, e);
+    scan<true, false, 1>(b, e, q, n);
+    return {n.index[0], ClosestCell::none, std::sqrt(n.d2[0]),
+            std::numeric_limits<float>::infinity()};
 }
 
 ClosestCellIndex::Nearest<3> ClosestCellIndex::find_three(sim::TriId t, Vec2f q) const {
     Nearest<3> n;
-    scan<true, 3>(slot_of(t, q), q, n);
+    const Block *e;
+    const Block *b = blocks_of(t, q, e);
+    scan<true, false, 3>(b, e, q, n);
+    return n;
+}
+
+ClosestCellIndex::Nearest<3> ClosestCellIndex::find_three_within(sim::TriId t, Vec2f q,
+                                                                 float band) const {
+    Nearest<3> n;
+    const Block *e;
+    const Block *b = blocks_of(t, q, e);
+    scan<true, false, 3>(b, e, q, n, std::max(band, 0.0f));
+    // Cells that entered before F1 settled may lie beyond F1 + band: drop them.
+    const float cap = std::sqrt(n.d2[0]) + std::max(band, 0.0f);
+    for (int i = 1; i < 3; ++i)
+        if (!(n.d2[i] <= cap * cap)) {
+            n.d2[i] = std::numeric_limits<float>::infinity();
+            n.index[i] = ClosestCell::none;
+        }
+    return n;
+}
+
+ClosestCell ClosestCellIndex::find_nearest(sim::TriId t, float b1, float b2) const {
+    Nearest<1> n;
+    const Block *e;
+    const Block *b = blocks_at(t, b1, b2, e);
+    scan<true, false, 1>(b, e, point(t, b1, b2), n);
+    return {n.index[0], ClosestCell::none, std::sqrt(n.d2[0]),
+            std::numeric_limits<float>::infinity()};
+}
+
+ClosestCellIndex::Nearest<3> ClosestCellIndex::find_three_within(sim::TriId t, float b1,
+                                                                 float b2,
+                                                                 float band) const {
+    Nearest<3> n;
+    const Block *e;
+    const Block *b = blocks_at(t, b1, b2, e);
+    band = std::max(band, 0.0f);
+    scan<true, false, 3>(b, e, point(t, b1, b2), n, band);
+    const float cap = std::sqrt(n.d2[0]) + band;
+    for (int i = 1; i < 3; ++i)
+        if (!(n.d2[i] <= cap * cap)) {
+            n.d2[i] = std::numeric_limits<float>::infinity();
+            n.index[i] = ClosestCell::none;
+        }
     return n;
 }
 
 ClosestCell ClosestCellIndex::find_exhaustive(sim::TriId t, Vec2f q) const {
     Nearest<2> n;
     const TriangleRegions &r = m_regions[t];
-    for (uint32_t s = 0; s < 2 * r.n * r.n; ++s) scan<false, 2>(r.first_slot + s, q, n);
+    const uint32_t slots = (r.first_block_and_n & 3u) * (r.first_block_and_n & 3u);
+    const Block *first = m_blocks.data() + (r.first_block_and_n >> 2);
+    scan<false, true, 2>(first, first + r.end[slots - 1], q, n);
     return {n.index[0], n.index[1], std::sqrt(n.d2[0]), std::sqrt(n.d2[1])};
 }
 
 float ClosestCellIndex::distance_to_cell(sim::TriId t, Vec2f q, uint32_t cell) const {
-    const uint32_t slot = slot_of(t, q);
-    for (uint32_t k = m_slot_row[slot]; k < m_slot_row[slot + 1]; ++k) {
-        const Candidate &c = m_candidates[k];
-        if (cell < c.begin || cell >= c.end) continue;
-        const float qx = c.c * q.x - c.s * q.y + c.ax, qz = c.s * q.x + c.c * q.y + c.ay;
-        return std::hypot(m_cells->x[cell] - qx, m_cells->z[cell] - qz);
-    }
+    const Block *e;
+    for (const Block *b = blocks_of(t, q, e); b != e; ++b)
+        for (int l = 0; l < 4; ++l)
+            if (b->cell[l] == cell) return std::hypot(b->x[l] - q.x, b->y[l] - q.y);
     return std::numeric_limits<float>::infinity();
 }
 

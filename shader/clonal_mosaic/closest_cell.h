@@ -9,17 +9,19 @@
 //
 // What we precompute (Teo's method, kept, made fast). Each triangle t is split into n_t²
 // sub-triangles S (regular subdivision in barycentric coordinates; n_t grows with the
-// triangle's size in cell spacings, up to 3), and for each S:
-//   * the candidate triangles: those of t's breadth-first unfolding (sim/unfold.h) that
-//     hold cells and lie within R_S = d_3 + b_S of S (d_3: distance from S's centroid to
-//     its third-nearest cell, b_S: S's bounding radius about that centroid). Every cell
-//     that can be among the three nearest for some point q of S is within R_S of S:
-//     F3(q) <= |q - c_3| <= d_3 + b_S.
-//   * per candidate, the reverse map F[t→j] in float, the distance from S to j (a lower
-//     bound for any query in S) and the radius of the circle about j's centroid that
-//     holds j's cells;
-//   * candidates sorted by that distance, so the loop stops at the first one farther
-//     than the current D_min (Teo's adaptive radius, kept for the K-th nearest wanted).
+// triangle's size in cell spacings, up to 3). For each S, t's breadth-first unfolding
+// (sim/unfold.h) supplies every cell that can be among the three nearest of some point of
+// S: those within R_S = d_3 + b_S of S (d_3: distance from S's centroid to its
+// third-nearest cell, b_S: S's bounding radius about that centroid), because
+// F3(q) <= |q - c_3| <= d_3 + b_S. Each such cell is stored *already carried into t's
+// frame* by its triangle's reverse map F[j→t]: the transform Teo applies per candidate
+// triangle at every lookup is applied once here, so a lookup is a scan of one flat list.
+// The list is sorted by each cell's distance from S (a lower bound for every query in S)
+// and packed four cells to a 64-byte block; the scan stops at the first block whose bound
+// exceeds the current K-th nearest distance (Teo's adaptive radius D_min, for the K
+// wanted). One triangle's header (its barycentric inverse and where its sub-triangles'
+// lists start) is one cache line, so a random lookup touches the header and then a
+// contiguous run of blocks.
 // By default the unfolding walks edges only (sim/unfold.h, UnfoldPaths): the two
 // triangles on either side of an edge then see identical maps for every triangle reached
 // through that edge, which reduces Teo's "cracks" (§6.3); `pelage bench lookup` measures
@@ -45,25 +47,33 @@ struct Vec2f {
 
 struct ClosestCell {
     static constexpr uint32_t none = 0xffffffffu;
-    uint32_t index = none;   // into the CellTable arrays; none when no cell is reachable
-    uint32_t second = none;  // the second-nearest cell (find() and find_exhaustive() only)
+    uint32_t index = none;  // into the CellTable arrays; none when no cell is reachable
+    uint32_t second =
+        none;  // the second-nearest cell (find() and find_exhaustive() only)
     float f1 = std::numeric_limits<float>::infinity();  // distance to the nearest cell
     float f2 = std::numeric_limits<float>::infinity();  // ... to the second nearest
 };
 
 struct ClosestCellOptions {
     sim::UnfoldPaths paths = sim::UnfoldPaths::edges_only;
+    // Sub-triangles per triangle side, at most (1 … 3): finer regions mean shorter scans
+    // but longer lists in total (more memory, more cache misses on random queries).
+    uint32_t max_subdivision = 3;
 };
 
 struct ClosestCellStats {
     double build_seconds = 0;
-    double mean_candidates = 0;       // triangles per candidate list (per sub-triangle)
-    double mean_candidate_cells = 0;  // cells held by those triangles
+    double mean_candidates = 0;       // distinct triangles per sub-triangle's list
+    double mean_candidate_cells = 0;  // cells per sub-triangle's list
+    size_t bytes = 0;                 // headers + blocks
     size_t triangles_without_cells_in_reach = 0;
 };
 
 class ClosestCellIndex {
   public:
+    static constexpr uint32_t max_subdivision = 3;
+    static constexpr uint32_t max_slots = max_subdivision * max_subdivision;
+
     ClosestCellIndex(const sim::Crps &crps, const CellTable &cells,
                      const ClosestCellOptions &options = {});
 
@@ -86,38 +96,58 @@ class ClosestCellIndex {
     };
     // The three nearest: what a blend continuous across Voronoi vertices needs.
     Nearest<3> find_three(sim::TriId t, Vec2f q) const;
-    // The candidates of every sub-triangle of t, without any pruning: the reference the
-    // tests compare find() against (it checks the sub-triangle radii too).
+    // The three nearest among the cells within F1 + band; the others are (none, +inf).
+    // What a blend over a band of width `band` past the nearest cell needs, in one scan
+    // that prunes at F1 + band instead of F3 (band = 0: the nearest cell and its ties).
+    Nearest<3> find_three_within(sim::TriId t, Vec2f q, float band) const;
+    // The candidate lists of every sub-triangle of t, without any pruning: the reference
+    // the tests compare find() against (it checks the sub-triangle radii too).
     ClosestCell find_exhaustive(sim::TriId t, Vec2f q) const;
 
-    // Distance from (t, q) to one cell through t's candidate map of the cell's triangle;
-    // infinity when that triangle is not a candidate of t. For diagnostics (cracks).
+    // The same searches from barycentric coordinates (b1, b2) of triangle t, the way the
+    // renderer reports a hit: the sub-triangle follows from (b1, b2) directly and the
+    // point from the triangle's header, so a lookup reads no other per-triangle data.
+    ClosestCell find_nearest(sim::TriId t, float b1, float b2) const;
+    Nearest<3> find_three_within(sim::TriId t, float b1, float b2, float band) const;
+    // Local CRPS coordinates of barycentric point (b1, b2) of t (what those use).
+    Vec2f point(sim::TriId t, float b1, float b2) const {
+        const TriangleRegions &r = m_regions[t];
+        return {r.v0x + b1 * r.e1x + b2 * r.e2x, r.v0y + b1 * r.e1y + b2 * r.e2y};
+    }
+
+    // Distance from (t, q) to one cell as t's unfolding places it; infinity when the cell
+    // is not a candidate of q's sub-triangle. For diagnostics (cracks).
     float distance_to_cell(sim::TriId t, Vec2f q, uint32_t cell) const;
 
     const ClosestCellStats &stats() const { return m_stats; }
     const CellTable &cells() const { return *m_cells; }
 
   private:
-    struct Candidate {      // 32 bytes: two per cache line
-        float c, s, ax, ay; // F[t→j]: the query into j's frame
-        uint32_t begin, end;  // j's cells in the CellTable
-        float reach;        // j's cells lie within `reach` of j's centroid
-        float gap;          // distance from t to j in t's unfolding (lower bound)
+    // Four candidate cells in t's frame; padding entries have cell == none, x = y = +inf.
+    struct alignas(64) Block {
+        float x[4], y[4];
+        uint32_t cell[4];
+        float bound2;  // squared lower bound of the distance from S, for all four cells
+        uint32_t unused[3];
     };
-    static_assert(sizeof(Candidate) == 32);
+    static_assert(sizeof(Block) == 64);
 
-    // Where q falls: v0 + [e1 e2] (b1, b2) = q, inverted per triangle; n = subdivision.
-    struct TriangleRegions {  // 32 bytes
-        float v0x, v0y, i00, i01, i10, i11;
-        uint32_t n;
-        uint32_t first_slot;  // slots (i * n + j) * 2 + upper, 2n² of them, some unused
+    // The triangle in its frame, q = v0 + b1 e1 + b2 e2; n = subdivision.
+    // Sub-triangle k's blocks: [first_block + (k ? end[k - 1] : 0), first_block +
+    // end[k]).
+    struct alignas(64) TriangleRegions {
+        float v0x, v0y, e1x, e1y, e2x, e2y;
+        uint32_t first_block_and_n;  // first_block << 2 | n (n <= 3)
+        uint32_t end[max_slots];
     };
-    static_assert(sizeof(TriangleRegions) == 32);
+    static_assert(sizeof(TriangleRegions) == 64);
     struct Built;  // one triangle's regions while building
 
-    uint32_t slot_of(sim::TriId t, Vec2f q) const;
-    template <bool prune, int K>
-    void scan(uint32_t slot, Vec2f q, Nearest<K> &n) const;
+    const Block *blocks_of(sim::TriId t, Vec2f q, const Block *&end) const;
+    const Block *blocks_at(sim::TriId t, float b1, float b2, const Block *&end) const;
+    template <bool prune, bool dedupe, int K>
+    void scan(const Block *b, const Block *e, Vec2f q, Nearest<K> &n,
+              float band = -1) const;
     void build_triangle(const sim::Crps &crps, sim::TriId t, sim::UnfoldScratch &scratch,
                         std::vector<sim::UnfoldedTriangle> &unfolded, Built &out) const;
 
@@ -125,9 +155,7 @@ class ClosestCellIndex {
     ClosestCellOptions m_options;
     double m_initial_radius = 0, m_max_radius = 0, m_spacing = 0;
     std::vector<TriangleRegions> m_regions;
-    std::vector<uint32_t> m_slot_row;  // candidates of slot s: [m_slot_row[s], m_slot_row[s + 1])
-    std::vector<Candidate> m_candidates;
-    std::vector<sim::TriId> m_candidate_tri;  // parallel to m_candidates; not in the hot loop
+    std::vector<Block> m_blocks;
     ClosestCellStats m_stats;
 };
 

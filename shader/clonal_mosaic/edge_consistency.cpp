@@ -4,7 +4,8 @@
 
 namespace pelage::shader {
 
-EdgeConsistency measure_edge_consistency(const sim::TriangleMesh &mesh, const sim::Crps &crps,
+EdgeConsistency measure_edge_consistency(const sim::TriangleMesh &mesh,
+                                         const sim::Crps &crps,
                                          const ClosestCellIndex &index, int per_edge) {
     EdgeConsistency r;
     const sim::Topology &topo = crps.topology();
@@ -27,7 +28,8 @@ EdgeConsistency measure_edge_consistency(const sim::TriangleMesh &mesh, const si
             const float b2 = index.distance_to_cell(f[1], qb, cb.index);
             // Float rounding of maps and positions: 1e-5 of the distance.
             const float tol = 1e-5f * (a1 + b2) + 1e-7f;
-            const bool same_unfolding = std::abs(a1 - b1) <= tol && std::abs(a2 - b2) <= tol;
+            const bool same_unfolding =
+                std::abs(a1 - b1) <= tol && std::abs(a2 - b2) <= tol;
             if (same_unfolding && std::abs(a1 - a2) > 2 * tol) {
                 ++r.inconsistent;
                 --r.cracks;

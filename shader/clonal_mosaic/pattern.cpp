@@ -15,12 +15,14 @@ MosaicPattern::MosaicPattern(const std::string &cells_path, const std::string &m
         for (uint32_t k = m_data.cell_row[t]; k < m_data.cell_row[t + 1]; ++k)
             list.push_back({t, m_data.x[k], m_data.z[k], m_data.id[k], m_data.type[k]});
     m_cells = make_cell_table(m_data.num_triangles(), list);
-    m_index = std::make_unique<ClosestCellIndex>(m_surface->crps, m_cells, ClosestCellOptions{paths});
+    m_index = std::make_unique<ClosestCellIndex>(m_surface->crps, m_cells,
+                                                 ClosestCellOptions{paths});
     m_tri.resize(6 * m_data.num_triangles());
     for (sim::TriId t = 0; t < m_data.num_triangles(); ++t) {
         const sim::CrpsFrame &f = m_surface->crps.frame(t);
         const sim::Vec2d e1 = f.v[1] - f.v[0], e2 = f.v[2] - f.v[0];
-        const float v[6] = {float(f.v[0].x), float(f.v[0].y), float(e1.x), float(e1.y), float(e2.x), float(e2.y)};
+        const float v[6] = {float(f.v[0].x), float(f.v[0].y), float(e1.x),
+                            float(e1.y),     float(e2.x),     float(e2.y)};
         std::copy(v, v + 6, &m_tri[6 * t]);
     }
 }

@@ -17,27 +17,75 @@ std::string scene_json(const std::string &cells) {
       "lights": [{"type": "environment", "color": [1, 1, 1]}],
       "objects": [{"mesh": "procedural:icosphere:3", )" +
            (cells.empty() ? std::string() : "\"cells\": \"" + cells + "\", ") +
-           R"("material": {"shader": ")" + (cells.empty() ? "diffuse" : "clonal_mosaic") + R"("}}]})";
+           R"("material": {"shader": ")" + (cells.empty() ? "diffuse" : "clonal_mosaic") +
+           R"("}}]})";
 }
 
 TEST(CompareCli, ReportsEveryShaderAndWritesASheet) {
     TempDir tmp;
-    const std::string scene = tmp.write("scene.json", scene_json(simulate_two_type_cells(tmp, "procedural:icosphere:3", 300)));
+    const std::string scene = tmp.write(
+        "scene.json",
+        scene_json(simulate_two_type_cells(tmp, "procedural:icosphere:3", 300)));
     std::string err;
-    ASSERT_EQ(run_pelage("compare " + scene + " --lookups 1000 --report " + tmp.file("r.json") + " --sheet " +
-                             tmp.file("sheet.png"), nullptr, &err),
-              0)
+    ASSERT_EQ(
+        run_pelage("compare " + scene + " --lookups 1000 --atlas-res 256 --report " +
+                       tmp.file("r.json") + " --sheet " + tmp.file("sheet.png"),
+                   nullptr, &err),
+        0)
         << err;
     const auto r = nlohmann::json::parse(std::ifstream(tmp.file("r.json")));
-    for (const char *s : {"clonal_mosaic", "worley", "perlin", "diffuse"}) {
+    for (const char *s : {"clonal_mosaic", "worley", "perlin", "texture", "diffuse"}) {
         ASSERT_TRUE(r["shaders"].contains(s)) << s;
         EXPECT_GT(r["shaders"][s]["seconds"].get<double>(), 0.0);
         EXPECT_GT(r["shaders"][s]["ns_per_lookup"].get<double>(), 0.0);
     }
-    for (const char *k : {"clonal_mosaic_vs_worley", "clonal_mosaic_vs_perlin", "clonal_mosaic_vs_diffuse"})
+    for (const char *k : {"clonal_mosaic_vs_worley", "clonal_mosaic_vs_perlin",
+                          "clonal_mosaic_vs_diffuse"})
         EXPECT_GT(r["ratios"][k].get<double>(), 0.0) << k;
     EXPECT_GT(r["lookup_ratios"]["clonal_mosaic_vs_worley"].get<double>(), 0.0);
     EXPECT_GT(std::filesystem::file_size(tmp.file("sheet.png")), 1000u);
+}
+
+// Fairness: worley and perlin take the mosaic's colours and spot fraction, and texture
+// renders the mosaic's baked atlas, so all four show the same coat.
+TEST(CompareCli, BaselinesMatchTheMosaicAndTextureUsesItsAtlas) {
+    TempDir tmp;
+    const std::string cells = simulate_two_type_cells(tmp, "procedural:icosphere:3", 300);
+    const std::string scene = tmp.write("scene.json", scene_json(cells));
+    std::string out, err;
+    ASSERT_EQ(run_pelage("compare " + scene +
+                             " --shaders clonal_mosaic,worley,perlin,texture --lookups "
+                             "1000 --atlas-res 256 --report " +
+                             tmp.file("r.json"),
+                         &out, &err),
+              0)
+        << err;
+    const auto r = nlohmann::json::parse(std::ifstream(tmp.file("r.json")));
+    ASSERT_TRUE(r["shaders"].contains("texture"));
+    EXPECT_GT(r["shaders"]["texture"]["ns_per_lookup"].get<double>(), 0.0);
+    const auto &w = r["params"]["worley"], &p = r["params"]["perlin"];
+    // The two-type preset's colours, spot first; the same for both baselines.
+    EXPECT_EQ(w["spot_colour"], p["spot_colour"]);
+    EXPECT_EQ(w["base_colour"], p["base_colour"]);
+    EXPECT_NE(w["spot_colour"], w["base_colour"]);
+    const double f = w["spot_fraction"].get<double>();
+    EXPECT_GT(f, 0.0);
+    EXPECT_LT(f, 1.0);
+    EXPECT_GT(w["frequency"].get<double>(), 0.0);
+    EXPECT_TRUE(p.contains("threshold"));
+    EXPECT_TRUE(r["params"]["texture"].contains("file"));
+    EXPECT_NE(out.find("baked the mosaic"), std::string::npos) << out;
+    // The atlas lived in a temporary directory, removed afterwards.
+    EXPECT_FALSE(
+        std::filesystem::exists(r["params"]["texture"]["file"].get<std::string>()));
+    // --no-match: the plugins' defaults (no params given).
+    ASSERT_EQ(
+        run_pelage("compare " + scene +
+                   " --shaders clonal_mosaic,worley --lookups 1000 --no-match --report " +
+                   tmp.file("d.json")),
+        0);
+    const auto d = nlohmann::json::parse(std::ifstream(tmp.file("d.json")));
+    EXPECT_TRUE(d["params"]["worley"].empty());
 }
 
 TEST(CompareCli, SceneWithoutPatternIsExit2) {

@@ -1,12 +1,13 @@
 // Closest-cell search (Teo 2006 §6.2): the pruned search equals the exhaustive one, it is
 // the true Voronoi diagram where the surface is flat, and edge-adjacent triangles agree
 // wherever their unfoldings agree.
+#include "shader/clonal_mosaic/closest_cell.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <random>
 
-#include "shader/clonal_mosaic/closest_cell.h"
 #include "shader/clonal_mosaic/edge_consistency.h"
 #include "sim/procedural_mesh.h"
 #include "sim/surface.h"
@@ -40,18 +41,21 @@ void expect_pruned_equals_exhaustive(const sim::Surface &s, size_t n_cells) {
         const ClosestCell b = index.find_exhaustive(q.tri, to_f(q.p));
         const ClosestCell c = index.find_nearest(q.tri, to_f(q.p));
         ASSERT_NE(a.index, ClosestCell::none);
-        agree += a.index == b.index && a.second == b.second && a.f1 == b.f1 && a.f2 == b.f2 &&
-                 c.index == a.index && c.f1 == a.f1;
+        agree += a.index == b.index && a.second == b.second && a.f1 == b.f1 &&
+                 a.f2 == b.f2 && c.index == a.index && c.f1 == a.f1;
     }
-    EXPECT_GE(double(agree) / queries.size(), 0.9999) << agree << " of " << queries.size();
+    EXPECT_GE(double(agree) / queries.size(), 0.9999)
+        << agree << " of " << queries.size();
 }
 
 TEST(ClosestCell, PrunedEqualsExhaustiveOnTheCow) {
-    expect_pruned_equals_exhaustive(sim::build_surface(test::sample_mesh("cow.off")), 20000);
+    expect_pruned_equals_exhaustive(sim::build_surface(test::sample_mesh("cow.off")),
+                                    20000);
 }
 
 TEST(ClosestCell, PrunedEqualsExhaustiveOnTheTriceratops) {
-    expect_pruned_equals_exhaustive(sim::build_surface(test::sample_mesh("triceratops.off")), 20000);
+    expect_pruned_equals_exhaustive(
+        sim::build_surface(test::sample_mesh("triceratops.off")), 20000);
 }
 
 TEST(ClosestCell, PrunedEqualsExhaustiveOnThe760TriangleSphere) {
@@ -77,12 +81,67 @@ TEST(ClosestCell, FlatPlaneGivesTheTrueVoronoiDiagram) {
         uint32_t best = 0;
         for (uint32_t k = 0; k < world.size(); ++k) {
             const double d = length(world[k] - p);
-            if (d < d1) { d2 = d1; d1 = d; best = k; } else if (d < d2) { d2 = d; }
+            if (d < d1) {
+                d2 = d1;
+                d1 = d;
+                best = k;
+            } else if (d < d2) {
+                d2 = d;
+            }
         }
         const ClosestCell c = index.find(q.tri, to_f(q.p));
         ASSERT_EQ(c.index, best);
         ASSERT_NEAR(c.f1, d1, 1e-5);
         ASSERT_NEAR(c.f2, d2, 1e-5);
+    }
+}
+
+// The banded scan (what the material's soft boundaries use) stops at F1 + band: it must
+// return exactly the three nearest cells with those beyond F1 + band dropped.
+TEST(ClosestCell, BandedSearchIsTheThreeNearestCutAtTheBand) {
+    const sim::Surface s = sim::build_surface(test::sample_mesh("cow.off"));
+    const CellTable cells = random_cells(s.crps, 20000, 7);
+    const ClosestCellIndex index(s.crps, cells);
+    size_t kept[4] = {0, 0, 0, 0};
+    for (const auto &q : sim::sample_surface_uniform(s.crps, 50000, 12)) {
+        const auto all = index.find_three(q.tri, to_f(q.p));
+        const float band = (q.tri % 4) * 0.5f * std::sqrt(all.d2[1]);  // 0 … 1.5 F2
+        const auto cut = index.find_three_within(q.tri, to_f(q.p), band);
+        const float cap = std::sqrt(all.d2[0]) + band;
+        int n = 0;
+        for (int i = 0; i < 3; ++i) {
+            const bool inside = i == 0 || all.d2[i] <= cap * cap;  // the nearest always
+            ASSERT_EQ(cut.index[i], inside ? all.index[i] : ClosestCell::none) << i;
+            if (inside) ASSERT_EQ(cut.d2[i], all.d2[i]);
+            n += inside;
+        }
+        ++kept[n];
+    }
+    // Every band width occurs: some points keep one cell, some two, some three.
+    EXPECT_GT(kept[1], 1000u);
+    EXPECT_GT(kept[2], 1000u);
+    EXPECT_GT(kept[3], 1000u);
+}
+
+// The renderer's entry points (barycentric coordinates) give what the point ones give.
+TEST(ClosestCell, BarycentricLookupsEqualPointLookups) {
+    const sim::Surface s = sim::build_surface(test::sample_mesh("cow.off"));
+    const CellTable cells = random_cells(s.crps, 20000, 9);
+    const ClosestCellIndex index(s.crps, cells);
+    std::mt19937 rng(3);
+    std::uniform_real_distribution<float> u(0, 1);
+    for (int k = 0; k < 50000; ++k) {
+        const sim::TriId t = sim::TriId(rng() % s.mesh.num_triangles());
+        float b1 = u(rng), b2 = u(rng);
+        if (b1 + b2 > 1) b1 = 1 - b1, b2 = 1 - b2;
+        const Vec2f q = index.point(t, b1, b2);
+        const ClosestCell a = index.find_nearest(t, b1, b2), b = index.find_nearest(t, q);
+        ASSERT_EQ(a.index, b.index);
+        ASSERT_EQ(a.f1, b.f1);
+        const auto c = index.find_three_within(t, b1, b2, 0.01f),
+                   d = index.find_three_within(t, q, 0.01f);
+        ASSERT_EQ(c.index, d.index);
+        ASSERT_EQ(c.d2, d.d2);
     }
 }
 
@@ -100,7 +159,8 @@ TEST(ClosestCell, EveryPointFindsACellEvenWithOneCellOnTheSurface) {
 TEST(ClosestCell, EdgeNeighboursAgreeWhereTheirUnfoldingsAgree) {
     const sim::Surface s = sim::build_surface(test::sample_mesh("cow.off"));
     const CellTable cells = random_cells(s.crps, 20000, 5);
-    const EdgeConsistency edges = measure_edge_consistency(s.mesh, s.crps, ClosestCellIndex(s.crps, cells));
+    const EdgeConsistency edges =
+        measure_edge_consistency(s.mesh, s.crps, ClosestCellIndex(s.crps, cells));
     EXPECT_GT(edges.samples, 25000u);
     EXPECT_EQ(edges.inconsistent, 0u);
     // Measured 4.1 % with edge-only unfolding (13.5 % with Teo's vertex maps); this bound
@@ -111,7 +171,8 @@ TEST(ClosestCell, EdgeNeighboursAgreeWhereTheirUnfoldingsAgree) {
 TEST(ClosestCell, CracksVanishOnASmoothSphere) {
     const sim::Surface s = sim::build_surface(sim::make_uv_sphere(20, 20));
     const CellTable cells = random_cells(s.crps, 10000, 5);
-    const EdgeConsistency edges = measure_edge_consistency(s.mesh, s.crps, ClosestCellIndex(s.crps, cells));
+    const EdgeConsistency edges =
+        measure_edge_consistency(s.mesh, s.crps, ClosestCellIndex(s.crps, cells));
     EXPECT_EQ(edges.inconsistent, 0u);
     EXPECT_LT(edges.crack_rate(), 0.002);
 }

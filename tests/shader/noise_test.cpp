@@ -34,12 +34,39 @@ TEST(PerlinNoise, ContinuousAndSeedDependent) {
         EXPECT_LT(d, 1e-2f);
     }
     int differ = 0;
-    for (float x = 0.5f; x < 20; x += 1.1f) differ += a.noise(x, 0.5f, 0.5f) != b.noise(x, 0.5f, 0.5f);
+    for (float x = 0.5f; x < 20; x += 1.1f)
+        differ += a.noise(x, 0.5f, 0.5f) != b.noise(x, 0.5f, 0.5f);
     EXPECT_GT(differ, 10);
-    EXPECT_EQ(a.fbm(1.3f, 2.1f, 0.2f, 5, 2.0f, 0.5f), PerlinNoise(1).fbm(1.3f, 2.1f, 0.2f, 5, 2.0f, 0.5f));
+    EXPECT_EQ(a.fbm(1.3f, 2.1f, 0.2f, 5, 2.0f, 0.5f),
+              PerlinNoise(1).fbm(1.3f, 2.1f, 0.2f, 5, 2.0f, 0.5f));
 }
 
 // Brute force over every feature point of a 9x9x9 block of cubes around the query.
+// Worley 1996: F1 is 0 at a feature point (whose id it reports), and F1 <= F2 everywhere.
+TEST(WorleyNoise, F1IsZeroAtFeaturePointsAndNeverAboveF2) {
+    size_t points = 0;
+    for (int32_t x = -3; x <= 3; ++x)
+        for (int32_t z = -3; z <= 3; ++z) {
+            float pts[16][3];
+            uint32_t ids[16];
+            const int n = worley_cube_points(x, 1, z, 5, 3.0f, pts, ids);
+            for (int i = 0; i < n; ++i, ++points) {
+                const WorleyResult r = worley(pts[i], 5, 3.0f);
+                ASSERT_LT(r.f1, 1e-6f);
+                ASSERT_EQ(r.id1, ids[i]);
+                ASSERT_GT(r.f2, 0.0f);
+            }
+        }
+    EXPECT_GT(points, 50u);
+    std::mt19937 rng(8);
+    std::uniform_real_distribution<float> u(-50, 50);
+    for (int s = 0; s < 20000; ++s) {
+        const float p[3] = {u(rng), u(rng), u(rng)};
+        const WorleyResult r = worley(p, 5, 3.0f);
+        ASSERT_LE(r.f1, r.f2);
+    }
+}
+
 TEST(WorleyNoise, F1AndF2MatchBruteForce) {
     std::mt19937 rng(4);
     std::uniform_real_distribution<float> u(-20, 20);
@@ -53,11 +80,19 @@ TEST(WorleyNoise, F1AndF2MatchBruteForce) {
                 for (int dz = -4; dz <= 4; ++dz) {
                     float pts[16][3];
                     uint32_t ids[16];
-                    const int n = worley_cube_points(int(std::floor(p[0])) + dx, int(std::floor(p[1])) + dy,
-                                                     int(std::floor(p[2])) + dz, 9, 1.0f, pts, ids);
+                    const int n = worley_cube_points(
+                        int(std::floor(p[0])) + dx, int(std::floor(p[1])) + dy,
+                        int(std::floor(p[2])) + dz, 9, 1.0f, pts, ids);
                     for (int i = 0; i < n; ++i) {
-                        const double d = std::hypot(pts[i][0] - p[0], pts[i][1] - p[1], pts[i][2] - p[2]);
-                        if (d < d1) { d2 = d1; d1 = d; id1 = ids[i]; } else if (d < d2) { d2 = d; }
+                        const double d = std::hypot(pts[i][0] - p[0], pts[i][1] - p[1],
+                                                    pts[i][2] - p[2]);
+                        if (d < d1) {
+                            d2 = d1;
+                            d1 = d;
+                            id1 = ids[i];
+                        } else if (d < d2) {
+                            d2 = d;
+                        }
                     }
                 }
         ASSERT_NEAR(r.f1, d1, 1e-5);
@@ -67,7 +102,8 @@ TEST(WorleyNoise, F1AndF2MatchBruteForce) {
 }
 
 TEST(WorleyNoise, DensityFollowsThePoissonMean) {
-    // Mean F1 for a Poisson process of density λ is Γ(4/3)/(4πλ/3)^(1/3) ≈ 0.554 λ^(-1/3).
+    // Mean F1 for a Poisson process of density λ is Γ(4/3)/(4πλ/3)^(1/3) ≈ 0.554
+    // λ^(-1/3).
     for (float lambda : {1.0f, 3.0f}) {
         std::mt19937 rng(5);
         std::uniform_real_distribution<float> u(-100, 100);
