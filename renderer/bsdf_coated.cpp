@@ -13,7 +13,7 @@ constexpr float min_alpha = 1e-3f;  // below this the lobe is a delta in float p
 
 BsdfCoated::BsdfCoated(Rgb rho, float roughness, float ior, float F_int)
     : m_rho(rho), m_alpha(std::max(min_alpha, roughness * roughness)), m_eta(ior) {
-    // Weidlich & Wilkie 2007 §4: the base seen through the coat, inter-reflection summed.
+    // The base seen through the coat, inter-reflection summed (file header).
     const float k = inv_pi / (ior * ior);
     m_base_scale = {rho.x * k / (1 - rho.x * F_int), rho.y * k / (1 - rho.y * F_int),
                     rho.z * k / (1 - rho.z * F_int)};

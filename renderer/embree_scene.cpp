@@ -198,9 +198,9 @@ EmbreeScene::EmbreeScene(const SceneDesc &scene) {
     RTCBounds b;
     rtcGetSceneBounds(m_scene, &b);
     if (b.lower_x <= b.upper_x)
-        m_bounding_radius = 0.5f * length(Vec3f{b.upper_x - b.lower_x,
-                                                 b.upper_y - b.lower_y,
-                                                 b.upper_z - b.lower_z});
+        m_bounding_radius =
+            0.5f * length(Vec3f{b.upper_x - b.lower_x, b.upper_y - b.lower_y,
+                                b.upper_z - b.lower_z});
 }
 
 EmbreeScene::~EmbreeScene() {

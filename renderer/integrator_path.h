@@ -6,9 +6,9 @@
 // continuation probability min(0.95, max(β)).
 #pragma once
 
-#include <functional>
-
+#include <algorithm>
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 #include "renderer/camera.h"
@@ -26,8 +26,10 @@ struct RenderStats {
     double plugin_timed_seconds = 0;  // over the timed subset of calls
 
     uint64_t rays() const { return camera_rays + secondary_rays + shadow_rays; }
-    // Time in plugins, extrapolated from the timed 1-in-16 subset (timing every call
-    // would cost more than the calls), less the clock reads' own cost.
+    // Time in plugins: the mean of the timed 1-in-16 subset (timing every call would
+    // cost more than the calls) times all calls, less the clock reads' own cost; timed
+    // calls longer than 100 µs (preempted) are left out of the mean. Accuracy: see
+    // README ("plugin_seconds"), checked by `pelage bench render`.
     double plugin_seconds() const {
         return plugin_timed_calls
                    ? plugin_timed_seconds * double(plugin_calls) / plugin_timed_calls
@@ -58,6 +60,11 @@ class PathIntegrator {
     void set_camera_motion(std::function<Camera(float)> motion) {
         m_motion = std::move(motion);
     }
+    // Time 1 plugin call in `stride` (default 16); 1 times every call (validation of the
+    // extrapolated plugin_seconds by `pelage bench render`).
+    void set_plugin_timing_stride(uint64_t stride) {
+        m_plugin_timing_stride = std::max<uint64_t>(1, stride);
+    }
 
   private:
     Rgb radiance(CameraRay ray, Sampler &sampler, FilmSample &fs, FilmPointAovs *aovs,
@@ -70,6 +77,7 @@ class PathIntegrator {
     int m_max_depth, m_rr_depth;
     float m_pixel_spread;  // radians per pixel, for ray footprints
     double m_timer_overhead;
+    uint64_t m_plugin_timing_stride = 16;
     std::function<Camera(float)> m_motion;
 };
 

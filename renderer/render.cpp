@@ -21,6 +21,7 @@ RenderResult render(const Scene &scene, const RenderOptions &opt) {
     const Camera camera(opt.camera ? *opt.camera : scene.desc().camera, W, H);
     const PixelFilter filter(fd.filter, fd.filter_radius);
     PathIntegrator integrator(scene, camera, filter, W, H);
+    integrator.set_plugin_timing_stride(opt.plugin_timing_stride);
     if (opt.camera_motion)
         integrator.set_camera_motion(
             [&opt, W, H](float u) { return Camera(opt.camera_motion(u), W, H); });

@@ -8,8 +8,8 @@
 
 #include <atomic>
 #include <functional>
-#include <optional>
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include "renderer/film.h"
@@ -24,6 +24,7 @@ struct RenderOptions {
     const std::atomic<bool> *cancel = nullptr;
     bool progress = false;     // draw a progress bar (the caller checks for a TTY)
     bool record_rays = false;  // keep every ray cast (benchmarks only)
+    uint64_t plugin_timing_stride = 16;  // time 1 plugin call in N (1: every call)
     // Animation: the camera to use instead of the scene's, and camera motion blur (the
     // camera at shutter position u in [0, 1)); both optional.
     std::optional<CameraDesc> camera;

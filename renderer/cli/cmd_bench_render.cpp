@@ -2,13 +2,13 @@
 // same rays. The tracer's rays (camera, secondary, shadow) are recorded in one 1-spp
 // render, then replayed through rtcIntersect1 alone: the hardware limit for this scene,
 // since the tracer cannot trace faster than Embree finds hits. Also reported: the replay
-// with the tracer's own calls (rtcOccluded1 for shadow rays), and the 1 → N thread
-// scaling.
+// with the tracer's own calls (rtcOccluded1 for shadow rays), the 1 → N thread
+// scaling, and plugin_seconds (1 call in 16 timed, extrapolated) against a render that
+// times every plugin call.
+#include <sys/resource.h>
 #include <tbb/global_control.h>
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
-
-#include <sys/resource.h>
 
 #include <algorithm>
 #include <filesystem>
@@ -108,6 +108,11 @@ int run(const BenchRenderOptions &o) {
     const auto [rn, cpun] = timed_render(cores);
     const double pt_rays_per_second = double(rn.stats.rays()) / rn.seconds;
 
+    // --- plugin_seconds: the 1-in-16 extrapolation against timing every call ---
+    RenderOptions every_call;
+    every_call.plugin_timing_stride = 1;
+    const RenderResult timed_all = render(scene, every_call);
+
     // --- Record one 1-spp render's rays and replay them through raw Embree ---
     SceneDesc one = desc;
     one.film.spp = 1;
@@ -146,6 +151,11 @@ int run(const BenchRenderOptions &o) {
         {"secondary_rays", rn.stats.secondary_rays},
         {"shadow_rays", rn.stats.shadow_rays},
         {"plugin_seconds", rn.stats.plugin_seconds()},
+        {"plugin_seconds_every_call_timed", timed_all.stats.plugin_seconds()},
+        {"plugin_seconds_extrapolation_error",
+         timed_all.stats.plugin_seconds() > 0
+             ? rn.stats.plugin_seconds() / timed_all.stats.plugin_seconds() - 1
+             : 0.0},
         {"path_tracer_rays_per_second", pt_rays_per_second},
         {"path_tracer_rays_per_second_1_thread", double(r1.stats.rays()) / r1.seconds},
         {"embree_rays", recorded_rays},
@@ -174,7 +184,8 @@ Runner add_bench_render(CLI::App &bench) {
     sub->add_option("--res", o->res, "Resolution WIDTHxHEIGHT (default 1280x720)");
     sub->add_option("--spp", o->spp, "Samples per pixel of the timed renders (default 4)")
         ->check(CLI::Range(1, 4096));
-    sub->add_option("--repeat", o->repeat, "Runs per measurement (default 3); the fastest counts")
+    sub->add_option("--repeat", o->repeat,
+                    "Runs per measurement (default 3); the fastest counts")
         ->check(CLI::Range(1, 100));
     return [o] { return run(*o); };
 }

@@ -60,19 +60,65 @@ TEST(BsdfCoated, SamplingAgreesWithEvalAndPdf) {
         }
 }
 
-TEST(BsdfCoated, WhiteFurnaceNeverGainsEnergy) {
-    for (float rough : {0.1f, 0.4f, 1.0f})
-        for (float cos_o : {1.0f, 0.6f, 0.1f}) {
-            const BsdfCoated b({1, 1, 1}, rough, 1.5f);
-            double a, e;
-            check_consistency(b, direction(cos_o, 0.0f), &a, &e);
-            EXPECT_LE(a, 1.01) << "roughness " << rough << " cos_o " << cos_o;
-            // The model drops coat-base inter-reflection, so it loses energy, most at
-            // grazing angles; at normal incidence it keeps most of it.
-            if (cos_o == 1.0f) {
-                EXPECT_GT(a, 0.8) << "roughness " << rough;
-            }
+TEST(BsdfCoated, WhiteFurnaceNeverGainsEnergyAndBoundsItsLoss) {
+    // Directional albedo of a white base (ρ = 1) under a non-absorbing coat. Never above
+    // 1
+    // (+1 % Monte Carlo margin). The layering term keeps the base's share exact, so what
+    // is lost is the coat's: single-scattering GGX (no inter-reflection between
+    // microfacets) with the smooth transmittance 1 − F(cos θ), while a rough coat
+    // reflects less than F(cos θ) at grazing angles. Measured albedos (2·10^5 samples),
+    // bounded below with a 0.01 margin:
+    //   roughness   cos θ_o = 1    0.6    0.3    0.1
+    //   0.1                 1.000  1.000  1.000  0.989
+    //   0.4                 0.999  0.997  0.931  0.655
+    //   1.0                 0.974  0.955  0.821  0.468
+    struct Case {
+        float rough, cos_o, min_albedo;
+    };
+    for (const Case c : {Case{0.1f, 1.0f, 0.99f},
+                         {0.1f, 0.6f, 0.99f},
+                         {0.1f, 0.3f, 0.99f},
+                         {0.1f, 0.1f, 0.979f},
+                         {0.4f, 1.0f, 0.989f},
+                         {0.4f, 0.6f, 0.987f},
+                         {0.4f, 0.3f, 0.921f},
+                         {0.4f, 0.1f, 0.645f},
+                         {1.0f, 1.0f, 0.964f},
+                         {1.0f, 0.6f, 0.945f},
+                         {1.0f, 0.3f, 0.811f},
+                         {1.0f, 0.1f, 0.458f}}) {
+        const BsdfCoated b({1, 1, 1}, c.rough, 1.5f);
+        double a, e;
+        check_consistency(b, direction(c.cos_o, 0.0f), &a, &e);
+        std::printf("roughness %.1f cos_o %.1f: albedo %.4f (by eval %.4f)\n", c.rough,
+                    c.cos_o, a, e);
+        EXPECT_LE(a, 1.01) << "roughness " << c.rough << " cos_o " << c.cos_o;
+        EXPECT_GE(a, c.min_albedo) << "roughness " << c.rough << " cos_o " << c.cos_o;
+    }
+}
+
+TEST(BsdfCoated, SmoothCoatOverWhiteBaseReflectsEverything) {
+    // The layering term alone (bsdf_coated.h): with ρ = 1 the base reflects
+    // exactly 1 − F(cos θ_i), whatever the index, so with the coat's own reflection the
+    // total is 1 for a near-smooth coat at normal incidence.
+    for (float eta : {1.3f, 1.5f, 2.0f}) {
+        const float F_int = BsdfCoated::internal_diffuse_reflectance(eta);
+        // Closed-form check of F̄_int at η = 1.5: ≈ 0.596 (1 − (1 − 0.0918) / 2.25).
+        if (eta == 1.5f) EXPECT_NEAR(F_int, 0.596, 2e-3);
+        const BsdfCoated b({1, 1, 1}, 0.0f, eta);
+        // ∫ base term cos θ_o dω_o by quadrature over θ_o (the base term is isotropic).
+        double base = 0;
+        constexpr int n = 4000;
+        for (int i = 0; i < n; ++i) {
+            const float cos_o = (i + 0.5f) / n;
+            const Vec3f wo = direction(cos_o, 0.0f), wi = direction(0.9f, 2.0f);
+            // eval at wi far from the mirror direction of wo: only the base term remains
+            // for a near-delta coat.
+            base += luminance(b.eval(wi, wo)) * cos_o * 2 * pi / n;
         }
+        const float F_i = BsdfCoated::fresnel_dielectric(0.9f, eta);
+        EXPECT_NEAR(base, 1 - F_i, 2e-3) << "eta " << eta;
+    }
 }
 
 TEST(PixelFilter, SamplesStayInTheSupportAndFollowTheFilter) {
