@@ -109,8 +109,10 @@ std::vector<uint32_t> validate_obj(const std::string &path) {
                 }
                 const struct {
                     int64_t count;
-                    const char *what;
-                } kinds[3] = {{num_v, "vertex"}, {num_vt, "texture"}, {num_vn, "normal"}};
+                    const char *what, *plural;
+                } kinds[3] = {{num_v, "vertex", "vertices"},
+                              {num_vt, "texture", "texture coordinates"},
+                              {num_vn, "normal", "normals"}};
                 for (size_t k = 0; k < parts; ++k) {
                     if (k > 0 && part[k].empty()) continue;  // v//vn, or a trailing '/'
                     bool ok = false;
@@ -118,8 +120,7 @@ std::vector<uint32_t> validate_obj(const std::string &path) {
                     if (!ok) fail("malformed face corner '" + std::string(t) + "'");
                     fail(std::string(kinds[k].what) + " index " + std::string(part[k]) +
                          " out of range (" + std::to_string(kinds[k].count) + " " +
-                         kinds[k].what + (k == 0 ? "s" : " entries") +
-                         " defined so far)");
+                         kinds[k].plural + " defined so far)");
                 }
             }
             face_corners.push_back(static_cast<uint32_t>(tok.size() - 1));
