@@ -60,6 +60,7 @@ class EmbreeScene {
 
   private:
     static void error_callback(void *user, RTCError code, const char *message);
+    void release();  // the Embree objects, in reverse order of creation
 
     RTCDevice m_device = nullptr;
     RTCScene m_scene = nullptr;
