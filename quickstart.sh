@@ -45,5 +45,11 @@ if [ "$mode" = run ]; then
     build/bin/pelage render scenes/cow_giraffe.json --stats-json build/cow_giraffe_render.json
     echo "quickstart: wrote images/cow_giraffe.exr and images/cow_giraffe_preview.png"
 else
-    cd build && ctest --output-on-failure -j2
+    (cd build && ctest --output-on-failure -j2)
+    # --- The input-handling tests again under ASan + UBSan (README "Hardening"): fuzz
+    # corpus replays and the hostile/malformed CLI tables. The whole suite under ASan and
+    # TSan is tests/nightly.sh (too long for CI on two cores).
+    cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DPELAGE_SANITIZE=ON
+    cmake --build build-asan -j2 --target pelage fuzz_off fuzz_obj fuzz_cells fuzz_scene fuzz_shader_params
+    (cd build-asan && ctest -L asan --output-on-failure -j2)
 fi

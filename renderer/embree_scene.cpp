@@ -133,6 +133,15 @@ EmbreeScene::EmbreeScene(const SceneDesc &scene) {
     if (!m_device)
         throw std::runtime_error("cannot create the Embree device (error " +
                                  std::to_string(int(rtcGetDeviceError(nullptr))) + ")");
+    // A throw below (a bad mesh, an Embree error) skips the destructor: release what was
+    // created so far (LeakSanitizer found this with the bad-scene corpus).
+    struct ReleaseOnThrow {
+        EmbreeScene &s;
+        bool armed = true;
+        ~ReleaseOnThrow() {
+            if (armed) s.release();
+        }
+    } guard{*this};
     rtcSetDeviceErrorFunction(m_device, error_callback, this);
     m_scene = rtcNewScene(m_device);
     rtcSetSceneBuildQuality(m_scene, RTC_BUILD_QUALITY_HIGH);
@@ -201,12 +210,18 @@ EmbreeScene::EmbreeScene(const SceneDesc &scene) {
         m_bounding_radius =
             0.5f * length(Vec3f{b.upper_x - b.lower_x, b.upper_y - b.lower_y,
                                 b.upper_z - b.lower_z});
+    guard.armed = false;
 }
 
-EmbreeScene::~EmbreeScene() {
+EmbreeScene::~EmbreeScene() { release(); }
+
+void EmbreeScene::release() {
     for (RTCScene s : m_child_scenes) rtcReleaseScene(s);
+    m_child_scenes.clear();
     if (m_scene) rtcReleaseScene(m_scene);
     if (m_device) rtcReleaseDevice(m_device);
+    m_scene = nullptr;
+    m_device = nullptr;
 }
 
 }  // namespace pelage::renderer

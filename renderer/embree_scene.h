@@ -72,6 +72,7 @@ class EmbreeScene {
   private:
     static void error_callback(void *user, RTCError code, const char *message);
     void attach_area_lights(const std::vector<LightDesc> &lights);
+    void release();  // the Embree objects, in reverse order of creation
 
     RTCDevice m_device = nullptr;
     RTCScene m_scene = nullptr;

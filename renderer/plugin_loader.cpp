@@ -3,6 +3,7 @@
 #include <dlfcn.h>
 #include <unistd.h>
 
+#include <cfloat>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -146,7 +147,8 @@ PluginParams validate_plugin_params(const PelageShaderPlugin &plugin,
         auto check = [&](const nlohmann::json &x, const std::string &what) -> float {
             if (!x.is_number()) fail(s->name, "expected a number" + what);
             const double d = x.get<double>();
-            if (!std::isfinite(d) ||
+            // Beyond FLT_MAX the float handed to the plugin would be infinite.
+            if (!std::isfinite(d) || std::fabs(d) > double(FLT_MAX) ||
                 (has_range && (d < s->min_value || d > s->max_value))) {
                 std::ostringstream m;
                 m << "= " << d << ": must be in [" << s->min_value << ", " << s->max_value
@@ -164,7 +166,13 @@ PluginParams validate_plugin_params(const PelageShaderPlugin &plugin,
                     break;
                 case PELAGE_PARAM_INT:
                     if (!x.is_number_integer()) fail(s->name, "expected an integer");
-                    v.i = int32_t(check(x, ""));
+                    {
+                        const float f = check(x, "");
+                        // Casting a float outside int32's range is undefined behaviour.
+                        if (!(f >= -2147483648.0f && f < 2147483648.0f))
+                            fail(s->name, "= " + x.dump() + ": out of the integer range");
+                        v.i = int32_t(f);
+                    }
                     v.f[0] = float(v.i);
                     break;
                 case PELAGE_PARAM_RGB:

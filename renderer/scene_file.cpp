@@ -442,6 +442,9 @@ SceneDesc parse_scene(const std::string &text, const std::string &path) {
         throw InputError(
             path, line, "",
             "invalid JSON: " + (pos == std::string::npos ? what : what.substr(pos)));
+    } catch (const json::exception &e) {
+        // out_of_range: a number such as 1e400 that overflows a double.
+        throw InputError(path, 0, "", std::string("invalid JSON: ") + e.what());
     }
     Reader r(root, "", scene);
     if (const json *v = r.take("camera"))

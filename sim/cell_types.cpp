@@ -247,7 +247,8 @@ Preset parse_preset(const std::string &text, const std::string &file) {
     json j;
     try {
         j = json::parse(text);
-    } catch (const json::parse_error &e) {
+    } catch (const json::exception &e) {
+        // parse_error, and out_of_range for a number such as 1e400 that overflows a double.
         throw InputError(file, 0, "", std::string("not valid JSON: ") + e.what());
     }
     r.check_keys(j, "", {"name", "description", "source", "types", "mutation", "adhesion",

@@ -68,6 +68,7 @@ class Reader {
     void get_array(std::vector<T> &v, uint64_t n, const char *field) {
         if (n > (m_end - m_pos) / sizeof(T)) fail(field, "truncated");
         v.resize(n);
+        if (n == 0) return;  // memcpy from/to an empty vector's null data() is UB
         std::memcpy(v.data(), m_b.data() + m_pos, n * sizeof(T));
         m_pos += n * sizeof(T);
     }

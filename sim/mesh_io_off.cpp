@@ -139,7 +139,7 @@ TriangleMesh read_off(const std::string &path, MeshReadStats *stats) {
         const uint64_t n = lines.count(0, "face corner count");
         if (n < 3) lines.fail("face " + std::to_string(f) + " has " + std::to_string(n) +
                               " corners (a face needs at least 3)");
-        if (lines.tokens().size() < n + 1)
+        if (n > lines.tokens().size() - 1)  // not `size < n + 1`: n + 1 wraps at 2^64 - 1
             lines.fail("malformed face " + std::to_string(f) + ": declares " +
                        std::to_string(n) + " corners, lists " +
                        std::to_string(lines.tokens().size() - 1));

@@ -1,0 +1,21 @@
+// libFuzzer target: the OBJ loader path, i.e. the validating pass, tinyobjloader and the
+// clean-up (sim/mesh_io_obj.cpp, sim/mesh_clean.cpp). Bad input must end in
+// pelage::InputError; any other exception, crash, leak or sanitizer report is a bug.
+#include <cstddef>
+#include <cstdint>
+
+#include "sim/input_error.h"
+#include "sim/mesh_load.h"
+#include "tests/fuzz/fuzz_input_file.h"
+
+extern "C" int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
+    const std::string &path = pelage::fuzz::write_input_file(data, size, ".obj");
+    try {
+        const pelage::sim::TriangleMesh mesh = pelage::sim::load_mesh(path);
+        for (const auto &t : mesh.triangles)
+            for (auto v : t)
+                if (v >= mesh.num_vertices()) __builtin_trap();
+    } catch (const pelage::InputError &) {
+    }
+    return 0;
+}
