@@ -9,6 +9,17 @@
 namespace pelage::renderer {
 
 Scene::Scene(const SceneDesc &desc, const PluginRegistry &plugins) : m_desc(desc) {
+    // A constructor that throws never runs its destructor: plugin instances created
+    // before the failure (e.g. fur asking for too many strands) are released here.
+    try {
+        build(m_desc, plugins);
+    } catch (...) {
+        destroy_instances();
+        throw;
+    }
+}
+
+void Scene::build(const SceneDesc &desc, const PluginRegistry &plugins) {
     // --- Check every material's shader and parameters before loading any mesh ---
     std::vector<const LoadedPlugin *> chosen;
     std::vector<PluginParams> params;
@@ -75,9 +86,11 @@ Scene::Scene(const SceneDesc &desc, const PluginRegistry &plugins) : m_desc(desc
         }
 }
 
-Scene::~Scene() {
+Scene::~Scene() { destroy_instances(); }
+
+void Scene::destroy_instances() {
     for (Material &m : m_materials)
-        if (m.instance) m.plugin->destroy(m.instance);
+        if (m.instance) m.plugin->destroy(m.instance), m.instance = nullptr;
 }
 
 }  // namespace pelage::renderer

@@ -41,6 +41,9 @@ class Scene {
     const FurGeometry *fur() const { return m_fur.get(); }
 
   private:
+    void build(const SceneDesc &desc, const PluginRegistry &plugins);
+    void destroy_instances();
+
     SceneDesc m_desc;
     std::unique_ptr<EmbreeScene> m_geometry;
     std::unique_ptr<Lights> m_lights;
