@@ -47,11 +47,16 @@ void *create(const PelageParamSet *ps, PelageError *err) {
         if (p.is_relative() && ps->scene_dir && *ps->scene_dir) p = std::filesystem::path(ps->scene_dir) / p;
         if (!std::filesystem::exists(p)) return fail(err, p.string() + ": no such image"), nullptr;
         auto t = std::make_unique<Texture>();
-        // One texture system per instance: its cache is thread-safe and owns its files.
-        t->system = std::shared_ptr<OIIO::TextureSystem>(OIIO::TextureSystem::create(false),
-                                                         [](OIIO::TextureSystem *s) { OIIO::TextureSystem::destroy(s); });
+        // The process-wide shared texture system: thread-safe, one cache for every
+        // instance. (A private one would have to go through TextureSystem::destroy, which
+        // in OIIO 2.4 frees its object with the wrong sized delete: an ASan report.)
+        // A file rewritten since the cache opened it is re-read (force = false leaves
+        // unchanged files, and the handles other instances hold, alone).
+        t->system = std::shared_ptr<OIIO::TextureSystem>(OIIO::TextureSystem::create(true),
+                                                         [](OIIO::TextureSystem *) {});
         t->system->attribute("automip", 1);
         t->file = OIIO::ustring(p.string());
+        t->system->invalidate(t->file, false);
         t->handle = t->system->get_texture_handle(t->file);
         const OIIO::ImageSpec *spec = t->handle ? t->system->imagespec(t->handle, nullptr) : nullptr;
         if (!spec) return fail(err, p.string() + ": cannot read: " + t->system->geterror()), nullptr;
