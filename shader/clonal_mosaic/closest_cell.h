@@ -145,6 +145,7 @@ class ClosestCellIndex {
 
     const Block *blocks_of(sim::TriId t, Vec2f q, const Block *&end) const;
     const Block *blocks_at(sim::TriId t, float b1, float b2, const Block *&end) const;
+    Nearest<3> three_within(const Block *b, const Block *e, Vec2f q, float band) const;
     template <bool prune, bool dedupe, int K>
     void scan(const Block *b, const Block *e, Vec2f q, Nearest<K> &n,
               float band = -1) const;
