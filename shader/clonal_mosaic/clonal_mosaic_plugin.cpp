@@ -227,8 +227,8 @@ void shade(const void *self, const PelageHit *hit, PelageShade *out) {
     // Blend the three nearest cells with weights 1 - smoothstep(0, 2w, F_i - F1): equal
     // on a Voronoi edge (F1 = F2) and at a vertex (F1 = F2 = F3), zero once a cell is 2w
     // farther than the nearest. Continuous everywhere except where four cells lie within
-    // 2w of each other's distance. One search finds them: it stops at F1 + 2w, so hits far
-    // from any boundary cost little more than the nearest cell alone.
+    // 2w of each other's distance. One search finds them: it stops at F1 + 2w, so hits
+    // far from any boundary cost little more than the nearest cell alone.
     const auto n =
         cm.index->find_three_within(hit->primitive_id, hit->b1, hit->b2, 2 * w);
     if (n.index[0] == shader::ClosestCell::none) return;
