@@ -33,12 +33,16 @@ struct TypeLook {
     float roughness;  // < 0: the material's
 };
 
-// A cell's look, resolved when the instance is created (type colour, jitter, clamp): the
-// hit path reads one 16-byte entry instead of hashing the id and scaling the colour.
+// A cell's look, resolved when the instance is created (type colour, jitter, clamp, the
+// type's melanin and roughness, the AOV values): the hit path reads one 32-byte entry
+// instead of hashing the id, scaling the colour and reading the type and id arrays.
 struct CellLook {
     float rgb[3];
-    uint32_t type;
+    float eumelanin, pheomelanin;
+    float roughness;  // < 0: the material's
+    float aov_id, aov_type;
 };
+static_assert(sizeof(CellLook) == 32);
 
 struct ClonalMosaic {
     std::unique_ptr<shader::MosaicPattern> pattern;
@@ -138,11 +142,16 @@ float id_noise(uint32_t id) {
     return float(h >> 8) * (2.0f / 16777216.0f) - 1.0f;
 }
 
-void cell_colour(const ClonalMosaic &cm, uint32_t cell, CellLook &look) {
-    look.type = cm.cells_ptr->type[cell];
-    const TypeLook &t = cm.types[look.type];
+void cell_look(const ClonalMosaic &cm, uint32_t cell, CellLook &look) {
+    const uint32_t type = cm.cells_ptr->type[cell];
+    const TypeLook &t = cm.types[type];
     const float scale = 1.0f + cm.jitter * 0.5f * id_noise(cm.cells_ptr->id[cell]);
     for (int c = 0; c < 3; ++c) look.rgb[c] = std::clamp(t.colour[c] * scale, 0.0f, 1.0f);
+    look.eumelanin = t.eumelanin;
+    look.pheomelanin = t.pheomelanin;
+    look.roughness = t.roughness;
+    look.aov_id = float(cm.cells_ptr->id[cell]);  // exact below 2^24 cells
+    look.aov_type = float(type);
 }
 
 void *create(const PelageParamSet *ps, PelageError *err) {
@@ -179,7 +188,7 @@ void *create(const PelageParamSet *ps, PelageError *err) {
                                  -1.0f});
         parse_roughness(find_param(ps, "roughness")->s, cm->pattern->types(), cm->types);
         cm->looks.resize(cm->cells_ptr->size());
-        for (uint32_t k = 0; k < cm->looks.size(); ++k) cell_colour(*cm, k, cm->looks[k]);
+        for (uint32_t k = 0; k < cm->looks.size(); ++k) cell_look(*cm, k, cm->looks[k]);
         return cm.release();
     } catch (const std::exception &e) {
         set_error(err, e.what());
@@ -187,9 +196,14 @@ void *create(const PelageParamSet *ps, PelageError *err) {
     }
 }
 
-void write_aovs(const ClonalMosaic &cm, uint32_t cell, float f1, PelageShade *out) {
-    out->aov[0] = float(cm.cells_ptr->id[cell]);  // exact below 2^24 cells
-    out->aov[1] = float(cm.cells_ptr->type[cell]);
+// The hit takes the look of one cell.
+void shade_as(const CellLook &cell, float f1, PelageShade *out) {
+    for (int k = 0; k < 3; ++k) out->albedo[k] = cell.rgb[k];
+    out->eumelanin = cell.eumelanin;
+    out->pheomelanin = cell.pheomelanin;
+    if (cell.roughness >= 0) out->roughness = cell.roughness;
+    out->aov[0] = cell.aov_id;
+    out->aov[1] = cell.aov_type;
     out->aov[2] = f1;
     out->aov_written = 1;
 }
@@ -207,42 +221,40 @@ void shade(const void *self, const PelageHit *hit, PelageShade *out) {
         const shader::ClosestCell c =
             cm.index->find_nearest(hit->primitive_id, hit->b1, hit->b2);
         if (c.index == shader::ClosestCell::none) return;  // a component without cells
-        const CellLook &cell = cm.looks[c.index];
-        const TypeLook &look = cm.types[cell.type];
-        for (int k = 0; k < 3; ++k) out->albedo[k] = cell.rgb[k];
-        out->eumelanin = look.eumelanin;
-        out->pheomelanin = look.pheomelanin;
-        if (look.roughness >= 0) out->roughness = look.roughness;
-        write_aovs(cm, c.index, c.f1, out);
+        shade_as(cm.looks[c.index], c.f1, out);
         return;
     }
     // Blend the three nearest cells with weights 1 - smoothstep(0, 2w, F_i - F1): equal
     // on a Voronoi edge (F1 = F2) and at a vertex (F1 = F2 = F3), zero once a cell is 2w
     // farther than the nearest. Continuous everywhere except where four cells lie within
-    // 2w of each other's distance. One scan finds them: it stops at F1 + 2w, so hits far
-    // from any boundary cost little more than the nearest cell alone.
+    // 2w of each other's distance. One search finds them: it stops at F1 + 2w, so hits
+    // far from any boundary cost little more than the nearest cell alone.
     const auto n =
         cm.index->find_three_within(hit->primitive_id, hit->b1, hit->b2, 2 * w);
     if (n.index[0] == shader::ClosestCell::none) return;
     const float f1 = std::sqrt(n.d2[0]);
+    const CellLook &nearest = cm.looks[n.index[0]];
+    // No other cell within 2w (most hits): the blend is the nearest cell's look exactly
+    // (weight 1, total 1), so skip the arithmetic.
+    if (n.index[1] == shader::ClosestCell::none) {
+        shade_as(nearest, f1, out);
+        return;
+    }
     float rgb[3] = {0, 0, 0}, eu = 0, pheo = 0, total = 0;
     for (int i = 0; i < 3 && n.index[i] != shader::ClosestCell::none; ++i) {
         const float x = std::min((std::sqrt(n.d2[i]) - f1) / (2 * w), 1.0f);
         const float weight = 1 - x * x * (3 - 2 * x);
         if (weight <= 0) break;
         const CellLook &cell = cm.looks[n.index[i]];
-        const TypeLook &l = cm.types[cell.type];
         for (int k = 0; k < 3; ++k) rgb[k] += weight * cell.rgb[k];
-        eu += weight * l.eumelanin;
-        pheo += weight * l.pheomelanin;
+        eu += weight * cell.eumelanin;
+        pheo += weight * cell.pheomelanin;
         total += weight;
     }
+    shade_as(nearest, f1, out);
     for (int k = 0; k < 3; ++k) out->albedo[k] = rgb[k] / total;
     out->eumelanin = eu / total;
     out->pheomelanin = pheo / total;
-    const TypeLook &look = cm.types[cm.looks[n.index[0]].type];
-    if (look.roughness >= 0) out->roughness = look.roughness;
-    write_aovs(cm, n.index[0], f1, out);
 }
 
 void destroy(void *self) { delete static_cast<ClonalMosaic *>(self); }

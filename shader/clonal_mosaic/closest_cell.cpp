@@ -205,7 +205,7 @@ void ClosestCellIndex::build_triangle(const sim::Crps &crps, sim::TriId t,
         out.distinct_triangles += std::unique(tris.begin(), tris.end()) - tris.begin();
         out.entries += list.size();
         out.used_slots += 1;
-        for (size_t i = 0; i < list.size(); i += 4) {
+        for (size_t i = 0; i < list.size(); i += per_block) {
             Block b;
             // The bound is rounded down by more than float's error in the scan's
             // distances (positions of size |p| + the triangle's radius), so rounding
@@ -214,13 +214,12 @@ void ClosestCellIndex::build_triangle(const sim::Crps &crps, sim::TriId t,
                 1e-5 * (list[i].bound + length(list[i].m->p) + ft.bound_radius);
             const double lower = std::max(0.0, list[i].bound - margin);
             b.bound2 = float(lower * lower * (1 - 1e-6));
-            for (size_t l = 0; l < 4; ++l) {
+            for (size_t l = 0; l < per_block; ++l) {
                 const bool real = i + l < list.size();
                 b.x[l] = real ? float(list[i + l].m->p.x) : inf_f;
                 b.y[l] = real ? float(list[i + l].m->p.y) : inf_f;
                 b.cell[l] = real ? list[i + l].m->cell : ClosestCell::none;
             }
-            b.unused[0] = b.unused[1] = b.unused[2] = 0;
             out.blocks.push_back(b);
         }
         end = static_cast<uint32_t>(out.blocks.size());
@@ -276,14 +275,13 @@ void ClosestCellIndex::scan(const Block *b, const Block *e, Vec2f q, Nearest<K> 
         // lies beyond D_min, so do all after it.
         if constexpr (prune)
             if (b->bound2 > d_min2) break;
-        float d2[4];
-        for (int l = 0; l < 4; ++l) {
+        float d2[per_block];
+        for (int l = 0; l < per_block; ++l) {
             const float dx = b->x[l] - q.x, dy = b->y[l] - q.y;
             d2[l] = dx * dx + dy * dy;
         }
-        if (std::min(std::min(d2[0], d2[1]), std::min(d2[2], d2[3])) > d_min2)
-            continue;  // the common case
-        for (int l = 0; l < 4; ++l) {
+        if (*std::min_element(d2, d2 + per_block) > d_min2) continue;  // the common case
+        for (int l = 0; l < per_block; ++l) {
             const uint32_t cell = b->cell[l];
             if (d2[l] > d_min2 || cell == ClosestCell::none) continue;
             // Order by (distance, stable id); a cell listed in several sub-triangles
@@ -336,17 +334,54 @@ ClosestCellIndex::Nearest<3> ClosestCellIndex::find_three(sim::TriId t, Vec2f q)
 
 ClosestCellIndex::Nearest<3> ClosestCellIndex::find_three_within(sim::TriId t, Vec2f q,
                                                                  float band) const {
-    Nearest<3> n;
     const Block *e;
     const Block *b = blocks_of(t, q, e);
-    scan<true, false, 3>(b, e, q, n, std::max(band, 0.0f));
-    // Cells that entered before F1 settled may lie beyond F1 + band: drop them.
-    const float cap = std::sqrt(n.d2[0]) + std::max(band, 0.0f);
-    for (int i = 1; i < 3; ++i)
-        if (!(n.d2[i] <= cap * cap)) {
-            n.d2[i] = std::numeric_limits<float>::infinity();
-            n.index[i] = ClosestCell::none;
+    return three_within(b, e, q, band);
+}
+
+ClosestCellIndex::Nearest<3> ClosestCellIndex::three_within(const Block *b,
+                                                            const Block *e, Vec2f q,
+                                                            float band) const {
+    // Two passes over the same (by then cached) blocks: the nearest cell with the
+    // hardest pruning, then whatever else lies within F1 + band — mostly nothing, so most
+    // hits cost about one nearest-cell search. The result is what one three-nearest scan
+    // cut at F1 + band gives (the second pass keeps the same (distance, id) order).
+    Nearest<1> first;
+    scan<true, false, 1>(b, e, q, first);
+    Nearest<3> n;
+    n.d2[0] = first.d2[0];
+    n.index[0] = first.index[0];
+    if (first.index[0] == ClosestCell::none) return n;
+    const float cap = std::sqrt(first.d2[0]) + std::max(band, 0.0f);
+    const float cap2 = cap * cap;
+    const uint32_t *id = m_cells->id.data();
+    for (; b != e && b->bound2 <= cap2; ++b) {
+        float d2[per_block];
+        for (int l = 0; l < per_block; ++l) {
+            const float dx = b->x[l] - q.x, dy = b->y[l] - q.y;
+            d2[l] = dx * dx + dy * dy;
         }
+        if (*std::min_element(d2, d2 + per_block) > cap2) continue;
+        for (int l = 0; l < per_block; ++l) {
+            const uint32_t cell = b->cell[l];
+            if (!(d2[l] <= cap2) || cell == ClosestCell::none) continue;
+            if (cell == n.index[0] && d2[l] == n.d2[0]) continue;  // the nearest itself
+            // Insert into slots 1, 2 by (distance, stable id), as scan() orders.
+            int pos = 3;
+            for (int j = 2; j >= 1; --j)
+                if (d2[l] < n.d2[j] ||
+                    (d2[l] == n.d2[j] && n.index[j] != ClosestCell::none &&
+                     id[cell] < id[n.index[j]]))
+                    pos = j;
+            if (pos == 3) continue;
+            if (pos == 1) {
+                n.d2[2] = n.d2[1];
+                n.index[2] = n.index[1];
+            }
+            n.d2[pos] = d2[l];
+            n.index[pos] = cell;
+        }
+    }
     return n;
 }
 
@@ -362,18 +397,9 @@ ClosestCell ClosestCellIndex::find_nearest(sim::TriId t, float b1, float b2) con
 ClosestCellIndex::Nearest<3> ClosestCellIndex::find_three_within(sim::TriId t, float b1,
                                                                  float b2,
                                                                  float band) const {
-    Nearest<3> n;
     const Block *e;
     const Block *b = blocks_at(t, b1, b2, e);
-    band = std::max(band, 0.0f);
-    scan<true, false, 3>(b, e, point(t, b1, b2), n, band);
-    const float cap = std::sqrt(n.d2[0]) + band;
-    for (int i = 1; i < 3; ++i)
-        if (!(n.d2[i] <= cap * cap)) {
-            n.d2[i] = std::numeric_limits<float>::infinity();
-            n.index[i] = ClosestCell::none;
-        }
-    return n;
+    return three_within(b, e, point(t, b1, b2), band);
 }
 
 ClosestCell ClosestCellIndex::find_exhaustive(sim::TriId t, Vec2f q) const {
@@ -388,7 +414,7 @@ ClosestCell ClosestCellIndex::find_exhaustive(sim::TriId t, Vec2f q) const {
 float ClosestCellIndex::distance_to_cell(sim::TriId t, Vec2f q, uint32_t cell) const {
     const Block *e;
     for (const Block *b = blocks_of(t, q, e); b != e; ++b)
-        for (int l = 0; l < 4; ++l)
+        for (int l = 0; l < per_block; ++l)
             if (b->cell[l] == cell) return std::hypot(b->x[l] - q.x, b->y[l] - q.y);
     return std::numeric_limits<float>::infinity();
 }

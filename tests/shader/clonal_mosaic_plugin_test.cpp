@@ -98,6 +98,70 @@ TEST(ClonalMosaicPlugin, ColourAndAovsAreTheNearestCellsType) {
     }
 }
 
+// Soft edges: the albedo is the blend of the cells within F1 + 2w with weights
+// 1 - smoothstep(0, 2w, F_i - F1), and a hit with no other cell that close takes the
+// nearest cell's colour exactly (the plugin's shortcut for that case); AOVs name the
+// nearest cell either way. Both cases must occur.
+TEST(ClonalMosaicPlugin, SoftEdgeColourIsTheBlendOfTheCellsWithinTheBand) {
+    TempDir tmp;
+    const std::string cells = simulate_two_type_cells(tmp, mesh_spec, 600);
+    const float w = 0.01f;
+    const Instance inst({{"antialias", 0}, {"edge_width", w}, {"jitter", 0.3}}, cells.c_str());
+    const Instance hard({{"antialias", 0}, {"jitter", 0.3}}, cells.c_str());
+    ASSERT_NE(inst.self, nullptr) << inst.error;
+
+    const sim::CellsData data = sim::read_cells_file(cells);
+    const sim::Surface s = sim::build_surface(mesh_spec);
+    std::vector<shader::CellOnSurface> list;
+    for (sim::TriId t = 0; t < data.num_triangles(); ++t)
+        for (uint32_t k = data.cell_row[t]; k < data.cell_row[t + 1]; ++k)
+            list.push_back({t, data.x[k], data.z[k], data.id[k], data.type[k]});
+    const shader::CellTable table = shader::make_cell_table(data.num_triangles(), list);
+    const shader::ClosestCellIndex index(s.crps, table);
+
+    std::mt19937 rng(4);
+    std::uniform_real_distribution<float> u(0, 1);
+    int single = 0, blended = 0;
+    for (int n = 0; n < 5000; ++n) {
+        const uint32_t prim = rng() % s.mesh.num_triangles();
+        float b1 = u(rng), b2 = u(rng);
+        if (b1 + b2 > 1) { b1 = 1 - b1; b2 = 1 - b2; }
+        const PelageShade soft = inst.shade(prim, b1, b2);
+        const auto near = index.find_three_within(prim, b1, b2, 2 * w);
+        ASSERT_NE(near.index[0], shader::ClosestCell::none);
+        ASSERT_EQ(uint32_t(soft.aov[0]), table.id[near.index[0]]);
+        ASSERT_EQ(soft.aov[2], std::sqrt(near.d2[0]));
+        if (near.index[1] == shader::ClosestCell::none) {
+            // Exactly the hard-edged colour: same nearest cell, same jittered look.
+            const PelageShade h = hard.shade(prim, b1, b2);
+            for (int k = 0; k < 3; ++k) ASSERT_EQ(soft.albedo[k], h.albedo[k]);
+            ASSERT_EQ(soft.eumelanin, h.eumelanin);
+            ++single;
+            continue;
+        }
+        // The reference blend, from each cell's own hard-edged colour (a point at the
+        // cell's centre is coloured by that cell alone).
+        const float f1 = std::sqrt(near.d2[0]);
+        float rgb[3] = {0, 0, 0}, total = 0;
+        for (int i = 0; i < 3 && near.index[i] != shader::ClosestCell::none; ++i) {
+            const float x = std::min((std::sqrt(near.d2[i]) - f1) / (2 * w), 1.0f);
+            const float weight = 1 - x * x * (3 - 2 * x);
+            const uint32_t c = near.index[i];
+            uint32_t tri = 0;
+            while (table.row[tri + 1] <= c) ++tri;
+            const sim::Vec3d bary = s.crps.to_barycentric(tri, {table.x[c], table.z[c]});
+            const PelageShade at_centre = hard.shade(tri, float(bary.y), float(bary.z));
+            ASSERT_EQ(uint32_t(at_centre.aov[0]), table.id[c]);
+            for (int k = 0; k < 3; ++k) rgb[k] += weight * at_centre.albedo[k];
+            total += weight;
+        }
+        for (int k = 0; k < 3; ++k) ASSERT_NEAR(soft.albedo[k], rgb[k] / total, 1e-5f);
+        ++blended;
+    }
+    EXPECT_GT(single, 500);
+    EXPECT_GT(blended, 500);
+}
+
 // With a soft width, walking across the surface never jumps in colour; without it, the
 // walk crosses hard boundaries. The blend uses the three nearest cells, so it is
 // continuous unless four cells lie within 2w of each other's distance; with w a few
