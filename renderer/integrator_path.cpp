@@ -89,6 +89,7 @@ PathIntegrator::PathIntegrator(const Scene &scene, const Camera &camera,
       m_camera(camera),
       m_filter(filter),
       m_rtc(scene.geometry().scene()),
+      m_packets(scene.geometry().device(), scene.geometry().scene()),
       m_max_depth(scene.desc().integrator.max_depth),
       m_rr_depth(scene.desc().integrator.rr_depth) {
     m_timer_overhead = timer_overhead_seconds();
@@ -99,35 +100,56 @@ PathIntegrator::PathIntegrator(const Scene &scene, const Camera &camera,
 void PathIntegrator::render_tile(Film &film, Sampler &sampler, int x0, int y0, int x1,
                                  int y1, int s0, int s1, RenderStats &stats,
                                  std::vector<RecordedRay> *log) const {
+    constexpr int K = PacketIntersector::max_rays;
+    Sampler lane[K];
+    CameraRay cam[K];
+    Vec3f org[K], dir[K];
+    RTCRayHit first[K];
+    // Row by row, sample by sample, K neighbouring pixels at a time: their camera rays
+    // form one coherent packet. Each pixel still receives its samples in sample order.
     for (int y = y0; y < y1; ++y)
-        for (int x = x0; x < x1; ++x)
-            for (int s = s0; s < s1; ++s) {
-                sampler.start_pixel_sample(uint32_t(x), uint32_t(y), uint32_t(s));
-                // --- Offsets drawn from the filter: every sample has weight 1 ---
-                const auto [fu, fv] = sampler.get_2d();
-                const float dx = m_filter.sample_1d(fu), dy = m_filter.sample_1d(fv);
-                const auto [lu, lv] = sampler.get_2d();
-                const CameraRay ray =
-                    m_motion ? m_motion(sampler.get_1d())
-                                   .generate(x + 0.5f + dx, y + 0.5f + dy, lu, lv)
-                             : m_camera.generate(x + 0.5f + dx, y + 0.5f + dy, lu, lv);
-                FilmSample fs;
-                FilmPointAovs aovs;
-                fs.L = radiance(ray, sampler, fs, s == 0 ? &aovs : nullptr, stats, log);
-                ++stats.samples;
-                if (s == 0) film.set_point_aovs(x, y, aovs);
-                // No NaN or Inf reaches the film: drop the sample and count it.
-                if (!is_finite(fs.L) || !is_finite(fs.albedo) || !is_finite(fs.normal)) {
-                    ++stats.nonfinite_samples;
-                    continue;
+        for (int s = s0; s < s1; ++s)
+            for (int xs = x0; xs < x1; xs += K) {
+                const int n = std::min(K, x1 - xs);
+                // --- Camera rays, offsets drawn from the filter (every sample has
+                // weight 1) ---
+                for (int i = 0; i < n; ++i) {
+                    Sampler &sp = lane[i];
+                    sp = sampler;
+                    sp.start_pixel_sample(uint32_t(xs + i), uint32_t(y), uint32_t(s));
+                    const auto [fu, fv] = sp.get_2d();
+                    const float dx = m_filter.sample_1d(fu), dy = m_filter.sample_1d(fv);
+                    const auto [lu, lv] = sp.get_2d();
+                    const float px = float(xs + i) + 0.5f + dx, py = float(y) + 0.5f + dy;
+                    cam[i] = m_motion ? m_motion(sp.get_1d()).generate(px, py, lu, lv)
+                                      : m_camera.generate(px, py, lu, lv);
+                    org[i] = cam[i].o;
+                    dir[i] = cam[i].d;
                 }
-                film.add(x, y, 1.0f, fs);
+                m_packets.intersect(org, dir, n, first);
+                // --- The paths, one pixel at a time ---
+                for (int i = 0; i < n; ++i) {
+                    const int x = xs + i;
+                    FilmSample fs;
+                    FilmPointAovs aovs;
+                    fs.L = radiance(cam[i], first[i], lane[i], fs,
+                                    s == 0 ? &aovs : nullptr, stats, log);
+                    ++stats.samples;
+                    if (s == 0) film.set_point_aovs(x, y, aovs);
+                    // No NaN or Inf reaches the film: drop the sample and count it.
+                    if (!is_finite(fs.L) || !is_finite(fs.albedo) ||
+                        !is_finite(fs.normal)) {
+                        ++stats.nonfinite_samples;
+                        continue;
+                    }
+                    film.add(x, y, 1.0f, fs);
+                }
             }
 }
 
-Rgb PathIntegrator::radiance(CameraRay cam, Sampler &sampler, FilmSample &fs,
-                             FilmPointAovs *aovs, RenderStats &stats,
-                             std::vector<RecordedRay> *log) const {
+Rgb PathIntegrator::radiance(const CameraRay &cam, const RTCRayHit &first,
+                             Sampler &sampler, FilmSample &fs, FilmPointAovs *aovs,
+                             RenderStats &stats, std::vector<RecordedRay> *log) const {
     const Lights &lights = m_scene.lights();
     const EmbreeScene &geometry = m_scene.geometry();
     const int num_lights = lights.count();
@@ -141,17 +163,20 @@ Rgb PathIntegrator::radiance(CameraRay cam, Sampler &sampler, FilmSample &fs,
     unsigned fur_skip = 0;   // the strand the ray leaves, + 1 (fur_geometry.h)
 
     for (int depth = 0;; ++depth) {
-        // --- Intersect the scene (primary rays are coherent) ---
-        RTCIntersectContext ctx;
-        rtcInitIntersectContext(&ctx);
-        ctx.flags = depth == 0 ? RTC_INTERSECT_CONTEXT_FLAG_COHERENT
-                               : RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT;
+        // --- Intersect the scene (the camera ray was traced in a packet) ---
         RTCRayHit rh;
-        set_ray(rh.ray, o, d, inf);
-        rh.ray.id = std::exchange(fur_skip, 0u);
-        rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-        rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-        rtcIntersect1(m_rtc, &ctx, &rh);
+        if (depth == 0) {
+            rh = first;
+        } else {
+            RTCIntersectContext ctx;
+            rtcInitIntersectContext(&ctx);
+            ctx.flags = RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT;
+            set_ray(rh.ray, o, d, inf);
+            rh.ray.id = std::exchange(fur_skip, 0u);
+            rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+            rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+            rtcIntersect1(m_rtc, &ctx, &rh);
+        }
         record(log, o, d, inf, depth == 0 ? 0 : 1);
         if (depth == 0)
             ++stats.camera_rays;
