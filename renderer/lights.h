@@ -11,6 +11,7 @@
 // or uniformly; select_pdf(i) is the probability used in both the estimator and MIS.
 #pragma once
 
+#include <algorithm>
 #include <memory>
 #include <vector>
 
@@ -38,10 +39,15 @@ class Lights {
     Lights &operator=(const Lights &) = delete;
 
     int count() const { return int(m_lights.size()); }
-    // The light next-event estimation uses for u in [0, 1), and its probability.
+    // The light next-event estimation uses for u in [0, 1), and its probability: O(1)
+    // by Walker's alias method (Vose 1991, "A Linear Algorithm for Generating Random
+    // Numbers with a Given Distribution", IEEE TSE 17(9)): u picks a bin uniformly and
+    // the rest of u chooses between the bin's own light and its alias.
     int select(float u, float *pdf) const {
-        int i = 0;
-        while (i + 1 < int(m_cdf.size()) - 1 && u >= m_cdf[i + 1]) ++i;
+        const int n = int(m_alias.size());
+        const float x = u * float(n);
+        const int bin = std::min(int(x), n - 1);
+        const int i = x - float(bin) < m_alias[bin].keep ? bin : m_alias[bin].other;
         *pdf = m_select_pdf[i];
         return i;
     }
@@ -71,6 +77,8 @@ class Lights {
     int eval_infinite(Vec3f d, Vec3f n_prev, InfiniteHit out[], int max_out) const;
 
   private:
+    void build_alias_table(const std::vector<double> &weights);
+
     struct Light {
         LightDesc::Type type;
         Rgb L;
@@ -90,7 +98,12 @@ class Lights {
     };
     std::vector<Light> m_lights;
     std::vector<int> m_infinite;
-    std::vector<float> m_power, m_select_pdf, m_cdf;  // m_cdf: count() + 1 entries
+    std::vector<float> m_power, m_select_pdf;
+    struct AliasBin {
+        float keep;  // probability that the bin selects its own light
+        int other;   // the light it selects otherwise
+    };
+    std::vector<AliasBin> m_alias;  // one bin per light
 };
 
 }  // namespace pelage::renderer
