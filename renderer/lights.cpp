@@ -49,6 +49,7 @@ Lights::Lights(const std::vector<LightDesc> &descs, float scene_radius,
                 l.frame = Frame::from_z(l.to_light);
                 const float half = 0.5f * d.angle_deg * pi / 180;
                 l.cos_max = std::cos(half);
+                if (d.angle_deg > 0) l.cone_pdf = 1 / (2 * pi * (1 - l.cos_max));
                 if (d.angle_deg > 0) {
                     // Irradiance E of a disc of solid angle Ω = 2π(1 − cos θ_max):
                     // uniform radiance E / Ω (the cos factor across a small disc ≈ 1).
@@ -154,7 +155,7 @@ bool Lights::sample(int index, Vec3f p, Vec3f n, float u1, float u2,
             }
             out->wi = l.frame.to_world(sample_uniform_cone(u1, u2, l.cos_max));
             out->Li = l.L;
-            out->pdf = 1 / (2 * pi * (1 - l.cos_max));
+            out->pdf = l.cone_pdf;
             out->delta = false;
             return true;
         }
@@ -231,7 +232,7 @@ int Lights::eval_infinite(Vec3f d, Vec3f n_prev, InfiniteHit out[], int max_out)
                                   : l.env->pdf(d);
             out[n++] = {l.env->eval(d), pdf * m_select_pdf[i]};
         } else if (dot(d, l.to_light) >= l.cos_max) {
-            out[n++] = {l.L, m_select_pdf[i] / (2 * pi * (1 - l.cos_max))};
+            out[n++] = {l.L, m_select_pdf[i] * l.cone_pdf};
         }
     }
     return n;

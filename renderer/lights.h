@@ -85,6 +85,7 @@ class Lights {
         // distant
         Vec3f to_light;
         float cos_max = 1;
+        float cone_pdf = 0;  // 1 / (2π (1 − cos_max)): the disc's uniform density
         Frame frame;
         // sphere
         Vec3f center;

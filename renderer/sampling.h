@@ -29,11 +29,15 @@ inline void sample_disk(float u1, float u2, float *dx, float *dy) {
     }
 }
 
-// Cosine-weighted hemisphere about +z; density cos θ / π.
+// Cosine-weighted hemisphere about +z; density cos θ / π. Malley's method through the
+// polar map of the disc, r = √u1, φ = 2π u2 (PBR 3rd ed. §13.6.2–13.6.3): with pelage's
+// unstratified hashed samples the concentric map's lower distortion buys nothing, and
+// the polar map needs no division; z = √(1 − r²) = √(1 − u1) directly.
 inline Vec3f sample_cosine_hemisphere(float u1, float u2) {
-    float x, y;
-    sample_disk(u1, u2, &x, &y);
-    return {x, y, std::sqrt(std::max(0.0f, 1 - x * x - y * y))};
+    float s, c;
+    sin_cos_turn(u2, &s, &c);
+    const float r = std::sqrt(u1);
+    return {r * c, r * s, std::sqrt(std::max(0.0f, 1 - u1))};
 }
 
 // Uniform sphere; density 1 / (4π).

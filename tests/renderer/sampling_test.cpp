@@ -81,6 +81,31 @@ TEST(SampleCone, DirectionsStayInTheConeAndAreUnit) {
     }
 }
 
+TEST(SampleCosineHemisphere, UnitDirectionsWithTheMomentsOfCosThetaOverPi) {
+    // For density cos θ / π: E[cos θ] = 2/3, E[cos² θ] = 1/2, E[x] = E[y] = 0, and the
+    // fraction within θ < 60° is 1 − cos² 60° = 3/4. A 1024² grid of u: errors ~1e-6.
+    constexpr int n = 1024;
+    double z1 = 0, z2 = 0, x1 = 0, y1 = 0, inside = 0;
+    for (int j = 0; j < n; ++j)
+        for (int i = 0; i < n; ++i) {
+            const Vec3f w =
+                renderer::sample_cosine_hemisphere((i + 0.5f) / n, (j + 0.5f) / n);
+            ASSERT_NEAR(renderer::length(w), 1.0f, 1e-6f);
+            ASSERT_GE(w.z, 0.0f);
+            z1 += w.z;
+            z2 += w.z * w.z;
+            x1 += w.x;
+            y1 += w.y;
+            inside += w.z > 0.5f;
+        }
+    const double m = double(n) * n;
+    EXPECT_NEAR(z1 / m, 2.0 / 3, 1e-4);
+    EXPECT_NEAR(z2 / m, 0.5, 1e-4);
+    EXPECT_NEAR(x1 / m, 0.0, 1e-4);
+    EXPECT_NEAR(y1 / m, 0.0, 1e-4);
+    EXPECT_NEAR(inside / m, 0.75, 1e-3);
+}
+
 // Light selection: the fraction of a fine grid of u that picks each light is its
 // select_pdf, for lights of very different power, including one that emits nothing.
 TEST(LightSelection, AliasTablePicksEachLightWithItsProbability) {
