@@ -127,6 +127,8 @@ void PathIntegrator::render_tile(Film &film, Sampler &sampler, int x0, int y0, i
                     dir[i] = cam[i].d;
                 }
                 m_packets.intersect(org, dir, n, first);
+                stats.camera_rays += uint64_t(n);
+                for (int i = 0; i < n; ++i) record(log, org[i], dir[i], inf, 0);
                 // --- The paths, one pixel at a time ---
                 for (int i = 0; i < n; ++i) {
                     const int x = xs + i;
@@ -177,11 +179,10 @@ Rgb PathIntegrator::radiance(const CameraRay &cam, const RTCRayHit &first,
             rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
             rtcIntersect1(m_rtc, &ctx, &rh);
         }
-        record(log, o, d, inf, depth == 0 ? 0 : 1);
-        if (depth == 0)
-            ++stats.camera_rays;
-        else
+        if (depth > 0) {  // camera rays were counted and recorded with their packet
+            record(log, o, d, inf, 1);
             ++stats.secondary_rays;
+        }
         const bool hit_geometry = rh.hit.geomID != RTC_INVALID_GEOMETRY_ID;
         const float t_hit = hit_geometry ? rh.ray.tfar : inf;
         const bool unweighted = depth == 0 || prev_specular;
