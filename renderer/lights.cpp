@@ -127,7 +127,7 @@ void Lights::build_alias_table(const std::vector<double> &weights) {
         if (!(weights[i] > 0)) m_alias[i].keep = 0, m_alias[i].other = int(heaviest);
 }
 
-bool Lights::sample(int index, Vec3f p, Vec3f n, float u1, float u2,
+bool Lights::sample(int index, const Vec3f &p, const Vec3f &n, float u1, float u2,
                     LightSample *out) const {
     const Light &l = m_lights[index];
     switch (l.type) {

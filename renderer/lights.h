@@ -58,7 +58,8 @@ class Lights {
     // Samples light `index` as seen from p, whose geometric normal n faces the side
     // being shaded. False when it cannot contribute. A constant environment is sampled
     // cosine-weighted about n (density cos θ / π), so no sample falls below the surface.
-    bool sample(int index, Vec3f p, Vec3f n, float u1, float u2, LightSample *out) const;
+    bool sample(int index, const Vec3f &p, const Vec3f &n, float u1, float u2,
+                LightSample *out) const;
 
     // Radiance leaving area light `index` towards -d where the ray (o, d) hits it at
     // distance t, and the solid-angle density with which sample() would have produced d
