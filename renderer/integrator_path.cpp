@@ -237,12 +237,13 @@ Rgb PathIntegrator::radiance(const CameraRay &cam, const RTCRayHit &first,
         const MeshData &mesh = *og.mesh;
         const uint32_t prim = rh.hit.primID;
         const float b1 = rh.hit.u, b2 = rh.hit.v, b0 = 1 - b1 - b2;
-        Vertex v;
+        // Normals are built in locals and stored into the vertex once: field-wise writes
+        // followed by a whole-Vec3f copy made store-forwarding stalls (perf).
+        Vec3f ng;
         // The hit point from the ray (its float error is far below the origin offset);
         // Embree's Ng for baked meshes, so the vertices are not fetched again.
-        v.p = o + d * t_hit;
         if (og.baked) {
-            v.ng = {rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z};
+            ng = {rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z};
         } else {
             // Embree reports Ng of instanced geometry in object space: rebuild and move
             // it.
@@ -251,12 +252,12 @@ Rgb PathIntegrator::radiance(const CameraRay &cam, const RTCRayHit &first,
             const Vec3f p0{P[3 * tri[0]], P[3 * tri[0] + 1], P[3 * tri[0] + 2]};
             const Vec3f p1{P[3 * tri[1]], P[3 * tri[1] + 1], P[3 * tri[1] + 2]};
             const Vec3f p2{P[3 * tri[2]], P[3 * tri[2] + 1], P[3 * tri[2] + 2]};
-            v.ng = og.normal_to_world.vector(cross(p1 - p0, p2 - p0));
+            ng = og.normal_to_world.vector(cross(p1 - p0, p2 - p0));
         }
-        v.ng = normalize(v.ng);
-        v.wo = -d;
-        if (dot(v.ng, v.wo) < 0) v.ng = -v.ng;  // two-sided
-        v.ns = v.ng;
+        const Vec3f wo = -d;
+        // Two-sided: the geometric normal faces the incoming ray.
+        ng = ng * ((dot(ng, wo) < 0 ? -1.0f : 1.0f) / length(ng));
+        Vec3f ns_shade = ng;
         if (!mesh.corner_normals.empty()) {
             const float *N = &mesh.corner_normals[9 * size_t(prim)];
             Vec3f ns = Vec3f{N[0], N[1], N[2]} * b0 + Vec3f{N[3], N[4], N[5]} * b1 +
@@ -265,11 +266,12 @@ Rgb PathIntegrator::radiance(const CameraRay &cam, const RTCRayHit &first,
             const float len = length(ns);
             if (len > 0) {
                 ns = ns / len;
-                if (dot(ns, v.ng) < 0) ns = -ns;
+                if (dot(ns, ng) < 0) ns = -ns;
                 // A shading normal facing away from the viewer would make the BSDF black.
-                if (dot(ns, v.wo) > 0) v.ns = ns;
+                if (dot(ns, wo) > 0) ns_shade = ns;
             }
         }
+        const Vertex v{o + d * t_hit, ng, ns_shade, wo};
         footprint += t_hit * m_pixel_spread;
 
         // --- Shade: the material plugin fills the BSDF inputs ---
