@@ -107,9 +107,11 @@ std::optional<BsdfSample> BsdfCoated::sample(Vec3f wo, float u_lobe, float u1,
         const Vec3f t1 =
             len2 > 0 ? Vec3f{-vh.y, vh.x, 0} / std::sqrt(len2) : Vec3f{1, 0, 0};
         const Vec3f t2 = cross(vh, t1);
-        const float r = std::sqrt(u1), phi = 2 * pi * u2;
-        const float p1 = r * std::cos(phi);
-        float p2 = r * std::sin(phi);
+        const float r = std::sqrt(u1);
+        float sin_phi, cos_phi;
+        sin_cos_turn(u2, &sin_phi, &cos_phi);  // φ = 2π u2
+        const float p1 = r * cos_phi;
+        float p2 = r * sin_phi;
         const float s = 0.5f * (1 + vh.z);
         p2 = (1 - s) * std::sqrt(std::max(0.0f, 1 - p1 * p1)) + s * p2;
         const Vec3f nh =

@@ -1,18 +1,42 @@
 #include "renderer/film.h"
 
+#include <sys/mman.h>
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <memory>
+#include <new>
 
 namespace pelage::renderer {
+
+namespace {
+
+// Uninitialized storage for a film buffer. At 1280×720 the film is 66 MB, touched first
+// by the render: in 4 KB pages that is 16 000 page faults per render (a few per cent of
+// a short one). Buffers of 2 MB and more are aligned to 2 MB and offered to the kernel
+// as transparent huge pages (madvise; Debian's default THP mode), ~35 faults instead.
+void *allocate_buffer(size_t bytes) {
+    constexpr size_t huge = size_t(2) << 20;
+    if (bytes < huge) {
+        if (void *p = std::malloc(std::max<size_t>(bytes, 1))) return p;
+        throw std::bad_alloc();
+    }
+    const size_t rounded = (bytes + huge - 1) / huge * huge;
+    void *p = std::aligned_alloc(huge, rounded);
+    if (!p) throw std::bad_alloc();
+    madvise(p, rounded, MADV_HUGEPAGE);  // a hint: failure only costs the faults
+    return p;
+}
+
+}  // namespace
 
 Film::Film(int width, int height)
     : m_width(width),
       m_height(height),
-      m_accum(new float[size_t(width) * height * accum_stride]),
+      m_accum(static_cast<float *>(
+          allocate_buffer(size_t(width) * height * accum_stride * sizeof(float)))),
       m_point(static_cast<FilmPointAovs *>(
-          ::operator new[](size_t(width) * height * sizeof(FilmPointAovs)))) {
+          allocate_buffer(size_t(width) * height * sizeof(FilmPointAovs)))) {
     // Zero the buffers row by row in parallel: at 1280×720 they are 66 MB, and touching
     // them first from one thread made page faults a serial few per cent of a short
     // render.

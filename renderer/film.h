@@ -10,6 +10,7 @@
 #pragma once
 
 #include <cstdint>
+#include <cstdlib>
 #include <memory>
 #include <string>
 #include <vector>
@@ -66,12 +67,13 @@ class Film {
   private:
     static constexpr int accum_stride = 11;
     int m_width, m_height;
-    std::unique_ptr<float[]> m_accum;  // uninitialized by new[], zeroed in parallel
-    struct RawDelete {
-        void operator()(FilmPointAovs *p) const { ::operator delete[](p); }
+    // Raw storage from allocate_buffer (huge pages where the kernel grants them), filled
+    // in parallel by the constructor.
+    struct FreeBuffer {
+        void operator()(void *p) const { std::free(p); }
     };
-    std::unique_ptr<FilmPointAovs[], RawDelete>
-        m_point;  // raw storage, filled in parallel
+    std::unique_ptr<float[], FreeBuffer> m_accum;
+    std::unique_ptr<FilmPointAovs[], FreeBuffer> m_point;
 };
 
 }  // namespace pelage::renderer

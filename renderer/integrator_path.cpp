@@ -89,6 +89,7 @@ PathIntegrator::PathIntegrator(const Scene &scene, const Camera &camera,
       m_camera(camera),
       m_filter(filter),
       m_rtc(scene.geometry().scene()),
+      m_packets(scene.geometry().device(), scene.geometry().scene()),
       m_max_depth(scene.desc().integrator.max_depth),
       m_rr_depth(scene.desc().integrator.rr_depth) {
     m_timer_overhead = timer_overhead_seconds();
@@ -99,35 +100,58 @@ PathIntegrator::PathIntegrator(const Scene &scene, const Camera &camera,
 void PathIntegrator::render_tile(Film &film, Sampler &sampler, int x0, int y0, int x1,
                                  int y1, int s0, int s1, RenderStats &stats,
                                  std::vector<RecordedRay> *log) const {
+    constexpr int K = PacketIntersector::max_rays;
+    Sampler lane[K];
+    CameraRay cam[K];
+    Vec3f org[K], dir[K];
+    RTCRayHit first[K];
+    // Row by row, sample by sample, K neighbouring pixels at a time: their camera rays
+    // form one coherent packet. Each pixel still receives its samples in sample order.
     for (int y = y0; y < y1; ++y)
-        for (int x = x0; x < x1; ++x)
-            for (int s = s0; s < s1; ++s) {
-                sampler.start_pixel_sample(uint32_t(x), uint32_t(y), uint32_t(s));
-                // --- Offsets drawn from the filter: every sample has weight 1 ---
-                const auto [fu, fv] = sampler.get_2d();
-                const float dx = m_filter.sample_1d(fu), dy = m_filter.sample_1d(fv);
-                const auto [lu, lv] = sampler.get_2d();
-                const CameraRay ray =
-                    m_motion ? m_motion(sampler.get_1d())
-                                   .generate(x + 0.5f + dx, y + 0.5f + dy, lu, lv)
-                             : m_camera.generate(x + 0.5f + dx, y + 0.5f + dy, lu, lv);
-                FilmSample fs;
-                FilmPointAovs aovs;
-                fs.L = radiance(ray, sampler, fs, s == 0 ? &aovs : nullptr, stats, log);
-                ++stats.samples;
-                if (s == 0) film.set_point_aovs(x, y, aovs);
-                // No NaN or Inf reaches the film: drop the sample and count it.
-                if (!is_finite(fs.L) || !is_finite(fs.albedo) || !is_finite(fs.normal)) {
-                    ++stats.nonfinite_samples;
-                    continue;
+        for (int s = s0; s < s1; ++s)
+            for (int xs = x0; xs < x1; xs += K) {
+                const int n = std::min(K, x1 - xs);
+                // --- Camera rays, offsets drawn from the filter (every sample has
+                // weight 1) ---
+                for (int i = 0; i < n; ++i) {
+                    Sampler &sp = lane[i];
+                    sp = sampler;
+                    sp.start_pixel_sample(uint32_t(xs + i), uint32_t(y), uint32_t(s));
+                    const auto [fu, fv] = sp.get_2d();
+                    const float dx = m_filter.sample_1d(fu), dy = m_filter.sample_1d(fv);
+                    const auto [lu, lv] = sp.get_2d();
+                    const float px = float(xs + i) + 0.5f + dx, py = float(y) + 0.5f + dy;
+                    cam[i] = m_motion ? m_motion(sp.get_1d()).generate(px, py, lu, lv)
+                                      : m_camera.generate(px, py, lu, lv);
+                    org[i] = cam[i].o;
+                    dir[i] = cam[i].d;
                 }
-                film.add(x, y, 1.0f, fs);
+                m_packets.intersect(org, dir, n, first);
+                stats.camera_rays += uint64_t(n);
+                for (int i = 0; i < n; ++i) record(log, org[i], dir[i], inf, 0);
+                // --- The paths, one pixel at a time ---
+                for (int i = 0; i < n; ++i) {
+                    const int x = xs + i;
+                    FilmSample fs;
+                    FilmPointAovs aovs;
+                    fs.L = radiance(cam[i], first[i], lane[i], fs,
+                                    s == 0 ? &aovs : nullptr, stats, log);
+                    ++stats.samples;
+                    if (s == 0) film.set_point_aovs(x, y, aovs);
+                    // No NaN or Inf reaches the film: drop the sample and count it.
+                    if (!is_finite(fs.L) || !is_finite(fs.albedo) ||
+                        !is_finite(fs.normal)) {
+                        ++stats.nonfinite_samples;
+                        continue;
+                    }
+                    film.add(x, y, 1.0f, fs);
+                }
             }
 }
 
-Rgb PathIntegrator::radiance(CameraRay cam, Sampler &sampler, FilmSample &fs,
-                             FilmPointAovs *aovs, RenderStats &stats,
-                             std::vector<RecordedRay> *log) const {
+Rgb PathIntegrator::radiance(const CameraRay &cam, const RTCRayHit &first,
+                             Sampler &sampler, FilmSample &fs, FilmPointAovs *aovs,
+                             RenderStats &stats, std::vector<RecordedRay> *log) const {
     const Lights &lights = m_scene.lights();
     const EmbreeScene &geometry = m_scene.geometry();
     const int num_lights = lights.count();
@@ -141,22 +165,24 @@ Rgb PathIntegrator::radiance(CameraRay cam, Sampler &sampler, FilmSample &fs,
     unsigned fur_skip = 0;   // the strand the ray leaves, + 1 (fur_geometry.h)
 
     for (int depth = 0;; ++depth) {
-        // --- Intersect the scene (primary rays are coherent) ---
-        RTCIntersectContext ctx;
-        rtcInitIntersectContext(&ctx);
-        ctx.flags = depth == 0 ? RTC_INTERSECT_CONTEXT_FLAG_COHERENT
-                               : RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT;
+        // --- Intersect the scene (the camera ray was traced in a packet) ---
         RTCRayHit rh;
-        set_ray(rh.ray, o, d, inf);
-        rh.ray.id = std::exchange(fur_skip, 0u);
-        rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-        rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-        rtcIntersect1(m_rtc, &ctx, &rh);
-        record(log, o, d, inf, depth == 0 ? 0 : 1);
-        if (depth == 0)
-            ++stats.camera_rays;
-        else
+        if (depth == 0) {
+            rh = first;
+        } else {
+            RTCIntersectContext ctx;
+            rtcInitIntersectContext(&ctx);
+            ctx.flags = RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT;
+            set_ray(rh.ray, o, d, inf);
+            rh.ray.id = std::exchange(fur_skip, 0u);
+            rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+            rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+            rtcIntersect1(m_rtc, &ctx, &rh);
+        }
+        if (depth > 0) {  // camera rays were counted and recorded with their packet
+            record(log, o, d, inf, 1);
             ++stats.secondary_rays;
+        }
         const bool hit_geometry = rh.hit.geomID != RTC_INVALID_GEOMETRY_ID;
         const float t_hit = hit_geometry ? rh.ray.tfar : inf;
         const bool unweighted = depth == 0 || prev_specular;
@@ -211,12 +237,13 @@ Rgb PathIntegrator::radiance(CameraRay cam, Sampler &sampler, FilmSample &fs,
         const MeshData &mesh = *og.mesh;
         const uint32_t prim = rh.hit.primID;
         const float b1 = rh.hit.u, b2 = rh.hit.v, b0 = 1 - b1 - b2;
-        Vertex v;
+        // Normals are built in locals and stored into the vertex once: field-wise writes
+        // followed by a whole-Vec3f copy made store-forwarding stalls (perf).
+        Vec3f ng;
         // The hit point from the ray (its float error is far below the origin offset);
         // Embree's Ng for baked meshes, so the vertices are not fetched again.
-        v.p = o + d * t_hit;
         if (og.baked) {
-            v.ng = {rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z};
+            ng = {rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z};
         } else {
             // Embree reports Ng of instanced geometry in object space: rebuild and move
             // it.
@@ -225,12 +252,12 @@ Rgb PathIntegrator::radiance(CameraRay cam, Sampler &sampler, FilmSample &fs,
             const Vec3f p0{P[3 * tri[0]], P[3 * tri[0] + 1], P[3 * tri[0] + 2]};
             const Vec3f p1{P[3 * tri[1]], P[3 * tri[1] + 1], P[3 * tri[1] + 2]};
             const Vec3f p2{P[3 * tri[2]], P[3 * tri[2] + 1], P[3 * tri[2] + 2]};
-            v.ng = og.normal_to_world.vector(cross(p1 - p0, p2 - p0));
+            ng = og.normal_to_world.vector(cross(p1 - p0, p2 - p0));
         }
-        v.ng = normalize(v.ng);
-        v.wo = -d;
-        if (dot(v.ng, v.wo) < 0) v.ng = -v.ng;  // two-sided
-        v.ns = v.ng;
+        const Vec3f wo = -d;
+        // Two-sided: the geometric normal faces the incoming ray.
+        ng = ng * ((dot(ng, wo) < 0 ? -1.0f : 1.0f) / length(ng));
+        Vec3f ns_shade = ng;
         if (!mesh.corner_normals.empty()) {
             const float *N = &mesh.corner_normals[9 * size_t(prim)];
             Vec3f ns = Vec3f{N[0], N[1], N[2]} * b0 + Vec3f{N[3], N[4], N[5]} * b1 +
@@ -239,11 +266,12 @@ Rgb PathIntegrator::radiance(CameraRay cam, Sampler &sampler, FilmSample &fs,
             const float len = length(ns);
             if (len > 0) {
                 ns = ns / len;
-                if (dot(ns, v.ng) < 0) ns = -ns;
+                if (dot(ns, ng) < 0) ns = -ns;
                 // A shading normal facing away from the viewer would make the BSDF black.
-                if (dot(ns, v.wo) > 0) v.ns = ns;
+                if (dot(ns, wo) > 0) ns_shade = ns;
             }
         }
+        const Vertex v{o + d * t_hit, ng, ns_shade, wo};
         footprint += t_hit * m_pixel_spread;
 
         // --- Shade: the material plugin fills the BSDF inputs ---

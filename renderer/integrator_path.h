@@ -14,6 +14,7 @@
 #include "renderer/camera.h"
 #include "renderer/film.h"
 #include "renderer/filters.h"
+#include "renderer/packet_intersect.h"
 #include "renderer/sampler.h"
 #include "renderer/scene.h"
 
@@ -67,13 +68,17 @@ class PathIntegrator {
     }
 
   private:
-    Rgb radiance(CameraRay ray, Sampler &sampler, FilmSample &fs, FilmPointAovs *aovs,
-                 RenderStats &stats, std::vector<RecordedRay> *log) const;
+    // The path from camera ray `cam`, whose first hit (traced in a packet by
+    // render_tile) is `first`.
+    Rgb radiance(const CameraRay &cam, const RTCRayHit &first, Sampler &sampler,
+                 FilmSample &fs, FilmPointAovs *aovs, RenderStats &stats,
+                 std::vector<RecordedRay> *log) const;
 
     const Scene &m_scene;
     const Camera &m_camera;
     const PixelFilter &m_filter;
     RTCScene m_rtc;
+    PacketIntersector m_packets;  // camera rays
     int m_max_depth, m_rr_depth;
     float m_pixel_spread;  // radians per pixel, for ray footprints
     double m_timer_overhead;

@@ -112,8 +112,7 @@ Vec3f EnvironmentLight::uv_to_direction(float u, float v) const {
             m_sin_rot * x + m_cos_rot * z};
 }
 
-Rgb EnvironmentLight::eval(Vec3f dir) const {
-    if (is_constant()) return m_constant;
+Rgb EnvironmentLight::eval_image(Vec3f dir) const {
     float u, v;
     direction_to_uv(dir, &u, &v);
     const int x = std::min(int(u * m_width), m_width - 1),

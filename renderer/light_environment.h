@@ -18,7 +18,9 @@ class EnvironmentLight {
     EnvironmentLight(const std::string &image, float scale,
                      float rotation_deg);  // throws
 
-    Rgb eval(Vec3f dir) const;
+    // Inline for the constant case: it is evaluated at every escaped path and every
+    // environment light sample.
+    Rgb eval(Vec3f dir) const { return is_constant() ? m_constant : eval_image(dir); }
     float pdf(Vec3f dir) const;  // solid angle
     // Samples a direction; returns its radiance, fills *dir and *pdf.
     Rgb sample(float u1, float u2, Vec3f *dir, float *pdf) const;
@@ -29,6 +31,7 @@ class EnvironmentLight {
     }
 
   private:
+    Rgb eval_image(Vec3f dir) const;
     void direction_to_uv(Vec3f d, float *u, float *v) const;
     Vec3f uv_to_direction(float u, float v) const;
 

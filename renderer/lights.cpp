@@ -49,6 +49,7 @@ Lights::Lights(const std::vector<LightDesc> &descs, float scene_radius,
                 l.frame = Frame::from_z(l.to_light);
                 const float half = 0.5f * d.angle_deg * pi / 180;
                 l.cos_max = std::cos(half);
+                if (d.angle_deg > 0) l.cone_pdf = 1 / (2 * pi * (1 - l.cos_max));
                 if (d.angle_deg > 0) {
                     // Irradiance E of a disc of solid angle Ω = 2π(1 − cos θ_max):
                     // uniform radiance E / Ω (the cos factor across a small disc ≈ 1).
@@ -74,7 +75,7 @@ Lights::Lights(const std::vector<LightDesc> &descs, float scene_radius,
         }
         m_lights.push_back(std::move(l));
     }
-    // --- Selection probabilities and their CDF ---
+    // --- Selection probabilities and their alias table ---
     double total = 0;
     for (float &p : m_power) {
         if (!std::isfinite(p) || p < 0) p = 0;
@@ -82,16 +83,51 @@ Lights::Lights(const std::vector<LightDesc> &descs, float scene_radius,
     }
     const bool uniform = selection == IntegratorDesc::LightSelection::uniform ||
                          !(total > 0) || !std::isfinite(total);
-    m_cdf.assign(1, 0.0f);
-    for (size_t i = 0; i < m_lights.size(); ++i) {
+    for (size_t i = 0; i < m_lights.size(); ++i)
         m_select_pdf.push_back(uniform ? 1.0f / float(m_lights.size())
                                        : float(m_power[i] / total));
-        m_cdf.push_back(m_cdf.back() + m_select_pdf.back());
-    }
-    if (!m_lights.empty()) m_cdf.back() = 1.0f;
+    build_alias_table(uniform ? std::vector<double>(m_lights.size(), 1.0)
+                              : std::vector<double>(m_power.begin(), m_power.end()));
 }
 
-bool Lights::sample(int index, Vec3f p, Vec3f n, float u1, float u2,
+void Lights::build_alias_table(const std::vector<double> &weights) {
+    // Vose's algorithm: scale the weights to a mean of 1; repeatedly fill a bin below 1
+    // (small) from one above (large), which keeps the remainder. Bins left over hold
+    // exactly 1 up to rounding and keep their own light.
+    const size_t n = weights.size();
+    m_alias.assign(n, AliasBin{1.0f, 0});
+    if (n == 0) return;
+    double sum = 0;
+    for (double w : weights) sum += w;
+    std::vector<double> scaled(n);
+    std::vector<size_t> small, large;
+    for (size_t i = 0; i < n; ++i) {
+        scaled[i] = weights[i] * double(n) / sum;
+        m_alias[i].other = int(i);
+        (scaled[i] < 1 ? small : large).push_back(i);
+    }
+    while (!small.empty() && !large.empty()) {
+        const size_t s = small.back(), l = large.back();
+        small.pop_back();
+        m_alias[s] = {float(scaled[s]), int(l)};
+        scaled[l] -= 1 - scaled[s];
+        if (scaled[l] < 1) {
+            large.pop_back();
+            small.push_back(l);
+        }
+    }
+    // Rounding can leave a bin short of 1 with no large bin to fill it; it keeps its
+    // own light, unless that light has no weight at all (it must never be chosen).
+    size_t heaviest = 0;
+    for (size_t i = 1; i < n; ++i)
+        if (weights[i] > weights[heaviest]) heaviest = i;
+    for (size_t i : small) m_alias[i] = {1.0f, int(i)};
+    for (size_t i : large) m_alias[i] = {1.0f, int(i)};
+    for (size_t i = 0; i < n; ++i)
+        if (!(weights[i] > 0)) m_alias[i].keep = 0, m_alias[i].other = int(heaviest);
+}
+
+bool Lights::sample(int index, const Vec3f &p, const Vec3f &n, float u1, float u2,
                     LightSample *out) const {
     const Light &l = m_lights[index];
     switch (l.type) {
@@ -119,7 +155,7 @@ bool Lights::sample(int index, Vec3f p, Vec3f n, float u1, float u2,
             }
             out->wi = l.frame.to_world(sample_uniform_cone(u1, u2, l.cos_max));
             out->Li = l.L;
-            out->pdf = 1 / (2 * pi * (1 - l.cos_max));
+            out->pdf = l.cone_pdf;
             out->delta = false;
             return true;
         }
@@ -196,7 +232,7 @@ int Lights::eval_infinite(Vec3f d, Vec3f n_prev, InfiniteHit out[], int max_out)
                                   : l.env->pdf(d);
             out[n++] = {l.env->eval(d), pdf * m_select_pdf[i]};
         } else if (dot(d, l.to_light) >= l.cos_max) {
-            out[n++] = {l.L, m_select_pdf[i] / (2 * pi * (1 - l.cos_max))};
+            out[n++] = {l.L, m_select_pdf[i] * l.cone_pdf};
         }
     }
     return n;

@@ -11,6 +11,7 @@
 // or uniformly; select_pdf(i) is the probability used in both the estimator and MIS.
 #pragma once
 
+#include <algorithm>
 #include <memory>
 #include <vector>
 
@@ -38,10 +39,15 @@ class Lights {
     Lights &operator=(const Lights &) = delete;
 
     int count() const { return int(m_lights.size()); }
-    // The light next-event estimation uses for u in [0, 1), and its probability.
+    // The light next-event estimation uses for u in [0, 1), and its probability: O(1)
+    // by Walker's alias method (Vose 1991, "A Linear Algorithm for Generating Random
+    // Numbers with a Given Distribution", IEEE TSE 17(9)): u picks a bin uniformly and
+    // the rest of u chooses between the bin's own light and its alias.
     int select(float u, float *pdf) const {
-        int i = 0;
-        while (i + 1 < int(m_cdf.size()) - 1 && u >= m_cdf[i + 1]) ++i;
+        const int n = int(m_alias.size());
+        const float x = u * float(n);
+        const int bin = std::min(int(x), n - 1);
+        const int i = x - float(bin) < m_alias[bin].keep ? bin : m_alias[bin].other;
         *pdf = m_select_pdf[i];
         return i;
     }
@@ -52,7 +58,8 @@ class Lights {
     // Samples light `index` as seen from p, whose geometric normal n faces the side
     // being shaded. False when it cannot contribute. A constant environment is sampled
     // cosine-weighted about n (density cos θ / π), so no sample falls below the surface.
-    bool sample(int index, Vec3f p, Vec3f n, float u1, float u2, LightSample *out) const;
+    bool sample(int index, const Vec3f &p, const Vec3f &n, float u1, float u2,
+                LightSample *out) const;
 
     // Radiance leaving area light `index` towards -d where the ray (o, d) hits it at
     // distance t, and the solid-angle density with which sample() would have produced d
@@ -71,12 +78,15 @@ class Lights {
     int eval_infinite(Vec3f d, Vec3f n_prev, InfiniteHit out[], int max_out) const;
 
   private:
+    void build_alias_table(const std::vector<double> &weights);
+
     struct Light {
         LightDesc::Type type;
         Rgb L;
         // distant
         Vec3f to_light;
         float cos_max = 1;
+        float cone_pdf = 0;  // 1 / (2π (1 − cos_max)): the disc's uniform density
         Frame frame;
         // sphere
         Vec3f center;
@@ -90,7 +100,12 @@ class Lights {
     };
     std::vector<Light> m_lights;
     std::vector<int> m_infinite;
-    std::vector<float> m_power, m_select_pdf, m_cdf;  // m_cdf: count() + 1 entries
+    std::vector<float> m_power, m_select_pdf;
+    struct AliasBin {
+        float keep;  // probability that the bin selects its own light
+        int other;   // the light it selects otherwise
+    };
+    std::vector<AliasBin> m_alias;  // one bin per light
 };
 
 }  // namespace pelage::renderer

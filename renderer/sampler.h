@@ -17,6 +17,7 @@ constexpr uint64_t mix64(uint64_t z) {
 
 class Sampler {
   public:
+    Sampler() = default;  // for arrays of per-pixel streams; assign before use
     Sampler(uint64_t seed, uint32_t frame)
         : m_base(mix64(seed ^ mix64(0x9e3779b97f4a7c15ull + frame))) {}
 
@@ -43,7 +44,7 @@ class Sampler {
     }
 
   private:
-    uint64_t m_base;
+    uint64_t m_base = 0;
     uint64_t m_key = 0;
     uint32_t m_dim = 0;
 };

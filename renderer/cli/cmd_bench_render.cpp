@@ -1,10 +1,10 @@
 // `pelage bench render`: throughput of the full path tracer against raw Embree on the
 // same rays. The tracer's rays (camera, secondary, shadow) are recorded in one 1-spp
-// render, then replayed through rtcIntersect1 alone: the hardware limit for this scene,
-// since the tracer cannot trace faster than Embree finds hits. Also reported: the replay
-// with the tracer's own calls (rtcOccluded1 for shadow rays), the 1 → N thread
-// scaling, and plugin_seconds (1 call in 16 timed, extrapolated) against a render that
-// times every plugin call.
+// render, then replayed through rtcIntersect1 alone, one ray at a time (the `ratio`
+// baseline). Also reported: the replay with the tracer's own calls (camera rays in the
+// same packets, rtcOccluded1 for shadow rays: what Embree alone would take for the
+// tracer's work), the 1 → N thread scaling, and plugin_seconds (1 call in 16 timed,
+// extrapolated) against a render that times every plugin call.
 #include <sys/resource.h>
 #include <tbb/global_control.h>
 #include <tbb/parallel_for.h>
@@ -16,6 +16,7 @@
 #include <thread>
 
 #include "renderer/cli/bench.h"
+#include "renderer/packet_intersect.h"
 #include "renderer/render.h"
 #include "renderer/scene_file.h"
 #include "sim/input_error.h"
@@ -39,8 +40,12 @@ double process_cpu_seconds() {
            1e-6 * double(u.ru_utime.tv_usec + u.ru_stime.tv_usec);
 }
 
-double replay(RTCScene scene, const std::vector<std::vector<RecordedRay>> &logs,
-              bool occluded_for_shadows) {
+// Replays the recorded rays. Baseline: every ray through rtcIntersect1. Same calls: the
+// calls the tracer made, runs of consecutive camera rays (a tile row's packet, as they
+// were recorded) through the same PacketIntersector and shadow rays through
+// rtcOccluded1.
+double replay(RTCScene scene, const PacketIntersector &packets,
+              const std::vector<std::vector<RecordedRay>> &logs, bool same_calls) {
     constexpr size_t block = 4096;
     std::vector<std::pair<const RecordedRay *, size_t>> blocks;
     for (const auto &l : logs)
@@ -51,6 +56,20 @@ double replay(RTCScene scene, const std::vector<std::vector<RecordedRay>> &logs,
         const auto [rays, n] = blocks[b];
         for (size_t i = 0; i < n; ++i) {
             const RecordedRay &r = rays[i];
+            if (same_calls && r.kind == 0) {
+                constexpr int K = PacketIntersector::max_rays;
+                Vec3f o[K], d[K];
+                int m = 0;
+                for (; m < K && i + m < n && rays[i + m].kind == 0; ++m) {
+                    const RecordedRay &c = rays[i + m];
+                    o[m] = {c.o[0], c.o[1], c.o[2]};
+                    d[m] = {c.d[0], c.d[1], c.d[2]};
+                }
+                RTCRayHit hits[K];
+                packets.intersect(o, d, m, hits);
+                i += size_t(m) - 1;
+                continue;
+            }
             RTCIntersectContext ctx;
             rtcInitIntersectContext(&ctx);
             ctx.flags = r.kind == 0 ? RTC_INTERSECT_CONTEXT_FLAG_COHERENT
@@ -68,7 +87,7 @@ double replay(RTCScene scene, const std::vector<std::vector<RecordedRay>> &logs,
             rh.ray.mask = 0xffffffffu;
             rh.ray.id = 0;
             rh.ray.flags = 0;
-            if (occluded_for_shadows && r.kind == 2) {
+            if (same_calls && r.kind == 2) {
                 rtcOccluded1(scene, &ctx, &rh.ray);
             } else {
                 rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
@@ -123,14 +142,16 @@ int run(const BenchRenderOptions &o) {
     const RenderResult recorded = render(scene1, rec);
     size_t recorded_rays = 0;
     for (const auto &l : recorded.rays) recorded_rays += l.size();
+    const PacketIntersector packets(scene1.geometry().device(),
+                                    scene1.geometry().scene());
     double t_intersect = 1e300, t_mixed = 1e300, cpu_intersect = 1e300;
     for (int i = 0; i < std::max(1, o.repeat); ++i) {
         const double c0 = process_cpu_seconds();
-        t_intersect = std::min(t_intersect,
-                               replay(scene1.geometry().scene(), recorded.rays, false));
+        t_intersect = std::min(t_intersect, replay(scene1.geometry().scene(), packets,
+                                                   recorded.rays, false));
         cpu_intersect = std::min(cpu_intersect, process_cpu_seconds() - c0);
-        t_mixed =
-            std::min(t_mixed, replay(scene1.geometry().scene(), recorded.rays, true));
+        t_mixed = std::min(
+            t_mixed, replay(scene1.geometry().scene(), packets, recorded.rays, true));
     }
     const double embree_rps = recorded_rays / t_intersect,
                  mixed_rps = recorded_rays / t_mixed;
@@ -144,6 +165,7 @@ int run(const BenchRenderOptions &o) {
         {"spp", o.spp},
         {"threads", cores},
         {"triangles", scene.geometry().num_triangles()},
+        {"camera_packet_width", packets.width()},
         {"seconds", rn.seconds},
         {"seconds_1_thread", r1.seconds},
         {"rays", rn.stats.rays()},

@@ -292,10 +292,17 @@ TEST(PathIntegrator, LightsAreSelectedInProportionToTheirPower) {
     // Quads: Φ = π A L; 0.16 · 20 against 0.32 · 0.25.
     EXPECT_NEAR(l.select_pdf(0) / l.select_pdf(1), (0.16 * 20) / (0.32 * 0.25), 1e-3);
     EXPECT_NEAR(l.select_pdf(0) + l.select_pdf(1), 1.0, 1e-6);
-    float pdf;
-    EXPECT_EQ(l.select(0.5f, &pdf), 0);
-    EXPECT_EQ(l.select(0.999f, &pdf), 1);
-    EXPECT_EQ(pdf, l.select_pdf(1));
+    // select() over evenly spaced u picks each light with its select_pdf (alias table).
+    constexpr int n = 1 << 16;
+    int picked[2] = {0, 0};
+    for (int k = 0; k < n; ++k) {
+        float pdf;
+        const int i = l.select((k + 0.5f) / n, &pdf);
+        ASSERT_TRUE(i == 0 || i == 1);
+        EXPECT_EQ(pdf, l.select_pdf(i));
+        ++picked[i];
+    }
+    EXPECT_NEAR(double(picked[1]) / n, l.select_pdf(1), 2.0 / n);
 }
 
 TEST(PathIntegrator, PowerLightSelectionConvergesToTheSameImageWithLessNoise) {
