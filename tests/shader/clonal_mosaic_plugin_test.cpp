@@ -63,6 +63,16 @@ struct Instance {
     }
 };
 
+// The cells of a .cells file as the search's table: the reference the plugin is checked
+// against, built without the plugin.
+shader::CellTable table_of(const sim::CellsData &data) {
+    std::vector<shader::CellOnSurface> list;
+    for (sim::TriId t = 0; t < data.num_triangles(); ++t)
+        for (uint32_t k = data.cell_row[t]; k < data.cell_row[t + 1]; ++k)
+            list.push_back({t, data.x[k], data.z[k], data.id[k], data.type[k]});
+    return shader::make_cell_table(data.num_triangles(), list);
+}
+
 TEST(ClonalMosaicPlugin, ColourAndAovsAreTheNearestCellsType) {
     TempDir tmp;
     const std::string cells = simulate_two_type_cells(tmp, mesh_spec, 600);
@@ -72,11 +82,7 @@ TEST(ClonalMosaicPlugin, ColourAndAovsAreTheNearestCellsType) {
     // The reference: the same search built directly from the .cells file.
     const sim::CellsData data = sim::read_cells_file(cells);
     const sim::Surface s = sim::build_surface(mesh_spec);
-    std::vector<shader::CellOnSurface> list;
-    for (sim::TriId t = 0; t < data.num_triangles(); ++t)
-        for (uint32_t k = data.cell_row[t]; k < data.cell_row[t + 1]; ++k)
-            list.push_back({t, data.x[k], data.z[k], data.id[k], data.type[k]});
-    const shader::CellTable table = shader::make_cell_table(data.num_triangles(), list);
+    const shader::CellTable table = table_of(data);
     const shader::ClosestCellIndex index(s.crps, table);
 
     std::mt19937 rng(1);
@@ -112,11 +118,7 @@ TEST(ClonalMosaicPlugin, SoftEdgeColourIsTheBlendOfTheCellsWithinTheBand) {
 
     const sim::CellsData data = sim::read_cells_file(cells);
     const sim::Surface s = sim::build_surface(mesh_spec);
-    std::vector<shader::CellOnSurface> list;
-    for (sim::TriId t = 0; t < data.num_triangles(); ++t)
-        for (uint32_t k = data.cell_row[t]; k < data.cell_row[t + 1]; ++k)
-            list.push_back({t, data.x[k], data.z[k], data.id[k], data.type[k]});
-    const shader::CellTable table = shader::make_cell_table(data.num_triangles(), list);
+    const shader::CellTable table = table_of(data);
     const shader::ClosestCellIndex index(s.crps, table);
 
     std::mt19937 rng(4);
