@@ -3,6 +3,7 @@
 #include <cmath>
 #include <limits>
 
+#include "renderer/embree_ray.h"
 #include "renderer/sampling.h"
 #include "shader/hair/hair_bsdf.h"
 
@@ -15,21 +16,6 @@ constexpr float shadow_ray_shortening = 1e-4f;  // as integrator_path.cpp
 
 hair::Vec3f to_hair(Vec3f v) { return {v.x, v.y, v.z}; }
 Rgb from_hair(hair::Vec3f v) { return {v.x, v.y, v.z}; }
-
-void set_ray(RTCRay &r, Vec3f o, Vec3f d, float tfar, unsigned id) {
-    r.org_x = o.x;
-    r.org_y = o.y;
-    r.org_z = o.z;
-    r.tnear = 0;
-    r.dir_x = d.x;
-    r.dir_y = d.y;
-    r.dir_z = d.z;
-    r.time = 0;
-    r.tfar = tfar;
-    r.mask = 0xffffffffu;
-    r.id = id;
-    r.flags = 0;
-}
 
 // The fibre frame: x the tangent, z ⊥ x facing wo, y = z × x.
 struct FibreFrame {

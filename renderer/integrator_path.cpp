@@ -7,6 +7,7 @@
 
 #include "renderer/bsdf_coated.h"
 #include "renderer/bsdf_lambert.h"
+#include "renderer/embree_ray.h"
 #include "renderer/integrator_fur.h"
 #include "renderer/sampling.h"
 
@@ -23,21 +24,6 @@ constexpr float shadow_ray_shortening =
 struct Vertex {
     Vec3f p, ng, ns, wo;
 };
-
-void set_ray(RTCRay &r, Vec3f o, Vec3f d, float tfar) {
-    r.org_x = o.x;
-    r.org_y = o.y;
-    r.org_z = o.z;
-    r.tnear = 0;
-    r.dir_x = d.x;
-    r.dir_y = d.y;
-    r.dir_z = d.z;
-    r.time = 0;
-    r.tfar = tfar;
-    r.mask = 0xffffffffu;
-    r.id = 0;
-    r.flags = 0;
-}
 
 void record(std::vector<RecordedRay> *log, Vec3f o, Vec3f d, float tfar, uint32_t kind) {
     if (log) log->push_back({{o.x, o.y, o.z}, tfar, {d.x, d.y, d.z}, kind});

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <limits>
 
+#include "renderer/embree_ray.h"
+
 namespace pelage::renderer {
 
 namespace {
@@ -35,18 +37,7 @@ struct Packet<16> {
 };
 
 void set_single(RTCRayHit &rh, Vec3f o, Vec3f d) {
-    rh.ray.org_x = o.x;
-    rh.ray.org_y = o.y;
-    rh.ray.org_z = o.z;
-    rh.ray.tnear = 0;
-    rh.ray.dir_x = d.x;
-    rh.ray.dir_y = d.y;
-    rh.ray.dir_z = d.z;
-    rh.ray.time = 0;
-    rh.ray.tfar = inf;
-    rh.ray.mask = 0xffffffffu;
-    rh.ray.id = 0;
-    rh.ray.flags = 0;
+    set_ray(rh.ray, o, d, inf);
     rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
     rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
 }
