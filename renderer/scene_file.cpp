@@ -7,6 +7,7 @@
 #include <set>
 #include <sstream>
 
+#include "renderer/json_fields.h"
 #include "renderer/scene_fur.h"
 #include "sim/input_error.h"
 
@@ -16,119 +17,13 @@ namespace {
 namespace fs = std::filesystem;
 using json = nlohmann::json;
 
-const char *type_name(const json &j) {
-    switch (j.type()) {
-        case json::value_t::null:
-            return "null";
-        case json::value_t::boolean:
-            return "a boolean";
-        case json::value_t::string:
-            return "a string";
-        case json::value_t::array:
-            return "an array";
-        case json::value_t::object:
-            return "an object";
-        case json::value_t::number_integer:
-        case json::value_t::number_unsigned:
-            return "an integer";
-        case json::value_t::number_float:
-            return "a number";
-        default:
-            return "an unknown value";
-    }
-}
-
-// One JSON object being read: each field is taken at most once, and finish() rejects the
-// keys nobody took (unknown or misspelled fields are errors, style.md §2.6).
-class Reader {
+// One object of the scene file (json_fields.h), with paths resolved against the file's
+// folder.
+class Reader : public JsonFields {
   public:
     Reader(const json &j, std::string path, const SceneDesc &scene)
-        : m_j(j), m_path(std::move(path)), m_scene(scene) {
-        if (!j.is_object())
-            fail(m_path, std::string("expected an object, got ") + type_name(j));
-    }
+        : JsonFields(j, std::move(path), scene.path), m_scene(scene) {}
 
-    [[noreturn]] void fail(const std::string &field, const std::string &message) const {
-        throw InputError(m_scene.path, 0, field, message);
-    }
-    std::string field(const std::string &key) const {
-        return m_path.empty() ? key : m_path + "." + key;
-    }
-    bool has(const std::string &key) const { return m_j.contains(key); }
-    const json *take(const std::string &key) {
-        m_taken.insert(key);
-        const auto it = m_j.find(key);
-        return it == m_j.end() ? nullptr : &*it;
-    }
-    const json &require(const std::string &key) {
-        const json *v = take(key);
-        if (!v) fail(field(key), "missing required field");
-        return *v;
-    }
-
-    double number(const std::string &key, double def, double lo, double hi,
-                  bool required = false) {
-        const json *v = required ? &require(key) : take(key);
-        if (!v) return def;
-        return check_number(*v, field(key), lo, hi);
-    }
-    int integer(const std::string &key, int def, long lo, long hi) {
-        const json *v = take(key);
-        if (!v) return def;
-        if (!v->is_number_integer())
-            fail(field(key), std::string("expected an integer, got ") + type_name(*v));
-        const long x = v->get<long>();
-        if (x < lo || x > hi)
-            fail(field(key), "= " + std::to_string(x) + ": must be in [" +
-                                 std::to_string(lo) + ", " + std::to_string(hi) + "]");
-        return int(x);
-    }
-    bool boolean(const std::string &key, bool def) {
-        const json *v = take(key);
-        if (!v) return def;
-        if (!v->is_boolean())
-            fail(field(key), std::string("expected true or false, got ") + type_name(*v));
-        return v->get<bool>();
-    }
-    std::string string(const std::string &key, const std::string &def,
-                       bool required = false) {
-        const json *v = required ? &require(key) : take(key);
-        if (!v) return def;
-        if (!v->is_string())
-            fail(field(key), std::string("expected a string, got ") + type_name(*v));
-        return v->get<std::string>();
-    }
-    template <typename E>
-    E choice(const std::string &key, E def,
-             const std::vector<std::pair<std::string, E>> &options) {
-        const json *v = take(key);
-        if (!v) return def;
-        if (!v->is_string())
-            fail(field(key), std::string("expected a string, got ") + type_name(*v));
-        const std::string s = v->get<std::string>();
-        std::string all;
-        for (const auto &[name, e] : options) {
-            if (name == s) return e;
-            all += (all.empty() ? "" : ", ") + name;
-        }
-        fail(field(key), "unknown value \"" + s + "\" (expected one of " + all + ")");
-    }
-    Vec3f vec3(const std::string &key, Vec3f def, double lo = -1e30, double hi = 1e30,
-               bool required = false) {
-        const json *v = required ? &require(key) : take(key);
-        if (!v) return def;
-        return check_vec3(*v, field(key), lo, hi);
-    }
-    // A colour: [r, g, b] or one number for grey, each in [0, hi].
-    Rgb color(const std::string &key, Rgb def, double hi = 1e30) {
-        const json *v = take(key);
-        if (!v) return def;
-        if (v->is_number()) {
-            const float x = float(check_number(*v, field(key), 0, hi));
-            return {x, x, x};
-        }
-        return check_vec3(*v, field(key), 0, hi);
-    }
     // A path relative to the scene file, made absolute.
     std::string path(const std::string &key, bool required = false) {
         const std::string s = string(key, "", required);
@@ -143,40 +38,10 @@ class Reader {
         return p.is_absolute() ? s
                                : (fs::path(m_scene.dir) / p).lexically_normal().string();
     }
-
-    void finish() const {
-        for (auto it = m_j.begin(); it != m_j.end(); ++it)
-            if (!m_taken.count(it.key())) fail(field(it.key()), "unknown field");
-    }
-    const std::string &path_prefix() const { return m_path; }
     static const SceneDesc &scene_of(const Reader &r) { return r.m_scene; }
 
-    double check_number(const json &v, const std::string &f, double lo, double hi) const {
-        if (!v.is_number())
-            fail(f, std::string("expected a number, got ") + type_name(v));
-        const double x = v.get<double>();
-        if (!std::isfinite(x) || x < lo || x > hi) {
-            std::ostringstream s;
-            s << "= " << x << ": must be in [" << lo << ", " << hi << "]";
-            fail(f, s.str());
-        }
-        return x;
-    }
-    Vec3f check_vec3(const json &v, const std::string &f, double lo, double hi) const {
-        if (!v.is_array() || v.size() != 3)
-            fail(f,
-                 std::string("expected an array of 3 numbers, got ") + type_name(v) +
-                     (v.is_array() ? " of " + std::to_string(v.size()) : std::string()));
-        return {float(check_number(v[0], f + "[0]", lo, hi)),
-                float(check_number(v[1], f + "[1]", lo, hi)),
-                float(check_number(v[2], f + "[2]", lo, hi))};
-    }
-
   private:
-    const json &m_j;
-    std::string m_path;
     const SceneDesc &m_scene;
-    std::set<std::string> m_taken;
 };
 
 CameraDesc read_camera(Reader r) {
@@ -319,7 +184,7 @@ MaterialDesc read_material(Reader r) {
     if (const json *p = r.take("params")) {
         if (!p->is_object())
             r.fail(r.field("params"),
-                   std::string("expected an object, got ") + type_name(*p));
+                   std::string("expected an object, got ") + json_type_name(*p));
         m.params = *p;
     }
     m.bsdf = r.choice<MaterialDesc::Bsdf>("bsdf", m.bsdf,
@@ -341,20 +206,22 @@ TurntableDesc read_turntable(Reader r) {
     t.axis = normalize(t.axis);
     t.center = r.vec3("center", t.center);
     t.degrees = float(r.number("degrees", t.degrees, -36000, 36000));
-    t.target = r.choice<TurntableDesc::Target>(
-        "target", t.target,
-        {{"camera", TurntableDesc::Target::camera},
-         {"object", TurntableDesc::Target::object}});
+    t.target =
+        r.choice<TurntableDesc::Target>("target", t.target,
+                                        {{"camera", TurntableDesc::Target::camera},
+                                         {"object", TurntableDesc::Target::object}});
     if (const json *v = r.take("objects")) {
         const std::string f = r.field("objects");
         if (t.target != TurntableDesc::Target::object)
-            r.fail(f, "only an object turntable turns objects (set \"target\": \"object\")");
+            r.fail(f,
+                   "only an object turntable turns objects (set \"target\": \"object\")");
         if (!v->is_array() || v->empty())
             r.fail(f, "expected a non-empty array of object names");
         for (size_t i = 0; i < v->size(); ++i) {
             if (!(*v)[i].is_string())
                 r.fail(f + "[" + std::to_string(i) + "]",
-                       std::string("expected an object name, got ") + type_name((*v)[i]));
+                       std::string("expected an object name, got ") +
+                           json_type_name((*v)[i]));
             t.objects.push_back((*v)[i].get<std::string>());
         }
     }
@@ -367,8 +234,9 @@ TurntableDesc read_turntable(Reader r) {
         if (t.shutter_close < t.shutter_open)
             r.fail(f + "[1]", "the shutter closes before it opens");
         if (t.motion_blur() && t.target == TurntableDesc::Target::object)
-            r.fail(f, "motion blur is camera-only: an object turntable takes no open "
-                      "shutter (use \"target\": \"camera\")");
+            r.fail(f,
+                   "motion blur is camera-only: an object turntable takes no open "
+                   "shutter (use \"target\": \"camera\")");
     }
     r.finish();
     return t;
@@ -380,7 +248,8 @@ AnimationDesc read_animation(Reader r) {
     a.frames = r.integer("frames", a.frames, 1, 1000000);
     a.fps = r.number("fps", a.fps, 0.001, 1000);
     if (const json *v = r.take("turntable"))
-        a.turntable = read_turntable(Reader(*v, r.field("turntable"), Reader::scene_of(r)));
+        a.turntable =
+            read_turntable(Reader(*v, r.field("turntable"), Reader::scene_of(r)));
     r.finish();
     return a;
 }
@@ -402,7 +271,7 @@ ObjectDesc read_object(Reader r, size_t index) {
         auto one = [&](const json &e, const std::string &ef) {
             if (!e.is_string() || e.get<std::string>().empty())
                 r.fail(ef, std::string("expected a mesh path, got ") +
-                               (e.is_string() ? "an empty string" : type_name(e)));
+                               (e.is_string() ? "an empty string" : json_type_name(e)));
             o.deform.push_back(r.resolve(e.get<std::string>()));
         };
         if (v->is_array()) {
@@ -480,7 +349,7 @@ SceneDesc parse_scene(const std::string &text, const std::string &path) {
 
     if (const json *v = r.take("lights")) {
         if (!v->is_array())
-            r.fail("lights", std::string("expected an array, got ") + type_name(*v));
+            r.fail("lights", std::string("expected an array, got ") + json_type_name(*v));
         for (size_t i = 0; i < v->size(); ++i)
             scene.lights.push_back(
                 read_light(Reader((*v)[i], "lights[" + std::to_string(i) + "]", scene)));
@@ -492,7 +361,7 @@ SceneDesc parse_scene(const std::string &text, const std::string &path) {
 
     const json &objs = r.require("objects");
     if (!objs.is_array())
-        r.fail("objects", std::string("expected an array, got ") + type_name(objs));
+        r.fail("objects", std::string("expected an array, got ") + json_type_name(objs));
     for (size_t i = 0; i < objs.size(); ++i) {
         const std::string p = "objects[" + std::to_string(i) + "]";
         Reader orr(objs[i], p, scene);
@@ -514,8 +383,9 @@ SceneDesc parse_scene(const std::string &text, const std::string &path) {
         scene.animation = read_animation(Reader(*v, "animation", scene));
     if (const auto &tt = scene.animation.turntable)
         for (size_t i = 0; i < tt->objects.size(); ++i)
-            if (std::none_of(scene.objects.begin(), scene.objects.end(),
-                             [&](const ObjectDesc &o) { return o.name == tt->objects[i]; }))
+            if (std::none_of(
+                    scene.objects.begin(), scene.objects.end(),
+                    [&](const ObjectDesc &o) { return o.name == tt->objects[i]; }))
                 r.fail("animation.turntable.objects[" + std::to_string(i) + "]",
                        "no object is named \"" + tt->objects[i] + "\"");
     for (size_t i = 0; i < scene.objects.size(); ++i) {
@@ -591,8 +461,8 @@ SceneDesc scene_at_frame(const SceneDesc &scene, int frame) {
         const Affine m =
             rotation_about(tt->axis, tt->center, turntable_degrees(scene.animation, t0));
         for (ObjectDesc &o : s.objects)
-            if (tt->objects.empty() ||
-                std::find(tt->objects.begin(), tt->objects.end(), o.name) != tt->objects.end())
+            if (tt->objects.empty() || std::find(tt->objects.begin(), tt->objects.end(),
+                                                 o.name) != tt->objects.end())
                 o.transform = m * o.transform;
     }
     for (ObjectDesc &o : s.objects) {
