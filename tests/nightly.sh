@@ -3,9 +3,8 @@
 # UBSan input-handling subset only (quickstart.sh test). Run from anywhere:
 #   tests/nightly.sh [FUZZ_SECONDS]        (default 300 s per fuzz target)
 # 1. the whole suite under AddressSanitizer + UndefinedBehaviorSanitizer (build-asan);
-# 2. the whole suite under ThreadSanitizer (build-tsan, against TSan-instrumented builds
-#    of Debian's libtbb and libembree3 sources, made by tests/tsan_tbb.sh and
-#    tests/tsan_embree.sh; suppressions in tests/tsan.supp);
+# 2. the whole suite under ThreadSanitizer (build-tsan, against a TSan-instrumented
+#    libtbb built by tests/tsan_tbb.sh; suppressions in tests/tsan.supp);
 # 3. the libFuzzer targets (clang, build-fuzz): corpus replay, then FUZZ_SECONDS each.
 # Any sanitizer report fails the run (ASan/UBSan abort; TSan exits 66).
 set -euo pipefail
@@ -37,9 +36,8 @@ cmake --build build-asan -j2
 echo "== TSan: whole suite"
 cmake -S . -B build-tsan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DPELAGE_TSAN=ON "${launcher[@]}"
 cmake --build build-tsan -j2
-tests/tsan_tbb.sh build-tsan/tbb          # instrumented libtbb and libembree3:
-tests/tsan_embree.sh build-tsan/embree    # see the scripts for why
-(cd build-tsan && LD_LIBRARY_PATH="$PWD/tbb/lib:$PWD/embree/lib" \
+tests/tsan_tbb.sh build-tsan/tbb   # an instrumented libtbb: see the script for why
+(cd build-tsan && LD_LIBRARY_PATH="$PWD/tbb/lib" \
     TSAN_OPTIONS="suppressions=$PWD/../tests/tsan.supp history_size=7 halt_on_error=1 exitcode=66" \
     ctest -j2 --output-on-failure)
 

@@ -40,4 +40,15 @@ std::string slurp(const std::string &path);
 // *err when given. Returns the exit code.
 int run_pelage(const std::string &args, std::string *out = nullptr, std::string *err = nullptr);
 
+// `timeout --preserve-status -s INT N ` for a command that a test interrupts with Ctrl-C
+// once it is rendering: N = 3 s, or 30 s under ThreadSanitizer, where loading the scene
+// alone takes seconds and an earlier signal would arrive before the handler.
+inline std::string interrupt_after() {
+#if defined(__SANITIZE_THREAD__)
+    return "timeout --preserve-status -s INT 30 ";
+#else
+    return "timeout --preserve-status -s INT 3 ";
+#endif
+}
+
 }  // namespace pelage::test

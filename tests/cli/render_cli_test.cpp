@@ -86,19 +86,13 @@ TEST(RenderCli, NoOutputIsExit2NamingTheField) {
 
 TEST(RenderCli, InterruptWritesTheCompletedPassesAtomically) {
     TempDir tmp;
-    // Far more samples than can finish: Ctrl-C (SIGINT, sent by timeout after 3 s) must
+    // Far more samples than can finish: Ctrl-C (SIGINT, sent by timeout) must
     // stop the render and still write a whole image, marked as interrupted. (The
     // image holds the passes completed: at least one must finish before the signal.)
     const std::string scene =
         tmp.write("s.json", R"({"camera": {}, "film": {"width": 32, "height": 32,
         "spp": 1000000}, "lights": [{"type": "environment"}], "objects": [{"mesh": "procedural:icosphere:2"}]})");
-#if defined(__SANITIZE_THREAD__)
-    const std::string after = "30 ";  // ThreadSanitizer: loading alone takes seconds
-#else
-    const std::string after = "3 ";
-#endif
-    const std::string cmd = "timeout --preserve-status -s INT " + after +
-                            std::string(PELAGE_BINARY) + " render " + scene + " -q -o " +
+    const std::string cmd = interrupt_after() + std::string(PELAGE_BINARY) + " render " + scene + " -q -o " +
                             tmp.file("o.exr") + " --stats-json " + tmp.file("s.json") +
                             " 2>" + tmp.file("err");
     const int rc = std::system(cmd.c_str());
