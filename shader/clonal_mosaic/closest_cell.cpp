@@ -7,7 +7,9 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstring>
 #include <stdexcept>
+#include <string>
 
 namespace pelage::shader {
 namespace {
@@ -33,9 +35,8 @@ uint32_t slot_index(uint32_t n, uint32_t i, uint32_t j, bool upper) {
 }  // namespace
 
 struct ClosestCellIndex::Built {
-    TriangleRegions regions{};
-    std::vector<Block> blocks;
-    size_t entries = 0, distinct_triangles = 0, used_slots = 0;
+    std::vector<Line> lines;  // header, mask rows, union blocks
+    size_t entries = 0, distinct_triangles = 0, used_slots = 0, union_cells = 0;
 };
 
 ClosestCellIndex::ClosestCellIndex(const sim::Crps &crps, const CellTable &cells,
@@ -65,27 +66,28 @@ ClosestCellIndex::ClosestCellIndex(const sim::Crps &crps, const CellTable &cells
                            built[t]);
     });
 
-    size_t total_blocks = 0, used_slots = 0, entries = 0, distinct = 0;
-    for (const Built &b : built) total_blocks += b.blocks.size();
-    if (total_blocks >= (size_t(1) << 30))
-        throw std::length_error("closest-cell index: more than 2^30 candidate blocks");
-    m_regions.resize(nt);
-    m_blocks.reserve(total_blocks);
+    size_t total_lines = 0, used_slots = 0, entries = 0, distinct = 0, unions = 0;
+    for (const Built &b : built) total_lines += b.lines.size();
+    if (total_lines >= (size_t(1) << 32))
+        throw std::length_error("closest-cell index: more than 2^32 lines");
+    m_runs.resize(nt);
+    m_lines.reserve(total_lines);
     for (size_t t = 0; t < nt; ++t) {
         Built &b = built[t];
-        b.regions.first_block_and_n |= static_cast<uint32_t>(m_blocks.size()) << 2;
-        m_regions[t] = b.regions;
-        m_blocks.insert(m_blocks.end(), b.blocks.begin(), b.blocks.end());
+        m_runs[t] = static_cast<uint32_t>(m_lines.size());
+        m_lines.insert(m_lines.end(), b.lines.begin(), b.lines.end());
         m_stats.triangles_without_cells_in_reach += b.entries == 0;
+        m_stats.max_union_cells = std::max(m_stats.max_union_cells, b.union_cells);
         used_slots += b.used_slots;
         entries += b.entries;
         distinct += b.distinct_triangles;
+        unions += b.union_cells;
         b = Built{};
     }
     m_stats.mean_candidates = used_slots ? double(distinct) / used_slots : 0;
     m_stats.mean_candidate_cells = used_slots ? double(entries) / used_slots : 0;
-    m_stats.bytes =
-        m_regions.size() * sizeof(TriangleRegions) + m_blocks.size() * sizeof(Block);
+    m_stats.mean_union_cells = nt ? double(unions) / nt : 0;
+    m_stats.bytes = m_runs.size() * sizeof(uint32_t) + m_lines.size() * sizeof(Line);
     m_stats.build_seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
@@ -103,8 +105,6 @@ void ClosestCellIndex::build_triangle(const sim::Crps &crps, sim::TriId t,
             std::ceil(2 * ft.bound_radius / std::max(m_spacing, 1e-300))),
         1, std::clamp<uint32_t>(m_options.max_subdivision, 1, max_subdivision));
     const sim::Vec2d v0 = ft.v[0], e1 = ft.v[1] - ft.v[0], e2 = ft.v[2] - ft.v[0];
-    out.regions = {float(v0.x), float(v0.y), float(e1.x), float(e1.y),
-                   float(e2.x), float(e2.y), n,           {}};
     struct Sub {
         uint32_t slot;
         sim::Vec2d v[3], centre;
@@ -182,56 +182,91 @@ void ClosestCellIndex::build_triangle(const sim::Crps &crps, sim::TriId t,
                                        : std::min(2 * radius, m_max_radius);
     }
 
-    // --- Per sub-triangle: the cells within R_S of S, by their distance from S ---
-    struct Entry {
-        double bound;
-        const Mapped *m;
-    };
-    std::vector<Entry> list;
+    // --- Per sub-triangle: the cells within R_S of S (bit S of `in_list`) ---
+    // Each triangle occurs once in an unfolding, so each cell once in `mapped`.
+    std::vector<uint16_t> in_list(mapped.size(), 0);
     std::vector<sim::TriId> tris;
-    uint32_t end = 0;
     for (const Sub &s : subs) {
-        list.clear();
-        for (const Mapped &m : mapped) {
-            const double d = sim::point_triangle_distance(m.p, s.v);
-            if (d <= s.reach_needed * (1 + 1e-9)) list.push_back({d, &m});
-        }
-        std::sort(list.begin(), list.end(), [](const Entry &a, const Entry &b) {
-            return a.bound < b.bound || (a.bound == b.bound && a.m->cell < b.m->cell);
-        });
         tris.clear();
-        for (const Entry &e : list) tris.push_back(e.m->tri);
+        for (size_t i = 0; i < mapped.size(); ++i)
+            if (sim::point_triangle_distance(mapped[i].p, s.v) <=
+                s.reach_needed * (1 + 1e-9)) {
+                in_list[i] |= uint16_t(1u << s.slot);
+                tris.push_back(mapped[i].tri);
+            }
+        out.entries += tris.size();
+        out.used_slots += 1;
         std::sort(tris.begin(), tris.end());
         out.distinct_triangles += std::unique(tris.begin(), tris.end()) - tris.begin();
-        out.entries += list.size();
-        out.used_slots += 1;
-        for (size_t i = 0; i < list.size(); i += per_block) {
-            Block b;
-            // The bound is rounded down by more than float's error in the scan's
-            // distances (positions of size |p| + the triangle's radius), so rounding
-            // never prunes the true nearest.
-            const double margin =
-                1e-5 * (list[i].bound + length(list[i].m->p) + ft.bound_radius);
-            const double lower = std::max(0.0, list[i].bound - margin);
-            b.bound2 = float(lower * lower * (1 - 1e-6));
-            for (size_t l = 0; l < per_block; ++l) {
-                const bool real = i + l < list.size();
-                b.x[l] = real ? float(list[i + l].m->p.x) : inf_f;
-                b.y[l] = real ? float(list[i + l].m->p.y) : inf_f;
-                b.cell[l] = real ? list[i + l].m->cell : ClosestCell::none;
-            }
-            out.blocks.push_back(b);
-        }
-        end = static_cast<uint32_t>(out.blocks.size());
-        out.regions.end[s.slot] = end;
     }
+
+    // --- Their union, once, by distance from t's centroid g ---
+    // Distances are measured from the float positions the scan sees.
+    const sim::Vec2d gd = (ft.v[0] + ft.v[1] + ft.v[2]) / 3.0;
+    const float gx = float(gd.x), gy = float(gd.y);
+    struct Member {
+        double dg;
+        float x, y;
+        uint32_t cell;
+        uint16_t lists;
+    };
+    std::vector<Member> members;
+    for (size_t i = 0; i < mapped.size(); ++i) {
+        if (!in_list[i]) continue;
+        const float x = float(mapped[i].p.x), y = float(mapped[i].p.y);
+        members.push_back({std::hypot(double(x) - gx, double(y) - gy), x, y,
+                           mapped[i].cell, in_list[i]});
+    }
+    std::sort(members.begin(), members.end(), [](const Member &a, const Member &b) {
+        return a.dg < b.dg || (a.dg == b.dg && a.cell < b.cell);
+    });
+    out.union_cells = members.size();
+
+    const uint32_t slots = n * n;
+    const size_t blocks = (members.size() + per_block - 1) / per_block;
+    // A sub-triangle's scan ends where its last cell's block does (uint16_t end[]).
+    if (blocks > 0xffff)
+        throw std::length_error("closest-cell index: a triangle's union exceeds 65535 "
+                                "blocks (" +
+                                std::to_string(members.size()) + " cells)");
+    const size_t mask_lines = (slots * blocks + sizeof(Line) - 1) / sizeof(Line);
+    out.lines.assign(1 + mask_lines + blocks, Line{});
+
+    Header h{};
+    h.v0x = float(v0.x), h.v0y = float(v0.y), h.e1x = float(e1.x), h.e1y = float(e1.y);
+    h.e2x = float(e2.x), h.e2y = float(e2.y), h.gx = gx, h.gy = gy;
+    h.blocks = uint32_t(blocks);
+    h.block_line = uint32_t(1 + mask_lines);
+    h.n = uint8_t(n);
+    uint8_t *mask = out.lines[1].bytes;  // row k: sub-triangle k's byte per block
+    for (size_t i = 0; i < blocks; ++i) {
+        Block b;
+        // Rounded down: the scan's pruning needs a lower bound of |c - g|.
+        float bound = float(members[i * per_block].dg);
+        if (double(bound) > members[i * per_block].dg) bound = std::nextafter(bound, 0.f);
+        b.bound = bound;
+        for (size_t l = 0; l < per_block; ++l) {
+            const bool real = i * per_block + l < members.size();
+            const Member *m = real ? &members[i * per_block + l] : nullptr;
+            b.x[l] = real ? m->x : inf_f;
+            b.y[l] = real ? m->y : inf_f;
+            b.cell[l] = real ? m->cell : ClosestCell::none;
+            for (uint32_t k = 0; k < slots && real; ++k)
+                if (m->lists >> k & 1) {
+                    mask[k * blocks + i] |= uint8_t(1u << l);
+                    h.end[k] = uint16_t(i + 1);
+                }
+        }
+        std::memcpy(out.lines[1 + mask_lines + i].bytes, &b, sizeof b);
+    }
+    std::memcpy(out.lines[0].bytes, &h, sizeof h);
 }
 
-const ClosestCellIndex::Block *ClosestCellIndex::blocks_at(sim::TriId t, float b1,
-                                                           float b2,
-                                                           const Block *&end) const {
-    const TriangleRegions &r = m_regions[t];
-    const uint32_t n = r.first_block_and_n & 3u;
+ClosestCellIndex::Run ClosestCellIndex::run_at(sim::TriId t, float b1, float b2,
+                                               Vec2f q) const {
+    const Line *first = &m_lines[m_runs[t]];
+    const Header &h = *reinterpret_cast<const Header *>(first->bytes);
+    const uint32_t n = h.n;
     const float nf = float(n);
     // Clamp to the triangle: hits may sit a rounding error outside it.
     const float u = std::clamp(b1 * nf, 0.0f, nf);
@@ -243,24 +278,34 @@ const ClosestCellIndex::Block *ClosestCellIndex::blocks_at(sim::TriId t, float b
         upper = false;
     }
     const uint32_t k = slot_index(n, i, j, upper);
-    const Block *first = m_blocks.data() + (r.first_block_and_n >> 2);
-    end = first + r.end[k];
-    return first + (k ? r.end[k - 1] : 0);
+    // |q - g| in float: the subtraction and the root are exact to a few ulps relative
+    // to the result, which the factor covers.
+    const float dx = q.x - h.gx, dy = q.y - h.gy;
+    return {reinterpret_cast<const Block *>(first + h.block_line),
+            reinterpret_cast<const uint8_t *>(first + 1) + size_t(k) * h.blocks, h.end[k],
+            std::sqrt(dx * dx + dy * dy) * 1.000001f};
 }
 
-const ClosestCellIndex::Block *ClosestCellIndex::blocks_of(sim::TriId t, Vec2f q,
-                                                           const Block *&end) const {
+ClosestCellIndex::Run ClosestCellIndex::run_of(sim::TriId t, Vec2f q) const {
     // q's barycentric coordinates, by Cramer's rule on q - v0 = b1 e1 + b2 e2.
-    const TriangleRegions &r = m_regions[t];
+    const Header &r = header(t);
     const float dx = q.x - r.v0x, dy = q.y - r.v0y;
     const float inv_det = 1.0f / (r.e1x * r.e2y - r.e1y * r.e2x);
-    return blocks_at(t, (dx * r.e2y - dy * r.e2x) * inv_det,
-                     (r.e1x * dy - r.e1y * dx) * inv_det, end);
+    return run_at(t, (dx * r.e2y - dy * r.e2x) * inv_det,
+                  (r.e1x * dy - r.e1y * dx) * inv_det, q);
 }
 
-template <bool prune, bool dedupe, int K>
-void ClosestCellIndex::scan(const Block *b, const Block *e, Vec2f q, Nearest<K> &n,
-                            float band) const {
+// True when no cell of block b or after can lie within sqrt(d2) of the query: every such
+// cell has |c - q| >= |c - g| - |q - g| >= b.bound - rq. The factor covers the float
+// rounding of this test and of the scan's own squared distances (relative errors of a
+// few ulps each, since every difference is taken between the two points it measures).
+inline bool beyond(float bound, float rq, float d2) {
+    const float lower = bound - rq;
+    return lower > 0 && lower * lower * 0.999995f > d2;
+}
+
+template <bool prune, int K>
+void ClosestCellIndex::scan(const Run &r, Vec2f q, Nearest<K> &n, float band) const {
     const uint32_t *id = m_cells->id.data();
     // D_min² of Teo Fig. 6.2: beyond it no cell matters any more — the squared distance
     // to the K-th nearest found so far, or to F1 + band when that is nearer (band >= 0).
@@ -270,32 +315,32 @@ void ClosestCellIndex::scan(const Block *b, const Block *e, Vec2f q, Nearest<K> 
         return std::min(n.d2[K - 1], cap * cap);
     };
     float d_min2 = radius2();
-    for (; b != e; ++b) {
-        // Blocks are sorted by their cells' distance from the sub-triangle: once a block
-        // lies beyond D_min, so do all after it.
+    for (uint32_t i = 0; i < r.end; ++i) {
+        // The mask first: blocks without a cell of this sub-triangle are not read.
+        const uint32_t m = r.mask ? r.mask[i] : (1u << per_block) - 1;
+        if (!m) continue;
+        const Block *b = r.blocks + i;
+        // Blocks are sorted by their cells' distance from g: once a block lies beyond
+        // D_min, so do all after it.
         if constexpr (prune)
-            if (b->bound2 > d_min2) break;
+            if (beyond(b->bound, r.rq, d_min2)) break;
         float d2[per_block];
         for (int l = 0; l < per_block; ++l) {
             const float dx = b->x[l] - q.x, dy = b->y[l] - q.y;
-            d2[l] = dx * dx + dy * dy;
+            d2[l] = m >> l & 1 ? dx * dx + dy * dy : inf_f;
         }
         if (*std::min_element(d2, d2 + per_block) > d_min2) continue;  // the common case
         for (int l = 0; l < per_block; ++l) {
             const uint32_t cell = b->cell[l];
             if (d2[l] > d_min2 || cell == ClosestCell::none) continue;
-            // Order by (distance, stable id); a cell listed in several sub-triangles
-            // (the exhaustive scan) enters once.
+            // Order by (distance, stable id).
             int pos = K;
-            bool seen = false;
-            for (int j = K - 1; j >= 0; --j) {
-                if constexpr (dedupe) seen |= n.index[j] == cell;
+            for (int j = K - 1; j >= 0; --j)
                 if (d2[l] < n.d2[j] ||
                     (d2[l] == n.d2[j] && n.index[j] != ClosestCell::none &&
                      id[cell] < id[n.index[j]]))
                     pos = j;
-            }
-            if (seen || pos == K) continue;
+            if (pos == K) continue;
             for (int j = K - 1; j > pos; --j) {
                 n.d2[j] = n.d2[j - 1];
                 n.index[j] = n.index[j - 1];
@@ -309,45 +354,36 @@ void ClosestCellIndex::scan(const Block *b, const Block *e, Vec2f q, Nearest<K> 
 
 ClosestCell ClosestCellIndex::find(sim::TriId t, Vec2f q) const {
     Nearest<2> n;
-    const Block *e;
-    const Block *b = blocks_of(t, q, e);
-    scan<true, false, 2>(b, e, q, n);
+    scan<true, 2>(run_of(t, q), q, n);
     return {n.index[0], n.index[1], std::sqrt(n.d2[0]), std::sqrt(n.d2[1])};
 }
 
 ClosestCell ClosestCellIndex::find_nearest(sim::TriId t, Vec2f q) const {
     Nearest<1> n;
-    const Block *e;
-    const Block *b = blocks_of(t, q, e);
-    scan<true, false, 1>(b, e, q, n);
+    scan<true, 1>(run_of(t, q), q, n);
     return {n.index[0], ClosestCell::none, std::sqrt(n.d2[0]),
             std::numeric_limits<float>::infinity()};
 }
 
 ClosestCellIndex::Nearest<3> ClosestCellIndex::find_three(sim::TriId t, Vec2f q) const {
     Nearest<3> n;
-    const Block *e;
-    const Block *b = blocks_of(t, q, e);
-    scan<true, false, 3>(b, e, q, n);
+    scan<true, 3>(run_of(t, q), q, n);
     return n;
 }
 
 ClosestCellIndex::Nearest<3> ClosestCellIndex::find_three_within(sim::TriId t, Vec2f q,
                                                                  float band) const {
-    const Block *e;
-    const Block *b = blocks_of(t, q, e);
-    return three_within(b, e, q, band);
+    return three_within(run_of(t, q), q, band);
 }
 
-ClosestCellIndex::Nearest<3> ClosestCellIndex::three_within(const Block *b,
-                                                            const Block *e, Vec2f q,
+ClosestCellIndex::Nearest<3> ClosestCellIndex::three_within(const Run &r, Vec2f q,
                                                             float band) const {
     // Two passes over the same (by then cached) blocks: the nearest cell with the
     // hardest pruning, then whatever else lies within F1 + band — mostly nothing, so most
     // hits cost about one nearest-cell search. The result is what one three-nearest scan
     // cut at F1 + band gives (the second pass keeps the same (distance, id) order).
     Nearest<1> first;
-    scan<true, false, 1>(b, e, q, first);
+    scan<true, 1>(r, q, first);
     Nearest<3> n;
     n.d2[0] = first.d2[0];
     n.index[0] = first.index[0];
@@ -355,11 +391,15 @@ ClosestCellIndex::Nearest<3> ClosestCellIndex::three_within(const Block *b,
     const float cap = std::sqrt(first.d2[0]) + std::max(band, 0.0f);
     const float cap2 = cap * cap;
     const uint32_t *id = m_cells->id.data();
-    for (; b != e && b->bound2 <= cap2; ++b) {
+    for (uint32_t i = 0; i < r.end; ++i) {
+        const uint32_t m = r.mask[i];
+        if (!m) continue;
+        const Block *b = r.blocks + i;
+        if (beyond(b->bound, r.rq, cap2)) break;
         float d2[per_block];
         for (int l = 0; l < per_block; ++l) {
             const float dx = b->x[l] - q.x, dy = b->y[l] - q.y;
-            d2[l] = dx * dx + dy * dy;
+            d2[l] = m >> l & 1 ? dx * dx + dy * dy : inf_f;
         }
         if (*std::min_element(d2, d2 + per_block) > cap2) continue;
         for (int l = 0; l < per_block; ++l) {
@@ -387,9 +427,8 @@ ClosestCellIndex::Nearest<3> ClosestCellIndex::three_within(const Block *b,
 
 ClosestCell ClosestCellIndex::find_nearest(sim::TriId t, float b1, float b2) const {
     Nearest<1> n;
-    const Block *e;
-    const Block *b = blocks_at(t, b1, b2, e);
-    scan<true, false, 1>(b, e, point(t, b1, b2), n);
+    const Vec2f q = point(t, b1, b2);
+    scan<true, 1>(run_at(t, b1, b2, q), q, n);
     return {n.index[0], ClosestCell::none, std::sqrt(n.d2[0]),
             std::numeric_limits<float>::infinity()};
 }
@@ -397,25 +436,27 @@ ClosestCell ClosestCellIndex::find_nearest(sim::TriId t, float b1, float b2) con
 ClosestCellIndex::Nearest<3> ClosestCellIndex::find_three_within(sim::TriId t, float b1,
                                                                  float b2,
                                                                  float band) const {
-    const Block *e;
-    const Block *b = blocks_at(t, b1, b2, e);
-    return three_within(b, e, point(t, b1, b2), band);
+    const Vec2f q = point(t, b1, b2);
+    return three_within(run_at(t, b1, b2, q), q, band);
 }
 
 ClosestCell ClosestCellIndex::find_exhaustive(sim::TriId t, Vec2f q) const {
+    // The whole union, unmasked: every cell of it is in some sub-triangle's list.
     Nearest<2> n;
-    const TriangleRegions &r = m_regions[t];
-    const uint32_t slots = (r.first_block_and_n & 3u) * (r.first_block_and_n & 3u);
-    const Block *first = m_blocks.data() + (r.first_block_and_n >> 2);
-    scan<false, true, 2>(first, first + r.end[slots - 1], q, n);
+    const Line *first = &m_lines[m_runs[t]];
+    const Header &h = header(t);
+    const Run all{reinterpret_cast<const Block *>(first + h.block_line), nullptr,
+                  h.blocks, 0};
+    scan<false, 2>(all, q, n);
     return {n.index[0], n.index[1], std::sqrt(n.d2[0]), std::sqrt(n.d2[1])};
 }
 
 float ClosestCellIndex::distance_to_cell(sim::TriId t, Vec2f q, uint32_t cell) const {
-    const Block *e;
-    for (const Block *b = blocks_of(t, q, e); b != e; ++b)
+    const Run r = run_of(t, q);
+    for (uint32_t i = 0; i < r.end; ++i)
         for (int l = 0; l < per_block; ++l)
-            if (b->cell[l] == cell) return std::hypot(b->x[l] - q.x, b->y[l] - q.y);
+            if (r.mask[i] >> l & 1 && r.blocks[i].cell[l] == cell)
+                return std::hypot(r.blocks[i].x[l] - q.x, r.blocks[i].y[l] - q.y);
     return std::numeric_limits<float>::infinity();
 }
 

@@ -72,7 +72,9 @@ struct ClosestCellStats {
     double build_seconds = 0;
     double mean_candidates = 0;       // distinct triangles per sub-triangle's list
     double mean_candidate_cells = 0;  // cells per sub-triangle's list
-    size_t bytes = 0;                 // headers + blocks
+    double mean_union_cells = 0;      // distinct cells over a triangle's lists
+    size_t max_union_cells = 0;
+    size_t bytes = 0;  // run offsets + headers + mask rows + blocks
     size_t triangles_without_cells_in_reach = 0;
 };
 
@@ -118,7 +120,7 @@ class ClosestCellIndex {
     Nearest<3> find_three_within(sim::TriId t, float b1, float b2, float band) const;
     // Local CRPS coordinates of barycentric point (b1, b2) of t (what those use).
     Vec2f point(sim::TriId t, float b1, float b2) const {
-        const TriangleRegions &r = m_regions[t];
+        const Header &r = header(t);
         return {r.v0x + b1 * r.e1x + b2 * r.e2x, r.v0y + b1 * r.e1y + b2 * r.e2y};
     }
 
@@ -131,41 +133,56 @@ class ClosestCellIndex {
 
   private:
     // Five candidate cells in t's frame; padding entries have cell == none, x = y = +inf.
-    // Five (60 bytes and the bound) rather than four: the line has room for them, and
-    // every lookup reads fewer lines (the cow's index: 12.7 -> 10.6 MB).
+    // Five (60 bytes and the bound) rather than four: the line has room for them.
     static constexpr int per_block = 5;
     struct alignas(64) Block {
         float x[per_block], y[per_block];
         uint32_t cell[per_block];
-        float bound2;  // squared lower bound of the distance from S, for all five cells
+        float bound;  // lower bound of the five cells' distance from the centroid g
     };
     static_assert(sizeof(Block) == 64);
 
-    // The triangle in its frame, q = v0 + b1 e1 + b2 e2; n = subdivision.
-    // Sub-triangle k's blocks: [first_block + (k ? end[k - 1] : 0), first_block +
-    // end[k]).
-    struct alignas(64) TriangleRegions {
+    // The first line of a triangle's run. The triangle in its frame is q = v0 + b1 e1 +
+    // b2 e2; n = subdivision. Sub-triangle k scans union blocks [0, end[k]), the cells
+    // its mask row selects.
+    struct alignas(64) Header {
         float v0x, v0y, e1x, e1y, e2x, e2y;
-        uint32_t first_block_and_n;  // first_block << 2 | n (n <= 3)
-        uint32_t end[max_slots];
+        float gx, gy;      // t's centroid: the union is sorted by distance from it
+        uint32_t blocks;      // union blocks
+        uint32_t block_line;  // the first block's line, counted from the header's
+        uint8_t n, unused;    // subdivision (1 … 3)
+        uint16_t end[max_slots];
+        uint32_t unused2;
     };
-    static_assert(sizeof(TriangleRegions) == 64);
-    struct Built;  // one triangle's regions while building
+    static_assert(sizeof(Header) == 64);
+    struct alignas(64) Line {
+        unsigned char bytes[64];
+    };
+    // One sub-triangle's view of its triangle's union, ready to scan.
+    struct Run {
+        const Block *blocks;
+        const uint8_t *mask;  // one byte per block (bit l: entry l is in the list)
+        uint32_t end;
+        float rq;  // |q - g| rounded up: |c - q| >= |c - g| - rq for every cell c
+    };
+    struct Built;  // one triangle's run while building
 
-    const Block *blocks_of(sim::TriId t, Vec2f q, const Block *&end) const;
-    const Block *blocks_at(sim::TriId t, float b1, float b2, const Block *&end) const;
-    Nearest<3> three_within(const Block *b, const Block *e, Vec2f q, float band) const;
-    template <bool prune, bool dedupe, int K>
-    void scan(const Block *b, const Block *e, Vec2f q, Nearest<K> &n,
-              float band = -1) const;
+    const Header &header(sim::TriId t) const {
+        return *reinterpret_cast<const Header *>(m_lines[m_runs[t]].bytes);
+    }
+    Run run_of(sim::TriId t, Vec2f q) const;
+    Run run_at(sim::TriId t, float b1, float b2, Vec2f q) const;
+    Nearest<3> three_within(const Run &r, Vec2f q, float band) const;
+    template <bool prune, int K>
+    void scan(const Run &r, Vec2f q, Nearest<K> &n, float band = -1) const;
     void build_triangle(const sim::Crps &crps, sim::TriId t, sim::UnfoldScratch &scratch,
                         std::vector<sim::UnfoldedTriangle> &unfolded, Built &out) const;
 
     const CellTable *m_cells;
     ClosestCellOptions m_options;
     double m_initial_radius = 0, m_max_radius = 0, m_spacing = 0;
-    std::vector<TriangleRegions> m_regions;
-    std::vector<Block> m_blocks;
+    std::vector<uint32_t> m_runs;  // triangle -> its run's first line
+    std::vector<Line> m_lines;     // per triangle: header, mask rows, union blocks
     ClosestCellStats m_stats;
 };
 
