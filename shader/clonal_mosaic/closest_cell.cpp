@@ -32,10 +32,30 @@ uint32_t slot_index(uint32_t n, uint32_t i, uint32_t j, bool upper) {
     return i * (2 * n - i) + 2 * j + (upper ? 1 : 0);
 }
 
+// Position of grid point (x, y) (16 bits each) along a Hilbert curve over the grid: points
+// close along the curve are close in the plane. (The usual iterative conversion from
+// (x, y) to distance, quadrant by quadrant; Warren, "Hacker's Delight", 2nd ed., ch. 16.)
+uint64_t hilbert_index(uint32_t x, uint32_t y) {
+    constexpr uint32_t side = 1u << 16;
+    uint64_t d = 0;
+    for (uint32_t s = side / 2; s > 0; s /= 2) {
+        const uint32_t rx = (x & s) ? 1 : 0, ry = (y & s) ? 1 : 0;
+        d += uint64_t(s) * s * ((3 * rx) ^ ry);
+        if (ry == 0) {  // rotate the quadrant
+            if (rx == 1) {
+                x = side - 1 - x;
+                y = side - 1 - y;
+            }
+            std::swap(x, y);
+        }
+    }
+    return d;
+}
+
 }  // namespace
 
 struct ClosestCellIndex::Built {
-    std::vector<Line> lines;  // header, mask rows, union blocks
+    std::vector<Line> lines;  // header, visits, union blocks
     size_t entries = 0, distinct_triangles = 0, used_slots = 0, union_cells = 0;
 };
 
@@ -200,73 +220,106 @@ void ClosestCellIndex::build_triangle(const sim::Crps &crps, sim::TriId t,
         out.distinct_triangles += std::unique(tris.begin(), tris.end()) - tris.begin();
     }
 
-    // --- Their union, once, by distance from t's centroid g ---
-    // Distances are measured from the float positions the scan sees.
-    const sim::Vec2d gd = (ft.v[0] + ft.v[1] + ft.v[2]) / 3.0;
-    const float gx = float(gd.x), gy = float(gd.y);
-    struct Member {
-        double dg;
-        float x, y;
-        uint32_t cell;
-        uint16_t lists;
-    };
-    std::vector<Member> members;
-    for (size_t i = 0; i < mapped.size(); ++i) {
+    // --- Their union, once, in Hilbert-curve order: each block five nearby cells ---
+    // A sub-triangle's list then fills few blocks, mostly with its own cells.
+    std::vector<uint32_t> members;  // into mapped
+    sim::Vec2d lo{inf, inf}, hi{-inf, -inf};
+    for (uint32_t i = 0; i < mapped.size(); ++i) {
         if (!in_list[i]) continue;
-        const float x = float(mapped[i].p.x), y = float(mapped[i].p.y);
-        members.push_back({std::hypot(double(x) - gx, double(y) - gy), x, y,
-                           mapped[i].cell, in_list[i]});
+        members.push_back(i);
+        lo = {std::min(lo.x, mapped[i].p.x), std::min(lo.y, mapped[i].p.y)};
+        hi = {std::max(hi.x, mapped[i].p.x), std::max(hi.y, mapped[i].p.y)};
     }
-    std::sort(members.begin(), members.end(), [](const Member &a, const Member &b) {
-        return a.dg < b.dg || (a.dg == b.dg && a.cell < b.cell);
+    const double cell_size = std::max(std::max(hi.x - lo.x, hi.y - lo.y), 1e-300) / 65535;
+    std::vector<uint64_t> key(mapped.size());
+    for (uint32_t i : members)
+        key[i] = hilbert_index(uint32_t((mapped[i].p.x - lo.x) / cell_size),
+                               uint32_t((mapped[i].p.y - lo.y) / cell_size));
+    std::sort(members.begin(), members.end(), [&](uint32_t a, uint32_t b) {
+        return key[a] < key[b] || (key[a] == key[b] && mapped[a].cell < mapped[b].cell);
     });
     out.union_cells = members.size();
-
-    const uint32_t slots = n * n;
     const size_t blocks = (members.size() + per_block - 1) / per_block;
-    // A sub-triangle's scan ends where its last cell's block does (uint16_t end[]).
-    if (blocks > 0xffff)
-        throw std::length_error("closest-cell index: a triangle's union exceeds 65535 "
-                                "blocks (" +
-                                std::to_string(members.size()) + " cells)");
-    const size_t mask_lines = (slots * blocks + sizeof(Line) - 1) / sizeof(Line);
-    out.lines.assign(1 + mask_lines + blocks, Line{});
+    if (blocks > visit_max_blocks)
+        throw std::length_error(
+            "closest-cell index: " + std::to_string(members.size()) +
+            " cells in reach of one triangle (at most " +
+            std::to_string(visit_max_blocks * per_block) + "): use fewer cells");
 
+    // --- Per sub-triangle: the blocks holding its cells, by their distance from it ---
+    struct Visit {
+        double bound;  // lower bound of the distance from S of the block's cells in S
+        uint32_t block, mask;
+    };
+    std::vector<std::vector<Visit>> visits(subs.size());
+    double max_bound = 0;
+    for (const Sub &s : subs) {
+        std::vector<Visit> &v = visits[s.slot];
+        for (uint32_t b = 0; b < blocks; ++b) {
+            Visit visit{inf, b, 0};
+            for (uint32_t l = 0; l < per_block && b * per_block + l < members.size(); ++l) {
+                const Mapped &m = mapped[members[b * per_block + l]];
+                if (!(in_list[members[b * per_block + l]] >> s.slot & 1)) continue;
+                visit.mask |= 1u << l;
+                // Rounded down by more than float's error in the scan's distances
+                // (positions of size |p| + the triangle's radius), so rounding never
+                // prunes the true nearest.
+                const double d = sim::point_triangle_distance(m.p, s.v);
+                const double margin = 1e-5 * (d + length(m.p) + ft.bound_radius);
+                visit.bound = std::min(visit.bound, std::max(0.0, d - margin));
+            }
+            if (!visit.mask) continue;
+            max_bound = std::max(max_bound, visit.bound);
+            v.push_back(visit);
+        }
+        std::sort(v.begin(), v.end(), [](const Visit &a, const Visit &b) {
+            return a.bound < b.bound || (a.bound == b.bound && a.block < b.block);
+        });
+    }
+    // Bounds are stored as multiples of `scale`, rounded down (a lower bound stays one).
+    float scale = float(max_bound / visit_max_bound);
+    if (double(scale) * visit_max_bound < max_bound)
+        scale = std::nextafter(scale, inf_f);
+
+    size_t total_visits = 0;
+    for (const auto &v : visits) total_visits += v.size();
+    const size_t visit_lines =
+        (total_visits * sizeof(uint32_t) + sizeof(Line) - 1) / sizeof(Line);
+    out.lines.assign(1 + visit_lines + blocks, Line{});
     Header h{};
     h.v0x = float(v0.x), h.v0y = float(v0.y), h.e1x = float(e1.x), h.e1y = float(e1.y);
-    h.e2x = float(e2.x), h.e2y = float(e2.y), h.gx = gx, h.gy = gy;
-    h.blocks = uint32_t(blocks);
-    h.block_line = uint32_t(1 + mask_lines);
-    h.n = uint8_t(n);
-    uint8_t *mask = out.lines[1].bytes;  // row k: sub-triangle k's byte per block
-    for (size_t i = 0; i < blocks; ++i) {
-        Block b;
-        // Rounded down: the scan's pruning needs a lower bound of |c - g|.
-        float bound = float(members[i * per_block].dg);
-        if (double(bound) > members[i * per_block].dg) bound = std::nextafter(bound, 0.f);
-        b.bound = bound;
-        for (size_t l = 0; l < per_block; ++l) {
-            const bool real = i * per_block + l < members.size();
-            const Member *m = real ? &members[i * per_block + l] : nullptr;
-            b.x[l] = real ? m->x : inf_f;
-            b.y[l] = real ? m->y : inf_f;
-            b.cell[l] = real ? m->cell : ClosestCell::none;
-            for (uint32_t k = 0; k < slots && real; ++k)
-                if (m->lists >> k & 1) {
-                    mask[k * blocks + i] |= uint8_t(1u << l);
-                    h.end[k] = uint16_t(i + 1);
-                }
+    h.e2x = float(e2.x), h.e2y = float(e2.y), h.scale = scale;
+    std::vector<uint32_t> packed;
+    for (uint32_t k = 0; k < visits.size(); ++k) {
+        for (const Visit &v : visits[k]) {
+            const uint32_t q =
+                scale > 0 ? uint32_t(std::min<double>(std::floor(v.bound / double(scale)),
+                                                      visit_max_bound))
+                          : 0;
+            packed.push_back(q << (32 - visit_bound_bits) | v.block << per_block | v.mask);
         }
-        std::memcpy(out.lines[1 + mask_lines + i].bytes, &b, sizeof b);
+        h.end[k] = uint32_t(packed.size()) << 2;
+    }
+    h.end[0] |= n;
+    std::memcpy(out.lines[1].bytes, packed.data(), packed.size() * sizeof(uint32_t));
+    for (uint32_t b = 0; b < blocks; ++b) {
+        Block block;
+        for (uint32_t l = 0; l < per_block; ++l) {
+            const bool real = b * per_block + l < members.size();
+            const Mapped *m = real ? &mapped[members[b * per_block + l]] : nullptr;
+            block.x[l] = real ? float(m->p.x) : inf_f;
+            block.y[l] = real ? float(m->p.y) : inf_f;
+            block.cell[l] = real ? m->cell : ClosestCell::none;
+        }
+        std::memcpy(out.lines[1 + visit_lines + b].bytes, &block, sizeof block);
     }
     std::memcpy(out.lines[0].bytes, &h, sizeof h);
 }
 
-ClosestCellIndex::Run ClosestCellIndex::run_at(sim::TriId t, float b1, float b2,
-                                               Vec2f q) const {
+ClosestCellIndex::Run ClosestCellIndex::run_at(sim::TriId t, float b1, float b2) const {
     const Line *first = &m_lines[m_runs[t]];
     const Header &h = *reinterpret_cast<const Header *>(first->bytes);
-    const uint32_t n = h.n;
+    const uint32_t n = h.end[0] & 3u;
     const float nf = float(n);
     // Clamp to the triangle: hits may sit a rounding error outside it.
     const float u = std::clamp(b1 * nf, 0.0f, nf);
@@ -278,12 +331,11 @@ ClosestCellIndex::Run ClosestCellIndex::run_at(sim::TriId t, float b1, float b2,
         upper = false;
     }
     const uint32_t k = slot_index(n, i, j, upper);
-    // |q - g| in float: the subtraction and the root are exact to a few ulps relative
-    // to the result, which the factor covers.
-    const float dx = q.x - h.gx, dy = q.y - h.gy;
-    return {reinterpret_cast<const Block *>(first + h.block_line),
-            reinterpret_cast<const uint8_t *>(first + 1) + size_t(k) * h.blocks, h.end[k],
-            std::sqrt(dx * dx + dy * dy) * 1.000001f};
+    const uint32_t *visits = reinterpret_cast<const uint32_t *>(first + 1);
+    const uint32_t total = h.end[n * n - 1] >> 2;
+    const size_t visit_lines = (total * sizeof(uint32_t) + sizeof(Line) - 1) / sizeof(Line);
+    return {visits + (k ? h.end[k - 1] >> 2 : 0), visits + (h.end[k] >> 2),
+            reinterpret_cast<const Block *>(first + 1 + visit_lines), h.scale};
 }
 
 ClosestCellIndex::Run ClosestCellIndex::run_of(sim::TriId t, Vec2f q) const {
@@ -292,63 +344,62 @@ ClosestCellIndex::Run ClosestCellIndex::run_of(sim::TriId t, Vec2f q) const {
     const float dx = q.x - r.v0x, dy = q.y - r.v0y;
     const float inv_det = 1.0f / (r.e1x * r.e2y - r.e1y * r.e2x);
     return run_at(t, (dx * r.e2y - dy * r.e2x) * inv_det,
-                  (r.e1x * dy - r.e1y * dx) * inv_det, q);
+                  (r.e1x * dy - r.e1y * dx) * inv_det);
 }
 
-// True when no cell of block b or after can lie within sqrt(d2) of the query: every such
-// cell has |c - q| >= |c - g| - |q - g| >= b.bound - rq. The factor covers the float
-// rounding of this test and of the scan's own squared distances (relative errors of a
-// few ulps each, since every difference is taken between the two points it measures).
-inline bool beyond(float bound, float rq, float d2) {
-    const float lower = bound - rq;
-    return lower > 0 && lower * lower * 0.999995f > d2;
+// True when a visit's cells, and all after it, lie beyond sqrt(d2): its bound (rounded
+// down when stored) times the scale, squared, with a factor for the float rounding of
+// this product and of the scan's own squared distances.
+inline bool beyond(uint32_t bound, float scale, float d2) {
+    const float lower = float(bound) * scale;
+    return lower * lower * 0.999995f > d2;
+}
+
+template <int K>
+void ClosestCellIndex::scan_block(const Block &b, uint32_t m, Vec2f q, Nearest<K> &n,
+                                  float band, float &d_min2) const {
+    // D_min² of Teo Fig. 6.2: beyond it no cell matters any more — the squared distance
+    // to the K-th nearest found so far, or to F1 + band when that is nearer (band >= 0).
+    float d2[per_block];
+    for (int l = 0; l < per_block; ++l) {
+        const float dx = b.x[l] - q.x, dy = b.y[l] - q.y;
+        d2[l] = m >> l & 1 ? dx * dx + dy * dy : inf_f;
+    }
+    if (*std::min_element(d2, d2 + per_block) > d_min2) return;  // the common case
+    const uint32_t *id = m_cells->id.data();
+    for (int l = 0; l < per_block; ++l) {
+        const uint32_t cell = b.cell[l];
+        if (d2[l] > d_min2 || cell == ClosestCell::none) continue;
+        // Order by (distance, stable id).
+        int pos = K;
+        for (int j = K - 1; j >= 0; --j)
+            if (d2[l] < n.d2[j] || (d2[l] == n.d2[j] && n.index[j] != ClosestCell::none &&
+                                    id[cell] < id[n.index[j]]))
+                pos = j;
+        if (pos == K) continue;
+        for (int j = K - 1; j > pos; --j) {
+            n.d2[j] = n.d2[j - 1];
+            n.index[j] = n.index[j - 1];
+        }
+        n.d2[pos] = d2[l];
+        n.index[pos] = cell;
+        d_min2 = n.d2[K - 1];
+        if (band >= 0) {
+            const float cap = std::sqrt(n.d2[0]) + band;
+            d_min2 = std::min(d_min2, cap * cap);
+        }
+    }
 }
 
 template <bool prune, int K>
 void ClosestCellIndex::scan(const Run &r, Vec2f q, Nearest<K> &n, float band) const {
-    const uint32_t *id = m_cells->id.data();
-    // D_min² of Teo Fig. 6.2: beyond it no cell matters any more — the squared distance
-    // to the K-th nearest found so far, or to F1 + band when that is nearer (band >= 0).
-    auto radius2 = [&] {
-        if (band < 0) return n.d2[K - 1];
-        const float cap = std::sqrt(n.d2[0]) + band;
-        return std::min(n.d2[K - 1], cap * cap);
-    };
-    float d_min2 = radius2();
-    for (uint32_t i = 0; i < r.end; ++i) {
-        // The mask first: blocks without a cell of this sub-triangle are not read.
-        const uint32_t m = r.mask ? r.mask[i] : (1u << per_block) - 1;
-        if (!m) continue;
-        const Block *b = r.blocks + i;
-        // Blocks are sorted by their cells' distance from g: once a block lies beyond
-        // D_min, so do all after it.
+    float d_min2 = inf_f;
+    for (const uint32_t *v = r.visit; v != r.visit_end; ++v) {
+        // Visits are sorted by their cells' distance from the sub-triangle: once one
+        // lies beyond D_min, so do all after it.
         if constexpr (prune)
-            if (beyond(b->bound, r.rq, d_min2)) break;
-        float d2[per_block];
-        for (int l = 0; l < per_block; ++l) {
-            const float dx = b->x[l] - q.x, dy = b->y[l] - q.y;
-            d2[l] = m >> l & 1 ? dx * dx + dy * dy : inf_f;
-        }
-        if (*std::min_element(d2, d2 + per_block) > d_min2) continue;  // the common case
-        for (int l = 0; l < per_block; ++l) {
-            const uint32_t cell = b->cell[l];
-            if (d2[l] > d_min2 || cell == ClosestCell::none) continue;
-            // Order by (distance, stable id).
-            int pos = K;
-            for (int j = K - 1; j >= 0; --j)
-                if (d2[l] < n.d2[j] ||
-                    (d2[l] == n.d2[j] && n.index[j] != ClosestCell::none &&
-                     id[cell] < id[n.index[j]]))
-                    pos = j;
-            if (pos == K) continue;
-            for (int j = K - 1; j > pos; --j) {
-                n.d2[j] = n.d2[j - 1];
-                n.index[j] = n.index[j - 1];
-            }
-            n.d2[pos] = d2[l];
-            n.index[pos] = cell;
-            d_min2 = radius2();
-        }
+            if (beyond(visit_bound(*v), r.scale, d_min2)) break;
+        scan_block(r.blocks[visit_block(*v)], visit_mask(*v), q, n, band, d_min2);
     }
 }
 
@@ -391,19 +442,18 @@ ClosestCellIndex::Nearest<3> ClosestCellIndex::three_within(const Run &r, Vec2f 
     const float cap = std::sqrt(first.d2[0]) + std::max(band, 0.0f);
     const float cap2 = cap * cap;
     const uint32_t *id = m_cells->id.data();
-    for (uint32_t i = 0; i < r.end; ++i) {
-        const uint32_t m = r.mask[i];
-        if (!m) continue;
-        const Block *b = r.blocks + i;
-        if (beyond(b->bound, r.rq, cap2)) break;
+    for (const uint32_t *v = r.visit; v != r.visit_end; ++v) {
+        if (beyond(visit_bound(*v), r.scale, cap2)) break;
+        const Block &b = r.blocks[visit_block(*v)];
+        const uint32_t m = visit_mask(*v);
         float d2[per_block];
         for (int l = 0; l < per_block; ++l) {
-            const float dx = b->x[l] - q.x, dy = b->y[l] - q.y;
+            const float dx = b.x[l] - q.x, dy = b.y[l] - q.y;
             d2[l] = m >> l & 1 ? dx * dx + dy * dy : inf_f;
         }
         if (*std::min_element(d2, d2 + per_block) > cap2) continue;
         for (int l = 0; l < per_block; ++l) {
-            const uint32_t cell = b->cell[l];
+            const uint32_t cell = b.cell[l];
             if (!(d2[l] <= cap2) || cell == ClosestCell::none) continue;
             if (cell == n.index[0] && d2[l] == n.d2[0]) continue;  // the nearest itself
             // Insert into slots 1, 2 by (distance, stable id), as scan() orders.
@@ -428,7 +478,7 @@ ClosestCellIndex::Nearest<3> ClosestCellIndex::three_within(const Run &r, Vec2f 
 ClosestCell ClosestCellIndex::find_nearest(sim::TriId t, float b1, float b2) const {
     Nearest<1> n;
     const Vec2f q = point(t, b1, b2);
-    scan<true, 1>(run_at(t, b1, b2, q), q, n);
+    scan<true, 1>(run_at(t, b1, b2), q, n);
     return {n.index[0], ClosestCell::none, std::sqrt(n.d2[0]),
             std::numeric_limits<float>::infinity()};
 }
@@ -436,27 +486,30 @@ ClosestCell ClosestCellIndex::find_nearest(sim::TriId t, float b1, float b2) con
 ClosestCellIndex::Nearest<3> ClosestCellIndex::find_three_within(sim::TriId t, float b1,
                                                                  float b2,
                                                                  float band) const {
-    const Vec2f q = point(t, b1, b2);
-    return three_within(run_at(t, b1, b2, q), q, band);
+    return three_within(run_at(t, b1, b2), point(t, b1, b2), band);
 }
 
 ClosestCell ClosestCellIndex::find_exhaustive(sim::TriId t, Vec2f q) const {
-    // The whole union, unmasked: every cell of it is in some sub-triangle's list.
+    // The whole union, unpruned: every cell of it is in some sub-triangle's list, once.
     Nearest<2> n;
-    const Line *first = &m_lines[m_runs[t]];
-    const Header &h = header(t);
-    const Run all{reinterpret_cast<const Block *>(first + h.block_line), nullptr,
-                  h.blocks, 0};
-    scan<false, 2>(all, q, n);
+    const Run r = run_of(t, q);
+    // The run's blocks end where the next triangle's run begins.
+    const size_t next = t + 1 < m_runs.size() ? m_runs[t + 1] : m_lines.size();
+    const Block *end = reinterpret_cast<const Block *>(m_lines.data() + next);
+    float d_min2 = inf_f;
+    for (const Block *b = r.blocks; b != end; ++b)
+        scan_block(*b, (1u << per_block) - 1, q, n, -1, d_min2);
     return {n.index[0], n.index[1], std::sqrt(n.d2[0]), std::sqrt(n.d2[1])};
 }
 
 float ClosestCellIndex::distance_to_cell(sim::TriId t, Vec2f q, uint32_t cell) const {
     const Run r = run_of(t, q);
-    for (uint32_t i = 0; i < r.end; ++i)
-        for (int l = 0; l < per_block; ++l)
-            if (r.mask[i] >> l & 1 && r.blocks[i].cell[l] == cell)
-                return std::hypot(r.blocks[i].x[l] - q.x, r.blocks[i].y[l] - q.y);
+    for (const uint32_t *v = r.visit; v != r.visit_end; ++v)
+        for (int l = 0; l < per_block; ++l) {
+            const Block &b = r.blocks[visit_block(*v)];
+            if (visit_mask(*v) >> l & 1 && b.cell[l] == cell)
+                return std::hypot(b.x[l] - q.x, b.y[l] - q.y);
+        }
     return std::numeric_limits<float>::infinity();
 }
 

@@ -132,38 +132,44 @@ class ClosestCellIndex {
     const CellTable &cells() const { return *m_cells; }
 
   private:
-    // Five candidate cells in t's frame; padding entries have cell == none, x = y = +inf.
-    // Five (60 bytes and the bound) rather than four: the line has room for them.
+    // Five cells of a triangle's union in its frame; padding entries have cell == none,
+    // x = y = +inf. Five (60 bytes) rather than four: the line has room for them.
     static constexpr int per_block = 5;
     struct alignas(64) Block {
         float x[per_block], y[per_block];
         uint32_t cell[per_block];
-        float bound;  // lower bound of the five cells' distance from the centroid g
     };
     static_assert(sizeof(Block) == 64);
 
+    // One step of a sub-triangle's scan, packed in 32 bits: a union block, which of its
+    // five cells are in the sub-triangle's list (mask), and a lower bound of their
+    // distance from the sub-triangle, rounded down to a multiple of the triangle's scale.
+    static constexpr int visit_bound_bits = 10, visit_block_bits = 17;
+    static constexpr uint32_t visit_max_bound = (1u << visit_bound_bits) - 1;
+    static constexpr uint32_t visit_max_blocks = 1u << visit_block_bits;
+    static uint32_t visit_block(uint32_t v) {
+        return v >> per_block & (visit_max_blocks - 1);
+    }
+    static uint32_t visit_mask(uint32_t v) { return v & ((1u << per_block) - 1); }
+    static uint32_t visit_bound(uint32_t v) { return v >> (32 - visit_bound_bits); }
+
     // The first line of a triangle's run. The triangle in its frame is q = v0 + b1 e1 +
-    // b2 e2; n = subdivision. Sub-triangle k scans union blocks [0, end[k]), the cells
-    // its mask row selects.
+    // b2 e2. Sub-triangle k's visits are [end[k - 1] >> 2, end[k] >> 2) (from 0 for k =
+    // 0); the low two bits of end[0] hold the subdivision n.
     struct alignas(64) Header {
         float v0x, v0y, e1x, e1y, e2x, e2y;
-        float gx, gy;      // t's centroid: the union is sorted by distance from it
-        uint32_t blocks;      // union blocks
-        uint32_t block_line;  // the first block's line, counted from the header's
-        uint8_t n, unused;    // subdivision (1 … 3)
-        uint16_t end[max_slots];
-        uint32_t unused2;
+        float scale;  // a visit's bound is visit_bound(v) * scale
+        uint32_t end[max_slots];
     };
     static_assert(sizeof(Header) == 64);
     struct alignas(64) Line {
         unsigned char bytes[64];
     };
-    // One sub-triangle's view of its triangle's union, ready to scan.
+    // One sub-triangle's scan: its visits, nearest block first.
     struct Run {
+        const uint32_t *visit, *visit_end;
         const Block *blocks;
-        const uint8_t *mask;  // one byte per block (bit l: entry l is in the list)
-        uint32_t end;
-        float rq;  // |q - g| rounded up: |c - q| >= |c - g| - rq for every cell c
+        float scale;
     };
     struct Built;  // one triangle's run while building
 
@@ -171,10 +177,13 @@ class ClosestCellIndex {
         return *reinterpret_cast<const Header *>(m_lines[m_runs[t]].bytes);
     }
     Run run_of(sim::TriId t, Vec2f q) const;
-    Run run_at(sim::TriId t, float b1, float b2, Vec2f q) const;
+    Run run_at(sim::TriId t, float b1, float b2) const;
     Nearest<3> three_within(const Run &r, Vec2f q, float band) const;
     template <bool prune, int K>
     void scan(const Run &r, Vec2f q, Nearest<K> &n, float band = -1) const;
+    template <int K>
+    void scan_block(const Block &b, uint32_t mask, Vec2f q, Nearest<K> &n, float band,
+                    float &d_min2) const;
     void build_triangle(const sim::Crps &crps, sim::TriId t, sim::UnfoldScratch &scratch,
                         std::vector<sim::UnfoldedTriangle> &unfolded, Built &out) const;
 
@@ -182,7 +191,7 @@ class ClosestCellIndex {
     ClosestCellOptions m_options;
     double m_initial_radius = 0, m_max_radius = 0, m_spacing = 0;
     std::vector<uint32_t> m_runs;  // triangle -> its run's first line
-    std::vector<Line> m_lines;     // per triangle: header, mask rows, union blocks
+    std::vector<Line> m_lines;     // per triangle: header, visits, union blocks
     ClosestCellStats m_stats;
 };
 
