@@ -70,24 +70,22 @@ struct ClosestCellOptions {
 
 struct ClosestCellStats {
     double build_seconds = 0;
-    double mean_candidates = 0;       // distinct triangles per sub-triangle's list
-    double mean_candidate_cells = 0;  // cells per sub-triangle's list
-    double mean_union_cells = 0;      // distinct cells over a triangle's lists
-    size_t max_union_cells = 0;
-    size_t bytes = 0;  // run offsets + headers + mask rows + blocks
+    double mean_candidates = 0;       // distinct triangles per triangle's list
+    double mean_candidate_cells = 0;  // cells per triangle's list
+    size_t max_candidate_cells = 0;   // in the longest list
+    size_t bytes = 0;                 // frames + list offsets + blocks
     size_t triangles_without_cells_in_reach = 0;
 };
 
 class ClosestCellIndex {
   public:
     static constexpr uint32_t max_subdivision = 3;
-    static constexpr uint32_t max_slots = max_subdivision * max_subdivision;
 
     ClosestCellIndex(const sim::Crps &crps, const CellTable &cells,
                      const ClosestCellOptions &options = {});
 
     // Nearest cell (and F2) to point q (local CRPS coordinates) of triangle t, with Teo's
-    // pruning, searching q's sub-triangle list.
+    // pruning, searching t's list.
     ClosestCell find(sim::TriId t, Vec2f q) const;
     // The nearest cell only (f2 left infinite): prunes harder, for hard-edged patterns.
     ClosestCell find_nearest(sim::TriId t, Vec2f q) const;
@@ -109,89 +107,64 @@ class ClosestCellIndex {
     // What a blend over a band of width `band` past the nearest cell needs, in one scan
     // that prunes at F1 + band instead of F3 (band = 0: the nearest cell and its ties).
     Nearest<3> find_three_within(sim::TriId t, Vec2f q, float band) const;
-    // The candidate lists of every sub-triangle of t, without any pruning: the reference
-    // the tests compare find() against (it checks the sub-triangle radii too).
+    // t's whole list, without any pruning: the reference the tests compare find()
+    // against (it checks the pruning bounds).
     ClosestCell find_exhaustive(sim::TriId t, Vec2f q) const;
 
     // The same searches from barycentric coordinates (b1, b2) of triangle t, the way the
-    // renderer reports a hit: the sub-triangle follows from (b1, b2) directly and the
-    // point from the triangle's header, so a lookup reads no other per-triangle data.
+    // renderer reports a hit: the point follows from t's frame (an independent read, so
+    // it overlaps with the list's).
     ClosestCell find_nearest(sim::TriId t, float b1, float b2) const;
     Nearest<3> find_three_within(sim::TriId t, float b1, float b2, float band) const;
     // Local CRPS coordinates of barycentric point (b1, b2) of t (what those use).
     Vec2f point(sim::TriId t, float b1, float b2) const {
-        const Header &r = header(t);
+        const Frame &r = m_frames[t];
         return {r.v0x + b1 * r.e1x + b2 * r.e2x, r.v0y + b1 * r.e1y + b2 * r.e2y};
     }
 
     // Distance from (t, q) to one cell as t's unfolding places it; infinity when the cell
-    // is not a candidate of q's sub-triangle. For diagnostics (cracks).
+    // is not in t's list. For diagnostics (cracks).
     float distance_to_cell(sim::TriId t, Vec2f q, uint32_t cell) const;
 
     const ClosestCellStats &stats() const { return m_stats; }
     const CellTable &cells() const { return *m_cells; }
 
   private:
-    // Five cells of a triangle's union in its frame; padding entries have cell == none,
-    // x = y = +inf. Five (60 bytes) rather than four: the line has room for them.
+    // Five candidate cells in t's frame; padding entries have cell == none, x = y = +inf.
+    // Five (60 bytes and the bound) rather than four: the line has room for them.
     static constexpr int per_block = 5;
     struct alignas(64) Block {
         float x[per_block], y[per_block];
         uint32_t cell[per_block];
+        float bound2;  // squared lower bound of the distance from t, for all five cells
     };
     static_assert(sizeof(Block) == 64);
 
-    // One step of a sub-triangle's scan, packed in 32 bits: a union block, which of its
-    // five cells are in the sub-triangle's list (mask), and a lower bound of their
-    // distance from the sub-triangle, rounded down to a multiple of the triangle's scale.
-    static constexpr int visit_bound_bits = 10, visit_block_bits = 17;
-    static constexpr uint32_t visit_max_bound = (1u << visit_bound_bits) - 1;
-    static constexpr uint32_t visit_max_blocks = 1u << visit_block_bits;
-    static uint32_t visit_block(uint32_t v) {
-        return v >> per_block & (visit_max_blocks - 1);
-    }
-    static uint32_t visit_mask(uint32_t v) { return v & ((1u << per_block) - 1); }
-    static uint32_t visit_bound(uint32_t v) { return v >> (32 - visit_bound_bits); }
-
-    // The first line of a triangle's run. The triangle in its frame is q = v0 + b1 e1 +
-    // b2 e2. Sub-triangle k's visits are [end[k - 1] >> 2, end[k] >> 2) (from 0 for k =
-    // 0); the low two bits of end[0] hold the subdivision n.
-    struct alignas(64) Header {
+    // The triangle in its frame, q = v0 + b1 e1 + b2 e2 (32 bytes: never split by a line).
+    struct alignas(32) Frame {
         float v0x, v0y, e1x, e1y, e2x, e2y;
-        float scale;  // a visit's bound is visit_bound(v) * scale
-        uint32_t end[max_slots];
     };
-    static_assert(sizeof(Header) == 64);
-    struct alignas(64) Line {
-        unsigned char bytes[64];
-    };
-    // One sub-triangle's scan: its visits, nearest block first.
-    struct Run {
-        const uint32_t *visit, *visit_end;
-        const Block *blocks;
-        float scale;
-    };
-    struct Built;  // one triangle's run while building
+    static_assert(sizeof(Frame) == 32);
+    struct Built;  // one triangle's list while building
 
-    const Header &header(sim::TriId t) const {
-        return *reinterpret_cast<const Header *>(m_lines[m_runs[t]].bytes);
+    // t's blocks: [m_first_block[t], m_first_block[t + 1]).
+    const Block *blocks_of(sim::TriId t, const Block *&end) const {
+        end = m_blocks.data() + m_first_block[t + 1];
+        return m_blocks.data() + m_first_block[t];
     }
-    Run run_of(sim::TriId t, Vec2f q) const;
-    Run run_at(sim::TriId t, float b1, float b2) const;
-    Nearest<3> three_within(const Run &r, Vec2f q, float band) const;
+    Nearest<3> three_within(const Block *b, const Block *e, Vec2f q, float band) const;
     template <bool prune, int K>
-    void scan(const Run &r, Vec2f q, Nearest<K> &n, float band = -1) const;
-    template <int K>
-    void scan_block(const Block &b, uint32_t mask, Vec2f q, Nearest<K> &n, float band,
-                    float &d_min2) const;
+    void scan(const Block *b, const Block *e, Vec2f q, Nearest<K> &n,
+              float band = -1) const;
     void build_triangle(const sim::Crps &crps, sim::TriId t, sim::UnfoldScratch &scratch,
                         std::vector<sim::UnfoldedTriangle> &unfolded, Built &out) const;
 
     const CellTable *m_cells;
     ClosestCellOptions m_options;
     double m_initial_radius = 0, m_max_radius = 0, m_spacing = 0;
-    std::vector<uint32_t> m_runs;  // triangle -> its run's first line
-    std::vector<Line> m_lines;     // per triangle: header, visits, union blocks
+    std::vector<Frame> m_frames;
+    std::vector<uint32_t> m_first_block;  // num_triangles + 1 entries
+    std::vector<Block> m_blocks;
     ClosestCellStats m_stats;
 };
 
