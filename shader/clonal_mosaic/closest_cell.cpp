@@ -24,12 +24,35 @@ std::array<std::array<double, 2>, 3> sub_triangle(uint32_t n, uint32_t i, uint32
     return {{{i * s, j * s}, {(i + 1) * s, j * s}, {i * s, (j + 1) * s}}};
 }
 
+// Sub-triangles of an n-subdivision numbered row by row: row i holds n - i lower and
+// n - i - 1 upper ones, interleaved, so the n² of them are 0 … n² - 1.
+uint32_t slot_index(uint32_t n, uint32_t i, uint32_t j, bool upper) {
+    return i * (2 * n - i) + 2 * j + (upper ? 1 : 0);
+}
+
+// The sub-triangle of an n-subdivision holding barycentric point (b1, b2), clamped to the
+// triangle (hits may sit a rounding error outside it).
+template <typename Real>
+uint32_t slot_at(uint32_t n, Real b1, Real b2) {
+    const Real nf = Real(n);
+    const Real u = std::clamp(b1 * nf, Real(0), nf);
+    const Real v = std::clamp(b2 * nf, Real(0), nf - u);
+    uint32_t i = std::min(uint32_t(u), n - 1), j = std::min(uint32_t(v), n - 1);
+    bool upper = (u - Real(i)) + (v - Real(j)) > Real(1);
+    if (i + j >= n - 1) {  // the last row of sub-triangles has no upper halves
+        j = n - 1 - std::min(i, n - 1);
+        upper = false;
+    }
+    return slot_index(n, i, j, upper);
+}
+
 }  // namespace
 
 struct ClosestCellIndex::Built {
     Frame frame{};
+    uint32_t regions = 1;  // sub-triangles per side searched at run time
     std::vector<Block> blocks;
-    size_t entries = 0, distinct_triangles = 0;
+    size_t entries = 0, distinct_triangles = 0, longest = 0;
 };
 
 ClosestCellIndex::ClosestCellIndex(const sim::Crps &crps, const CellTable &cells,
@@ -59,27 +82,28 @@ ClosestCellIndex::ClosestCellIndex(const sim::Crps &crps, const CellTable &cells
                            built[t]);
     });
 
-    size_t total_blocks = 0, entries = 0, distinct = 0;
+    size_t total_blocks = 0, lists = 0, entries = 0, distinct = 0;
     for (const Built &b : built) total_blocks += b.blocks.size();
-    if (total_blocks >= (size_t(1) << 32))
-        throw std::length_error("closest-cell index: more than 2^32 candidate blocks");
+    if (total_blocks >= (size_t(1) << 30))
+        throw std::length_error("closest-cell index: more than 2^30 candidate blocks");
     m_frames.resize(nt);
     m_first_block.resize(nt + 1);
     m_blocks.reserve(total_blocks);
     for (size_t t = 0; t < nt; ++t) {
         Built &b = built[t];
         m_frames[t] = b.frame;
-        m_first_block[t] = static_cast<uint32_t>(m_blocks.size());
+        m_first_block[t] = static_cast<uint32_t>(m_blocks.size()) << 2 | b.regions;
         m_blocks.insert(m_blocks.end(), b.blocks.begin(), b.blocks.end());
         m_stats.triangles_without_cells_in_reach += b.entries == 0;
-        m_stats.max_candidate_cells = std::max(m_stats.max_candidate_cells, b.entries);
+        m_stats.max_candidate_cells = std::max(m_stats.max_candidate_cells, b.longest);
+        lists += b.regions * b.regions;
         entries += b.entries;
         distinct += b.distinct_triangles;
         b = Built{};
     }
-    m_first_block[nt] = static_cast<uint32_t>(m_blocks.size());
-    m_stats.mean_candidates = nt ? double(distinct) / nt : 0;
-    m_stats.mean_candidate_cells = nt ? double(entries) / nt : 0;
+    m_first_block[nt] = static_cast<uint32_t>(m_blocks.size()) << 2 | 1;
+    m_stats.mean_candidates = lists ? double(distinct) / lists : 0;
+    m_stats.mean_candidate_cells = lists ? double(entries) / lists : 0;
     m_stats.bytes = m_frames.size() * sizeof(Frame) +
                     m_first_block.size() * sizeof(uint32_t) +
                     m_blocks.size() * sizeof(Block);
@@ -94,15 +118,27 @@ void ClosestCellIndex::build_triangle(const sim::Crps &crps, sim::TriId t,
     const CellTable &cells = *m_cells;
     const sim::CrpsFrame &ft = crps.frame(t);
 
-    // --- Subdivision: about one sub-triangle per cell spacing across, at most 3 ---
-    const uint32_t n = std::clamp<uint32_t>(
-        static_cast<uint32_t>(
-            std::ceil(2 * ft.bound_radius / std::max(m_spacing, 1e-300))),
-        1, std::clamp<uint32_t>(m_options.max_subdivision, 1, max_subdivision));
+    // --- Subdivisions: r regions per side searched at run time, n per side built ---
+    // A lookup scans one list: the cells within reach of its region. One list per
+    // triangle while the triangle is at most about four cell spacings across (on the cow
+    // with 20 000 cells, all but a few): its sub-triangles' lists overlap so much that
+    // storing them apart costs more cache misses than their shorter scans save. Larger
+    // triangles get r² lists. The reach is computed per sub-triangle of a finer n-
+    // subdivision (about two per cell spacing, at most 6, nested in the r-subdivision):
+    // finer sub-triangles have tighter radii R_S, so the lists are shorter (the cow:
+    // 28.8 cells per list with n <= 3, 21.9 with n <= 6), at no cost to a lookup.
+    const double spacings = 2 * ft.bound_radius / std::max(m_spacing, 1e-300);
+    const uint32_t r = std::clamp<uint32_t>(
+        static_cast<uint32_t>(std::ceil(spacings / 6)), 1,
+        std::clamp<uint32_t>(m_options.max_subdivision, 1, max_subdivision));
+    const uint32_t fine = std::clamp<uint32_t>(static_cast<uint32_t>(std::ceil(2 * spacings)), 1, 6);
+    const uint32_t n = r * ((fine + r - 1) / r);
+    out.regions = r;
     const sim::Vec2d v0 = ft.v[0], e1 = ft.v[1] - ft.v[0], e2 = ft.v[2] - ft.v[0];
     out.frame = {float(v0.x), float(v0.y), float(e1.x), float(e1.y),
-                 float(e2.x), float(e2.y)};
+                 float(e2.x), float(e2.y), {}};
     struct Sub {
+        uint32_t region;  // the sub-triangle of the r-subdivision holding this one
         sim::Vec2d v[3], centre;
         double bound = 0, reach_needed = 0;
     };
@@ -117,6 +153,8 @@ void ClosestCellIndex::build_triangle(const sim::Crps &crps, sim::TriId t,
                 s.centre = (s.v[0] + s.v[1] + s.v[2]) / 3.0;
                 for (int c = 0; c < 3; ++c)
                     s.bound = std::max(s.bound, length(s.v[c] - s.centre));
+                s.region = slot_at(r, (b[0][0] + b[1][0] + b[2][0]) / 3,
+                                   (b[0][1] + b[1][1] + b[2][1]) / 3);
                 subs.push_back(s);
             }
 
@@ -175,46 +213,91 @@ void ClosestCellIndex::build_triangle(const sim::Crps &crps, sim::TriId t,
                                        : std::min(2 * radius, m_max_radius);
     }
 
-    // --- t's list: the cells within R_S of some S, by their distance from t ---
+    // --- Per region: the cells within R_S of one of its S, by distance from the region ---
     // (Each triangle occurs once in an unfolding, so each cell once in `mapped`.)
     struct Entry {
         double bound;
         const Mapped *m;
     };
     std::vector<Entry> list;
-    for (const Mapped &m : mapped)
-        for (const Sub &s : subs)
-            if (sim::point_triangle_distance(m.p, s.v) <= s.reach_needed * (1 + 1e-9)) {
-                list.push_back({sim::point_triangle_distance(m.p, ft.v.data()), &m});
-                break;
-            }
-    std::sort(list.begin(), list.end(), [](const Entry &a, const Entry &b) {
-        return a.bound < b.bound || (a.bound == b.bound && a.m->cell < b.m->cell);
-    });
     std::vector<sim::TriId> tris;
-    for (const Entry &e : list) tris.push_back(e.m->tri);
-    std::sort(tris.begin(), tris.end());
-    out.distinct_triangles = std::unique(tris.begin(), tris.end()) - tris.begin();
-    out.entries = list.size();
-    for (size_t i = 0; i < list.size(); i += per_block) {
-        Block b;
-        // The bound is rounded down by more than float's error in the scan's
-        // distances (positions of size |p| + the triangle's radius), so rounding
-        // never prunes the true nearest.
-        const double margin = 1e-5 * (list[i].bound + length(list[i].m->p) + ft.bound_radius);
-        const double lower = std::max(0.0, list[i].bound - margin);
-        b.bound2 = float(lower * lower * (1 - 1e-6));
-        for (size_t l = 0; l < per_block; ++l) {
-            const bool real = i + l < list.size();
-            b.x[l] = real ? float(list[i + l].m->p.x) : inf_f;
-            b.y[l] = real ? float(list[i + l].m->p.y) : inf_f;
-            b.cell[l] = real ? list[i + l].m->cell : ClosestCell::none;
+    std::array<std::array<sim::Vec2d, 3>, max_subdivision * max_subdivision> regions;
+    for (uint32_t i = 0; i < r; ++i)
+        for (uint32_t j = 0; i + j < r; ++j)
+            for (int upper = 0; upper < 2; ++upper) {
+                if (upper && i + j + 1 >= r) continue;
+                const auto b = sub_triangle(r, i, j, upper);
+                for (int c = 0; c < 3; ++c)
+                    regions[slot_index(r, i, j, upper)][c] =
+                        v0 + e1 * b[c][0] + e2 * b[c][1];
+            }
+    for (uint32_t k = 0; k < r * r; ++k) {
+        const std::array<sim::Vec2d, 3> &region = regions[k];
+        list.clear();
+        for (const Mapped &m : mapped)
+            for (const Sub &s : subs)
+                if (s.region == k &&
+                    sim::point_triangle_distance(m.p, s.v) <= s.reach_needed * (1 + 1e-9)) {
+                    list.push_back({sim::point_triangle_distance(m.p, region.data()), &m});
+                    break;
+                }
+        std::sort(list.begin(), list.end(), [](const Entry &a, const Entry &b) {
+            return a.bound < b.bound || (a.bound == b.bound && a.m->cell < b.m->cell);
+        });
+        tris.clear();
+        for (const Entry &e : list) tris.push_back(e.m->tri);
+        std::sort(tris.begin(), tris.end());
+        out.distinct_triangles += std::unique(tris.begin(), tris.end()) - tris.begin();
+        out.entries += list.size();
+        out.longest = std::max(out.longest, list.size());
+        for (size_t i = 0; i < list.size(); i += per_block) {
+            Block b;
+            // The bound is rounded down by more than float's error in the scan's
+            // distances (positions of size |p| + the triangle's radius), so rounding
+            // never prunes the true nearest.
+            const double margin =
+                1e-5 * (list[i].bound + length(list[i].m->p) + ft.bound_radius);
+            const double lower = std::max(0.0, list[i].bound - margin);
+            b.bound2 = float(lower * lower * (1 - 1e-6));
+            for (size_t l = 0; l < per_block; ++l) {
+                const bool real = i + l < list.size();
+                b.x[l] = real ? float(list[i + l].m->p.x) : inf_f;
+                b.y[l] = real ? float(list[i + l].m->p.y) : inf_f;
+                b.cell[l] = real ? list[i + l].m->cell : ClosestCell::none;
+            }
+            out.blocks.push_back(b);
         }
-        out.blocks.push_back(b);
+        out.frame.end[k] = static_cast<uint32_t>(out.blocks.size());
     }
 }
 
-template <bool prune, int K>
+const ClosestCellIndex::Block *ClosestCellIndex::blocks_at(sim::TriId t, float b1,
+                                                           float b2,
+                                                           const Block *&end) const {
+    const uint32_t first = m_first_block[t], r = first & 3u;
+    const Block *b = m_blocks.data() + (first >> 2);
+    if (r == 1) {  // one list: no need of (b1, b2)
+        end = m_blocks.data() + (m_first_block[t + 1] >> 2);
+        return b;
+    }
+    const uint32_t k = slot_at(r, b1, b2);
+    const Frame &f = m_frames[t];
+    end = b + f.end[k];
+    return b + (k ? f.end[k - 1] : 0);
+}
+
+const ClosestCellIndex::Block *ClosestCellIndex::blocks_of(sim::TriId t, Vec2f q,
+                                                           const Block *&end) const {
+    if ((m_first_block[t] & 3u) == 1) return blocks_at(t, 0, 0, end);
+    // q's barycentric coordinates, by Cramer's rule on q - v0 = b1 e1 + b2 e2.
+    const Frame &r = m_frames[t];
+    const float dx = q.x - r.v0x, dy = q.y - r.v0y;
+    const float inv_det = 1.0f / (r.e1x * r.e2y - r.e1y * r.e2x);
+    return blocks_at(t, (dx * r.e2y - dy * r.e2x) * inv_det,
+                     (r.e1x * dy - r.e1y * dx) * inv_det, end);
+}
+
+template <bool prune, bool dedupe, int K>
 void ClosestCellIndex::scan(const Block *b, const Block *e, Vec2f q, Nearest<K> &n,
                             float band) const {
     const uint32_t *id = m_cells->id.data();
@@ -240,14 +323,18 @@ void ClosestCellIndex::scan(const Block *b, const Block *e, Vec2f q, Nearest<K> 
         for (int l = 0; l < per_block; ++l) {
             const uint32_t cell = b->cell[l];
             if (d2[l] > d_min2 || cell == ClosestCell::none) continue;
-            // Order by (distance, stable id).
+            // Order by (distance, stable id); a cell listed in several regions (the
+            // exhaustive scan) enters once.
             int pos = K;
-            for (int j = K - 1; j >= 0; --j)
+            bool seen = false;
+            for (int j = K - 1; j >= 0; --j) {
+                if constexpr (dedupe) seen |= n.index[j] == cell;
                 if (d2[l] < n.d2[j] ||
                     (d2[l] == n.d2[j] && n.index[j] != ClosestCell::none &&
                      id[cell] < id[n.index[j]]))
                     pos = j;
-            if (pos == K) continue;
+            }
+            if (seen || pos == K) continue;
             for (int j = K - 1; j > pos; --j) {
                 n.d2[j] = n.d2[j - 1];
                 n.index[j] = n.index[j - 1];
@@ -262,16 +349,16 @@ void ClosestCellIndex::scan(const Block *b, const Block *e, Vec2f q, Nearest<K> 
 ClosestCell ClosestCellIndex::find(sim::TriId t, Vec2f q) const {
     Nearest<2> n;
     const Block *e;
-    const Block *b = blocks_of(t, e);
-    scan<true, 2>(b, e, q, n);
+    const Block *b = blocks_of(t, q, e);
+    scan<true, false, 2>(b, e, q, n);
     return {n.index[0], n.index[1], std::sqrt(n.d2[0]), std::sqrt(n.d2[1])};
 }
 
 ClosestCell ClosestCellIndex::find_nearest(sim::TriId t, Vec2f q) const {
     Nearest<1> n;
     const Block *e;
-    const Block *b = blocks_of(t, e);
-    scan<true, 1>(b, e, q, n);
+    const Block *b = blocks_of(t, q, e);
+    scan<true, false, 1>(b, e, q, n);
     return {n.index[0], ClosestCell::none, std::sqrt(n.d2[0]),
             std::numeric_limits<float>::infinity()};
 }
@@ -279,15 +366,15 @@ ClosestCell ClosestCellIndex::find_nearest(sim::TriId t, Vec2f q) const {
 ClosestCellIndex::Nearest<3> ClosestCellIndex::find_three(sim::TriId t, Vec2f q) const {
     Nearest<3> n;
     const Block *e;
-    const Block *b = blocks_of(t, e);
-    scan<true, 3>(b, e, q, n);
+    const Block *b = blocks_of(t, q, e);
+    scan<true, false, 3>(b, e, q, n);
     return n;
 }
 
 ClosestCellIndex::Nearest<3> ClosestCellIndex::find_three_within(sim::TriId t, Vec2f q,
                                                                  float band) const {
     const Block *e;
-    const Block *b = blocks_of(t, e);
+    const Block *b = blocks_of(t, q, e);
     return three_within(b, e, q, band);
 }
 
@@ -299,7 +386,7 @@ ClosestCellIndex::Nearest<3> ClosestCellIndex::three_within(const Block *b,
     // hits cost about one nearest-cell search. The result is what one three-nearest scan
     // cut at F1 + band gives (the second pass keeps the same (distance, id) order).
     Nearest<1> first;
-    scan<true, 1>(b, e, q, first);
+    scan<true, false, 1>(b, e, q, first);
     Nearest<3> n;
     n.d2[0] = first.d2[0];
     n.index[0] = first.index[0];
@@ -340,8 +427,8 @@ ClosestCellIndex::Nearest<3> ClosestCellIndex::three_within(const Block *b,
 ClosestCell ClosestCellIndex::find_nearest(sim::TriId t, float b1, float b2) const {
     Nearest<1> n;
     const Block *e;
-    const Block *b = blocks_of(t, e);
-    scan<true, 1>(b, e, point(t, b1, b2), n);
+    const Block *b = blocks_at(t, b1, b2, e);
+    scan<true, false, 1>(b, e, point(t, b1, b2), n);
     return {n.index[0], ClosestCell::none, std::sqrt(n.d2[0]),
             std::numeric_limits<float>::infinity()};
 }
@@ -350,21 +437,21 @@ ClosestCellIndex::Nearest<3> ClosestCellIndex::find_three_within(sim::TriId t, f
                                                                  float b2,
                                                                  float band) const {
     const Block *e;
-    const Block *b = blocks_of(t, e);
+    const Block *b = blocks_at(t, b1, b2, e);
     return three_within(b, e, point(t, b1, b2), band);
 }
 
 ClosestCell ClosestCellIndex::find_exhaustive(sim::TriId t, Vec2f q) const {
+    // Every region's list.
     Nearest<2> n;
-    const Block *e;
-    const Block *b = blocks_of(t, e);
-    scan<false, 2>(b, e, q, n);
+    scan<false, true, 2>(m_blocks.data() + (m_first_block[t] >> 2),
+                         m_blocks.data() + (m_first_block[t + 1] >> 2), q, n);
     return {n.index[0], n.index[1], std::sqrt(n.d2[0]), std::sqrt(n.d2[1])};
 }
 
 float ClosestCellIndex::distance_to_cell(sim::TriId t, Vec2f q, uint32_t cell) const {
     const Block *e;
-    for (const Block *b = blocks_of(t, e); b != e; ++b)
+    for (const Block *b = blocks_of(t, q, e); b != e; ++b)
         for (int l = 0; l < per_block; ++l)
             if (b->cell[l] == cell) return std::hypot(b->x[l] - q.x, b->y[l] - q.y);
     return std::numeric_limits<float>::infinity();

@@ -140,20 +140,19 @@ class ClosestCellIndex {
     };
     static_assert(sizeof(Block) == 64);
 
-    // The triangle in its frame, q = v0 + b1 e1 + b2 e2 (32 bytes: never split by a line).
-    struct alignas(32) Frame {
+    // The triangle in its frame, q = v0 + b1 e1 + b2 e2, and, when it has r > 1 regions,
+    // where their lists end among its blocks (region k's starts at end[k - 1], or 0).
+    struct alignas(64) Frame {
         float v0x, v0y, e1x, e1y, e2x, e2y;
+        uint32_t end[max_subdivision * max_subdivision];
     };
-    static_assert(sizeof(Frame) == 32);
+    static_assert(sizeof(Frame) == 64);
     struct Built;  // one triangle's list while building
 
-    // t's blocks: [m_first_block[t], m_first_block[t + 1]).
-    const Block *blocks_of(sim::TriId t, const Block *&end) const {
-        end = m_blocks.data() + m_first_block[t + 1];
-        return m_blocks.data() + m_first_block[t];
-    }
+    const Block *blocks_of(sim::TriId t, Vec2f q, const Block *&end) const;
+    const Block *blocks_at(sim::TriId t, float b1, float b2, const Block *&end) const;
     Nearest<3> three_within(const Block *b, const Block *e, Vec2f q, float band) const;
-    template <bool prune, int K>
+    template <bool prune, bool dedupe, int K>
     void scan(const Block *b, const Block *e, Vec2f q, Nearest<K> &n,
               float band = -1) const;
     void build_triangle(const sim::Crps &crps, sim::TriId t, sim::UnfoldScratch &scratch,
@@ -163,7 +162,9 @@ class ClosestCellIndex {
     ClosestCellOptions m_options;
     double m_initial_radius = 0, m_max_radius = 0, m_spacing = 0;
     std::vector<Frame> m_frames;
-    std::vector<uint32_t> m_first_block;  // num_triangles + 1 entries
+    // t's blocks are [m_first_block[t] >> 2, m_first_block[t + 1] >> 2); the low two
+    // bits hold r, its regions per side (r = 1: one list, the frame is not needed).
+    std::vector<uint32_t> m_first_block;
     std::vector<Block> m_blocks;
     ClosestCellStats m_stats;
 };
