@@ -95,6 +95,7 @@ ClosestCellIndex::ClosestCellIndex(const sim::Crps &crps, const CellTable &cells
         m_first_block[t] = static_cast<uint32_t>(m_blocks.size()) << 2 | b.regions;
         m_blocks.insert(m_blocks.end(), b.blocks.begin(), b.blocks.end());
         m_stats.triangles_without_cells_in_reach += b.entries == 0;
+        m_stats.triangles_with_regions += b.regions > 1;
         m_stats.max_candidate_cells = std::max(m_stats.max_candidate_cells, b.longest);
         lists += b.regions * b.regions;
         entries += b.entries;
@@ -131,7 +132,8 @@ void ClosestCellIndex::build_triangle(const sim::Crps &crps, sim::TriId t,
     const uint32_t r = std::clamp<uint32_t>(
         static_cast<uint32_t>(std::ceil(spacings / 6)), 1,
         std::clamp<uint32_t>(m_options.max_subdivision, 1, max_subdivision));
-    const uint32_t fine = std::clamp<uint32_t>(static_cast<uint32_t>(std::ceil(2 * spacings)), 1, 6);
+    const uint32_t fine =
+        std::clamp<uint32_t>(static_cast<uint32_t>(std::ceil(2 * spacings)), 1, 6);
     const uint32_t n = r * ((fine + r - 1) / r);
     out.regions = r;
     const sim::Vec2d v0 = ft.v[0], e1 = ft.v[1] - ft.v[0], e2 = ft.v[2] - ft.v[0];
@@ -213,8 +215,8 @@ void ClosestCellIndex::build_triangle(const sim::Crps &crps, sim::TriId t,
                                        : std::min(2 * radius, m_max_radius);
     }
 
-    // --- Per region: the cells within R_S of one of its S, by distance from the region ---
-    // (Each triangle occurs once in an unfolding, so each cell once in `mapped`.)
+    // --- Per region: the cells within R_S of one of its S, by distance from the region
+    // --- (Each triangle occurs once in an unfolding, so each cell once in `mapped`.)
     struct Entry {
         double bound;
         const Mapped *m;
@@ -236,9 +238,14 @@ void ClosestCellIndex::build_triangle(const sim::Crps &crps, sim::TriId t,
         list.clear();
         for (const Mapped &m : mapped)
             for (const Sub &s : subs)
+                // (The distance from S is at least that from its centre less its radius:
+                // a cheap test first, with room for its rounding.)
                 if (s.region == k &&
-                    sim::point_triangle_distance(m.p, s.v) <= s.reach_needed * (1 + 1e-9)) {
-                    list.push_back({sim::point_triangle_distance(m.p, region.data()), &m});
+                    length(m.p - s.centre) - s.bound <= s.reach_needed * (1 + 1e-6) &&
+                    sim::point_triangle_distance(m.p, s.v) <=
+                        s.reach_needed * (1 + 1e-9)) {
+                    list.push_back(
+                        {sim::point_triangle_distance(m.p, region.data()), &m});
                     break;
                 }
         std::sort(list.begin(), list.end(), [](const Entry &a, const Entry &b) {

@@ -7,28 +7,48 @@
 // cell into t's frame, visits triangles outward from t, and shrinks the search radius
 // D_min whenever a closer cell turns up.
 //
-// What we precompute (Teo's method, kept, made fast). Each triangle t is split into n_t²
-// sub-triangles S (regular subdivision in barycentric coordinates; n_t grows with the
-// triangle's size in cell spacings, up to 3). For each S, t's breadth-first unfolding
-// (sim/unfold.h) supplies every cell that can be among the three nearest of some point of
-// S: those within R_S = d_3 + b_S of S (d_3: distance from S's centroid to its
-// third-nearest cell, b_S: S's bounding radius about that centroid), because
-// F3(q) <= |q - c_3| <= d_3 + b_S. Each such cell is stored *already carried into t's
-// frame* by its triangle's reverse map F[j→t]: the transform Teo applies per candidate
-// triangle at every lookup is applied once here, so a lookup is a scan of one flat list.
-// The list is sorted by each cell's distance from S (a lower bound for every query in S)
-// and packed five cells to a 64-byte block (float x[5], y[5], uint32 cell[5] and the
-// block's squared bound: no padding bytes); the scan stops at the first block whose bound
-// exceeds the current K-th nearest distance (Teo's adaptive radius D_min, for the K
-// wanted). One triangle's header (its barycentric inverse and where its sub-triangles'
-// lists start) is one cache line, so a random lookup touches the header and then a
-// contiguous run of blocks (on the cow with 20 000 cells: 14.2 cells per list, 10.6 MB).
+// What we precompute (Teo's method, kept, made fast). Each triangle t is split into n²
+// sub-triangles S (regular subdivision in barycentric coordinates; n grows with the
+// triangle's size, about two per cell spacing across, up to 6). For each S, t's
+// breadth-first unfolding (sim/unfold.h) supplies every cell that can be among the three
+// nearest of some point of S: those within R_S of S, where R_S bounds F3 on S (at most
+// d_3 + b_S, d_3 the distance from S's centroid to its third-nearest cell and b_S S's
+// radius, because F3(q) <= |q - c_3| <= d_3 + b_S). Each such cell is stored *already
+// carried into t's frame* by its triangle's reverse map F[j→t]: the transform Teo applies
+// per candidate triangle at every lookup is applied once here, so a lookup is a scan of
+// one flat list.
+//
+// Which list. The lists of neighbouring sub-triangles overlap heavily: they come from the
+// same cells at the same positions. Stored apart (one per S, n <= 3, as until 2026-11)
+// they made the cow with 20 000 cells a 10.6 MB index, 9 lists of 14 cells for 3.4 cells
+// per triangle, and a random lookup waited ~150 ns on DRAM for its list. So a lookup now
+// searches a *region* of t, and a region's list is the union of the lists of the S in
+// it: one region (t itself) for triangles up to six cell spacings across, r x r regions
+// (r = 2, 3) for larger ones, where the lists of far-apart sub-triangles differ enough
+// that splitting pays (the 760-triangle sphere with 20 000 cells: 26 cells per triangle).
+// Each list is sorted by its cells' distance from the region (a lower bound for every
+// query in it) and packed five cells to a 64-byte block (float x[5], y[5], uint32 cell[5]
+// and the block's squared bound: no padding bytes); the scan stops at the first block
+// whose bound exceeds the current K-th nearest distance (Teo's adaptive radius D_min, for
+// the K wanted). A triangle's blocks are contiguous and a table of uint32 offsets (23 kB
+// on the cow, cache-resident) locates them; when r = 1 the lookup needs nothing else, so
+// a random lookup is one cache miss on a contiguous run (the region's bounds are
+// measured from t, so the scan reads more cells than from a sub-triangle: on the cow
+// 3.6 blocks per F1 + F2 lookup, 2.1 for F1 alone). When r > 1, t's 64-byte frame (its
+// barycentric inverse and where its regions' lists end) picks the list. On the cow: 78 %
+// of triangles have one list, 19.3 cells per list, 3.2 MB (frames 0.37 MB). The finer
+// sub-triangles cost nothing at lookup and shorten the lists (one list per triangle:
+// 28.8 cells with n <= 3, 21.9 with n <= 6).
 // Positions stay float in t's frame: results are bit-identical to scanning the unfolding
-// itself. (16-bit positions, exact floats kept aside for the few candidates the grid
-// cannot decide, halved the scanned bytes but added a second cache miss per lookup and
-// were slower; see README, "Speed".) The banded search for soft edges runs as the
-// nearest-cell scan followed by a pass over the same, now cached, blocks for the cells
-// within F1 + band (three_within()).
+// itself, and the same as the per-sub-triangle lists gave (a cell outside S's list is
+// farther than F3 from all of S; `pelage bench lookup` checksums are unchanged). Tried
+// and slower (see git log): 16-bit positions with exact floats aside (a second miss per
+// lookup); one union per triangle in Hilbert order with, per S, a sorted list of (block,
+// mask, bound) visits (an S's cells spread over ~6 partly used blocks); the union sorted
+// by distance from t's centroid with a mask byte per (S, block) (that order prunes
+// poorly). The banded search for soft edges runs as the nearest-cell scan followed by a
+// pass over the same, now cached, blocks for the cells within F1 + band
+// (three_within()).
 // By default the unfolding walks edges only (sim/unfold.h, UnfoldPaths): the two
 // triangles on either side of an edge then see identical maps for every triangle reached
 // through that edge, which reduces Teo's "cracks" (§6.3); `pelage bench lookup` measures
@@ -63,8 +83,9 @@ struct ClosestCell {
 
 struct ClosestCellOptions {
     sim::UnfoldPaths paths = sim::UnfoldPaths::edges_only;
-    // Sub-triangles per triangle side, at most (1 … 3): finer regions mean shorter scans
-    // but longer lists in total (more memory, more cache misses on random queries).
+    // Regions searched per triangle side, at most (1 … 3): finer regions mean shorter
+    // scans but longer lists in total (more memory, more cache misses on random
+    // queries). Only triangles over six cell spacings across get more than one.
     uint32_t max_subdivision = 3;
 };
 
@@ -75,6 +96,7 @@ struct ClosestCellStats {
     size_t max_candidate_cells = 0;   // in the longest list
     size_t bytes = 0;                 // frames + list offsets + blocks
     size_t triangles_without_cells_in_reach = 0;
+    size_t triangles_with_regions = 0;  // searched in r x r regions (r > 1)
 };
 
 class ClosestCellIndex {

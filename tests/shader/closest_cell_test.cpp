@@ -96,6 +96,39 @@ TEST(ClosestCell, FlatPlaneGivesTheTrueVoronoiDiagram) {
     }
 }
 
+// Few large triangles under many cells: every list is long (hundreds of cells, far more
+// than a 64-bit mask or an 8-bit index could address), with one list per triangle
+// (max_subdivision 1) and with 3 x 3 regions. Still the true Voronoi diagram, and the
+// pruned searches equal the exhaustive one.
+TEST(ClosestCell, DenseCellsOnLargeTrianglesGiveTheTrueVoronoiDiagram) {
+    const sim::Surface s = sim::build_surface(sim::make_plane(1, 1, 2, 2));
+    const CellTable cells = random_cells(s.crps, 3000, 11);
+    std::vector<sim::Vec3d> world(cells.size());
+    for (sim::TriId t = 0; t < s.mesh.num_triangles(); ++t)
+        for (uint32_t k = cells.row[t]; k < cells.row[t + 1]; ++k)
+            world[k] = s.crps.to_3d(t, {cells.x[k], cells.z[k]});
+    for (const uint32_t regions : {1u, 3u}) {
+        ClosestCellOptions options;
+        options.max_subdivision = regions;
+        const ClosestCellIndex index(s.crps, cells, options);
+        EXPECT_GT(index.stats().max_candidate_cells, 256u) << regions;
+        for (const auto &q : sim::sample_surface_uniform(s.crps, 3000, 13)) {
+            const sim::Vec3d p = s.crps.to_3d(q.tri, q.p);
+            double d1 = 1e300;
+            uint32_t best = 0;
+            for (uint32_t k = 0; k < world.size(); ++k)
+                if (length(world[k] - p) < d1) d1 = length(world[k] - p), best = k;
+            const ClosestCell c = index.find(q.tri, to_f(q.p));
+            const ClosestCell e = index.find_exhaustive(q.tri, to_f(q.p));
+            ASSERT_EQ(c.index, best) << regions;
+            ASSERT_NEAR(c.f1, d1, 1e-5);
+            ASSERT_EQ(e.index, c.index);
+            ASSERT_EQ(e.second, c.second);
+            ASSERT_EQ(e.f2, c.f2);
+        }
+    }
+}
+
 // The banded scan (what the material's soft boundaries use) stops at F1 + band: it must
 // return exactly the three nearest cells with those beyond F1 + band dropped.
 TEST(ClosestCell, BandedSearchIsTheThreeNearestCutAtTheBand) {
