@@ -91,8 +91,8 @@ struct ClosestCellOptions {
 
 struct ClosestCellStats {
     double build_seconds = 0;
-    double mean_candidates = 0;       // distinct triangles per triangle's list
-    double mean_candidate_cells = 0;  // cells per triangle's list
+    double mean_candidates = 0;       // distinct triangles per list (one per region)
+    double mean_candidate_cells = 0;  // cells per list
     size_t max_candidate_cells = 0;   // in the longest list
     size_t bytes = 0;                 // frames + list offsets + blocks
     size_t triangles_without_cells_in_reach = 0;
