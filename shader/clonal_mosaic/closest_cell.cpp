@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <numeric>
 #include <stdexcept>
 
 namespace pelage::shader {
@@ -48,6 +49,7 @@ uint32_t slot_at(uint32_t n, Real b1, Real b2) {
 
 }  // namespace
 
+// One triangle's lists for one choice of regions.
 struct ClosestCellIndex::Built {
     Frame frame{};
     uint32_t regions = 1;  // sub-triangles per side searched at run time
@@ -69,7 +71,9 @@ ClosestCellIndex::ClosestCellIndex(const sim::Crps &crps, const CellTable &cells
     for (sim::TriId t = 0; t < nt; ++t) m_max_radius += 2 * crps.frame(t).bound_radius;
 
     // --- Per triangle, in parallel; then concatenated in triangle order ---
-    std::vector<Built> built(nt);
+    // Both layouts: [0] coarse regions (few, long lists), [1] fine (as many regions as
+    // cell spacings across, up to 3 per side).
+    std::vector<std::array<Built, 2>> built(nt);
     struct Scratch {
         sim::UnfoldScratch unfold;
         std::vector<sim::UnfoldedTriangle> unfolded;
@@ -82,15 +86,23 @@ ClosestCellIndex::ClosestCellIndex(const sim::Crps &crps, const CellTable &cells
                            built[t]);
     });
 
-    size_t total_blocks = 0, lists = 0, entries = 0, distinct = 0;
-    for (const Built &b : built) total_blocks += b.blocks.size();
+    // Fine regions scan fewer cells, coarse ones need less memory: fine while the whole
+    // index stays within the budget (then it mostly stays in cache anyway).
+    size_t blocks_of_layout[2] = {0, 0};
+    for (const auto &b : built)
+        for (int l = 0; l < 2; ++l) blocks_of_layout[l] += b[l].blocks.size();
+    const size_t fixed = nt * sizeof(Frame) + (nt + 1) * sizeof(uint32_t);
+    const int layout =
+        fixed + blocks_of_layout[1] * sizeof(Block) <= m_options.fine_regions_max_bytes;
+    m_stats.fine_regions = layout == 1;
+    size_t total_blocks = blocks_of_layout[layout], lists = 0, entries = 0, distinct = 0;
     if (total_blocks >= (size_t(1) << 30))
         throw std::length_error("closest-cell index: more than 2^30 candidate blocks");
     m_frames.resize(nt);
     m_first_block.resize(nt + 1);
     m_blocks.reserve(total_blocks);
     for (size_t t = 0; t < nt; ++t) {
-        Built &b = built[t];
+        Built &b = built[t][layout];
         m_frames[t] = b.frame;
         m_first_block[t] = static_cast<uint32_t>(m_blocks.size()) << 2 | b.regions;
         m_blocks.insert(m_blocks.end(), b.blocks.begin(), b.blocks.end());
@@ -100,7 +112,7 @@ ClosestCellIndex::ClosestCellIndex(const sim::Crps &crps, const CellTable &cells
         lists += b.regions * b.regions;
         entries += b.entries;
         distinct += b.distinct_triangles;
-        b = Built{};
+        built[t] = {};
     }
     m_first_block[nt] = static_cast<uint32_t>(m_blocks.size()) << 2 | 1;
     m_stats.mean_candidates = lists ? double(distinct) / lists : 0;
@@ -115,33 +127,38 @@ ClosestCellIndex::ClosestCellIndex(const sim::Crps &crps, const CellTable &cells
 void ClosestCellIndex::build_triangle(const sim::Crps &crps, sim::TriId t,
                                       sim::UnfoldScratch &scratch,
                                       std::vector<sim::UnfoldedTriangle> &unfolded,
-                                      Built &out) const {
+                                      std::array<Built, 2> &out) const {
     const CellTable &cells = *m_cells;
     const sim::CrpsFrame &ft = crps.frame(t);
 
     // --- Subdivisions: r regions per side searched at run time, n per side built ---
-    // A lookup scans one list: the cells within reach of its region. One list per
-    // triangle while the triangle is at most six cell spacings across (on the cow with
-    // 20 000 cells, 78 % of the triangles): its sub-triangles' lists overlap so much that
-    // storing them apart costs more cache misses than their shorter scans save. Larger
-    // triangles get r² lists (a threshold of four spacings instead: 4.3 MB on the cow, no
-    // faster). The reach is computed per sub-triangle of a finer n-subdivision (about two
-    // per cell spacing, at most 6, nested in the r-subdivision): finer sub-triangles have
-    // tighter radii R_S, so the lists are shorter (one list per triangle on the cow: 28.8
-    // cells with n <= 3, 21.9 with n <= 6), at no cost to a lookup.
+    // Fine regions: about one per cell spacing across (the per-sub-triangle lists of
+    // before). Coarse ones: one list per triangle while the triangle is at most six
+    // cell spacings across (on the cow with 20 000 cells, 78 % of the triangles), as its
+    // sub-triangles' lists overlap so much that storing them apart costs more cache
+    // misses than their shorter scans save (a threshold of four spacings: 4.3 MB on the
+    // cow, no faster). The reach is computed per sub-triangle of a finer n-subdivision
+    // (about two per cell spacing, at most 6, nested in both r-subdivisions): finer
+    // sub-triangles have tighter radii R_S, so the lists are shorter (one list per
+    // triangle on the cow: 28.8 cells with n <= 3, 21.9 with n <= 6), at no cost to a
+    // lookup.
     const double spacings = 2 * ft.bound_radius / std::max(m_spacing, 1e-300);
-    const uint32_t r = std::clamp<uint32_t>(
-        static_cast<uint32_t>(std::ceil(spacings / 6)), 1,
-        std::clamp<uint32_t>(m_options.max_subdivision, 1, max_subdivision));
+    const uint32_t r_max =
+        std::clamp<uint32_t>(m_options.max_subdivision, 1, max_subdivision);
+    const uint32_t rs[2] = {
+        std::clamp<uint32_t>(static_cast<uint32_t>(std::ceil(spacings / 6)), 1, r_max),
+        std::clamp<uint32_t>(static_cast<uint32_t>(std::ceil(spacings)), 1, r_max)};
+    // n: about two per spacing, at most 6, a multiple of both r (lcm(r0, r1) <= 6).
+    const uint32_t lcm = rs[0] * rs[1] / std::gcd(rs[0], rs[1]);
     const uint32_t fine =
         std::clamp<uint32_t>(static_cast<uint32_t>(std::ceil(2 * spacings)), 1, 6);
-    const uint32_t n = r * ((fine + r - 1) / r);
-    out.regions = r;
+    const uint32_t n = lcm * ((fine + lcm - 1) / lcm);
     const sim::Vec2d v0 = ft.v[0], e1 = ft.v[1] - ft.v[0], e2 = ft.v[2] - ft.v[0];
-    out.frame = {float(v0.x), float(v0.y), float(e1.x), float(e1.y),
-                 float(e2.x), float(e2.y), {}};
+    for (Built &b : out)
+        b.frame = {float(v0.x), float(v0.y), float(e1.x), float(e1.y),
+                   float(e2.x), float(e2.y), {}};
     struct Sub {
-        uint32_t region;  // the sub-triangle of the r-subdivision holding this one
+        uint32_t region[2];  // the sub-triangles of the r-subdivisions holding this one
         sim::Vec2d v[3], centre;
         double bound = 0, reach_needed = 0;
     };
@@ -156,8 +173,9 @@ void ClosestCellIndex::build_triangle(const sim::Crps &crps, sim::TriId t,
                 s.centre = (s.v[0] + s.v[1] + s.v[2]) / 3.0;
                 for (int c = 0; c < 3; ++c)
                     s.bound = std::max(s.bound, length(s.v[c] - s.centre));
-                s.region = slot_at(r, (b[0][0] + b[1][0] + b[2][0]) / 3,
-                                   (b[0][1] + b[1][1] + b[2][1]) / 3);
+                for (int l = 0; l < 2; ++l)
+                    s.region[l] = slot_at(rs[l], (b[0][0] + b[1][0] + b[2][0]) / 3,
+                                          (b[0][1] + b[1][1] + b[2][1]) / 3);
                 subs.push_back(s);
             }
 
@@ -224,58 +242,67 @@ void ClosestCellIndex::build_triangle(const sim::Crps &crps, sim::TriId t,
     };
     std::vector<Entry> list;
     std::vector<sim::TriId> tris;
-    std::array<std::array<sim::Vec2d, 3>, max_subdivision * max_subdivision> regions;
-    for (uint32_t i = 0; i < r; ++i)
-        for (uint32_t j = 0; i + j < r; ++j)
-            for (int upper = 0; upper < 2; ++upper) {
-                if (upper && i + j + 1 >= r) continue;
-                const auto b = sub_triangle(r, i, j, upper);
-                for (int c = 0; c < 3; ++c)
-                    regions[slot_index(r, i, j, upper)][c] =
-                        v0 + e1 * b[c][0] + e2 * b[c][1];
-            }
-    for (uint32_t k = 0; k < r * r; ++k) {
-        const std::array<sim::Vec2d, 3> &region = regions[k];
-        list.clear();
-        for (const Mapped &m : mapped)
-            for (const Sub &s : subs)
-                // (The distance from S is at least that from its centre less its radius:
-                // a cheap test first, with room for its rounding.)
-                if (s.region == k &&
-                    length(m.p - s.centre) - s.bound <= s.reach_needed * (1 + 1e-6) &&
-                    sim::point_triangle_distance(m.p, s.v) <=
-                        s.reach_needed * (1 + 1e-9)) {
-                    list.push_back(
-                        {sim::point_triangle_distance(m.p, region.data()), &m});
-                    break;
-                }
-        std::sort(list.begin(), list.end(), [](const Entry &a, const Entry &b) {
-            return a.bound < b.bound || (a.bound == b.bound && a.m->cell < b.m->cell);
-        });
-        tris.clear();
-        for (const Entry &e : list) tris.push_back(e.m->tri);
-        std::sort(tris.begin(), tris.end());
-        out.distinct_triangles += std::unique(tris.begin(), tris.end()) - tris.begin();
-        out.entries += list.size();
-        out.longest = std::max(out.longest, list.size());
-        for (size_t i = 0; i < list.size(); i += per_block) {
-            Block b;
-            // The bound is rounded down by more than float's error in the scan's
-            // distances (positions of size |p| + the triangle's radius), so rounding
-            // never prunes the true nearest.
-            const double margin =
-                1e-5 * (list[i].bound + length(list[i].m->p) + ft.bound_radius);
-            const double lower = std::max(0.0, list[i].bound - margin);
-            b.bound2 = float(lower * lower * (1 - 1e-6));
-            for (size_t l = 0; l < per_block; ++l) {
-                const bool real = i + l < list.size();
-                b.x[l] = real ? float(list[i + l].m->p.x) : inf_f;
-                b.y[l] = real ? float(list[i + l].m->p.y) : inf_f;
-                b.cell[l] = real ? list[i + l].m->cell : ClosestCell::none;
-            }
-            out.blocks.push_back(b);
+    for (int layout = 0; layout < 2; ++layout) {
+        Built &o = out[layout];
+        const uint32_t r = rs[layout];
+        o.regions = r;
+        if (layout == 1 && rs[1] == rs[0]) {  // the same lists
+            o = out[0];
+            break;
         }
-        out.frame.end[k] = static_cast<uint32_t>(out.blocks.size());
+        std::array<std::array<sim::Vec2d, 3>, max_subdivision * max_subdivision> regions;
+        for (uint32_t i = 0; i < r; ++i)
+            for (uint32_t j = 0; i + j < r; ++j)
+                for (int upper = 0; upper < 2; ++upper) {
+                    if (upper && i + j + 1 >= r) continue;
+                    const auto b = sub_triangle(r, i, j, upper);
+                    for (int c = 0; c < 3; ++c)
+                        regions[slot_index(r, i, j, upper)][c] =
+                            v0 + e1 * b[c][0] + e2 * b[c][1];
+                }
+        for (uint32_t k = 0; k < r * r; ++k) {
+            const std::array<sim::Vec2d, 3> &region = regions[k];
+            list.clear();
+            for (const Mapped &m : mapped)
+                for (const Sub &s : subs)
+                    // (The distance from S is at least that from its centre less its
+                    // radius: a cheap test first, with room for its rounding.)
+                    if (s.region[layout] == k &&
+                        length(m.p - s.centre) - s.bound <= s.reach_needed * (1 + 1e-6) &&
+                        sim::point_triangle_distance(m.p, s.v) <=
+                            s.reach_needed * (1 + 1e-9)) {
+                        list.push_back(
+                            {sim::point_triangle_distance(m.p, region.data()), &m});
+                        break;
+                    }
+            std::sort(list.begin(), list.end(), [](const Entry &a, const Entry &b) {
+                return a.bound < b.bound || (a.bound == b.bound && a.m->cell < b.m->cell);
+            });
+            tris.clear();
+            for (const Entry &e : list) tris.push_back(e.m->tri);
+            std::sort(tris.begin(), tris.end());
+            o.distinct_triangles += std::unique(tris.begin(), tris.end()) - tris.begin();
+            o.entries += list.size();
+            o.longest = std::max(o.longest, list.size());
+            for (size_t i = 0; i < list.size(); i += per_block) {
+                Block b;
+                // The bound is rounded down by more than float's error in the scan's
+                // distances (positions of size |p| + the triangle's radius), so rounding
+                // never prunes the true nearest.
+                const double margin =
+                    1e-5 * (list[i].bound + length(list[i].m->p) + ft.bound_radius);
+                const double lower = std::max(0.0, list[i].bound - margin);
+                b.bound2 = float(lower * lower * (1 - 1e-6));
+                for (size_t l = 0; l < per_block; ++l) {
+                    const bool real = i + l < list.size();
+                    b.x[l] = real ? float(list[i + l].m->p.x) : inf_f;
+                    b.y[l] = real ? float(list[i + l].m->p.y) : inf_f;
+                    b.cell[l] = real ? list[i + l].m->cell : ClosestCell::none;
+                }
+                o.blocks.push_back(b);
+            }
+            o.frame.end[k] = static_cast<uint32_t>(o.blocks.size());
+        }
     }
 }
 

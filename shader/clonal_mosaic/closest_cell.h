@@ -23,22 +23,27 @@
 // they made the cow with 20 000 cells a 10.6 MB index, 9 lists of 14 cells for 3.4 cells
 // per triangle, and a random lookup waited ~150 ns on DRAM for its list. So a lookup now
 // searches a *region* of t, and a region's list is the union of the lists of the S in
-// it: one region (t itself) for triangles up to six cell spacings across, r x r regions
-// (r = 2, 3) for larger ones, where the lists of far-apart sub-triangles differ enough
-// that splitting pays (the 760-triangle sphere with 20 000 cells: 26 cells per triangle).
-// Each list is sorted by its cells' distance from the region (a lower bound for every
-// query in it) and packed five cells to a 64-byte block (float x[5], y[5], uint32 cell[5]
-// and the block's squared bound: no padding bytes); the scan stops at the first block
-// whose bound exceeds the current K-th nearest distance (Teo's adaptive radius D_min, for
-// the K wanted). A triangle's blocks are contiguous and a table of uint32 offsets (23 kB
-// on the cow, cache-resident) locates them; when r = 1 the lookup needs nothing else, so
-// a random lookup is one cache miss on a contiguous run (the region's bounds are
-// measured from t, so the scan reads more cells than from a sub-triangle: on the cow
-// 3.6 blocks per F1 + F2 lookup, 2.1 for F1 alone). When r > 1, t's 64-byte frame (its
-// barycentric inverse and where its regions' lists end) picks the list. On the cow: 78 %
-// of triangles have one list, 19.3 cells per list, 3.2 MB (frames 0.37 MB). The finer
-// sub-triangles cost nothing at lookup and shorten the lists (one list per triangle:
-// 28.8 cells with n <= 3, 21.9 with n <= 6).
+// it. Two layouts, one per index: *fine* regions, r = about one per cell spacing across
+// t (at most 3 per side), when the whole index stays within
+// ClosestCellOptions::fine_regions_max_bytes (4 MB: then it mostly stays in cache), else
+// *coarse* ones: one region (t itself) for triangles up to six spacings across, r x r
+// (r = 2, 3) beyond. Each list is sorted by its cells' distance from the region (a lower
+// bound for every query in it) and packed five cells to a 64-byte block (float x[5],
+// y[5], uint32 cell[5] and the block's squared bound: no padding bytes); the scan stops
+// at the first block whose bound exceeds the current K-th nearest distance (Teo's
+// adaptive radius D_min, for the K wanted). A triangle's blocks are contiguous and a
+// table of uint32 offsets (23 kB on the cow, cache-resident) locates them; when r = 1 the
+// lookup needs nothing else: a random lookup is one cache miss on a contiguous run. When
+// r > 1, t's 64-byte frame (its barycentric inverse and where its regions' lists end)
+// picks the list. The finer sub-triangles cost nothing at lookup and shorten the lists.
+// Measured on the cow with 20 000 cells (`pelage bench lookup`, one thread, ns per F1 +
+// F2 lookup in random / coherent order, banded coherent): per-S lists as before 10.6 MB,
+// 14.2 cells per list, 132-214 / 62-67 / 64-71 ns; fine regions 7.9 MB, 10.0 cells,
+// 117-142 / 65-66 / 64-65; coarse regions (chosen) 3.2 MB, 19.3 cells, 22 % of triangles
+// with r > 1, 100-120 / 66-70 / 72-80: the coarse bounds, measured from the whole
+// triangle, let the scan read more cells (3.6 blocks per F1 + F2 lookup, 2.1 for F1
+// alone), which coherent lookups pay for. The 760-triangle sphere (26 cells per
+// triangle) gets fine regions, 2.8 MB (4.8 before).
 // Positions stay float in t's frame: results are bit-identical to scanning the unfolding
 // itself, and the same as the per-sub-triangle lists gave (a cell outside S's list is
 // farther than F3 from all of S; `pelage bench lookup` checksums are unchanged). Tried
@@ -85,8 +90,11 @@ struct ClosestCellOptions {
     sim::UnfoldPaths paths = sim::UnfoldPaths::edges_only;
     // Regions searched per triangle side, at most (1 … 3): finer regions mean shorter
     // scans but longer lists in total (more memory, more cache misses on random
-    // queries). Only triangles over six cell spacings across get more than one.
+    // queries). Which triangles get more than one: see the layouts above.
     uint32_t max_subdivision = 3;
+    // Fine regions (about one per cell spacing across) while the index stays within this
+    // size, else one region per triangle up to six spacings across (see above).
+    size_t fine_regions_max_bytes = 4'000'000;
 };
 
 struct ClosestCellStats {
@@ -97,6 +105,7 @@ struct ClosestCellStats {
     size_t bytes = 0;                 // frames + list offsets + blocks
     size_t triangles_without_cells_in_reach = 0;
     size_t triangles_with_regions = 0;  // searched in r x r regions (r > 1)
+    bool fine_regions = false;          // which layout fitted (fine_regions_max_bytes)
 };
 
 class ClosestCellIndex {
@@ -178,7 +187,8 @@ class ClosestCellIndex {
     void scan(const Block *b, const Block *e, Vec2f q, Nearest<K> &n,
               float band = -1) const;
     void build_triangle(const sim::Crps &crps, sim::TriId t, sim::UnfoldScratch &scratch,
-                        std::vector<sim::UnfoldedTriangle> &unfolded, Built &out) const;
+                        std::vector<sim::UnfoldedTriangle> &unfolded,
+                        std::array<Built, 2> &out) const;
 
     const CellTable *m_cells;
     ClosestCellOptions m_options;

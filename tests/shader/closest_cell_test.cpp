@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <random>
 
 #include "shader/clonal_mosaic/edge_consistency.h"
@@ -126,6 +127,34 @@ TEST(ClosestCell, DenseCellsOnLargeTrianglesGiveTheTrueVoronoiDiagram) {
             ASSERT_EQ(e.second, c.second);
             ASSERT_EQ(e.f2, c.f2);
         }
+    }
+}
+
+// The two layouts (fine regions, or one list per triangle below six spacings across)
+// hold the same candidates for every point, so they give bit-identical results; the
+// coarse one is the smaller.
+TEST(ClosestCell, FineAndCoarseRegionsGiveIdenticalResults) {
+    const sim::Surface s = sim::build_surface(test::sample_mesh("cow.off"));
+    const CellTable cells = random_cells(s.crps, 20000, 21);
+    ClosestCellOptions coarse_options, fine_options;
+    coarse_options.fine_regions_max_bytes = 0;
+    fine_options.fine_regions_max_bytes = std::numeric_limits<size_t>::max();
+    const ClosestCellIndex coarse(s.crps, cells, coarse_options),
+        fine(s.crps, cells, fine_options);
+    EXPECT_FALSE(coarse.stats().fine_regions);
+    EXPECT_TRUE(fine.stats().fine_regions);
+    EXPECT_LT(coarse.stats().bytes, fine.stats().bytes / 2);
+    for (const auto &q : sim::sample_surface_uniform(s.crps, 50000, 22)) {
+        const ClosestCell a = coarse.find(q.tri, to_f(q.p)),
+                          b = fine.find(q.tri, to_f(q.p));
+        ASSERT_EQ(a.index, b.index);
+        ASSERT_EQ(a.second, b.second);
+        ASSERT_EQ(a.f1, b.f1);
+        ASSERT_EQ(a.f2, b.f2);
+        const auto c = coarse.find_three_within(q.tri, to_f(q.p), 0.3f * a.f2),
+                   d = fine.find_three_within(q.tri, to_f(q.p), 0.3f * a.f2);
+        ASSERT_EQ(c.index, d.index);
+        ASSERT_EQ(c.d2, d.d2);
     }
 }
 
