@@ -92,6 +92,7 @@ nlohmann::json measure(const sim::Surface &s, const shader::CellTable &cells,
             {"mean_candidates", index.stats().mean_candidates},
             {"mean_candidate_cells", index.stats().mean_candidate_cells},
             {"index_megabytes", index.stats().bytes / 1e6},
+            {"triangles_with_regions", index.stats().triangles_with_regions},
             {"ns_per_lookup", ns},
             {"ns_per_lookup_wall", ns_wall},
             {"ns_per_lookup_f1_only", ns_f1},
@@ -171,7 +172,7 @@ Runner add_bench_lookup(CLI::App &bench) {
         ->check(CLI::Range(size_t(1), size_t(1000000000)));
     sub->add_option("--seed", o->seed, "Seed of the cells and queries");
     sub->add_option("--subdivision", o->subdivision,
-                    "Sub-triangles per triangle side, at most (1-3)")
+                    "Search regions per triangle side, at most (1-3)")
         ->check(CLI::Range(1, 3));
     o->threads.add_to(*sub);
     return [o] { return run(*o); };

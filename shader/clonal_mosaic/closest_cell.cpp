@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <numeric>
 #include <stdexcept>
 
 namespace pelage::shader {
@@ -30,12 +31,30 @@ uint32_t slot_index(uint32_t n, uint32_t i, uint32_t j, bool upper) {
     return i * (2 * n - i) + 2 * j + (upper ? 1 : 0);
 }
 
+// The sub-triangle of an n-subdivision holding barycentric point (b1, b2), clamped to the
+// triangle (hits may sit a rounding error outside it).
+template <typename Real>
+uint32_t slot_at(uint32_t n, Real b1, Real b2) {
+    const Real nf = Real(n);
+    const Real u = std::clamp(b1 * nf, Real(0), nf);
+    const Real v = std::clamp(b2 * nf, Real(0), nf - u);
+    uint32_t i = std::min(uint32_t(u), n - 1), j = std::min(uint32_t(v), n - 1);
+    bool upper = (u - Real(i)) + (v - Real(j)) > Real(1);
+    if (i + j >= n - 1) {  // the last row of sub-triangles has no upper halves
+        j = n - 1 - std::min(i, n - 1);
+        upper = false;
+    }
+    return slot_index(n, i, j, upper);
+}
+
 }  // namespace
 
+// One triangle's lists for one choice of regions.
 struct ClosestCellIndex::Built {
-    TriangleRegions regions{};
+    Frame frame{};
+    uint32_t regions = 1;  // sub-triangles per side searched at run time
     std::vector<Block> blocks;
-    size_t entries = 0, distinct_triangles = 0, used_slots = 0;
+    size_t entries = 0, distinct_triangles = 0, longest = 0;
 };
 
 ClosestCellIndex::ClosestCellIndex(const sim::Crps &crps, const CellTable &cells,
@@ -52,7 +71,9 @@ ClosestCellIndex::ClosestCellIndex(const sim::Crps &crps, const CellTable &cells
     for (sim::TriId t = 0; t < nt; ++t) m_max_radius += 2 * crps.frame(t).bound_radius;
 
     // --- Per triangle, in parallel; then concatenated in triangle order ---
-    std::vector<Built> built(nt);
+    // Both layouts: [0] coarse regions (few, long lists), [1] fine (as many regions as
+    // cell spacings across, up to 3 per side).
+    std::vector<std::array<Built, 2>> built(nt);
     struct Scratch {
         sim::UnfoldScratch unfold;
         std::vector<sim::UnfoldedTriangle> unfolded;
@@ -65,27 +86,40 @@ ClosestCellIndex::ClosestCellIndex(const sim::Crps &crps, const CellTable &cells
                            built[t]);
     });
 
-    size_t total_blocks = 0, used_slots = 0, entries = 0, distinct = 0;
-    for (const Built &b : built) total_blocks += b.blocks.size();
+    // Fine regions scan fewer cells, coarse ones need less memory: fine while the whole
+    // index stays within the budget (then it mostly stays in cache anyway).
+    size_t blocks_of_layout[2] = {0, 0};
+    for (const auto &b : built)
+        for (int l = 0; l < 2; ++l) blocks_of_layout[l] += b[l].blocks.size();
+    const size_t fixed = nt * sizeof(Frame) + (nt + 1) * sizeof(uint32_t);
+    const int layout =
+        fixed + blocks_of_layout[1] * sizeof(Block) <= m_options.fine_regions_max_bytes;
+    m_stats.fine_regions = layout == 1;
+    size_t total_blocks = blocks_of_layout[layout], lists = 0, entries = 0, distinct = 0;
     if (total_blocks >= (size_t(1) << 30))
         throw std::length_error("closest-cell index: more than 2^30 candidate blocks");
-    m_regions.resize(nt);
+    m_frames.resize(nt);
+    m_first_block.resize(nt + 1);
     m_blocks.reserve(total_blocks);
     for (size_t t = 0; t < nt; ++t) {
-        Built &b = built[t];
-        b.regions.first_block_and_n |= static_cast<uint32_t>(m_blocks.size()) << 2;
-        m_regions[t] = b.regions;
+        Built &b = built[t][layout];
+        m_frames[t] = b.frame;
+        m_first_block[t] = static_cast<uint32_t>(m_blocks.size()) << 2 | b.regions;
         m_blocks.insert(m_blocks.end(), b.blocks.begin(), b.blocks.end());
         m_stats.triangles_without_cells_in_reach += b.entries == 0;
-        used_slots += b.used_slots;
+        m_stats.triangles_with_regions += b.regions > 1;
+        m_stats.max_candidate_cells = std::max(m_stats.max_candidate_cells, b.longest);
+        lists += b.regions * b.regions;
         entries += b.entries;
         distinct += b.distinct_triangles;
-        b = Built{};
+        built[t] = {};
     }
-    m_stats.mean_candidates = used_slots ? double(distinct) / used_slots : 0;
-    m_stats.mean_candidate_cells = used_slots ? double(entries) / used_slots : 0;
-    m_stats.bytes =
-        m_regions.size() * sizeof(TriangleRegions) + m_blocks.size() * sizeof(Block);
+    m_first_block[nt] = static_cast<uint32_t>(m_blocks.size()) << 2 | 1;
+    m_stats.mean_candidates = lists ? double(distinct) / lists : 0;
+    m_stats.mean_candidate_cells = lists ? double(entries) / lists : 0;
+    m_stats.bytes = m_frames.size() * sizeof(Frame) +
+                    m_first_block.size() * sizeof(uint32_t) +
+                    m_blocks.size() * sizeof(Block);
     m_stats.build_seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
@@ -93,20 +127,38 @@ ClosestCellIndex::ClosestCellIndex(const sim::Crps &crps, const CellTable &cells
 void ClosestCellIndex::build_triangle(const sim::Crps &crps, sim::TriId t,
                                       sim::UnfoldScratch &scratch,
                                       std::vector<sim::UnfoldedTriangle> &unfolded,
-                                      Built &out) const {
+                                      std::array<Built, 2> &out) const {
     const CellTable &cells = *m_cells;
     const sim::CrpsFrame &ft = crps.frame(t);
 
-    // --- Subdivision: about one sub-triangle per cell spacing across, at most 3 ---
-    const uint32_t n = std::clamp<uint32_t>(
-        static_cast<uint32_t>(
-            std::ceil(2 * ft.bound_radius / std::max(m_spacing, 1e-300))),
-        1, std::clamp<uint32_t>(m_options.max_subdivision, 1, max_subdivision));
+    // --- Subdivisions: r regions per side searched at run time, n per side built ---
+    // Fine regions: about one per cell spacing across (the per-sub-triangle lists of
+    // before). Coarse ones: one list per triangle while the triangle is at most six
+    // cell spacings across (on the cow with 20 000 cells, 78 % of the triangles), as its
+    // sub-triangles' lists overlap so much that storing them apart costs more cache
+    // misses than their shorter scans save (a threshold of four spacings: 4.3 MB on the
+    // cow, no faster). The reach is computed per sub-triangle of a finer n-subdivision
+    // (about two per cell spacing, at most 6, nested in both r-subdivisions): finer
+    // sub-triangles have tighter radii R_S, so the lists are shorter (one list per
+    // triangle on the cow: 28.8 cells with n <= 3, 21.9 with n <= 6), at no cost to a
+    // lookup.
+    const double spacings = 2 * ft.bound_radius / std::max(m_spacing, 1e-300);
+    const uint32_t r_max =
+        std::clamp<uint32_t>(m_options.max_subdivision, 1, max_subdivision);
+    const uint32_t rs[2] = {
+        std::clamp<uint32_t>(static_cast<uint32_t>(std::ceil(spacings / 6)), 1, r_max),
+        std::clamp<uint32_t>(static_cast<uint32_t>(std::ceil(spacings)), 1, r_max)};
+    // n: about two per spacing, at most 6, a multiple of both r (lcm(r0, r1) <= 6).
+    const uint32_t lcm = rs[0] * rs[1] / std::gcd(rs[0], rs[1]);
+    const uint32_t fine =
+        std::clamp<uint32_t>(static_cast<uint32_t>(std::ceil(2 * spacings)), 1, 6);
+    const uint32_t n = lcm * ((fine + lcm - 1) / lcm);
     const sim::Vec2d v0 = ft.v[0], e1 = ft.v[1] - ft.v[0], e2 = ft.v[2] - ft.v[0];
-    out.regions = {float(v0.x), float(v0.y), float(e1.x), float(e1.y),
-                   float(e2.x), float(e2.y), n,           {}};
+    for (Built &b : out)
+        b.frame = {float(v0.x), float(v0.y), float(e1.x), float(e1.y),
+                   float(e2.x), float(e2.y), {}};
     struct Sub {
-        uint32_t slot;
+        uint32_t region[2];  // the sub-triangles of the r-subdivisions holding this one
         sim::Vec2d v[3], centre;
         double bound = 0, reach_needed = 0;
     };
@@ -116,16 +168,16 @@ void ClosestCellIndex::build_triangle(const sim::Crps &crps, sim::TriId t,
             for (int upper = 0; upper < 2; ++upper) {
                 if (upper && i + j + 1 >= n) continue;
                 Sub s;
-                s.slot = slot_index(n, i, j, upper);
                 const auto b = sub_triangle(n, i, j, upper);
                 for (int c = 0; c < 3; ++c) s.v[c] = v0 + e1 * b[c][0] + e2 * b[c][1];
                 s.centre = (s.v[0] + s.v[1] + s.v[2]) / 3.0;
                 for (int c = 0; c < 3; ++c)
                     s.bound = std::max(s.bound, length(s.v[c] - s.centre));
+                for (int l = 0; l < 2; ++l)
+                    s.region[l] = slot_at(rs[l], (b[0][0] + b[1][0] + b[2][0]) / 3,
+                                          (b[0][1] + b[1][1] + b[2][1]) / 3);
                 subs.push_back(s);
             }
-    std::sort(subs.begin(), subs.end(),
-              [](const Sub &a, const Sub &b) { return a.slot < b.slot; });
 
     // --- Grow t's unfolding until it holds, for every S, all cells within R_S of S ---
     // Every cell of the unfolding carried into t's frame once (Teo's F[j→t]), in double.
@@ -182,76 +234,98 @@ void ClosestCellIndex::build_triangle(const sim::Crps &crps, sim::TriId t,
                                        : std::min(2 * radius, m_max_radius);
     }
 
-    // --- Per sub-triangle: the cells within R_S of S, by their distance from S ---
+    // --- Per region: the cells within R_S of one of its S, by distance from it ---
+    // (Each triangle occurs once in an unfolding, so each cell once in `mapped`.)
     struct Entry {
         double bound;
         const Mapped *m;
     };
     std::vector<Entry> list;
     std::vector<sim::TriId> tris;
-    uint32_t end = 0;
-    for (const Sub &s : subs) {
-        list.clear();
-        for (const Mapped &m : mapped) {
-            const double d = sim::point_triangle_distance(m.p, s.v);
-            if (d <= s.reach_needed * (1 + 1e-9)) list.push_back({d, &m});
+    for (int layout = 0; layout < 2; ++layout) {
+        Built &o = out[layout];
+        const uint32_t r = rs[layout];
+        o.regions = r;
+        if (layout == 1 && rs[1] == rs[0]) {  // the same lists
+            o = out[0];
+            break;
         }
-        std::sort(list.begin(), list.end(), [](const Entry &a, const Entry &b) {
-            return a.bound < b.bound || (a.bound == b.bound && a.m->cell < b.m->cell);
-        });
-        tris.clear();
-        for (const Entry &e : list) tris.push_back(e.m->tri);
-        std::sort(tris.begin(), tris.end());
-        out.distinct_triangles += std::unique(tris.begin(), tris.end()) - tris.begin();
-        out.entries += list.size();
-        out.used_slots += 1;
-        for (size_t i = 0; i < list.size(); i += per_block) {
-            Block b;
-            // The bound is rounded down by more than float's error in the scan's
-            // distances (positions of size |p| + the triangle's radius), so rounding
-            // never prunes the true nearest.
-            const double margin =
-                1e-5 * (list[i].bound + length(list[i].m->p) + ft.bound_radius);
-            const double lower = std::max(0.0, list[i].bound - margin);
-            b.bound2 = float(lower * lower * (1 - 1e-6));
-            for (size_t l = 0; l < per_block; ++l) {
-                const bool real = i + l < list.size();
-                b.x[l] = real ? float(list[i + l].m->p.x) : inf_f;
-                b.y[l] = real ? float(list[i + l].m->p.y) : inf_f;
-                b.cell[l] = real ? list[i + l].m->cell : ClosestCell::none;
+        std::array<std::array<sim::Vec2d, 3>, max_subdivision * max_subdivision> regions;
+        for (uint32_t i = 0; i < r; ++i)
+            for (uint32_t j = 0; i + j < r; ++j)
+                for (int upper = 0; upper < 2; ++upper) {
+                    if (upper && i + j + 1 >= r) continue;
+                    const auto b = sub_triangle(r, i, j, upper);
+                    for (int c = 0; c < 3; ++c)
+                        regions[slot_index(r, i, j, upper)][c] =
+                            v0 + e1 * b[c][0] + e2 * b[c][1];
+                }
+        for (uint32_t k = 0; k < r * r; ++k) {
+            const std::array<sim::Vec2d, 3> &region = regions[k];
+            list.clear();
+            for (const Mapped &m : mapped)
+                for (const Sub &s : subs)
+                    // (The distance from S is at least that from its centre less its
+                    // radius: a cheap test first, with room for its rounding.)
+                    if (s.region[layout] == k &&
+                        length(m.p - s.centre) - s.bound <= s.reach_needed * (1 + 1e-6) &&
+                        sim::point_triangle_distance(m.p, s.v) <=
+                            s.reach_needed * (1 + 1e-9)) {
+                        list.push_back(
+                            {sim::point_triangle_distance(m.p, region.data()), &m});
+                        break;
+                    }
+            std::sort(list.begin(), list.end(), [](const Entry &a, const Entry &b) {
+                return a.bound < b.bound || (a.bound == b.bound && a.m->cell < b.m->cell);
+            });
+            tris.clear();
+            for (const Entry &e : list) tris.push_back(e.m->tri);
+            std::sort(tris.begin(), tris.end());
+            o.distinct_triangles += std::unique(tris.begin(), tris.end()) - tris.begin();
+            o.entries += list.size();
+            o.longest = std::max(o.longest, list.size());
+            for (size_t i = 0; i < list.size(); i += per_block) {
+                Block b;
+                // The bound is rounded down by more than float's error in the scan's
+                // distances (positions of size |p| + the triangle's radius), so rounding
+                // never prunes the true nearest.
+                const double margin =
+                    1e-5 * (list[i].bound + length(list[i].m->p) + ft.bound_radius);
+                const double lower = std::max(0.0, list[i].bound - margin);
+                b.bound2 = float(lower * lower * (1 - 1e-6));
+                for (size_t l = 0; l < per_block; ++l) {
+                    const bool real = i + l < list.size();
+                    b.x[l] = real ? float(list[i + l].m->p.x) : inf_f;
+                    b.y[l] = real ? float(list[i + l].m->p.y) : inf_f;
+                    b.cell[l] = real ? list[i + l].m->cell : ClosestCell::none;
+                }
+                o.blocks.push_back(b);
             }
-            out.blocks.push_back(b);
+            o.frame.end[k] = static_cast<uint32_t>(o.blocks.size());
         }
-        end = static_cast<uint32_t>(out.blocks.size());
-        out.regions.end[s.slot] = end;
     }
 }
 
 const ClosestCellIndex::Block *ClosestCellIndex::blocks_at(sim::TriId t, float b1,
                                                            float b2,
                                                            const Block *&end) const {
-    const TriangleRegions &r = m_regions[t];
-    const uint32_t n = r.first_block_and_n & 3u;
-    const float nf = float(n);
-    // Clamp to the triangle: hits may sit a rounding error outside it.
-    const float u = std::clamp(b1 * nf, 0.0f, nf);
-    const float v = std::clamp(b2 * nf, 0.0f, nf - u);
-    uint32_t i = std::min(uint32_t(u), n - 1), j = std::min(uint32_t(v), n - 1);
-    bool upper = (u - float(i)) + (v - float(j)) > 1.0f;
-    if (i + j >= n - 1) {  // the last row of sub-triangles has no upper halves
-        j = n - 1 - std::min(i, n - 1);
-        upper = false;
+    const uint32_t first = m_first_block[t], r = first & 3u;
+    const Block *b = m_blocks.data() + (first >> 2);
+    if (r == 1) {  // one list: no need of (b1, b2)
+        end = m_blocks.data() + (m_first_block[t + 1] >> 2);
+        return b;
     }
-    const uint32_t k = slot_index(n, i, j, upper);
-    const Block *first = m_blocks.data() + (r.first_block_and_n >> 2);
-    end = first + r.end[k];
-    return first + (k ? r.end[k - 1] : 0);
+    const uint32_t k = slot_at(r, b1, b2);
+    const Frame &f = m_frames[t];
+    end = b + f.end[k];
+    return b + (k ? f.end[k - 1] : 0);
 }
 
 const ClosestCellIndex::Block *ClosestCellIndex::blocks_of(sim::TriId t, Vec2f q,
                                                            const Block *&end) const {
+    if ((m_first_block[t] & 3u) == 1) return blocks_at(t, 0, 0, end);
     // q's barycentric coordinates, by Cramer's rule on q - v0 = b1 e1 + b2 e2.
-    const TriangleRegions &r = m_regions[t];
+    const Frame &r = m_frames[t];
     const float dx = q.x - r.v0x, dy = q.y - r.v0y;
     const float inv_det = 1.0f / (r.e1x * r.e2y - r.e1y * r.e2x);
     return blocks_at(t, (dx * r.e2y - dy * r.e2x) * inv_det,
@@ -271,7 +345,7 @@ void ClosestCellIndex::scan(const Block *b, const Block *e, Vec2f q, Nearest<K> 
     };
     float d_min2 = radius2();
     for (; b != e; ++b) {
-        // Blocks are sorted by their cells' distance from the sub-triangle: once a block
+        // Blocks are sorted by their cells' distance from the region: once a block
         // lies beyond D_min, so do all after it.
         if constexpr (prune)
             if (b->bound2 > d_min2) break;
@@ -284,8 +358,8 @@ void ClosestCellIndex::scan(const Block *b, const Block *e, Vec2f q, Nearest<K> 
         for (int l = 0; l < per_block; ++l) {
             const uint32_t cell = b->cell[l];
             if (d2[l] > d_min2 || cell == ClosestCell::none) continue;
-            // Order by (distance, stable id); a cell listed in several sub-triangles
-            // (the exhaustive scan) enters once.
+            // Order by (distance, stable id); a cell listed in several regions (the
+            // exhaustive scan) enters once.
             int pos = K;
             bool seen = false;
             for (int j = K - 1; j >= 0; --j) {
@@ -403,11 +477,10 @@ ClosestCellIndex::Nearest<3> ClosestCellIndex::find_three_within(sim::TriId t, f
 }
 
 ClosestCell ClosestCellIndex::find_exhaustive(sim::TriId t, Vec2f q) const {
+    // Every region's list.
     Nearest<2> n;
-    const TriangleRegions &r = m_regions[t];
-    const uint32_t slots = (r.first_block_and_n & 3u) * (r.first_block_and_n & 3u);
-    const Block *first = m_blocks.data() + (r.first_block_and_n >> 2);
-    scan<false, true, 2>(first, first + r.end[slots - 1], q, n);
+    scan<false, true, 2>(m_blocks.data() + (m_first_block[t] >> 2),
+                         m_blocks.data() + (m_first_block[t + 1] >> 2), q, n);
     return {n.index[0], n.index[1], std::sqrt(n.d2[0]), std::sqrt(n.d2[1])};
 }
 

@@ -7,28 +7,53 @@
 // cell into t's frame, visits triangles outward from t, and shrinks the search radius
 // D_min whenever a closer cell turns up.
 //
-// What we precompute (Teo's method, kept, made fast). Each triangle t is split into n_t²
-// sub-triangles S (regular subdivision in barycentric coordinates; n_t grows with the
-// triangle's size in cell spacings, up to 3). For each S, t's breadth-first unfolding
-// (sim/unfold.h) supplies every cell that can be among the three nearest of some point of
-// S: those within R_S = d_3 + b_S of S (d_3: distance from S's centroid to its
-// third-nearest cell, b_S: S's bounding radius about that centroid), because
-// F3(q) <= |q - c_3| <= d_3 + b_S. Each such cell is stored *already carried into t's
-// frame* by its triangle's reverse map F[j→t]: the transform Teo applies per candidate
-// triangle at every lookup is applied once here, so a lookup is a scan of one flat list.
-// The list is sorted by each cell's distance from S (a lower bound for every query in S)
-// and packed five cells to a 64-byte block (float x[5], y[5], uint32 cell[5] and the
-// block's squared bound: no padding bytes); the scan stops at the first block whose bound
-// exceeds the current K-th nearest distance (Teo's adaptive radius D_min, for the K
-// wanted). One triangle's header (its barycentric inverse and where its sub-triangles'
-// lists start) is one cache line, so a random lookup touches the header and then a
-// contiguous run of blocks (on the cow with 20 000 cells: 14.2 cells per list, 10.6 MB).
+// What we precompute (Teo's method, kept, made fast). Each triangle t is split into n²
+// sub-triangles S (regular subdivision in barycentric coordinates; n grows with the
+// triangle's size, about two per cell spacing across, up to 6). For each S, t's
+// breadth-first unfolding (sim/unfold.h) supplies every cell that can be among the three
+// nearest of some point of S: those within R_S of S, where R_S bounds F3 on S (at most
+// d_3 + b_S, d_3 the distance from S's centroid to its third-nearest cell and b_S S's
+// radius, because F3(q) <= |q - c_3| <= d_3 + b_S). Each such cell is stored *already
+// carried into t's frame* by its triangle's reverse map F[j→t]: the transform Teo applies
+// per candidate triangle at every lookup is applied once here, so a lookup is a scan of
+// one flat list.
+//
+// Which list. The lists of neighbouring sub-triangles overlap heavily: they come from the
+// same cells at the same positions. Stored apart (one per S, n <= 3, as until 2026-11)
+// they made the cow with 20 000 cells a 10.6 MB index, 9 lists of 14 cells for 3.4 cells
+// per triangle, and a random lookup waited ~150 ns on DRAM for its list. So a lookup now
+// searches a *region* of t, and a region's list is the union of the lists of the S in
+// it. Two layouts, one per index: *fine* regions, r = about one per cell spacing across
+// t (at most 3 per side), when the whole index stays within
+// ClosestCellOptions::fine_regions_max_bytes (4 MB: then it mostly stays in cache), else
+// *coarse* ones: one region (t itself) for triangles up to six spacings across, r x r
+// (r = 2, 3) beyond. Each list is sorted by its cells' distance from the region (a lower
+// bound for every query in it) and packed five cells to a 64-byte block (float x[5],
+// y[5], uint32 cell[5] and the block's squared bound: no padding bytes); the scan stops
+// at the first block whose bound exceeds the current K-th nearest distance (Teo's
+// adaptive radius D_min, for the K wanted). A triangle's blocks are contiguous and a
+// table of uint32 offsets (23 kB on the cow, cache-resident) locates them; when r = 1 the
+// lookup needs nothing else: a random lookup is one cache miss on a contiguous run. When
+// r > 1, t's 64-byte frame (its barycentric inverse and where its regions' lists end)
+// picks the list. The finer sub-triangles cost nothing at lookup and shorten the lists.
+// Measured on the cow with 20 000 cells (`pelage bench lookup`, one thread, ns per F1 +
+// F2 lookup in random / coherent order, banded coherent): per-S lists as before 10.6 MB,
+// 14.2 cells per list, 132-214 / 62-67 / 64-71 ns; fine regions 7.9 MB, 10.0 cells,
+// 117-142 / 65-66 / 64-65; coarse regions (chosen) 3.2 MB, 19.3 cells, 22 % of triangles
+// with r > 1, 100-120 / 66-70 / 72-80: the coarse bounds, measured from the whole
+// triangle, let the scan read more cells (3.6 blocks per F1 + F2 lookup, 2.1 for F1
+// alone), which coherent lookups pay for. The 760-triangle sphere (26 cells per
+// triangle) gets fine regions, 2.8 MB (4.8 before).
 // Positions stay float in t's frame: results are bit-identical to scanning the unfolding
-// itself. (16-bit positions, exact floats kept aside for the few candidates the grid
-// cannot decide, halved the scanned bytes but added a second cache miss per lookup and
-// were slower; see README, "Speed".) The banded search for soft edges runs as the
-// nearest-cell scan followed by a pass over the same, now cached, blocks for the cells
-// within F1 + band (three_within()).
+// itself, and the same as the per-sub-triangle lists gave (a cell outside S's list is
+// farther than F3 from all of S; `pelage bench lookup` checksums are unchanged). Tried
+// and slower (see git log): 16-bit positions with exact floats aside (a second miss per
+// lookup); one union per triangle in Hilbert order with, per S, a sorted list of (block,
+// mask, bound) visits (an S's cells spread over ~6 partly used blocks); the union sorted
+// by distance from t's centroid with a mask byte per (S, block) (that order prunes
+// poorly). The banded search for soft edges runs as the nearest-cell scan followed by a
+// pass over the same, now cached, blocks for the cells within F1 + band
+// (three_within()).
 // By default the unfolding walks edges only (sim/unfold.h, UnfoldPaths): the two
 // triangles on either side of an edge then see identical maps for every triangle reached
 // through that edge, which reduces Teo's "cracks" (§6.3); `pelage bench lookup` measures
@@ -63,29 +88,35 @@ struct ClosestCell {
 
 struct ClosestCellOptions {
     sim::UnfoldPaths paths = sim::UnfoldPaths::edges_only;
-    // Sub-triangles per triangle side, at most (1 … 3): finer regions mean shorter scans
-    // but longer lists in total (more memory, more cache misses on random queries).
+    // Regions searched per triangle side, at most (1 … 3): finer regions mean shorter
+    // scans but longer lists in total (more memory, more cache misses on random
+    // queries). Which triangles get more than one: see the layouts above.
     uint32_t max_subdivision = 3;
+    // Fine regions (about one per cell spacing across) while the index stays within this
+    // size, else one region per triangle up to six spacings across (see above).
+    size_t fine_regions_max_bytes = 4'000'000;
 };
 
 struct ClosestCellStats {
     double build_seconds = 0;
-    double mean_candidates = 0;       // distinct triangles per sub-triangle's list
-    double mean_candidate_cells = 0;  // cells per sub-triangle's list
-    size_t bytes = 0;                 // headers + blocks
+    double mean_candidates = 0;       // distinct triangles per list (one per region)
+    double mean_candidate_cells = 0;  // cells per list
+    size_t max_candidate_cells = 0;   // in the longest list
+    size_t bytes = 0;                 // frames + list offsets + blocks
     size_t triangles_without_cells_in_reach = 0;
+    size_t triangles_with_regions = 0;  // searched in r x r regions (r > 1)
+    bool fine_regions = false;          // which layout fitted (fine_regions_max_bytes)
 };
 
 class ClosestCellIndex {
   public:
     static constexpr uint32_t max_subdivision = 3;
-    static constexpr uint32_t max_slots = max_subdivision * max_subdivision;
 
     ClosestCellIndex(const sim::Crps &crps, const CellTable &cells,
                      const ClosestCellOptions &options = {});
 
     // Nearest cell (and F2) to point q (local CRPS coordinates) of triangle t, with Teo's
-    // pruning, searching q's sub-triangle list.
+    // pruning, searching t's list.
     ClosestCell find(sim::TriId t, Vec2f q) const;
     // The nearest cell only (f2 left infinite): prunes harder, for hard-edged patterns.
     ClosestCell find_nearest(sim::TriId t, Vec2f q) const;
@@ -107,23 +138,23 @@ class ClosestCellIndex {
     // What a blend over a band of width `band` past the nearest cell needs, in one scan
     // that prunes at F1 + band instead of F3 (band = 0: the nearest cell and its ties).
     Nearest<3> find_three_within(sim::TriId t, Vec2f q, float band) const;
-    // The candidate lists of every sub-triangle of t, without any pruning: the reference
-    // the tests compare find() against (it checks the sub-triangle radii too).
+    // t's whole list, without any pruning: the reference the tests compare find()
+    // against (it checks the pruning bounds).
     ClosestCell find_exhaustive(sim::TriId t, Vec2f q) const;
 
     // The same searches from barycentric coordinates (b1, b2) of triangle t, the way the
-    // renderer reports a hit: the sub-triangle follows from (b1, b2) directly and the
-    // point from the triangle's header, so a lookup reads no other per-triangle data.
+    // renderer reports a hit: the point follows from t's frame (an independent read, so
+    // it overlaps with the list's).
     ClosestCell find_nearest(sim::TriId t, float b1, float b2) const;
     Nearest<3> find_three_within(sim::TriId t, float b1, float b2, float band) const;
     // Local CRPS coordinates of barycentric point (b1, b2) of t (what those use).
     Vec2f point(sim::TriId t, float b1, float b2) const {
-        const TriangleRegions &r = m_regions[t];
+        const Frame &r = m_frames[t];
         return {r.v0x + b1 * r.e1x + b2 * r.e2x, r.v0y + b1 * r.e1y + b2 * r.e2y};
     }
 
     // Distance from (t, q) to one cell as t's unfolding places it; infinity when the cell
-    // is not a candidate of q's sub-triangle. For diagnostics (cracks).
+    // is not in t's list. For diagnostics (cracks).
     float distance_to_cell(sim::TriId t, Vec2f q, uint32_t cell) const;
 
     const ClosestCellStats &stats() const { return m_stats; }
@@ -131,26 +162,23 @@ class ClosestCellIndex {
 
   private:
     // Five candidate cells in t's frame; padding entries have cell == none, x = y = +inf.
-    // Five (60 bytes and the bound) rather than four: the line has room for them, and
-    // every lookup reads fewer lines (the cow's index: 12.7 -> 10.6 MB).
+    // Five (60 bytes and the bound) rather than four: the line has room for them.
     static constexpr int per_block = 5;
     struct alignas(64) Block {
         float x[per_block], y[per_block];
         uint32_t cell[per_block];
-        float bound2;  // squared lower bound of the distance from S, for all five cells
+        float bound2;  // squared lower bound of the distance from t, for all five cells
     };
     static_assert(sizeof(Block) == 64);
 
-    // The triangle in its frame, q = v0 + b1 e1 + b2 e2; n = subdivision.
-    // Sub-triangle k's blocks: [first_block + (k ? end[k - 1] : 0), first_block +
-    // end[k]).
-    struct alignas(64) TriangleRegions {
+    // The triangle in its frame, q = v0 + b1 e1 + b2 e2, and, when it has r > 1 regions,
+    // where their lists end among its blocks (region k's starts at end[k - 1], or 0).
+    struct alignas(64) Frame {
         float v0x, v0y, e1x, e1y, e2x, e2y;
-        uint32_t first_block_and_n;  // first_block << 2 | n (n <= 3)
-        uint32_t end[max_slots];
+        uint32_t end[max_subdivision * max_subdivision];
     };
-    static_assert(sizeof(TriangleRegions) == 64);
-    struct Built;  // one triangle's regions while building
+    static_assert(sizeof(Frame) == 64);
+    struct Built;  // one triangle's list while building
 
     const Block *blocks_of(sim::TriId t, Vec2f q, const Block *&end) const;
     const Block *blocks_at(sim::TriId t, float b1, float b2, const Block *&end) const;
@@ -159,12 +187,16 @@ class ClosestCellIndex {
     void scan(const Block *b, const Block *e, Vec2f q, Nearest<K> &n,
               float band = -1) const;
     void build_triangle(const sim::Crps &crps, sim::TriId t, sim::UnfoldScratch &scratch,
-                        std::vector<sim::UnfoldedTriangle> &unfolded, Built &out) const;
+                        std::vector<sim::UnfoldedTriangle> &unfolded,
+                        std::array<Built, 2> &out) const;
 
     const CellTable *m_cells;
     ClosestCellOptions m_options;
     double m_initial_radius = 0, m_max_radius = 0, m_spacing = 0;
-    std::vector<TriangleRegions> m_regions;
+    std::vector<Frame> m_frames;
+    // t's blocks are [m_first_block[t] >> 2, m_first_block[t + 1] >> 2); the low two
+    // bits hold r, its regions per side (r = 1: one list, the frame is not needed).
+    std::vector<uint32_t> m_first_block;
     std::vector<Block> m_blocks;
     ClosestCellStats m_stats;
 };

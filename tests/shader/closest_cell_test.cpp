@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <random>
 
 #include "shader/clonal_mosaic/edge_consistency.h"
@@ -93,6 +94,67 @@ TEST(ClosestCell, FlatPlaneGivesTheTrueVoronoiDiagram) {
         ASSERT_EQ(c.index, best);
         ASSERT_NEAR(c.f1, d1, 1e-5);
         ASSERT_NEAR(c.f2, d2, 1e-5);
+    }
+}
+
+// Few large triangles under many cells: every list is long (hundreds of cells, far more
+// than a 64-bit mask or an 8-bit index could address), with one list per triangle
+// (max_subdivision 1) and with 3 x 3 regions. Still the true Voronoi diagram, and the
+// pruned searches equal the exhaustive one.
+TEST(ClosestCell, DenseCellsOnLargeTrianglesGiveTheTrueVoronoiDiagram) {
+    const sim::Surface s = sim::build_surface(sim::make_plane(1, 1, 2, 2));
+    const CellTable cells = random_cells(s.crps, 3000, 11);
+    std::vector<sim::Vec3d> world(cells.size());
+    for (sim::TriId t = 0; t < s.mesh.num_triangles(); ++t)
+        for (uint32_t k = cells.row[t]; k < cells.row[t + 1]; ++k)
+            world[k] = s.crps.to_3d(t, {cells.x[k], cells.z[k]});
+    for (const uint32_t regions : {1u, 3u}) {
+        ClosestCellOptions options;
+        options.max_subdivision = regions;
+        const ClosestCellIndex index(s.crps, cells, options);
+        EXPECT_GT(index.stats().max_candidate_cells, 256u) << regions;
+        for (const auto &q : sim::sample_surface_uniform(s.crps, 3000, 13)) {
+            const sim::Vec3d p = s.crps.to_3d(q.tri, q.p);
+            double d1 = 1e300;
+            uint32_t best = 0;
+            for (uint32_t k = 0; k < world.size(); ++k)
+                if (length(world[k] - p) < d1) d1 = length(world[k] - p), best = k;
+            const ClosestCell c = index.find(q.tri, to_f(q.p));
+            const ClosestCell e = index.find_exhaustive(q.tri, to_f(q.p));
+            ASSERT_EQ(c.index, best) << regions;
+            ASSERT_NEAR(c.f1, d1, 1e-5);
+            ASSERT_EQ(e.index, c.index);
+            ASSERT_EQ(e.second, c.second);
+            ASSERT_EQ(e.f2, c.f2);
+        }
+    }
+}
+
+// The two layouts (fine regions, or one list per triangle below six spacings across)
+// hold the same candidates for every point, so they give bit-identical results; the
+// coarse one is the smaller.
+TEST(ClosestCell, FineAndCoarseRegionsGiveIdenticalResults) {
+    const sim::Surface s = sim::build_surface(test::sample_mesh("cow.off"));
+    const CellTable cells = random_cells(s.crps, 20000, 21);
+    ClosestCellOptions coarse_options, fine_options;
+    coarse_options.fine_regions_max_bytes = 0;
+    fine_options.fine_regions_max_bytes = std::numeric_limits<size_t>::max();
+    const ClosestCellIndex coarse(s.crps, cells, coarse_options),
+        fine(s.crps, cells, fine_options);
+    EXPECT_FALSE(coarse.stats().fine_regions);
+    EXPECT_TRUE(fine.stats().fine_regions);
+    EXPECT_LT(coarse.stats().bytes, fine.stats().bytes / 2);
+    for (const auto &q : sim::sample_surface_uniform(s.crps, 50000, 22)) {
+        const ClosestCell a = coarse.find(q.tri, to_f(q.p)),
+                          b = fine.find(q.tri, to_f(q.p));
+        ASSERT_EQ(a.index, b.index);
+        ASSERT_EQ(a.second, b.second);
+        ASSERT_EQ(a.f1, b.f1);
+        ASSERT_EQ(a.f2, b.f2);
+        const auto c = coarse.find_three_within(q.tri, to_f(q.p), 0.3f * a.f2),
+                   d = fine.find_three_within(q.tri, to_f(q.p), 0.3f * a.f2);
+        ASSERT_EQ(c.index, d.index);
+        ASSERT_EQ(c.d2, d.d2);
     }
 }
 
