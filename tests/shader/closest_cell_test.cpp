@@ -174,7 +174,9 @@ TEST(ClosestCell, BandedSearchIsTheThreeNearestCutAtTheBand) {
         for (int i = 0; i < 3; ++i) {
             const bool inside = i == 0 || all.d2[i] <= cap * cap;  // the nearest always
             ASSERT_EQ(cut.index[i], inside ? all.index[i] : ClosestCell::none) << i;
-            if (inside) ASSERT_EQ(cut.d2[i], all.d2[i]);
+            if (inside) {
+                ASSERT_EQ(cut.d2[i], all.d2[i]);
+            }
             n += inside;
         }
         ++kept[n];
