@@ -6,6 +6,8 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
+#include <memory>
 #include <random>
 
 #include "renderer/film.h"
@@ -182,8 +184,15 @@ CompareResult compare_shaders(const SceneDesc &desc, const CompareOptions &optio
     CompareResult result;
     result.width = desc.film.width;
     result.height = desc.film.height;
+    // --- Every shader's scene first, so the renders below can alternate ---
+    struct Prepared {
+        std::unique_ptr<SceneDesc> desc;  // the scene refers to it: a stable address
+        std::unique_ptr<Scene> scene;
+    };
+    std::vector<Prepared> prepared;
+    const int repeats = std::max(options.repeats, 1);
     for (const std::string &shader : options.shaders) {
-        SceneDesc d = desc;
+        auto d = std::make_unique<SceneDesc>(desc);
         nlohmann::json params = nlohmann::json::object();  // the plugin's defaults
         if (options.match_baselines && !desc.objects[subjects[0]].cells.empty())
             params = matched_baseline_params(shader, desc.objects[subjects[0]].cells);
@@ -197,28 +206,28 @@ CompareResult compare_shaders(const SceneDesc &desc, const CompareOptions &optio
             params.erase("spot_fraction");
         }
         for (size_t i : subjects) {
-            MaterialDesc &m = d.objects[i].material;
+            MaterialDesc &m = d->objects[i].material;
             if (m.shader != shader) {
                 m.params = params;
-                if (atlas) d.objects[i].mesh = options.texture_mesh;
+                if (atlas) d->objects[i].mesh = options.texture_mesh;
             }
             m.shader = shader;
         }
         if (perlin_fraction >= 0 && desc.objects[subjects[0]].material.shader != shader) {
             // The threshold that makes the mosaic's spot fraction of the surface spots.
             const float threshold =
-                noise_quantile(Scene(d, plugins), subjects[0], hits, perlin_fraction);
+                noise_quantile(Scene(*d, plugins), subjects[0], hits, perlin_fraction);
             for (size_t i : subjects)
                 if (desc.objects[i].material.shader != shader)
-                    d.objects[i].material.params["threshold"] = threshold;
+                    d->objects[i].material.params["threshold"] = threshold;
         }
-        result.params[shader] = d.objects[subjects[0]].material.params;
-        const Scene scene(d, plugins);
+        result.params[shader] = d->objects[subjects[0]].material.params;
+        auto scene = std::make_unique<Scene>(*d, plugins);
 
         // --- Shading alone, on the same points for every shader ---
         // First untimed, which also warms what a plugin sets up lazily (the texture's
         // mip levels): the render below is then timed on equal terms for every shader.
-        const Material &mat = scene.materials()[subjects[0]];
+        const Material &mat = scene->materials()[subjects[0]];
         std::vector<PelageHit> shader_hits = hits;
         if (atlas) add_uvs(sim::load_mesh(options.texture_mesh), shader_hits);
         float sink = 0;
@@ -230,26 +239,43 @@ CompareResult compare_shaders(const SceneDesc &desc, const CompareOptions &optio
             }
         };
         shade_all();
-        const double t0 = thread_cpu_seconds();
-        shade_all();
-        const double ns =
-            1e9 * (thread_cpu_seconds() - t0) / std::max<size_t>(hits.size(), 1);
+        double ns = std::numeric_limits<double>::infinity();
+        for (int k = 0; k < repeats; ++k) {
+            const double t0 = thread_cpu_seconds();
+            shade_all();
+            ns = std::min(ns, 1e9 * (thread_cpu_seconds() - t0) /
+                                  double(std::max<size_t>(hits.size(), 1)));
+        }
         (void)sink;
-
-        RenderOptions ro;
-        ro.seed = options.seed;
-        const double cpu0 = process_cpu_seconds();
-        const RenderResult r = render(scene, ro);
-        const double cpu_seconds = process_cpu_seconds() - cpu0;
-
-        CompareRun run{shader, r.seconds, cpu_seconds, ns, {}};
-        const std::vector<float> px = r.film->resolve();
-        run.rgb.resize(size_t(d.film.width) * d.film.height * 3);
-        for (size_t i = 0; i < size_t(d.film.width) * d.film.height; ++i)
-            for (int c = 0; c < 3; ++c)
-                run.rgb[3 * i + c] = px[i * Film::num_channels + c];
+        CompareRun run;
+        run.shader = shader;
+        run.ns_per_lookup = ns;
         result.runs.push_back(std::move(run));
+        prepared.push_back({std::move(d), std::move(scene)});
     }
+
+    // --- The renders: round after round, every shader once per round, the order
+    // reversed every other round so that no shader always follows the same one ---
+    RenderOptions ro;
+    ro.seed = options.seed;
+    for (int k = 0; k < repeats; ++k)
+        for (size_t j = 0; j < prepared.size(); ++j) {
+            const size_t i = k % 2 ? prepared.size() - 1 - j : j;
+            CompareRun &run = result.runs[i];
+            const double cpu0 = process_cpu_seconds();
+            const RenderResult r = render(*prepared[i].scene, ro);
+            const double cpu_seconds = process_cpu_seconds() - cpu0;
+            run.cpu_seconds_each.push_back(cpu_seconds);
+            run.cpu_seconds = k ? std::min(run.cpu_seconds, cpu_seconds) : cpu_seconds;
+            run.seconds = k ? std::min(run.seconds, r.seconds) : r.seconds;
+            if (k) continue;  // the same seed gives the same image every time
+            const SceneDesc &d = *prepared[i].desc;
+            const std::vector<float> px = r.film->resolve();
+            run.rgb.resize(size_t(d.film.width) * d.film.height * 3);
+            for (size_t p = 0; p < size_t(d.film.width) * d.film.height; ++p)
+                for (int c = 0; c < 3; ++c)
+                    run.rgb[3 * p + c] = px[p * Film::num_channels + c];
+        }
     return result;
 }
 
@@ -333,6 +359,7 @@ nlohmann::json CompareResult::report() const {
     for (const CompareRun &r : runs) {
         shaders[r.shader] = {{"seconds", r.seconds},
                              {"cpu_seconds", r.cpu_seconds},
+                             {"cpu_seconds_each", r.cpu_seconds_each},
                              {"ns_per_lookup", r.ns_per_lookup}};
         if (r.shader == "clonal_mosaic") cm = &r;
     }
@@ -350,6 +377,7 @@ nlohmann::json CompareResult::report() const {
         }
     return {{"width", width},
             {"height", height},
+            {"repeats", runs.empty() ? 0 : runs[0].cpu_seconds_each.size()},
             {"shaders", shaders},
             {"ratios", ratios},
             {"lookup_ratios", lookup_ratios},

@@ -16,6 +16,10 @@ struct CompareOptions {
                                      "diffuse"};
     uint64_t seed = 0;
     size_t lookups = 200000;  // surface points timed per shader
+    // Renders (and shading timings) per shader, the shaders alternating round by round;
+    // the times reported are each shader's minimum: on a shared machine other jobs only
+    // ever add time, so the minimum is the least disturbed estimate.
+    int repeats = 1;
     // Give worley and perlin the mosaic's look (compare.cpp, match_baselines) unless the
     // scene's own material is that shader; false: the plugins' defaults.
     bool match_baselines = true;
@@ -27,8 +31,9 @@ struct CompareOptions {
 
 struct CompareRun {
     std::string shader;
-    double seconds = 0;      // the whole render, wall clock
+    double seconds = 0;      // the whole render, wall clock (minimum over the repeats)
     double cpu_seconds = 0;  // ... CPU time of all threads (the ratios use it)
+    std::vector<double> cpu_seconds_each;  // every repeat's, in order
     double ns_per_lookup =
         0;  // shade() alone, same points for every shader, thread CPU time
     std::vector<float> rgb;  // resolved beauty, linear RGB, width × height × 3

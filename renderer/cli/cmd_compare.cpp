@@ -25,6 +25,7 @@ struct CompareCliOptions {
     bool no_match = false;
     unsigned long long seed = 0;
     size_t lookups = 200000;
+    int repeat = 1;
     bool deform = false;
     ThreadOption threads;
 };
@@ -82,6 +83,7 @@ int run(const CompareCliOptions &o) {
     renderer::CompareOptions co;
     co.seed = o.seed;
     co.lookups = o.lookups;
+    co.repeats = o.repeat;
     co.shaders.clear();
     std::stringstream ss(o.shaders);
     for (std::string s; std::getline(ss, s, ',');)
@@ -147,6 +149,10 @@ Runner add_compare_command(CLI::App &app) {
     sub->add_option("--seed", o->seed, "Sampler seed, the same for every shader");
     sub->add_option("--lookups", o->lookups, "Surface points timed per shader")
         ->check(CLI::Range(size_t(1), size_t(100000000)));
+    sub->add_option("--repeat", o->repeat,
+                    "Render every shader N times, alternating, and report each one's "
+                    "minimum time (for shared, noisy machines)")
+        ->check(CLI::Range(1, 1000));
     sub->add_option("--report", o->report, "Write the comparison as JSON");
     sub->add_option("--atlas-res", o->atlas_res,
                     "Atlas resolution baked for the texture shader")

@@ -2,6 +2,7 @@
 // (a contract), a contact sheet, and exit 2 for a scene with nothing to compare.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -86,6 +87,38 @@ TEST(CompareCli, BaselinesMatchTheMosaicAndTextureUsesItsAtlas) {
         0);
     const auto d = nlohmann::json::parse(std::ifstream(tmp.file("d.json")));
     EXPECT_TRUE(d["params"]["worley"].empty());
+}
+
+// --repeat: every shader rendered N times; the time reported is the minimum of the N,
+// which the report lists; the images do not depend on it.
+TEST(CompareCli, RepeatReportsTheMinimumOfEveryRender) {
+    TempDir tmp;
+    const std::string scene = tmp.write(
+        "scene.json",
+        scene_json(simulate_two_type_cells(tmp, "procedural:icosphere:3", 300)));
+    std::string err;
+    ASSERT_EQ(run_pelage("compare " + scene +
+                             " --shaders clonal_mosaic,diffuse --lookups 1000 --repeat 3 "
+                             "--report " +
+                             tmp.file("r.json"),
+                         nullptr, &err),
+              0)
+        << err;
+    const auto r = nlohmann::json::parse(std::ifstream(tmp.file("r.json")));
+    EXPECT_EQ(r["repeats"].get<int>(), 3);
+    for (const char *s : {"clonal_mosaic", "diffuse"}) {
+        const auto &each = r["shaders"][s]["cpu_seconds_each"];
+        ASSERT_EQ(each.size(), 3u) << s;
+        double lo = each[0].get<double>();
+        for (const auto &v : each) lo = std::min(lo, v.get<double>());
+        EXPECT_EQ(r["shaders"][s]["cpu_seconds"].get<double>(), lo) << s;
+    }
+    EXPECT_NEAR(r["ratios"]["clonal_mosaic_vs_diffuse"].get<double>(),
+                r["shaders"]["clonal_mosaic"]["cpu_seconds"].get<double>() /
+                    r["shaders"]["diffuse"]["cpu_seconds"].get<double>(),
+                1e-12);
+    EXPECT_EQ(run_pelage("compare " + scene + " --repeat 0", nullptr, &err), 2);
+    EXPECT_NE(err.find("--repeat"), std::string::npos) << err;
 }
 
 TEST(CompareCli, SceneWithoutPatternIsExit2) {
