@@ -1,18 +1,21 @@
-/* clonal_mosaic: the pattern of a `pelage sim` run, looked up at every hit by the
- * closest-cell search of Teo 2006 ch. 6 (closest_cell.h).
- *
- * | parameter  | type   | default | meaning | | jitter     | float  | 0       | per-cell
- * brightness variation in [0, 1], keyed by stable id | | edge_width | float  | 0       |
- * soft boundary between cells, object-space units             | | antialias  | int    | 1
- * | also blend boundaries over the ray footprint (no jaggies)   | | roughness  | string |
- * ""      | per-type coat roughness, "F=0.35,B=0.5"; "" keeps material's| | unfolding  |
- * string | "edges" | "edges" (fewer cracks) or "teo" (edge and vertex maps)      |
- *
- * The object needs "cells": a .cells file made by `pelage sim` for the same mesh (checked
- * against the mesh's hash). AOVs: cell_id, cell_type, f1 (distance to the cell centre).
- * Albedo is the cell type's colour; eumelanin/pheomelanin are passed on for the fur.
- */
+// clonal_mosaic: the pattern of a `pelage sim` run, looked up at every hit by the
+// closest-cell search of Teo 2006 ch. 6 (closest_cell.h).
+//
+// Parameters (name, type, default: meaning):
+// - jitter, float, 0: per-cell brightness variation in [0, 1], keyed by the stable id.
+// - edge_width, float, 0: soft boundary between cells, in object-space units.
+// - antialias, int, 1: also blend boundaries over the ray footprint (no jaggies).
+// - roughness, string, "": per-type coat roughness, "F=0.35,B=0.5"; "" keeps the
+//   material's.
+// - unfolding, string, "edges": "edges" (fewer cracks) or "teo" (edge and vertex maps).
+// - coherence, int, 1: reuse the previous hit's cell when it is provably the same
+//   (identical images either way; 0 to time the search alone).
+//
+// The object needs "cells": a .cells file made by `pelage sim` for the same mesh (checked
+// against the mesh's hash). AOVs: cell_id, cell_type, f1 (distance to the cell centre).
+// Albedo is the cell type's colour; eumelanin/pheomelanin are passed on for the fur.
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <cstdio>
 #include <memory>
@@ -51,8 +54,27 @@ struct ClonalMosaic {
     std::vector<TypeLook> types;
     std::vector<CellLook> looks;  // per cell, CellTable order
     float jitter = 0, edge_width = 0;
-    bool antialias = true;
+    bool antialias = true, coherence = true;
+    uint64_t serial = 0;  // this instance among all ever created (never 0)
 };
+
+std::atomic<uint64_t> instances_created{0};
+
+// The last blended-path lookup of this thread whose result was a single cell: camera hits
+// come pixel after pixel along a tile row, and most fall in the same cell as the one
+// before. If q_prev had one cell c within F1 + band, every other cell lies farther than
+// L2 = F1 + band from q_prev, so farther than L2 - |q - q_prev| from q (triangle
+// inequality). When that still exceeds |q - c| + band', the search at q would return c
+// alone — the scan is skipped, and the result is the same bits: |q - c| is computed from
+// c's position exactly as the scan computes it. Keyed by the instance's serial number
+// (not its address, which a later instance may reuse) and the triangle (t's frame).
+struct LastSingleCell {
+    uint64_t serial = 0;
+    uint32_t tri = 0, cell = 0;
+    shader::Vec2f q, at;  // the query and the cell, in the triangle's frame
+    float l2 = 0;         // every other cell is farther than this from q
+};
+thread_local LastSingleCell last_single_cell;
 
 const PelageParamSpec params[] = {
     {"jitter",
@@ -90,6 +112,14 @@ const PelageParamSpec params[] = {
      0.0f,
      0.0f,
      "\"edges\" (edge maps only: fewer cracks) or \"teo\" (edge and vertex maps)"},
+    {"coherence",
+     PELAGE_PARAM_INT,
+     {1, 0, 0},
+     nullptr,
+     0.0f,
+     1.0f,
+     "reuse the previous hit's cell when it is provably the same (same image; 0 to time "
+     "without)"},
     {nullptr, PelageParamType(0), {0, 0, 0}, nullptr, 0, 0, nullptr},
 };
 
@@ -165,6 +195,8 @@ void *create(const PelageParamSet *ps, PelageError *err) {
         cm->jitter = find_param(ps, "jitter")->f[0];
         cm->edge_width = find_param(ps, "edge_width")->f[0];
         cm->antialias = find_param(ps, "antialias")->i != 0;
+        cm->coherence = find_param(ps, "coherence")->i != 0;
+        cm->serial = ++instances_created;
         const std::string unfolding = find_param(ps, "unfolding")->s;
         if (unfolding != "edges" && unfolding != "teo")
             throw std::invalid_argument("unfolding: \"" + unfolding +
@@ -229,14 +261,31 @@ void shade(const void *self, const PelageHit *hit, PelageShade *out) {
     // farther than the nearest. Continuous everywhere except where four cells lie within
     // 2w of each other's distance. One search finds them: it stops at F1 + 2w, so hits
     // far from any boundary cost little more than the nearest cell alone.
-    const auto n =
-        cm.index->find_three_within(hit->primitive_id, hit->b1, hit->b2, 2 * w);
+    const float band = 2 * w;
+    LastSingleCell &last = last_single_cell;
+    const shader::Vec2f q = cm.index->point(hit->primitive_id, hit->b1, hit->b2);
+    if (cm.coherence && last.serial == cm.serial && last.tri == hit->primitive_id) {
+        const float dx = last.at.x - q.x, dy = last.at.y - q.y;  // as the scan does
+        const float d2 = dx * dx + dy * dy;
+        const float moved = std::hypot(q.x - last.q.x, q.y - last.q.y);
+        // Float rounding in moved, l2 and the distances: a relative margin far above it.
+        const float margin =
+            1e-4f * (last.l2 + std::abs(q.x) + std::abs(q.y) + std::sqrt(d2));
+        if (last.l2 - moved > std::sqrt(d2) + band + margin) {
+            shade_as(cm.looks[last.cell], std::sqrt(d2), out);
+            return;
+        }
+    }
+    const auto n = cm.index->find_three_within(hit->primitive_id, hit->b1, hit->b2, band);
+    last.serial = 0;
     if (n.index[0] == shader::ClosestCell::none) return;
     const float f1 = std::sqrt(n.d2[0]);
     const CellLook &nearest = cm.looks[n.index[0]];
     // No other cell within 2w (most hits): the blend is the nearest cell's look exactly
     // (weight 1, total 1), so skip the arithmetic.
     if (n.index[1] == shader::ClosestCell::none) {
+        if (cm.coherence)
+            last = {cm.serial, hit->primitive_id, n.index[0], q, n.nearest_at, f1 + band};
         shade_as(nearest, f1, out);
         return;
     }

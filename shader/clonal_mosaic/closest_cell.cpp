@@ -376,6 +376,7 @@ void ClosestCellIndex::scan(const Block *b, const Block *e, Vec2f q, Nearest<K> 
             }
             n.d2[pos] = d2[l];
             n.index[pos] = cell;
+            if (pos == 0) n.nearest_at = {b->x[l], b->y[l]};
             d_min2 = radius2();
         }
     }
@@ -425,6 +426,7 @@ ClosestCellIndex::Nearest<3> ClosestCellIndex::three_within(const Block *b,
     Nearest<3> n;
     n.d2[0] = first.d2[0];
     n.index[0] = first.index[0];
+    n.nearest_at = first.nearest_at;
     if (first.index[0] == ClosestCell::none) return n;
     const float cap = std::sqrt(first.d2[0]) + std::max(band, 0.0f);
     const float cap2 = cap * cap;

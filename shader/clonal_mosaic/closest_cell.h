@@ -127,6 +127,9 @@ class ClosestCellIndex {
     struct Nearest {
         std::array<float, K> d2;
         std::array<uint32_t, K> index;
+        // The nearest cell's position in t's frame, exactly as its list stores it (so
+        // d2[0] is recomputable bit for bit: a caller can reuse it for nearby queries).
+        Vec2f nearest_at;
         Nearest() {
             d2.fill(std::numeric_limits<float>::infinity());
             index.fill(ClosestCell::none);

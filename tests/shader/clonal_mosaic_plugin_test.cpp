@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <random>
 
@@ -188,6 +189,39 @@ TEST(ClonalMosaicPlugin, SoftBoundariesAreContinuous) {
     }
     EXPECT_GT(max_jump_hard, 0.7f);  // F and B differ by 0.8 in red
     EXPECT_LT(max_jump_soft, 0.1f);
+}
+
+// Reusing the previous hit's cell (coherence, on by default) must never change a result:
+// walks of tiny steps across every triangle, crossing many cell boundaries, with soft
+// edges and varying footprints, give bit-identical outputs with and without it. (Each
+// instance walks on its own: they share the thread's reuse slot.)
+TEST(ClonalMosaicPlugin, ReusingThePreviousCellGivesTheSameResultsAsSearching) {
+    TempDir tmp;
+    const std::string cells = simulate_two_type_cells(tmp, mesh_spec, 600);
+    auto walk = [&](int coherence) {
+        const Instance inst({{"edge_width", 0.002}, {"coherence", coherence}}, cells.c_str());
+        EXPECT_NE(inst.self, nullptr) << inst.error;
+        std::vector<PelageShade> out;
+        for (uint32_t prim = 0; prim < 1280; prim += 3)
+            for (int k = 0; k <= 300; ++k) {  // corner 0 to the middle of edge 1-2
+                const float t = k / 300.0f;
+                const float footprint = 0.001f * float((k / 50) % 3);  // 0, 1e-3, 2e-3
+                out.push_back(inst.shade(prim, 0.5f * t, 0.5f * t + 0.1f * t * (1 - t), footprint));
+            }
+        return out;
+    };
+    const std::vector<PelageShade> reused = walk(1), searched = walk(0);
+    ASSERT_EQ(reused.size(), searched.size());
+    size_t same_cell_as_before = 0, boundaries = 0;
+    for (size_t i = 0; i < reused.size(); ++i) {
+        ASSERT_EQ(std::memcmp(&reused[i], &searched[i], sizeof(PelageShade)), 0) << i;
+        if (i == 0) continue;
+        if (searched[i].aov[0] == searched[i - 1].aov[0]) ++same_cell_as_before;
+        else ++boundaries;
+    }
+    // The walks exercise both: long runs inside cells (where reuse applies) and crossings.
+    EXPECT_GT(same_cell_as_before, reused.size() / 2);
+    EXPECT_GT(boundaries, 500u);
 }
 
 TEST(ClonalMosaicPlugin, RefusesMissingCellsWrongMeshAndBadParameters) {
