@@ -23,6 +23,7 @@
 #include <string>
 #include <vector>
 
+#include "shader/clonal_mosaic/coherent_lookup.h"
 #include "shader/clonal_mosaic/pattern.h"
 #include "shader/pelage_shader.h"
 
@@ -60,21 +61,9 @@ struct ClonalMosaic {
 
 std::atomic<uint64_t> instances_created{0};
 
-// The last blended-path lookup of this thread whose result was a single cell: camera hits
-// come pixel after pixel along a tile row, and most fall in the same cell as the one
-// before. If q_prev had one cell c within F1 + band, every other cell lies farther than
-// L2 = F1 + band from q_prev, so farther than L2 - |q - q_prev| from q (triangle
-// inequality). When that still exceeds |q - c| + band', the search at q would return c
-// alone — the scan is skipped, and the result is the same bits: |q - c| is computed from
-// c's position exactly as the scan computes it. Keyed by the instance's serial number
-// (not its address, which a later instance may reuse) and the triangle (t's frame).
-struct LastSingleCell {
-    uint64_t serial = 0;
-    uint32_t tri = 0, cell = 0;
-    shader::Vec2f q, at;  // the query and the cell, in the triangle's frame
-    float l2 = 0;         // every other cell is farther than this from q
-};
-thread_local LastSingleCell last_single_cell;
+// Consecutive camera hits of a thread mostly fall in the same cell: reuse it when that
+// is provably right (coherent_lookup.h; identical results either way).
+thread_local shader::CoherentLookup coherent_lookup;
 
 const PelageParamSpec params[] = {
     {"jitter",
@@ -262,30 +251,17 @@ void shade(const void *self, const PelageHit *hit, PelageShade *out) {
     // 2w of each other's distance. One search finds them: it stops at F1 + 2w, so hits
     // far from any boundary cost little more than the nearest cell alone.
     const float band = 2 * w;
-    LastSingleCell &last = last_single_cell;
-    const shader::Vec2f q = cm.index->point(hit->primitive_id, hit->b1, hit->b2);
-    if (cm.coherence && last.serial == cm.serial && last.tri == hit->primitive_id) {
-        const float dx = last.at.x - q.x, dy = last.at.y - q.y;  // as the scan does
-        const float d2 = dx * dx + dy * dy;
-        const float moved = std::hypot(q.x - last.q.x, q.y - last.q.y);
-        // Float rounding in moved, l2 and the distances: a relative margin far above it.
-        const float margin =
-            1e-4f * (last.l2 + std::abs(q.x) + std::abs(q.y) + std::sqrt(d2));
-        if (last.l2 - moved > std::sqrt(d2) + band + margin) {
-            shade_as(cm.looks[last.cell], std::sqrt(d2), out);
-            return;
-        }
-    }
-    const auto n = cm.index->find_three_within(hit->primitive_id, hit->b1, hit->b2, band);
-    last.serial = 0;
+    const auto n =
+        cm.coherence
+            ? coherent_lookup.find_three_within(*cm.index, cm.serial, hit->primitive_id,
+                                                hit->b1, hit->b2, band)
+            : cm.index->find_three_within(hit->primitive_id, hit->b1, hit->b2, band);
     if (n.index[0] == shader::ClosestCell::none) return;
     const float f1 = std::sqrt(n.d2[0]);
     const CellLook &nearest = cm.looks[n.index[0]];
     // No other cell within 2w (most hits): the blend is the nearest cell's look exactly
     // (weight 1, total 1), so skip the arithmetic.
     if (n.index[1] == shader::ClosestCell::none) {
-        if (cm.coherence)
-            last = {cm.serial, hit->primitive_id, n.index[0], q, n.nearest_at, f1 + band};
         shade_as(nearest, f1, out);
         return;
     }

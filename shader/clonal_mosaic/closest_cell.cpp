@@ -421,8 +421,10 @@ ClosestCellIndex::Nearest<3> ClosestCellIndex::three_within(const Block *b,
     // hardest pruning, then whatever else lies within F1 + band — mostly nothing, so most
     // hits cost about one nearest-cell search. The result is what one three-nearest scan
     // cut at F1 + band gives (the second pass keeps the same (distance, id) order).
-    Nearest<1> first;
-    scan<true, false, 1>(b, e, q, first);
+    // The first pass finds F2 too, which costs a little more scanning but lets
+    // CoherentLookup reuse the result for the next hits (next_d2).
+    Nearest<2> first;
+    scan<true, false, 2>(b, e, q, first);
     Nearest<3> n;
     n.d2[0] = first.d2[0];
     n.index[0] = first.index[0];
@@ -458,6 +460,7 @@ ClosestCellIndex::Nearest<3> ClosestCellIndex::three_within(const Block *b,
             n.index[pos] = cell;
         }
     }
+    if (n.index[1] == ClosestCell::none) n.next_d2 = first.d2[1];
     return n;
 }
 

@@ -130,6 +130,9 @@ class ClosestCellIndex {
         // The nearest cell's position in t's frame, exactly as its list stores it (so
         // d2[0] is recomputable bit for bit: a caller can reuse it for nearby queries).
         Vec2f nearest_at;
+        // find_three_within only: the squared distance of the nearest cell it did not
+        // return (F2² when it returned one cell; +inf when unknown).
+        float next_d2 = std::numeric_limits<float>::infinity();
         Nearest() {
             d2.fill(std::numeric_limits<float>::infinity());
             index.fill(ClosestCell::none);

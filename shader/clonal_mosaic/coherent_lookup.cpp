@@ -1,0 +1,41 @@
+#include "shader/clonal_mosaic/coherent_lookup.h"
+
+#include <cmath>
+
+namespace pelage::shader {
+
+ClosestCellIndex::Nearest<3> CoherentLookup::find_three_within(
+    const ClosestCellIndex &index, uint64_t serial, sim::TriId t, float b1, float b2,
+    float band) {
+    const Vec2f q = index.point(t, b1, b2);
+    if (m_serial == serial && m_tri == t) {
+        const float dx = m_at.x - q.x, dy = m_at.y - q.y;  // as the scan computes it
+        const float d2 = dx * dx + dy * dy, f1 = std::sqrt(d2);
+        const float moved = std::hypot(q.x - m_q.x, q.y - m_q.y);
+        const float margin = 1e-4f * (m_f2 + std::abs(q.x) + std::abs(q.y) + f1);
+        if (m_f2 - moved > f1 + band + margin) {
+            ++m_reused;
+            ClosestCellIndex::Nearest<3> n;
+            n.d2[0] = d2;
+            n.index[0] = m_cell;
+            n.nearest_at = m_at;
+            return n;
+        }
+    }
+    ++m_searched;
+    const ClosestCellIndex::Nearest<3> n = index.find_three_within(t, b1, b2, band);
+    m_serial = 0;
+    // Only a single cell within the band is worth remembering, and only with F2 known.
+    if (n.index[0] != ClosestCell::none && n.index[1] == ClosestCell::none &&
+        std::isfinite(n.next_d2)) {
+        m_serial = serial;
+        m_tri = t;
+        m_cell = n.index[0];
+        m_q = q;
+        m_at = n.nearest_at;
+        m_f2 = std::sqrt(n.next_d2);
+    }
+    return n;
+}
+
+}  // namespace pelage::shader
