@@ -51,9 +51,9 @@
 // lookup); one union per triangle in Hilbert order with, per S, a sorted list of (block,
 // mask, bound) visits (an S's cells spread over ~6 partly used blocks); the union sorted
 // by distance from t's centroid with a mask byte per (S, block) (that order prunes
-// poorly). The banded search for soft edges runs as the nearest-cell scan followed by a
-// pass over the same, now cached, blocks for the cells within F1 + band
-// (three_within()).
+// poorly). The banded search for soft edges runs as a two-nearest scan (F2 lets
+// coherent_lookup.h reuse the result for the next hits) followed by a pass over the
+// same, now cached, blocks for the cells within F1 + band (three_within()).
 // By default the unfolding walks edges only (sim/unfold.h, UnfoldPaths): the two
 // triangles on either side of an edge then see identical maps for every triangle reached
 // through that edge, which reduces Teo's "cracks" (§6.3); `pelage bench lookup` measures
