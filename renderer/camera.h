@@ -24,7 +24,6 @@ class Camera {
     Vec3f m_pos, m_u, m_v, m_w;  // right, up, forward
     float m_tan_half_h, m_aspect, m_lens_radius, m_focus;
     float m_scale_x, m_scale_y;  // raster → image plane
-    int m_width, m_height;
 };
 
 }  // namespace pelage::renderer

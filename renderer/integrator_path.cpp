@@ -324,9 +324,13 @@ Rgb PathIntegrator::radiance(const CameraRay &cam, const RTCRayHit &first,
         // --- Direct lighting and BSDF sampling, for the material's BSDF ---
         const Frame frame = Frame::from_z(v.ns);
         const Vec3f wo_local = frame.to_local(v.wo);
-        const auto [u_light, u_lobe] = sampler.get_2d();
-        const auto [ul1, ul2] = sampler.get_2d();
-        const auto [ub1, ub2] = sampler.get_2d();
+        // Named floats, not structured bindings: the lambda below captures them, which
+        // C++17 (and clang before 16) does not allow for bindings.
+        const Sampler::Pair u_pick = sampler.get_2d(), u_light_pos = sampler.get_2d(),
+                            u_bsdf = sampler.get_2d();
+        const float u_light = u_pick.u1, u_lobe = u_pick.u2;
+        const float ul1 = u_light_pos.u1, ul2 = u_light_pos.u2;
+        const float ub1 = u_bsdf.u1, ub2 = u_bsdf.u2;
         auto scatter = [&](const auto &bsdf) -> bool {
             // --- Next-event estimation: one light, chosen by its power ---
             LightSample ls;
