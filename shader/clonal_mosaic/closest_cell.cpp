@@ -1,6 +1,8 @@
 // Implements Teo 2006 §6.2 (see closest_cell.h).
 #include "shader/clonal_mosaic/closest_cell.h"
 
+#include "shader/clonal_mosaic/subdivision.h"
+
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 
@@ -15,37 +17,6 @@ namespace {
 
 constexpr double inf = std::numeric_limits<double>::infinity();
 constexpr float inf_f = std::numeric_limits<float>::infinity();
-
-// The barycentric (b1, b2) corners of sub-triangle (i, j, upper) of an n-subdivision.
-std::array<std::array<double, 2>, 3> sub_triangle(uint32_t n, uint32_t i, uint32_t j,
-                                                  bool upper) {
-    const double s = 1.0 / n;
-    if (upper)
-        return {{{(i + 1) * s, j * s}, {(i + 1) * s, (j + 1) * s}, {i * s, (j + 1) * s}}};
-    return {{{i * s, j * s}, {(i + 1) * s, j * s}, {i * s, (j + 1) * s}}};
-}
-
-// Sub-triangles of an n-subdivision numbered row by row: row i holds n - i lower and
-// n - i - 1 upper ones, interleaved, so the n² of them are 0 … n² - 1.
-uint32_t slot_index(uint32_t n, uint32_t i, uint32_t j, bool upper) {
-    return i * (2 * n - i) + 2 * j + (upper ? 1 : 0);
-}
-
-// The sub-triangle of an n-subdivision holding barycentric point (b1, b2), clamped to the
-// triangle (hits may sit a rounding error outside it).
-template <typename Real>
-uint32_t slot_at(uint32_t n, Real b1, Real b2) {
-    const Real nf = Real(n);
-    const Real u = std::clamp(b1 * nf, Real(0), nf);
-    const Real v = std::clamp(b2 * nf, Real(0), nf - u);
-    uint32_t i = std::min(uint32_t(u), n - 1), j = std::min(uint32_t(v), n - 1);
-    bool upper = (u - Real(i)) + (v - Real(j)) > Real(1);
-    if (i + j >= n - 1) {  // the last row of sub-triangles has no upper halves
-        j = n - 1 - std::min(i, n - 1);
-        upper = false;
-    }
-    return slot_index(n, i, j, upper);
-}
 
 }  // namespace
 
@@ -350,10 +321,7 @@ void ClosestCellIndex::scan(const Block *b, const Block *e, Vec2f q, Nearest<K> 
         if constexpr (prune)
             if (b->bound2 > d_min2) break;
         float d2[per_block];
-        for (int l = 0; l < per_block; ++l) {
-            const float dx = b->x[l] - q.x, dy = b->y[l] - q.y;
-            d2[l] = dx * dx + dy * dy;
-        }
+        for (int l = 0; l < per_block; ++l) d2[l] = squared_distance(b->x[l], b->y[l], q);
         if (*std::min_element(d2, d2 + per_block) > d_min2) continue;  // the common case
         for (int l = 0; l < per_block; ++l) {
             const uint32_t cell = b->cell[l];
@@ -435,10 +403,7 @@ ClosestCellIndex::Nearest<3> ClosestCellIndex::three_within(const Block *b,
     const uint32_t *id = m_cells->id.data();
     for (; b != e && b->bound2 <= cap2; ++b) {
         float d2[per_block];
-        for (int l = 0; l < per_block; ++l) {
-            const float dx = b->x[l] - q.x, dy = b->y[l] - q.y;
-            d2[l] = dx * dx + dy * dy;
-        }
+        for (int l = 0; l < per_block; ++l) d2[l] = squared_distance(b->x[l], b->y[l], q);
         if (*std::min_element(d2, d2 + per_block) > cap2) continue;
         for (int l = 0; l < per_block; ++l) {
             const uint32_t cell = b->cell[l];

@@ -77,6 +77,13 @@ struct Vec2f {
     float x = 0, y = 0;
 };
 
+// |q - (x, y)|², the one expression every search and reuse uses (scan(),
+// coherent_lookup.h), so that their results are the same bits.
+inline float squared_distance(float x, float y, Vec2f q) {
+    const float dx = x - q.x, dy = y - q.y;
+    return dx * dx + dy * dy;
+}
+
 struct ClosestCell {
     static constexpr uint32_t none = 0xffffffffu;
     uint32_t index = none;  // into the CellTable arrays; none when no cell is reachable

@@ -9,8 +9,7 @@ ClosestCellIndex::Nearest<3> CoherentLookup::find_three_within(
     float band) {
     const Vec2f q = index.point(t, b1, b2);
     if (m_serial == serial && m_tri == t) {
-        const float dx = m_at.x - q.x, dy = m_at.y - q.y;  // as the scan computes it
-        const float d2 = dx * dx + dy * dy, f1 = std::sqrt(d2);
+        const float d2 = squared_distance(m_at.x, m_at.y, q), f1 = std::sqrt(d2);
         const float moved = std::hypot(q.x - m_q.x, q.y - m_q.y);
         const float margin = 1e-4f * (m_f2 + std::abs(q.x) + std::abs(q.y) + f1);
         if (m_f2 - moved > f1 + band + margin) {
