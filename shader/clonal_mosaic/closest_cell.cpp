@@ -24,6 +24,7 @@ constexpr float inf_f = std::numeric_limits<float>::infinity();
 struct ClosestCellIndex::Built {
     Frame frame{};
     uint32_t regions = 1;  // sub-triangles per side searched at run time
+    std::array<uint32_t, max_subdivision * max_subdivision> end{};  // each list's, in blocks
     std::vector<Block> blocks;
     size_t entries = 0, distinct_triangles = 0, longest = 0;
 };
@@ -62,7 +63,11 @@ ClosestCellIndex::ClosestCellIndex(const sim::Crps &crps, const CellTable &cells
     size_t blocks_of_layout[2] = {0, 0};
     for (const auto &b : built)
         for (int l = 0; l < 2; ++l) blocks_of_layout[l] += b[l].blocks.size();
-    const size_t fixed = nt * sizeof(Frame) + (nt + 1) * sizeof(uint32_t);
+    size_t regions_of_layout[2] = {0, 0};
+    for (const auto &b : built)
+        for (int l = 0; l < 2; ++l) regions_of_layout[l] += b[l].regions * b[l].regions;
+    const size_t fixed = nt * sizeof(Frame) + (nt + 1) * sizeof(uint32_t) +
+                         (regions_of_layout[1] + 1) * sizeof(uint32_t);
     const int layout =
         fixed + blocks_of_layout[1] * sizeof(Block) <= m_options.fine_regions_max_bytes;
     m_stats.fine_regions = layout == 1;
@@ -70,12 +75,16 @@ ClosestCellIndex::ClosestCellIndex(const sim::Crps &crps, const CellTable &cells
     if (total_blocks >= (size_t(1) << 30))
         throw std::length_error("closest-cell index: more than 2^30 candidate blocks");
     m_frames.resize(nt);
-    m_first_block.resize(nt + 1);
+    m_first_region.resize(nt + 1);
+    m_region_block.reserve(regions_of_layout[layout] + 1);
     m_blocks.reserve(total_blocks);
     for (size_t t = 0; t < nt; ++t) {
         Built &b = built[t][layout];
         m_frames[t] = b.frame;
-        m_first_block[t] = static_cast<uint32_t>(m_blocks.size()) << 2 | b.regions;
+        m_first_region[t] = static_cast<uint32_t>(m_region_block.size()) << 2 | b.regions;
+        const uint32_t first = static_cast<uint32_t>(m_blocks.size());
+        for (uint32_t k = 0; k < b.regions * b.regions; ++k)
+            m_region_block.push_back(first + (k ? b.end[k - 1] : 0));
         m_blocks.insert(m_blocks.end(), b.blocks.begin(), b.blocks.end());
         m_stats.triangles_without_cells_in_reach += b.entries == 0;
         m_stats.triangles_with_regions += b.regions > 1;
@@ -85,11 +94,13 @@ ClosestCellIndex::ClosestCellIndex(const sim::Crps &crps, const CellTable &cells
         distinct += b.distinct_triangles;
         built[t] = {};
     }
-    m_first_block[nt] = static_cast<uint32_t>(m_blocks.size()) << 2 | 1;
+    m_first_region[nt] = static_cast<uint32_t>(m_region_block.size()) << 2 | 1;
+    m_region_block.push_back(static_cast<uint32_t>(m_blocks.size()));
     m_stats.mean_candidates = lists ? double(distinct) / lists : 0;
     m_stats.mean_candidate_cells = lists ? double(entries) / lists : 0;
     m_stats.bytes = m_frames.size() * sizeof(Frame) +
-                    m_first_block.size() * sizeof(uint32_t) +
+                    m_first_region.size() * sizeof(uint32_t) +
+                    m_region_block.size() * sizeof(uint32_t) +
                     m_blocks.size() * sizeof(Block);
     m_stats.build_seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -125,9 +136,12 @@ void ClosestCellIndex::build_triangle(const sim::Crps &crps, sim::TriId t,
         std::clamp<uint32_t>(static_cast<uint32_t>(std::ceil(2 * spacings)), 1, 6);
     const uint32_t n = lcm * ((fine + lcm - 1) / lcm);
     const sim::Vec2d v0 = ft.v[0], e1 = ft.v[1] - ft.v[0], e2 = ft.v[2] - ft.v[0];
-    for (Built &b : out)
-        b.frame = {float(v0.x), float(v0.y), float(e1.x), float(e1.y),
-                   float(e2.x), float(e2.y), {}};
+    {
+        Frame &f = out[0].frame;
+        f = {float(v0.x), float(v0.y), float(e1.x), float(e1.y), float(e2.x), float(e2.y), 0};
+        f.inv_det = 1.0f / (f.e1x * f.e2y - f.e1y * f.e2x);  // in float, as it always was
+        out[1].frame = f;
+    }
     struct Sub {
         uint32_t region[2];  // the sub-triangles of the r-subdivisions holding this one
         sim::Vec2d v[3], centre;
@@ -272,7 +286,7 @@ void ClosestCellIndex::build_triangle(const sim::Crps &crps, sim::TriId t,
                 }
                 o.blocks.push_back(b);
             }
-            o.frame.end[k] = static_cast<uint32_t>(o.blocks.size());
+            o.end[k] = static_cast<uint32_t>(o.blocks.size());
         }
     }
 }
@@ -280,27 +294,20 @@ void ClosestCellIndex::build_triangle(const sim::Crps &crps, sim::TriId t,
 const ClosestCellIndex::Block *ClosestCellIndex::blocks_at(sim::TriId t, float b1,
                                                            float b2,
                                                            const Block *&end) const {
-    const uint32_t first = m_first_block[t], r = first & 3u;
-    const Block *b = m_blocks.data() + (first >> 2);
-    if (r == 1) {  // one list: no need of (b1, b2)
-        end = m_blocks.data() + (m_first_block[t + 1] >> 2);
-        return b;
-    }
-    const uint32_t k = slot_at(r, b1, b2);
-    const Frame &f = m_frames[t];
-    end = b + f.end[k];
-    return b + (k ? f.end[k - 1] : 0);
+    const uint32_t first = m_first_region[t], r = first & 3u;
+    const uint32_t g = (first >> 2) + (r == 1 ? 0 : slot_at(r, b1, b2));
+    end = m_blocks.data() + m_region_block[g + 1];
+    return m_blocks.data() + m_region_block[g];
 }
 
 const ClosestCellIndex::Block *ClosestCellIndex::blocks_of(sim::TriId t, Vec2f q,
                                                            const Block *&end) const {
-    if ((m_first_block[t] & 3u) == 1) return blocks_at(t, 0, 0, end);
+    if ((m_first_region[t] & 3u) == 1) return blocks_at(t, 0, 0, end);
     // q's barycentric coordinates, by Cramer's rule on q - v0 = b1 e1 + b2 e2.
     const Frame &r = m_frames[t];
     const float dx = q.x - r.v0x, dy = q.y - r.v0y;
-    const float inv_det = 1.0f / (r.e1x * r.e2y - r.e1y * r.e2x);
-    return blocks_at(t, (dx * r.e2y - dy * r.e2x) * inv_det,
-                     (r.e1x * dy - r.e1y * dx) * inv_det, end);
+    return blocks_at(t, (dx * r.e2y - dy * r.e2x) * r.inv_det,
+                     (r.e1x * dy - r.e1y * dx) * r.inv_det, end);
 }
 
 template <bool prune, bool dedupe, int K>
@@ -449,8 +456,9 @@ ClosestCellIndex::Nearest<3> ClosestCellIndex::find_three_within(sim::TriId t, f
 ClosestCell ClosestCellIndex::find_exhaustive(sim::TriId t, Vec2f q) const {
     // Every region's list.
     Nearest<2> n;
-    scan<false, true, 2>(m_blocks.data() + (m_first_block[t] >> 2),
-                         m_blocks.data() + (m_first_block[t + 1] >> 2), q, n);
+    scan<false, true, 2>(m_blocks.data() + m_region_block[m_first_region[t] >> 2],
+                         m_blocks.data() + m_region_block[m_first_region[t + 1] >> 2], q,
+                         n);
     return {n.index[0], n.index[1], std::sqrt(n.d2[0]), std::sqrt(n.d2[1])};
 }
 

@@ -31,11 +31,13 @@
 // bound for every query in it) and packed five cells to a 64-byte block (float x[5],
 // y[5], uint32 cell[5] and the block's squared bound: no padding bytes); the scan stops
 // at the first block whose bound exceeds the current K-th nearest distance (Teo's
-// adaptive radius D_min, for the K wanted). A triangle's blocks are contiguous and a
-// table of uint32 offsets (23 kB on the cow, cache-resident) locates them; when r = 1 the
-// lookup needs nothing else: a random lookup is one cache miss on a contiguous run. When
-// r > 1, t's 64-byte frame (its barycentric inverse and where its regions' lists end)
-// picks the list. The finer sub-triangles cost nothing at lookup and shorten the lists.
+// adaptive radius D_min, for the K wanted). A triangle's blocks are contiguous; two
+// tables of uint32 offsets (per triangle its first region, 23 kB on the cow, and per
+// region its first block; both cache-resident) locate a region's list from a hit's
+// (b1, b2), so
+// a random lookup is one cache miss on a contiguous run. (A search from a point q instead
+// reads t's 32-byte frame for q's barycentric coordinates when r > 1.) The finer
+// sub-triangles cost nothing at lookup and shorten the lists.
 // Measured on the cow with 20 000 cells (`pelage bench lookup`, one thread, ns per F1 +
 // F2 lookup in random / coherent order, banded coherent): per-S lists as before 10.6 MB,
 // 14.2 cells per list, 132-214 / 62-67 / 64-71 ns; fine regions 7.9 MB, 10.0 cells,
@@ -184,13 +186,12 @@ class ClosestCellIndex {
     };
     static_assert(sizeof(Block) == 64);
 
-    // The triangle in its frame, q = v0 + b1 e1 + b2 e2, and, when it has r > 1 regions,
-    // where their lists end among its blocks (region k's starts at end[k - 1], or 0).
-    struct alignas(64) Frame {
-        float v0x, v0y, e1x, e1y, e2x, e2y;
-        uint32_t end[max_subdivision * max_subdivision];
+    // The triangle in its frame, q = v0 + b1 e1 + b2 e2, and 1 / det(e1, e2) for the
+    // barycentric coordinates of a point (blocks_of()).
+    struct alignas(32) Frame {
+        float v0x, v0y, e1x, e1y, e2x, e2y, inv_det;
     };
-    static_assert(sizeof(Frame) == 64);
+    static_assert(sizeof(Frame) == 32);
     struct Built;  // one triangle's list while building
 
     const Block *blocks_of(sim::TriId t, Vec2f q, const Block *&end) const;
@@ -207,9 +208,13 @@ class ClosestCellIndex {
     ClosestCellOptions m_options;
     double m_initial_radius = 0, m_max_radius = 0, m_spacing = 0;
     std::vector<Frame> m_frames;
-    // t's blocks are [m_first_block[t] >> 2, m_first_block[t + 1] >> 2); the low two
-    // bits hold r, its regions per side (r = 1: one list, the frame is not needed).
-    std::vector<uint32_t> m_first_block;
+    // t's regions are g, g + 1, … g + r² - 1 for g = m_first_region[t] >> 2; its low two
+    // bits hold r, the regions per side. Region g's blocks are [m_region_block[g],
+    // m_region_block[g + 1]). Neither needs t's frame: a hit's (b1, b2) picks the list
+    // with reads of two small, cache-resident tables, so a random lookup waits on one
+    // miss only (the frame was a second one, before the list's, when it held the ends).
+    std::vector<uint32_t> m_first_region;
+    std::vector<uint32_t> m_region_block;
     std::vector<Block> m_blocks;
     ClosestCellStats m_stats;
 };
