@@ -34,9 +34,9 @@
 // adaptive radius D_min, for the K wanted). A triangle's blocks are contiguous; two
 // tables of uint32 offsets (per triangle its first region, 23 kB on the cow, and per
 // region its first block; both cache-resident) locate a region's list from a hit's
-// (b1, b2), so
-// a random lookup is one cache miss on a contiguous run. (A search from a point q instead
-// reads t's 32-byte frame for q's barycentric coordinates when r > 1.) The finer
+// (b1, b2), so a random lookup is one cache miss on a contiguous run. (A search from a
+// point q instead reads t's 32-byte frame for q's barycentric coordinates when r > 1.)
+// The finer
 // sub-triangles cost nothing at lookup and shorten the lists.
 // Measured on the cow with 20 000 cells (`pelage bench lookup`, one thread, ns per F1 +
 // F2 lookup in random / coherent order, banded coherent): per-S lists as before 10.6 MB,
