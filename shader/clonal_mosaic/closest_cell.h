@@ -36,8 +36,7 @@
 // region its first block; both cache-resident) locate a region's list from a hit's
 // (b1, b2), so a random lookup is one cache miss on a contiguous run. (A search from a
 // point q instead reads t's 32-byte frame for q's barycentric coordinates when r > 1.)
-// The finer
-// sub-triangles cost nothing at lookup and shorten the lists.
+// The finer sub-triangles cost nothing at lookup and shorten the lists.
 // Measured on the cow with 20 000 cells (`pelage bench lookup`, one thread, ns per F1 +
 // F2 lookup in random / coherent order, banded coherent): per-S lists as before 10.6 MB,
 // 14.2 cells per list, 132-214 / 62-67 / 64-71 ns; fine regions 7.9 MB, 10.0 cells,
