@@ -1,6 +1,7 @@
 #include "renderer/bsdf_coated.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 #include "renderer/sampling.h"
@@ -29,6 +30,24 @@ float BsdfCoated::internal_diffuse_reflectance(float eta) {
         F_ext += 2 * fresnel_dielectric(float(mu), eta) * mu / n;
     }
     return float(1 - (1 - F_ext) / (double(eta) * eta));
+}
+
+float BsdfCoated::internal_diffuse_reflectance_table(float eta) {
+    // Sampled uniformly in u = sqrt(eta - 1): F̄_int rises steeply just above 1 and
+    // evenly in u, where linear interpolation is then accurate.
+    constexpr int n = 256;
+    static const float u_max = std::sqrt(2.0f);
+    static const std::array<float, n + 1> table = [] {
+        std::array<float, n + 1> t{};
+        for (int i = 0; i <= n; ++i) {
+            const float u = u_max * float(i) / n;
+            t[i] = internal_diffuse_reflectance(1 + u * u);
+        }
+        return t;
+    }();
+    const float x = std::sqrt(std::clamp(eta, 1.0f, 3.0f) - 1) * (n / u_max);
+    const int i = std::min(int(x), n - 1);
+    return table[i] + (table[i + 1] - table[i]) * (x - float(i));
 }
 
 float BsdfCoated::fresnel_dielectric(float cos_i, float eta) {

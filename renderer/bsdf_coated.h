@@ -47,6 +47,9 @@ class BsdfCoated {
     // inside a medium of index eta, 1 − (1 − F̄_ext) / η² with F̄_ext = 2 ∫ F(μ) μ dμ
     // (by flux balance across the interface). Numerical quadrature: not for hot loops.
     static float internal_diffuse_reflectance(float eta);
+    // The same from a table over eta in [1, 3] (linear interpolation, within 2e-5 of the
+    // quadrature), for an ior that changes per hit (a plugin's override).
+    static float internal_diffuse_reflectance_table(float eta);
     float distribution(Vec3f h) const;  // D(h), GGX
     float smith_g1(Vec3f w) const;      // G1(w), GGX
 

@@ -376,10 +376,16 @@ Rgb PathIntegrator::radiance(const CameraRay &cam, const RTCRayHit &first,
             return true;
         };
         bool go_on;
-        if (mat.bsdf == MaterialDesc::Bsdf::coated)
+        if (mat.bsdf == MaterialDesc::Bsdf::coated) {
+            // The plugin may override the coat's roughness and ior (per cell type, say).
+            const float roughness =
+                sh.roughness >= 0 ? std::min(sh.roughness, 1.0f) : mat.roughness;
+            const bool own_ior = sh.ior >= 1 && sh.ior <= 3;
             go_on = scatter(BsdfCoated(
-                albedo, sh.roughness >= 0 ? std::min(sh.roughness, 1.0f) : mat.roughness,
-                mat.ior, mat.coat_F_int));
+                albedo, roughness, own_ior ? sh.ior : mat.ior,
+                own_ior ? BsdfCoated::internal_diffuse_reflectance_table(sh.ior)
+                        : mat.coat_F_int));
+        }
         else
             go_on = scatter(BsdfLambert(albedo));
         if (!go_on || is_black(beta)) break;

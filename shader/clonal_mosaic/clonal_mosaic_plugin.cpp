@@ -7,6 +7,9 @@
 // - antialias, int, 1: also blend boundaries over the ray footprint (no jaggies).
 // - roughness, string, "": per-type coat roughness, "F=0.35,B=0.5"; "" keeps the
 //   material's.
+// - specular, string, "": per-type coat reflectance at normal incidence F0, in
+//   [0, 0.25], "F=0.02,B=0.05" (0.04 is a coat of ior 1.5, 0 no coat highlight at all);
+//   "" keeps the material's ior. Sets the coat's ior, (1 + sqrt F0) / (1 - sqrt F0).
 // - unfolding, string, "edges": "edges" (fewer cracks) or "teo" (edge and vertex maps).
 // - coherence, int, 1: reuse the previous hit's cell when it is provably the same
 //   (identical images either way; 0 to time the search alone).
@@ -31,22 +34,24 @@ namespace {
 
 using namespace pelage;
 
+// A cell type's look: its colour, melanins, and the coat overrides (< 0 / 0: the
+// material's).
 struct TypeLook {
     float colour[3];
     float eumelanin, pheomelanin;
     float roughness;  // < 0: the material's
+    float ior;        // 0: the material's
+    float aov_type;
 };
 
-// A cell's look, resolved when the instance is created (type colour, jitter, clamp, the
-// type's melanin and roughness, the AOV values): the hit path reads one 32-byte entry
-// instead of hashing the id, scaling the colour and reading the type and id arrays.
+// A cell's look, resolved when the instance is created (type colour, jitter, clamp): the
+// hit path reads one entry and its type's, instead of hashing the id and scaling the
+// colour.
 struct CellLook {
     float rgb[3];
-    float eumelanin, pheomelanin;
-    float roughness;  // < 0: the material's
-    float aov_id, aov_type;
+    uint32_t type;
+    float aov_id;
 };
-static_assert(sizeof(CellLook) == 32);
 
 struct ClonalMosaic {
     std::unique_ptr<shader::MosaicPattern> pattern;
@@ -94,6 +99,14 @@ const PelageParamSpec params[] = {
      0.0f,
      0.0f,
      "per-type coat roughness, e.g. \"F=0.35,B=0.5\"; empty keeps the material's"},
+    {"specular",
+     PELAGE_PARAM_STRING,
+     {0, 0, 0},
+     "",
+     0.0f,
+     0.0f,
+     "per-type coat reflectance at normal incidence (F0, 0…0.25; 0.04 = ior 1.5), e.g. "
+     "\"F=0.02,B=0.05\"; empty keeps the material's ior"},
     {"unfolding",
      PELAGE_PARAM_STRING,
      {0, 0, 0},
@@ -125,30 +138,36 @@ const PelageParamValue *find_param(const PelageParamSet *ps, const char *name) {
     return nullptr;
 }
 
-// "F=0.35,B=0.5" -> per-type roughness; throws std::invalid_argument naming the problem.
-void parse_roughness(const std::string &spec, const std::vector<sim::CellType> &types,
-                     std::vector<TypeLook> &looks) {
+// "F=0.35,B=0.5" -> one value per named type, each in [lo, hi], handed to `set`; throws
+// std::invalid_argument naming the parameter and the problem.
+template <typename Set>
+void parse_per_type(const char *param, const std::string &spec, float lo, float hi,
+                    const std::vector<sim::CellType> &types, Set set) {
     std::stringstream ss(spec);
     std::string item;
     while (std::getline(ss, item, ',')) {
         if (item.empty()) continue;
         const size_t eq = item.find('=');
         if (eq == std::string::npos)
-            throw std::invalid_argument("roughness: expected NAME=VALUE, got \"" + item +
-                                        "\"");
+            throw std::invalid_argument(std::string(param) + ": expected NAME=VALUE, got \"" +
+                                        item + "\"");
         const std::string name = item.substr(0, eq);
         auto it = std::find_if(types.begin(), types.end(),
                                [&](const auto &t) { return t.name == name; });
         if (it == types.end())
-            throw std::invalid_argument("roughness: the .cells file has no cell type \"" +
-                                        name + "\"");
+            throw std::invalid_argument(std::string(param) +
+                                        ": the .cells file has no cell type \"" + name +
+                                        "\"");
         char *end = nullptr;
         const std::string value = item.substr(eq + 1);
-        const float r = std::strtof(value.c_str(), &end);
-        if (value.empty() || *end || !(r >= 0 && r <= 1))
-            throw std::invalid_argument("roughness: \"" + value + "\" for " + name +
-                                        " is not in [0, 1]");
-        looks[it - types.begin()].roughness = r;
+        const float v = std::strtof(value.c_str(), &end);
+        if (value.empty() || *end || !(v >= lo && v <= hi)) {
+            std::ostringstream range;
+            range << "[" << lo << ", " << hi << "]";
+            throw std::invalid_argument(std::string(param) + ": \"" + value + "\" for " +
+                                        name + " is not in " + range.str());
+        }
+        set(size_t(it - types.begin()), v);
     }
 }
 
@@ -166,11 +185,8 @@ void cell_look(const ClonalMosaic &cm, uint32_t cell, CellLook &look) {
     const TypeLook &t = cm.types[type];
     const float scale = 1.0f + cm.jitter * 0.5f * id_noise(cm.cells_ptr->id[cell]);
     for (int c = 0; c < 3; ++c) look.rgb[c] = std::clamp(t.colour[c] * scale, 0.0f, 1.0f);
-    look.eumelanin = t.eumelanin;
-    look.pheomelanin = t.pheomelanin;
-    look.roughness = t.roughness;
+    look.type = type;
     look.aov_id = float(cm.cells_ptr->id[cell]);  // exact below 2^24 cells
-    look.aov_type = float(type);
 }
 
 void *create(const PelageParamSet *ps, PelageError *err) {
@@ -202,12 +218,24 @@ void *create(const PelageParamSet *ps, PelageError *err) {
                                         std::to_string(cm->pattern->num_triangles()));
         cm->cells_ptr = &cm->pattern->cells();
         cm->index = &cm->pattern->index();
-        for (const sim::CellType &t : cm->pattern->types())
+        const std::vector<sim::CellType> &types = cm->pattern->types();
+        for (size_t k = 0; k < types.size(); ++k) {
+            const sim::CellType &t = types[k];
             cm->types.push_back({{t.colour[0], t.colour[1], t.colour[2]},
                                  t.eumelanin,
                                  t.pheomelanin,
-                                 -1.0f});
-        parse_roughness(find_param(ps, "roughness")->s, cm->pattern->types(), cm->types);
+                                 -1.0f,
+                                 0.0f,
+                                 float(k)});
+        }
+        parse_per_type("roughness", find_param(ps, "roughness")->s, 0, 1, types,
+                       [&](size_t k, float r) { cm->types[k].roughness = r; });
+        // F0 = ((η - 1) / (η + 1))², so η = (1 + √F0) / (1 - √F0): F0 0.25 is η = 3.
+        parse_per_type("specular", find_param(ps, "specular")->s, 0, 0.25f, types,
+                       [&](size_t k, float f0) {
+                           const float r = std::sqrt(f0);
+                           cm->types[k].ior = std::min((1 + r) / (1 - r), 3.0f);
+                       });
         cm->looks.resize(cm->cells_ptr->size());
         for (uint32_t k = 0; k < cm->looks.size(); ++k) cell_look(*cm, k, cm->looks[k]);
         return cm.release();
@@ -218,13 +246,15 @@ void *create(const PelageParamSet *ps, PelageError *err) {
 }
 
 // The hit takes the look of one cell.
-void shade_as(const CellLook &cell, float f1, PelageShade *out) {
+void shade_as(const ClonalMosaic &cm, const CellLook &cell, float f1, PelageShade *out) {
+    const TypeLook &type = cm.types[cell.type];
     for (int k = 0; k < 3; ++k) out->albedo[k] = cell.rgb[k];
-    out->eumelanin = cell.eumelanin;
-    out->pheomelanin = cell.pheomelanin;
-    if (cell.roughness >= 0) out->roughness = cell.roughness;
+    out->eumelanin = type.eumelanin;
+    out->pheomelanin = type.pheomelanin;
+    if (type.roughness >= 0) out->roughness = type.roughness;
+    if (type.ior > 0) out->ior = type.ior;
     out->aov[0] = cell.aov_id;
-    out->aov[1] = cell.aov_type;
+    out->aov[1] = type.aov_type;
     out->aov[2] = f1;
     out->aov_written = 1;
 }
@@ -242,7 +272,7 @@ void shade(const void *self, const PelageHit *hit, PelageShade *out) {
         const shader::ClosestCell c =
             cm.index->find_nearest(hit->primitive_id, hit->b1, hit->b2);
         if (c.index == shader::ClosestCell::none) return;  // a component without cells
-        shade_as(cm.looks[c.index], c.f1, out);
+        shade_as(cm, cm.looks[c.index], c.f1, out);
         return;
     }
     // Blend the three nearest cells with weights 1 - smoothstep(0, 2w, F_i - F1): equal
@@ -262,7 +292,7 @@ void shade(const void *self, const PelageHit *hit, PelageShade *out) {
     // No other cell within 2w (most hits): the blend is the nearest cell's look exactly
     // (weight 1, total 1), so skip the arithmetic.
     if (n.index[1] == shader::ClosestCell::none) {
-        shade_as(nearest, f1, out);
+        shade_as(cm, nearest, f1, out);
         return;
     }
     float rgb[3] = {0, 0, 0}, eu = 0, pheo = 0, total = 0;
@@ -271,12 +301,13 @@ void shade(const void *self, const PelageHit *hit, PelageShade *out) {
         const float weight = 1 - x * x * (3 - 2 * x);
         if (weight <= 0) break;
         const CellLook &cell = cm.looks[n.index[i]];
+        const TypeLook &type = cm.types[cell.type];
         for (int k = 0; k < 3; ++k) rgb[k] += weight * cell.rgb[k];
-        eu += weight * cell.eumelanin;
-        pheo += weight * cell.pheomelanin;
+        eu += weight * type.eumelanin;
+        pheo += weight * type.pheomelanin;
         total += weight;
     }
-    shade_as(nearest, f1, out);
+    shade_as(cm, nearest, f1, out);
     for (int k = 0; k < 3; ++k) out->albedo[k] = rgb[k] / total;
     out->eumelanin = eu / total;
     out->pheomelanin = pheo / total;

@@ -97,6 +97,18 @@ TEST(BsdfCoated, WhiteFurnaceNeverGainsEnergyAndBoundsItsLoss) {
     }
 }
 
+TEST(BsdfCoated, InternalReflectanceTableMatchesTheQuadrature) {
+    // The table serves per-hit ior overrides; off its grid and at its ends it must agree
+    // with the quadrature the materials use. F̄_int(1) = 0 (no interface).
+    EXPECT_NEAR(BsdfCoated::internal_diffuse_reflectance_table(1.0f), 0.0f, 1e-6);
+    for (int i = 0; i <= 96; ++i) {
+        const float eta = 1.0f + 2.0f * float(i) / 96 + (i % 7) * 1e-3f;
+        EXPECT_NEAR(BsdfCoated::internal_diffuse_reflectance_table(eta),
+                    BsdfCoated::internal_diffuse_reflectance(std::min(eta, 3.0f)), 2e-5)
+            << "eta " << eta;
+    }
+}
+
 TEST(BsdfCoated, SmoothCoatOverWhiteBaseReflectsEverything) {
     // The layering term alone (bsdf_coated.h): with ρ = 1 the base reflects
     // exactly 1 − F(cos θ_i), whatever the index, so with the coat's own reflection the
@@ -104,7 +116,9 @@ TEST(BsdfCoated, SmoothCoatOverWhiteBaseReflectsEverything) {
     for (float eta : {1.3f, 1.5f, 2.0f}) {
         const float F_int = BsdfCoated::internal_diffuse_reflectance(eta);
         // Closed-form check of F̄_int at η = 1.5: ≈ 0.596 (1 − (1 − 0.0918) / 2.25).
-        if (eta == 1.5f) EXPECT_NEAR(F_int, 0.596, 2e-3);
+        if (eta == 1.5f) {
+            EXPECT_NEAR(F_int, 0.596, 2e-3);
+        }
         const BsdfCoated b({1, 1, 1}, 0.0f, eta);
         // ∫ base term cos θ_o dω_o by quadrature over θ_o (the base term is isotropic).
         double base = 0;

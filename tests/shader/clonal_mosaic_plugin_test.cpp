@@ -256,5 +256,32 @@ TEST(ClonalMosaicPlugin, PerTypeRoughnessOverridesTheMaterial) {
     EXPECT_GT(b, 50);
 }
 
+TEST(ClonalMosaicPlugin, PerTypeSpecularSetsTheCoatIor) {
+    TempDir tmp;
+    const std::string cells = simulate_two_type_cells(tmp, mesh_spec, 600);
+    // F0 0.04 is a coat of ior 1.5; B keeps the material's (0: no override).
+    const Instance inst({{"antialias", 0}, {"specular", "F=0.04"}}, cells.c_str());
+    ASSERT_NE(inst.self, nullptr) << inst.error;
+    int f = 0, b = 0;
+    for (uint32_t prim = 0; prim < 1280; ++prim) {
+        const PelageShade sh = inst.shade(prim, 0.3f, 0.3f);
+        if (sh.aov[1] == 0.0f) { EXPECT_NEAR(sh.ior, 1.5f, 1e-5f); ++f; }
+        else { EXPECT_EQ(sh.ior, 0.0f); ++b; }
+    }
+    EXPECT_GT(f, 50);
+    EXPECT_GT(b, 50);
+    const Instance none({{"antialias", 0}, {"specular", "F=0,B=0.25"}}, cells.c_str());
+    ASSERT_NE(none.self, nullptr) << none.error;
+    for (uint32_t prim = 0; prim < 1280; ++prim) {
+        const PelageShade sh = none.shade(prim, 0.3f, 0.3f);
+        EXPECT_NEAR(sh.ior, sh.aov[1] == 0.0f ? 1.0f : 3.0f, 1e-5f);
+    }
+    for (const char *bad : {"F=0.3", "F=-0.01", "Q=0.04", "F0.04", "F="}) {
+        const Instance refused({{"specular", bad}}, cells.c_str());
+        EXPECT_EQ(refused.self, nullptr) << bad;
+        EXPECT_NE(refused.error.find("specular"), std::string::npos) << refused.error;
+    }
+}
+
 }  // namespace
 }  // namespace pelage::test
