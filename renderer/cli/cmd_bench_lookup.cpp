@@ -1,6 +1,7 @@
 // `pelage bench lookup`: the clonal mosaic's closest-cell search (Teo 2006 §6.2) on the
 // cow, the triceratops and the 760-triangle sphere — ns per lookup (F1+F2, F1 only,
-// random and coherent query order), agreement with the exhaustive search, the crack rate
+// random and coherent query order; banded walks across triangles, as camera hits, with
+// and without CoherentLookup's reuse), agreement with the exhaustive search, the crack rate
 // along edges, and, per mesh, both unfolding choices. Target: < 100 ns per lookup on the
 // cow with 20 000 cells. Times are the thread's CPU time (ns_per_lookup_wall: wall
 // clock).
@@ -12,6 +13,7 @@
 
 #include "renderer/cli/bench.h"
 #include "shader/clonal_mosaic/closest_cell.h"
+#include "shader/clonal_mosaic/coherent_lookup.h"
 #include "shader/clonal_mosaic/edge_consistency.h"
 #include "sim/input_error.h"
 #include "sim/surface.h"
@@ -74,6 +76,27 @@ nlohmann::json measure(const sim::Surface &s, const shader::CellTable &cells,
     for (const auto &[t, q] : coherent)
         sink += index.find_three_within(t, q, band).index[1];
     const double ns_banded = 1e9 * banded.seconds() / queries.size();
+    // Camera hits as the material sees them: walks of 32 steps across each triangle (as
+    // neighbouring pixels along a row), banded, searched every time and through
+    // CoherentLookup (the plugin's camera path), which reuses a proven cell.
+    struct Step {
+        sim::TriId t;
+        float b1, b2;
+    };
+    std::vector<Step> walk;
+    for (sim::TriId t = 0; t < s.crps.num_triangles() && walk.size() < queries.size(); ++t)
+        for (int k = 0; k < 32; ++k) {
+            const float u = (k + 0.5f) / 32;
+            walk.push_back({t, 0.7f * u, 0.25f * u + 0.2f * u * (1 - u)});
+        }
+    const CpuTimer walked;
+    for (const Step &w : walk) sink += index.find_three_within(w.t, w.b1, w.b2, band).index[1];
+    const double ns_walk = 1e9 * walked.seconds() / walk.size();
+    shader::CoherentLookup reuse;
+    const CpuTimer reused;
+    for (const Step &w : walk)
+        sink += reuse.find_three_within(index, 1, w.t, w.b1, w.b2, band).index[1];
+    const double ns_walk_reuse = 1e9 * reused.seconds() / walk.size();
     const size_t n_ex = std::min<size_t>(queries.size(), 100000);
     size_t agree = 0;
     const CpuTimer exhaustive;
@@ -99,6 +122,9 @@ nlohmann::json measure(const sim::Surface &s, const shader::CellTable &cells,
             {"ns_per_lookup_f1_only", ns_f1},
             {"ns_per_lookup_coherent", ns_coherent},
             {"ns_per_lookup_banded_coherent", ns_banded},
+            {"ns_per_lookup_banded_walk", ns_walk},
+            {"ns_per_lookup_banded_walk_reuse", ns_walk_reuse},
+            {"walk_reused", double(reuse.reused()) / double(std::max<size_t>(walk.size(), 1))},
             {"ns_per_lookup_exhaustive", ns_ex},
             {"exhaustive_agreement", double(agree) / n_ex},
             {"edge_samples", edges.samples},
