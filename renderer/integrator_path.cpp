@@ -385,9 +385,9 @@ Rgb PathIntegrator::radiance(const CameraRay &cam, const RTCRayHit &first,
                 albedo, roughness, own_ior ? sh.ior : mat.ior,
                 own_ior ? BsdfCoated::internal_diffuse_reflectance_table(sh.ior)
                         : mat.coat_F_int));
-        }
-        else
+        } else {
             go_on = scatter(BsdfLambert(albedo));
+        }
         if (!go_on || is_black(beta)) break;
 
         // --- Russian roulette ---
