@@ -166,6 +166,8 @@ EmbreeScene::EmbreeScene(const SceneDesc &scene) {
         if (!mesh) mesh = load_mesh_data(o, scene.path, i);
         ObjectGeometry &og = m_objects[i];
         const Affine normal_m = o.transform.normal_matrix();
+        if (const float det = std::abs(o.transform.determinant3()); det > 0)
+            og.to_object_length = 1 / std::cbrt(det);
         m_num_triangles += mesh->num_triangles;
         if (users[key] == 1) {
             og.baked = true;

@@ -38,6 +38,9 @@ struct ObjectGeometry {
     bool baked = true;       // mesh already in world space
     Affine to_world;         // identity when baked
     Affine normal_to_world;  // inverse transpose of to_world's linear part
+    // Scene lengths to the mesh's own (PelageHit::footprint): 1 / the transform's scale,
+    // the cube root of its linear part's |determinant| (exact for uniform scales).
+    float to_object_length = 1;
 };
 
 class EmbreeScene {

@@ -9,6 +9,7 @@
 #include "renderer/bsdf_lambert.h"
 #include "renderer/embree_ray.h"
 #include "renderer/integrator_fur.h"
+#include "renderer/ray_cone.h"
 #include "renderer/sampling.h"
 
 namespace pelage::renderer {
@@ -77,7 +78,8 @@ PathIntegrator::PathIntegrator(const Scene &scene, const Camera &camera,
       m_rtc(scene.geometry().scene()),
       m_packets(scene.geometry().device(), scene.geometry().scene()),
       m_max_depth(scene.desc().integrator.max_depth),
-      m_rr_depth(scene.desc().integrator.rr_depth) {
+      m_rr_depth(scene.desc().integrator.rr_depth),
+      m_spp(scene.desc().film.spp) {
     m_timer_overhead = timer_overhead_seconds();
     m_pixel_spread =
         2 * std::tan(0.5f * scene.desc().camera.fov_deg * pi / 180) / float(height);
@@ -147,7 +149,8 @@ Rgb PathIntegrator::radiance(const CameraRay &cam, const RTCRayHit &first,
     float prev_pdf = 0;  // solid-angle density of the BSDF sample that made d
     bool prev_specular = false;
     Vec3f prev_ng{0, 0, 1};  // geometric normal at the vertex d left
-    float footprint = 0;     // ray cone width at the ray origin
+    float footprint = 0;     // ray cone width at the ray origin (ray_cone.h)
+    float spread = m_pixel_spread;  // ... and its full angle, radians
     unsigned fur_skip = 0;   // the strand the ray leaves, + 1 (fur_geometry.h)
 
     for (int depth = 0;; ++depth) {
@@ -209,6 +212,7 @@ Rgb PathIntegrator::radiance(const CameraRay &cam, const RTCRayHit &first,
                                    sampler, st, fs, aovs, cam, stats, log) ||
                 is_black(beta))
                 break;
+            if (!prev_specular) spread += bounce_spread(prev_pdf, m_spp);
             if (depth + 1 >= m_rr_depth) {
                 const float p_continue = std::min(0.95f, max_component(beta));
                 if (sampler.get_1d() >= p_continue) break;
@@ -258,7 +262,7 @@ Rgb PathIntegrator::radiance(const CameraRay &cam, const RTCRayHit &first,
             }
         }
         const Vertex v{o + d * t_hit, ng, ns_shade, wo};
-        footprint += t_hit * m_pixel_spread;
+        footprint += t_hit * spread;
 
         // --- Shade: the material plugin fills the BSDF inputs ---
         const Material &mat = m_scene.materials()[object];
@@ -279,7 +283,7 @@ Rgb PathIntegrator::radiance(const CameraRay &cam, const RTCRayHit &first,
             ph.uv[1] = U[1] * b0 + U[3] * b1 + U[5] * b2;
             ph.has_uv = 1;
         }
-        ph.footprint = footprint;
+        ph.footprint = footprint * og.to_object_length;
         ph.depth = uint32_t(depth);
         PelageShade sh{};
         sh.albedo[0] = sh.albedo[1] = sh.albedo[2] = 0.5f;
@@ -389,6 +393,7 @@ Rgb PathIntegrator::radiance(const CameraRay &cam, const RTCRayHit &first,
             go_on = scatter(BsdfLambert(albedo));
         }
         if (!go_on || is_black(beta)) break;
+        if (!prev_specular) spread += bounce_spread(prev_pdf, m_spp);
 
         // --- Russian roulette ---
         if (depth + 1 >= m_rr_depth) {

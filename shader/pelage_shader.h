@@ -92,7 +92,9 @@ typedef struct PelageHit {
     float n[3];   /* world-space shading normal */
     float uv[2];  /* interpolated uv, (0, 0) unless has_uv */
     uint32_t has_uv;
-    float footprint;   /* approximate ray footprint width at the hit, scene units */
+    float footprint;   /* approximate ray footprint width at the hit, in the object's own
+                          units (those of its mesh file: the scene's divided by the
+                          object's scale), widened at rough bounces (renderer/ray_cone.h) */
     uint32_t depth;    /* path vertex index, 0 for camera rays */
     uint32_t reserved; /* zero */
 } PelageHit;

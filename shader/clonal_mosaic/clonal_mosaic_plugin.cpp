@@ -11,6 +11,9 @@
 //   [0, 0.25], "F=0.02,B=0.05" (0.04 is a coat of ior 1.5, 0 no coat highlight at all);
 //   "" keeps the material's ior. Sets the coat's ior, (1 + sqrt F0) / (1 - sqrt F0).
 // - unfolding, string, "edges": "edges" (fewer cracks) or "teo" (edge and vertex maps).
+// - lod, int, 1: footprints wider than the triangles (indirect hits after rough
+//   bounces, minified objects) see the cells' mean look instead of one cell
+//   (mosaic_lod.h); 0 point-samples the cells at every depth (reference renders).
 // - coherence, int, 1: reuse the previous hit's cell when it is provably the same
 //   (identical images either way; 0 to time the search alone).
 //
@@ -27,6 +30,7 @@
 #include <vector>
 
 #include "shader/clonal_mosaic/coherent_lookup.h"
+#include "shader/clonal_mosaic/mosaic_lod.h"
 #include "shader/clonal_mosaic/pattern.h"
 #include "shader/pelage_shader.h"
 
@@ -59,6 +63,7 @@ struct ClonalMosaic {
     const shader::ClosestCellIndex *index = nullptr;
     std::vector<TypeLook> types;
     std::vector<CellLook> looks;  // per cell, CellTable order
+    std::unique_ptr<shader::MosaicLod> lod;  // null: lod = 0
     float jitter = 0, edge_width = 0;
     bool antialias = true, coherence = true;
     uint64_t serial = 0;  // this instance among all ever created (never 0)
@@ -114,6 +119,14 @@ const PelageParamSpec params[] = {
      0.0f,
      0.0f,
      "\"edges\" (edge maps only: fewer cracks) or \"teo\" (edge and vertex maps)"},
+    {"lod",
+     PELAGE_PARAM_INT,
+     {1, 0, 0},
+     nullptr,
+     0.0f,
+     1.0f,
+     "footprints wider than the triangles see the cells' mean look (0: point-sample "
+     "the cells at every depth)"},
     {"coherence",
      PELAGE_PARAM_INT,
      {1, 0, 0},
@@ -238,6 +251,16 @@ void *create(const PelageParamSet *ps, PelageError *err) {
                        });
         cm->looks.resize(cm->cells_ptr->size());
         for (uint32_t k = 0; k < cm->looks.size(); ++k) cell_look(*cm, k, cm->looks[k]);
+        if (find_param(ps, "lod")->i != 0)
+            cm->lod = std::make_unique<shader::MosaicLod>(
+                *cm->pattern,
+                [&](uint32_t cell) {
+                    const CellLook &look = cm->looks[cell];
+                    const TypeLook &type = cm->types[look.type];
+                    return shader::FilteredLook{{look.rgb[0], look.rgb[1], look.rgb[2],
+                                                 type.eumelanin, type.pheomelanin}};
+                },
+                cm->types.size());
         return cm.release();
     } catch (const std::exception &e) {
         set_error(err, e.what());
@@ -259,10 +282,8 @@ void shade_as(const ClonalMosaic &cm, const CellLook &cell, float f1, PelageShad
     out->aov_written = 1;
 }
 
-void shade(const void *self, const PelageHit *hit, PelageShade *out) {
-    const ClonalMosaic &cm = *static_cast<const ClonalMosaic *>(self);
-    if (hit->primitive_id >= cm.cells_ptr->num_triangles()) return;  // defaults stay
-
+// The pattern itself at the hit: one cell's look, or a blend across a boundary.
+void shade_cells(const ClonalMosaic &cm, const PelageHit *hit, PelageShade *out) {
     // Boundaries are blended over w: the user's soft width, or at least the footprint.
     // Antialiasing matters for what the camera sees; indirect bounces average over wide
     // footprints anyway, so they take the cheaper nearest-cell path.
@@ -311,6 +332,40 @@ void shade(const void *self, const PelageHit *hit, PelageShade *out) {
     for (int k = 0; k < 3; ++k) out->albedo[k] = rgb[k] / total;
     out->eumelanin = eu / total;
     out->pheomelanin = pheo / total;
+}
+
+// Footprints wider than the triangles: the cells' mean look (mosaic_lod.h), faded in
+// over footprints of one to two triangle sizes.
+void shade(const void *self, const PelageHit *hit, PelageShade *out) {
+    const ClonalMosaic &cm = *static_cast<const ClonalMosaic *>(self);
+    const uint32_t t = hit->primitive_id;
+    if (t >= cm.cells_ptr->num_triangles()) return;  // defaults stay
+    const float lod = cm.lod ? cm.lod->weight(t, hit->footprint) : 0.0f;
+    if (lod < 1) {
+        shade_cells(cm, hit, out);
+        if (lod <= 0) return;
+    } else {
+        // No single cell is seen: what is not blended comes from the triangle's dominant
+        // type. The camera's AOVs still name the nearest cell.
+        const TypeLook &type = cm.types[cm.lod->dominant_type(t)];
+        if (type.roughness >= 0) out->roughness = type.roughness;
+        if (type.ior > 0) out->ior = type.ior;
+        if (hit->depth == 0) {
+            const shader::ClosestCell c = cm.index->find_nearest(t, hit->b1, hit->b2);
+            if (c.index != shader::ClosestCell::none) {
+                const CellLook &cell = cm.looks[c.index];
+                out->aov[0] = cell.aov_id;
+                out->aov[1] = cm.types[cell.type].aov_type;
+                out->aov[2] = c.f1;
+                out->aov_written = 1;
+            }
+        }
+    }
+    const shader::FilteredLook f = cm.lod->at(t, hit->b1, hit->b2);
+    float *blended[5] = {&out->albedo[0], &out->albedo[1], &out->albedo[2],
+                         &out->eumelanin, &out->pheomelanin};
+    for (int k = 0; k < shader::FilteredLook::channels; ++k)
+        *blended[k] = (1 - lod) * *blended[k] + lod * f.v[k];
 }
 
 void destroy(void *self) { delete static_cast<ClonalMosaic *>(self); }

@@ -10,6 +10,7 @@
 
 #include "renderer/plugin_loader.h"
 #include "shader/clonal_mosaic/closest_cell.h"
+#include "shader/clonal_mosaic/mosaic_lod.h"
 #include "sim/cells_file.h"
 #include "sim/surface.h"
 #include "tests/test_paths.h"
@@ -51,8 +52,10 @@ struct Instance {
     ~Instance() {
         if (self) plugin.desc->destroy(self);
     }
-    PelageShade shade(uint32_t prim, float b1, float b2, float footprint = 0) const {
+    PelageShade shade(uint32_t prim, float b1, float b2, float footprint = 0,
+                      uint32_t depth = 0) const {
         PelageHit hit{};
+        hit.depth = depth;
         hit.primitive_id = prim;
         hit.b1 = b1;
         hit.b2 = b2;
@@ -281,6 +284,82 @@ TEST(ClonalMosaicPlugin, PerTypeSpecularSetsTheCoatIor) {
         EXPECT_EQ(refused.self, nullptr) << bad;
         EXPECT_NE(refused.error.find("specular"), std::string::npos) << refused.error;
     }
+}
+
+}  // namespace
+}  // namespace pelage::test
+
+namespace pelage::test {
+namespace {
+
+// Level of detail (mosaic_lod.h): footprints below a triangle's size see exactly the
+// point-sampled pattern; from twice its size on, the filtered look of MosaicLod (built
+// here directly from the same file); half-way, the mean of the two. The camera's AOVs
+// keep naming the nearest cell at any footprint; lod = 0 never filters.
+TEST(ClonalMosaicPlugin, WideFootprintsSeeTheFilteredLook) {
+    TempDir tmp;
+    const std::string cells = simulate_two_type_cells(tmp, mesh_spec, 600);
+    const Instance inst({}, cells.c_str()), off({{"lod", 0}}, cells.c_str());
+    ASSERT_NE(inst.self, nullptr) << inst.error;
+    const shader::MosaicPattern pattern(cells, mesh_spec);
+    const shader::MosaicLod lod(
+        pattern,
+        [&](uint32_t c) {
+            const sim::CellType &t = pattern.types()[pattern.cells().type[c]];
+            return shader::FilteredLook{
+                {t.colour[0], t.colour[1], t.colour[2], t.eumelanin, t.pheomelanin}};
+        },
+        pattern.types().size());
+
+    std::mt19937 rng(9);
+    std::uniform_real_distribution<float> u(0, 1);
+    int differs = 0;
+    for (int n = 0; n < 2000; ++n) {
+        const uint32_t prim = rng() % 1280;
+        float b1 = u(rng), b2 = u(rng);
+        if (b1 + b2 > 1) { b1 = 1 - b1; b2 = 1 - b2; }
+        const uint32_t depth = n % 2;
+        // Footprints well below the size (weight 0) and beyond twice it (weight 1).
+        const float small = 1e-4f, large = 1e3f;
+        ASSERT_EQ(lod.weight(prim, small), 0.0f);
+        ASSERT_EQ(lod.weight(prim, large), 1.0f);
+        const PelageShade exact = off.shade(prim, b1, b2, small, depth);
+        const PelageShade fine = inst.shade(prim, b1, b2, small, depth);
+        ASSERT_EQ(std::memcmp(&exact, &fine, sizeof(PelageShade)), 0);
+
+        const shader::FilteredLook f = lod.at(prim, b1, b2);
+        const PelageShade wide = inst.shade(prim, b1, b2, large, depth);
+        for (int k = 0; k < 3; ++k) ASSERT_EQ(wide.albedo[k], f.v[k]);
+        ASSERT_EQ(wide.eumelanin, f.v[3]);
+        ASSERT_EQ(wide.pheomelanin, f.v[4]);
+        differs += std::abs(wide.albedo[0] - exact.albedo[0]) > 0.05f;
+        if (depth == 0) {  // the AOVs still name the nearest cell
+            const PelageShade hard = off.shade(prim, b1, b2, 0, 0);
+            ASSERT_EQ(wide.aov_written, 1u);
+            ASSERT_EQ(wide.aov[0], hard.aov[0]);
+            ASSERT_EQ(wide.aov[1], hard.aov[1]);
+            ASSERT_EQ(wide.aov[2], hard.aov[2]);
+        }
+        // lod = 0 point-samples at any footprint (depth 1: the hard nearest-cell path).
+        if (depth == 1) {
+            const PelageShade never = off.shade(prim, b1, b2, large, 1);
+            const PelageShade hard = off.shade(prim, b1, b2, 0, 1);
+            ASSERT_EQ(std::memcmp(&never, &hard, sizeof(PelageShade)), 0);
+        }
+        // Half-way through the ramp: the mean of the exact and the filtered look.
+        float lo = small, hi = large;  // bisect for the footprint of weight 0.5
+        for (int it = 0; it < 60; ++it) {
+            const float mid = 0.5f * (lo + hi);
+            (lod.weight(prim, mid) < 0.5f ? lo : hi) = mid;
+        }
+        const float half = lod.weight(prim, hi);
+        const PelageShade at_half = inst.shade(prim, b1, b2, hi, 1);
+        const PelageShade exact_half = off.shade(prim, b1, b2, hi, 1);
+        for (int k = 0; k < 3; ++k)
+            ASSERT_NEAR(at_half.albedo[k],
+                        (1 - half) * exact_half.albedo[k] + half * f.v[k], 1e-6f);
+    }
+    EXPECT_GT(differs, 100);  // the filtered look is not the point sample
 }
 
 }  // namespace
