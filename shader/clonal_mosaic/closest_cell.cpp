@@ -392,9 +392,9 @@ ClosestCellIndex::Nearest<3> ClosestCellIndex::find_three_within(sim::TriId t, V
 ClosestCellIndex::Nearest<3> ClosestCellIndex::three_within(const Block *b,
                                                             const Block *e, Vec2f q,
                                                             float band) const {
-    // Two passes over the same (by then cached) blocks: the nearest cell with the
-    // hardest pruning, then whatever else lies within F1 + band — mostly nothing, so most
-    // hits cost about one nearest-cell search. The result is what one three-nearest scan
+    // Two passes over the same (by then cached) blocks: the two nearest cells, then,
+    // only when the second lies within F1 + band, whatever else does — so most hits cost
+    // one two-nearest search. The result is what one three-nearest scan
     // cut at F1 + band gives (the second pass keeps the same (distance, id) order).
     // The first pass finds F2 too, which costs a little more scanning but lets
     // CoherentLookup reuse the result for the next hits (next_d2).
@@ -407,6 +407,12 @@ ClosestCellIndex::Nearest<3> ClosestCellIndex::three_within(const Block *b,
     if (first.index[0] == ClosestCell::none) return n;
     const float cap = std::sqrt(first.d2[0]) + std::max(band, 0.0f);
     const float cap2 = cap * cap;
+    // The second-nearest cell lies beyond F1 + band (most hits): so does every other,
+    // and the second pass would find nothing. (It computes the same d2 bits.)
+    if (!(first.d2[1] <= cap2)) {
+        n.next_d2 = first.d2[1];
+        return n;
+    }
     const uint32_t *id = m_cells->id.data();
     for (; b != e && b->bound2 <= cap2; ++b) {
         float d2[per_block];

@@ -10,7 +10,10 @@ ClosestCellIndex::Nearest<3> CoherentLookup::find_three_within(
     const Vec2f q = index.point(t, b1, b2);
     if (m_serial == serial && m_tri == t) {
         const float d2 = squared_distance(m_at.x, m_at.y, q), f1 = std::sqrt(d2);
-        const float moved = std::hypot(q.x - m_q.x, q.y - m_q.y);
+        // Not std::hypot: these are small coordinates, and hypot is a libm call that
+        // cost as much as the rest of the check.
+        const float dx = q.x - m_q.x, dy = q.y - m_q.y;
+        const float moved = std::sqrt(dx * dx + dy * dy);
         const float margin = 1e-4f * (m_f2 + std::abs(q.x) + std::abs(q.y) + f1);
         if (m_f2 - moved > f1 + band + margin) {
             ++m_reused;
