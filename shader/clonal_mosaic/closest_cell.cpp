@@ -322,17 +322,29 @@ void ClosestCellIndex::scan(const Block *b, const Block *e, Vec2f q, Nearest<K> 
         return std::min(n.d2[K - 1], cap * cap);
     };
     float d_min2 = radius2();
+    // A lower bound on the squared distance of every cell not kept: those scanned and
+    // passed over or pushed out, and the bound of the first block not scanned.
+    float rest = std::numeric_limits<float>::infinity();
     for (; b != e; ++b) {
         // Blocks are sorted by their cells' distance from the region: once a block
         // lies beyond D_min, so do all after it.
         if constexpr (prune)
-            if (b->bound2 > d_min2) break;
+            if (b->bound2 > d_min2) {
+                rest = std::min(rest, b->bound2);
+                break;
+            }
         float d2[per_block];
         for (int l = 0; l < per_block; ++l) d2[l] = squared_distance(b->x[l], b->y[l], q);
-        if (*std::min_element(d2, d2 + per_block) > d_min2) continue;  // the common case
+        if (const float m = *std::min_element(d2, d2 + per_block); m > d_min2) {
+            rest = std::min(rest, m);
+            continue;  // the common case
+        }
         for (int l = 0; l < per_block; ++l) {
             const uint32_t cell = b->cell[l];
-            if (d2[l] > d_min2 || cell == ClosestCell::none) continue;
+            if (d2[l] > d_min2 || cell == ClosestCell::none) {
+                rest = std::min(rest, d2[l]);
+                continue;
+            }
             // Order by (distance, stable id); a cell listed in several regions (the
             // exhaustive scan) enters once.
             int pos = K;
@@ -344,17 +356,28 @@ void ClosestCellIndex::scan(const Block *b, const Block *e, Vec2f q, Nearest<K> 
                      id[cell] < id[n.index[j]]))
                     pos = j;
             }
-            if (seen || pos == K) continue;
+            if (seen) continue;
+            if (pos == K) {
+                rest = std::min(rest, d2[l]);
+                continue;
+            }
+            rest = std::min(rest, n.d2[K - 1]);  // pushed out (or +inf: an empty slot)
             for (int j = K - 1; j > pos; --j) {
                 n.d2[j] = n.d2[j - 1];
                 n.index[j] = n.index[j - 1];
             }
             n.d2[pos] = d2[l];
             n.index[pos] = cell;
-            if (pos == 0) n.nearest_at = {b->x[l], b->y[l]};
+            if (pos == 0) {
+                n.second_at = n.nearest_at;
+                n.nearest_at = {b->x[l], b->y[l]};
+            } else if (pos == 1) {
+                n.second_at = {b->x[l], b->y[l]};
+            }
             d_min2 = radius2();
         }
     }
+    n.beyond_d2 = rest;
 }
 
 ClosestCell ClosestCellIndex::find(sim::TriId t, Vec2f q) const {
@@ -396,14 +419,16 @@ ClosestCellIndex::Nearest<3> ClosestCellIndex::three_within(const Block *b,
     // only when the second lies within F1 + band, whatever else does — so most hits cost
     // one two-nearest search. The result is what one three-nearest scan
     // cut at F1 + band gives (the second pass keeps the same (distance, id) order).
-    // The first pass finds F2 too, which costs a little more scanning but lets
-    // CoherentLookup reuse the result for the next hits (next_d2).
+    // The first pass also leaves what CoherentLookup needs to reuse the result for
+    // the next hits: the second cell's position and a lower bound on F3.
     Nearest<2> first;
     scan<true, false, 2>(b, e, q, first);
     Nearest<3> n;
     n.d2[0] = first.d2[0];
     n.index[0] = first.index[0];
     n.nearest_at = first.nearest_at;
+    n.second_at = first.second_at;
+    n.third_d2 = first.beyond_d2;
     if (first.index[0] == ClosestCell::none) return n;
     const float cap = std::sqrt(first.d2[0]) + std::max(band, 0.0f);
     const float cap2 = cap * cap;

@@ -138,9 +138,19 @@ class ClosestCellIndex {
         // The nearest cell's position in t's frame, exactly as its list stores it (so
         // d2[0] is recomputable bit for bit: a caller can reuse it for nearby queries).
         Vec2f nearest_at;
+        // The second-nearest cell's position (as listed; +inf when there is none) —
+        // find_three_within: also when it lies beyond the band and is not returned.
+        Vec2f second_at{std::numeric_limits<float>::infinity(),
+                        std::numeric_limits<float>::infinity()};
+        // A lower bound on the squared distance of every cell not among the K (the
+        // scans and find_three: not necessarily F_{K+1}², only never above it).
+        float beyond_d2 = std::numeric_limits<float>::infinity();
         // find_three_within only: the squared distance of the nearest cell it did not
-        // return (F2² when it returned one cell; +inf when unknown).
+        // return (F2² when it returned one cell; +inf when unknown), and a lower bound on
+        // F3² (+inf when there is no third cell). With c2's position, a caller can prove
+        // for a nearby query that no other cell comes near (coherent_lookup.h).
         float next_d2 = std::numeric_limits<float>::infinity();
+        float third_d2 = std::numeric_limits<float>::infinity();
         Nearest() {
             d2.fill(std::numeric_limits<float>::infinity());
             index.fill(ClosestCell::none);

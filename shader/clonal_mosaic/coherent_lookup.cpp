@@ -14,8 +14,9 @@ ClosestCellIndex::Nearest<3> CoherentLookup::find_three_within(
         // cost as much as the rest of the check.
         const float dx = q.x - m_q.x, dy = q.y - m_q.y;
         const float moved = std::sqrt(dx * dx + dy * dy);
-        const float margin = 1e-4f * (m_f2 + std::abs(q.x) + std::abs(q.y) + f1);
-        if (m_f2 - moved > f1 + band + margin) {
+        const float margin = 1e-4f * (std::abs(q.x) + std::abs(q.y) + f1 + band);
+        const float need = f1 + band + margin;
+        if (squared_distance(m_at2.x, m_at2.y, q) > need * need && m_f3 - moved > need) {
             ++m_reused;
             ClosestCellIndex::Nearest<3> n;
             n.d2[0] = d2;
@@ -27,15 +28,14 @@ ClosestCellIndex::Nearest<3> CoherentLookup::find_three_within(
     ++m_searched;
     const ClosestCellIndex::Nearest<3> n = index.find_three_within(t, b1, b2, band);
     m_serial = 0;
-    // Only a single cell within the band is worth remembering, and only with F2 known.
-    if (n.index[0] != ClosestCell::none && n.index[1] == ClosestCell::none &&
-        std::isfinite(n.next_d2)) {
+    if (n.index[0] != ClosestCell::none) {
         m_serial = serial;
         m_tri = t;
         m_cell = n.index[0];
         m_q = q;
         m_at = n.nearest_at;
-        m_f2 = std::sqrt(n.next_d2);
+        m_at2 = n.second_at;
+        m_f3 = std::sqrt(n.third_d2);
     }
     return n;
 }

@@ -1,14 +1,19 @@
-// Reuse of the previous lookup for coherent queries (camera hits arrive pixel after pixel
+// Reuse of a search's result for coherent queries (camera hits arrive pixel after pixel
 // along a tile row, and most fall in the same cell as the hit before).
 //
-// After a search at q_prev found a single cell c within F1 + band, we know F2(q_prev),
-// the distance to the second-nearest cell. For the next query q of the same triangle
-// (same frame), moved by δ = |q - q_prev|, every other cell is at least F2 - δ away from
-// q (triangle inequality). If F2 - δ > |q - c| + band', the banded search at q would
-// find c alone — so the scan is skipped. The result is the same bits: |q - c|² is
-// computed from c's position exactly as the scan computes it, and the comparison keeps a
-// relative margin far above float rounding. Keyed by an index serial (callers give each
-// index a number never reused, not its address) and the triangle.
+// A search at q0 found the nearest cell c1, the second nearest c2 (its position) and a
+// lower bound on F3(q0), the distance to the third (what the two-nearest scan saw of
+// the rest: ClosestCellIndex::Nearest::third_d2). For a later query q of the same
+// triangle (same frame), moved by δ = |q - q0|, every cell other than c1 and c2 is at
+// least F3 - δ away from q (triangle inequality). If both |q - c2| and F3 - δ exceed
+// |q - c1| + band', the banded search at q would find c1 alone — so the scan is
+// skipped. (Keeping c2's position, not only F2, lets a query move along c1's boundary
+// with c2 without losing the proof: 70 % of the camera hits of sphere_cheetah at
+// 2000 x 2000 reuse, against 60 % with F2 alone; the F3 bound costs the scan nothing.)
+// The result is the same bits: |q - c1|² is computed from c1's position exactly as the
+// scan computes it, and the comparison keeps a relative margin far above float
+// rounding. Keyed by an index serial (callers give each index a number never reused,
+// not its address) and the triangle.
 //
 // One object per thread (the plugin keeps it thread_local); not thread-safe.
 #pragma once
@@ -34,9 +39,9 @@ class CoherentLookup {
   private:
     uint64_t m_serial = 0;  // 0: nothing to reuse
     sim::TriId m_tri = 0;
-    uint32_t m_cell = 0;
-    Vec2f m_q, m_at;  // the last query and its single cell, in the triangle's frame
-    float m_f2 = 0;   // the last query's distance to the second-nearest cell
+    uint32_t m_cell = 0;      // c1
+    Vec2f m_q, m_at, m_at2;   // the search's query, c1 and c2, in the triangle's frame
+    float m_f3 = 0;           // a lower bound on the search's F3
     size_t m_reused = 0, m_searched = 0;
 };
 
