@@ -428,6 +428,7 @@ ClosestCellIndex::Nearest<3> ClosestCellIndex::three_within(const Block *b,
     n.index[0] = first.index[0];
     n.nearest_at = first.nearest_at;
     n.second_at = first.second_at;
+    n.second = first.index[1];
     n.third_d2 = first.beyond_d2;
     if (first.index[0] == ClosestCell::none) return n;
     const float cap = std::sqrt(first.d2[0]) + std::max(band, 0.0f);

@@ -142,6 +142,7 @@ class ClosestCellIndex {
         // find_three_within: also when it lies beyond the band and is not returned.
         Vec2f second_at{std::numeric_limits<float>::infinity(),
                         std::numeric_limits<float>::infinity()};
+        uint32_t second = ClosestCell::none;  // find_three_within: that cell
         // A lower bound on the squared distance of every cell not among the K (the
         // scans and find_three: not necessarily F_{K+1}², only never above it).
         float beyond_d2 = std::numeric_limits<float>::infinity();

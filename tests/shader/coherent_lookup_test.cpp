@@ -22,7 +22,7 @@ TEST(CoherentLookup, EqualsTheSearchBitForBitAndReusesMostCoherentQueries) {
     const CellTable cells = make_cell_table(s.crps.num_triangles(), list);
     const ClosestCellIndex index(s.crps, cells);
     CoherentLookup coherent;
-    size_t calls = 0;
+    size_t calls = 0, blends = 0;
     // Walks of 200 steps across triangles (corner 0 towards the far edge), bands from 0
     // to about a tenth of a cell spacing: many cell boundaries are crossed, and steps
     // near them must not be reused wrongly.
@@ -34,6 +34,7 @@ TEST(CoherentLookup, EqualsTheSearchBitForBitAndReusesMostCoherentQueries) {
             const auto a = coherent.find_three_within(index, 1, t, b1, b2, band);
             const auto b = index.find_three_within(t, b1, b2, band);
             ++calls;
+            blends += b.index[1] != ClosestCell::none;
             for (int i = 0; i < 3; ++i) {
                 ASSERT_EQ(a.index[i], b.index[i]) << t << " " << k << " " << i;
                 ASSERT_EQ(a.d2[i], b.d2[i]) << t << " " << k << " " << i;
@@ -42,6 +43,10 @@ TEST(CoherentLookup, EqualsTheSearchBitForBitAndReusesMostCoherentQueries) {
     }
     EXPECT_EQ(coherent.reused() + coherent.searched(), calls);
     EXPECT_GT(coherent.reused(), calls / 2) << coherent.searched() << " searched";
+    // Blends (two or three cells within the band) are checked too, and since c2 is
+    // kept, even most of them are reused: searches are fewer than blends.
+    EXPECT_GT(blends, calls / 50);
+    EXPECT_LT(coherent.searched(), blends) << blends << " blends of " << calls;
     // Another index (serial) or triangle is never served from the memory of this one.
     const size_t reused = coherent.reused();
     coherent.find_three_within(index, 2, 0, 0.1f, 0.1f, 0);
