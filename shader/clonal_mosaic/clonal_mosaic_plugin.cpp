@@ -362,7 +362,7 @@ void shade(const void *self, const PelageHit *hit, PelageShade *out) {
         }
     }
     const shader::FilteredLook f = cm.lod->at(t, hit->b1, hit->b2);
-    float *blended[5] = {&out->albedo[0], &out->albedo[1], &out->albedo[2],
+    float *blended[shader::FilteredLook::channels] = {&out->albedo[0], &out->albedo[1], &out->albedo[2],
                          &out->eumelanin, &out->pheomelanin};
     for (int k = 0; k < shader::FilteredLook::channels; ++k)
         *blended[k] = (1 - lod) * *blended[k] + lod * f.v[k];

@@ -38,7 +38,7 @@ class MosaicLod {
     // The weight of the filtered look for footprint width w at triangle t, in [0, 1].
     float weight(uint32_t t, float w) const {
         const float x = w * m_tris[t].inv_size - 1;
-        return x <= 0 ? 0.0f : (x >= 1 ? 1.0f : x);
+        return !(x > 0) ? 0.0f : (x >= 1 ? 1.0f : x);  // (a NaN footprint: 0)
     }
     // The filtered look at barycentric point (b1, b2) of t.
     FilteredLook at(uint32_t t, float b1, float b2) const;

@@ -120,6 +120,7 @@ TEST(MosaicLod, WeightRampsFromOneTriangleSizeToTwo) {
     EXPECT_NEAR(f.lod.weight(7, float(1.5 * size)), 0.5f, 1e-5);
     EXPECT_EQ(f.lod.weight(7, float(2.01 * size)), 1.0f);
     EXPECT_EQ(f.lod.weight(7, 1e30f), 1.0f);
+    EXPECT_EQ(f.lod.weight(7, std::nanf("")), 0.0f);  // a bad footprint filters nothing
 }
 
 }  // namespace
