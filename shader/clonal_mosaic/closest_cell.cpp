@@ -311,8 +311,9 @@ const ClosestCellIndex::Block *ClosestCellIndex::blocks_of(sim::TriId t, Vec2f q
 }
 
 template <bool prune, bool dedupe, int K>
-void ClosestCellIndex::scan(const Block *b, const Block *e, Vec2f q, Nearest<K> &n,
-                            float band) const {
+const ClosestCellIndex::Block *ClosestCellIndex::scan(const Block *b, const Block *e,
+                                                      Vec2f q, Nearest<K> &n, float band,
+                                                      float *cells_left_d2) const {
     const uint32_t *id = m_cells->id.data();
     // D_min² of Teo Fig. 6.2: beyond it no cell matters any more — the squared distance
     // to the K-th nearest found so far, or to F1 + band when that is nearer (band >= 0).
@@ -329,10 +330,7 @@ void ClosestCellIndex::scan(const Block *b, const Block *e, Vec2f q, Nearest<K> 
         // Blocks are sorted by their cells' distance from the region: once a block
         // lies beyond D_min, so do all after it.
         if constexpr (prune)
-            if (b->bound2 > d_min2) {
-                rest = std::min(rest, b->bound2);
-                break;
-            }
+            if (b->bound2 > d_min2) break;
         float d2[per_block];
         for (int l = 0; l < per_block; ++l) d2[l] = squared_distance(b->x[l], b->y[l], q);
         if (const float m = *std::min_element(d2, d2 + per_block); m > d_min2) {
@@ -377,7 +375,9 @@ void ClosestCellIndex::scan(const Block *b, const Block *e, Vec2f q, Nearest<K> 
             d_min2 = radius2();
         }
     }
-    n.beyond_d2 = rest;
+    if (cells_left_d2) *cells_left_d2 = rest;
+    n.beyond_d2 = b != e ? std::min(rest, b->bound2) : rest;
+    return b;
 }
 
 ClosestCell ClosestCellIndex::find(sim::TriId t, Vec2f q) const {
@@ -422,7 +422,8 @@ ClosestCellIndex::Nearest<3> ClosestCellIndex::three_within(const Block *b,
     // The first pass also leaves what CoherentLookup needs to reuse the result for
     // the next hits: the second cell's position and a lower bound on F3.
     Nearest<2> first;
-    scan<true, false, 2>(b, e, q, first);
+    float cells_left_d2;
+    const Block *stop = scan<true, false, 2>(b, e, q, first, -1, &cells_left_d2);
     Nearest<3> n;
     n.d2[0] = first.d2[0];
     n.index[0] = first.index[0];
@@ -430,6 +431,15 @@ ClosestCellIndex::Nearest<3> ClosestCellIndex::three_within(const Block *b,
     n.second_at = first.second_at;
     n.second = first.index[1];
     n.third_d2 = first.beyond_d2;
+    if (stop != e) {
+        // The pruned block's bound is measured from the whole region, so it is loose
+        // about q: its own cells and the next block's bound make a tighter F3 bound,
+        // and a reused result reaches farther (one more, mostly prefetched, line).
+        float m = stop + 1 != e ? stop[1].bound2 : inf_f;
+        for (int l = 0; l < per_block; ++l)
+            m = std::min(m, squared_distance(stop->x[l], stop->y[l], q));
+        n.third_d2 = std::min(cells_left_d2, m);
+    }
     if (first.index[0] == ClosestCell::none) return n;
     const float cap = std::sqrt(first.d2[0]) + std::max(band, 0.0f);
     const float cap2 = cap * cap;

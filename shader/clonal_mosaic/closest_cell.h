@@ -207,9 +207,12 @@ class ClosestCellIndex {
     const Block *blocks_of(sim::TriId t, Vec2f q, const Block *&end) const;
     const Block *blocks_at(sim::TriId t, float b1, float b2, const Block *&end) const;
     Nearest<3> three_within(const Block *b, const Block *e, Vec2f q, float band) const;
+    // Returns the first block not scanned (e when all were), having set n.beyond_d2 to
+    // the least squared distance of the scanned cells it did not keep and that block's
+    // bound; *cells_left_d2, when given, gets the former alone.
     template <bool prune, bool dedupe, int K>
-    void scan(const Block *b, const Block *e, Vec2f q, Nearest<K> &n,
-              float band = -1) const;
+    const Block *scan(const Block *b, const Block *e, Vec2f q, Nearest<K> &n,
+              float band = -1, float *cells_left_d2 = nullptr) const;
     void build_triangle(const sim::Crps &crps, sim::TriId t, sim::UnfoldScratch &scratch,
                         std::vector<sim::UnfoldedTriangle> &unfolded,
                         std::array<Built, 2> &out) const;
