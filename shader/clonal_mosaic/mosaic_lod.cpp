@@ -62,6 +62,11 @@ MosaicLod::MosaicLod(const MosaicPattern &pattern,
                                  type_area.begin());
     }
 
+    // The least size among the triangles that filter at all (1 / the largest inv_size).
+    float largest_inv = 0;
+    for (const Triangle &tri : m_tris) largest_inv = std::max(largest_inv, tri.inv_size);
+    m_smallest = largest_inv > 0 ? 1 / largest_inv : 0.0f;
+
     // Per vertex: the area-weighted mean of its triangles' means.
     std::vector<double> vertex(channels * mesh.num_vertices(), 0.0),
         weight(mesh.num_vertices(), 0.0);

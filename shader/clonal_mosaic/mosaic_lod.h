@@ -37,6 +37,7 @@ class MosaicLod {
 
     // The weight of the filtered look for footprint width w at triangle t, in [0, 1].
     float weight(uint32_t t, float w) const {
+        if (w <= m_smallest) return 0;  // most camera hits: no read of t's line
         const float x = w * m_tris[t].inv_size - 1;
         return !(x > 0) ? 0.0f : (x >= 1 ? 1.0f : x);  // (a NaN footprint: 0)
     }
@@ -55,6 +56,7 @@ class MosaicLod {
     };
     static_assert(sizeof(Triangle) == 64);
     std::vector<Triangle> m_tris;
+    float m_smallest = 0;  // the least triangle size: below it every weight is 0
     std::vector<FilteredLook> m_means;
     std::vector<uint32_t> m_dominant;
 };
