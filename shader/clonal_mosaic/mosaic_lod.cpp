@@ -9,18 +9,18 @@ namespace pelage::shader {
 
 constexpr int channels = FilteredLook::channels;
 
-MosaicLod::MosaicLod(const MosaicPattern &pattern,
+MosaicLod::MosaicLod(const sim::Surface &surface, const ClosestCellIndex &index,
                      const std::function<FilteredLook(uint32_t cell)> &look_of,
                      size_t num_types) {
-    const size_t nt = pattern.num_triangles();
-    const sim::Crps &crps = pattern.surface().crps;
-    const sim::TriangleMesh &mesh = pattern.surface().mesh;
-    const ClosestCellIndex &index = pattern.index();
+    const sim::Crps &crps = surface.crps;
+    const sim::TriangleMesh &mesh = surface.mesh;
+    const CellTable &cells = index.cells();
+    const size_t nt = crps.num_triangles();
     double total_area = 0;
     for (sim::TriId t = 0; t < nt; ++t) total_area += crps.frame(t).area;
     // The grid: about four samples per cell spacing along the triangle's longest edge.
     const double spacing =
-        std::sqrt(total_area / double(std::max<size_t>(pattern.cells().size(), 1)));
+        std::sqrt(total_area / double(std::max<size_t>(cells.size(), 1)));
 
     m_tris.resize(nt);
     m_means.resize(nt);
@@ -49,7 +49,7 @@ MosaicLod::MosaicLod(const MosaicPattern &pattern,
                     if (c.index == ClosestCell::none) continue;
                     FilteredLook look = look_of(c.index);
                     for (int k = 0; k < channels; ++k) sum[k] += look.v[k];
-                    const uint8_t type = pattern.cells().type[c.index];
+                    const uint8_t type = cells.type[c.index];
                     if (type < num_types) type_area[type] += 1;
                     ++samples;
                 }

@@ -31,9 +31,12 @@ class MosaicLod {
   public:
     // `look_of(cell)`: the look of a cell (CellTable index); `num_types`: cell types,
     // for each triangle's dominant type.
-    MosaicLod(const MosaicPattern &pattern,
+    MosaicLod(const sim::Surface &surface, const ClosestCellIndex &index,
               const std::function<FilteredLook(uint32_t cell)> &look_of,
               size_t num_types);
+    MosaicLod(const MosaicPattern &pattern,
+              const std::function<FilteredLook(uint32_t cell)> &look_of, size_t num_types)
+        : MosaicLod(pattern.surface(), pattern.index(), look_of, num_types) {}
 
     // The weight of the filtered look for footprint width w at triangle t, in [0, 1].
     float weight(uint32_t t, float w) const {
