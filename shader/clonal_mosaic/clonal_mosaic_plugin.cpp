@@ -24,6 +24,7 @@
 #include <atomic>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <memory>
 #include <sstream>
 #include <string>
@@ -193,6 +194,23 @@ float id_noise(uint32_t id) {
     return float(h >> 8) * (2.0f / 16777216.0f) - 1.0f;
 }
 
+// A stable value in [0, 1) from a hit (its triangle, barycentrics and depth): decides,
+// between the exact and the filtered look, which one a hit in the level of detail's ramp
+// takes (murmur3's finaliser on the mixed bits).
+float hit_noise(const PelageHit &hit) {
+    uint32_t b1, b2;
+    std::memcpy(&b1, &hit.b1, 4);
+    std::memcpy(&b2, &hit.b2, 4);
+    uint32_t h = hit.primitive_id * 0x9E3779B1u ^ b1 * 0x85EBCA6Bu ^ b2 * 0xC2B2AE35u ^
+                 hit.depth * 0x27D4EB2Fu;
+    h ^= h >> 16;
+    h *= 0x85EBCA6Bu;
+    h ^= h >> 13;
+    h *= 0xC2B2AE35u;
+    h ^= h >> 16;
+    return float(h >> 8) * (1.0f / 16777216.0f);
+}
+
 void cell_look(const ClonalMosaic &cm, uint32_t cell, CellLook &look) {
     const uint32_t type = cm.cells_ptr->type[cell];
     const TypeLook &t = cm.types[type];
@@ -335,18 +353,20 @@ void shade_cells(const ClonalMosaic &cm, const PelageHit *hit, PelageShade *out)
 }
 
 // Footprints wider than the triangles: the cells' mean look (mosaic_lod.h), faded in
-// over footprints of one to two triangle sizes.
+// over footprints of one to two triangle sizes. In the ramp a hit takes one of the two
+// looks, the filtered one with probability equal to its weight (stochastic filtering,
+// Pharr et al. 2024, "Filtering after shading with stochastic texture filtering"): the
+// same mean over a pixel's samples as blending both, at the cost of one.
 void shade(const void *self, const PelageHit *hit, PelageShade *out) {
     const ClonalMosaic &cm = *static_cast<const ClonalMosaic *>(self);
     const uint32_t t = hit->primitive_id;
     if (t >= cm.cells_ptr->num_triangles()) return;  // defaults stay
-    const float lod = cm.lod ? cm.lod->weight(t, hit->footprint) : 0.0f;
-    if (lod < 1) {
+    const float weight = cm.lod ? cm.lod->weight(t, hit->footprint) : 0.0f;
+    if (weight < 1 && !(weight > 0 && hit_noise(*hit) < weight)) {
         shade_cells(cm, hit, out);
-        if (lod <= 0) return;
     } else {
-        // No single cell is seen: what is not blended comes from the triangle's dominant
-        // type. The camera's AOVs still name the nearest cell.
+        // The filtered look. No single cell is seen, so roughness and ior come from the
+        // triangle's dominant type; the camera's AOVs still name the nearest cell.
         const TypeLook &type = cm.types[cm.lod->dominant_type(t)];
         if (type.roughness >= 0) out->roughness = type.roughness;
         if (type.ior > 0) out->ior = type.ior;
@@ -360,12 +380,11 @@ void shade(const void *self, const PelageHit *hit, PelageShade *out) {
                 out->aov_written = 1;
             }
         }
+        const shader::FilteredLook f = cm.lod->at(t, hit->b1, hit->b2);
+        for (int k = 0; k < 3; ++k) out->albedo[k] = f.v[k];
+        out->eumelanin = f.v[3];
+        out->pheomelanin = f.v[4];
     }
-    const shader::FilteredLook f = cm.lod->at(t, hit->b1, hit->b2);
-    float *blended[shader::FilteredLook::channels] = {&out->albedo[0], &out->albedo[1], &out->albedo[2],
-                         &out->eumelanin, &out->pheomelanin};
-    for (int k = 0; k < shader::FilteredLook::channels; ++k)
-        *blended[k] = (1 - lod) * *blended[k] + lod * f.v[k];
 }
 
 void destroy(void *self) { delete static_cast<ClonalMosaic *>(self); }

@@ -294,8 +294,9 @@ namespace {
 
 // Level of detail (mosaic_lod.h): footprints below a triangle's size see exactly the
 // point-sampled pattern; from twice its size on, the filtered look of MosaicLod (built
-// here directly from the same file); half-way, the mean of the two. The camera's AOVs
-// keep naming the nearest cell at any footprint; lod = 0 never filters.
+// here directly from the same file); in between, one of the two, the filtered one with
+// probability equal to the weight. The camera's AOVs keep naming the nearest cell at any
+// footprint; lod = 0 never filters.
 TEST(ClonalMosaicPlugin, WideFootprintsSeeTheFilteredLook) {
     TempDir tmp;
     const std::string cells = simulate_two_type_cells(tmp, mesh_spec, 600);
@@ -313,7 +314,8 @@ TEST(ClonalMosaicPlugin, WideFootprintsSeeTheFilteredLook) {
 
     std::mt19937 rng(9);
     std::uniform_real_distribution<float> u(0, 1);
-    int differs = 0;
+    int differs = 0, filtered_in_ramp = 0, exact_in_ramp = 0;
+    double ramp_weight = 0;
     for (int n = 0; n < 2000; ++n) {
         const uint32_t prim = rng() % 1280;
         float b1 = u(rng), b2 = u(rng);
@@ -346,20 +348,33 @@ TEST(ClonalMosaicPlugin, WideFootprintsSeeTheFilteredLook) {
             const PelageShade hard = off.shade(prim, b1, b2, 0, 1);
             ASSERT_EQ(std::memcmp(&never, &hard, sizeof(PelageShade)), 0);
         }
-        // Half-way through the ramp: the mean of the exact and the filtered look.
-        float lo = small, hi = large;  // bisect for the footprint of weight 0.5
+        // Half-way through the ramp (weight 0.3 here): either look, whole, and the
+        // filtered one on about that fraction of the hits (stochastic filtering).
+        float lo = small, hi = large;  // bisect for the footprint of weight 0.3
         for (int it = 0; it < 60; ++it) {
             const float mid = 0.5f * (lo + hi);
-            (lod.weight(prim, mid) < 0.5f ? lo : hi) = mid;
+            (lod.weight(prim, mid) < 0.3f ? lo : hi) = mid;
         }
-        const float half = lod.weight(prim, hi);
-        const PelageShade at_half = inst.shade(prim, b1, b2, hi, 1);
-        const PelageShade exact_half = off.shade(prim, b1, b2, hi, 1);
-        for (int k = 0; k < 3; ++k)
-            ASSERT_NEAR(at_half.albedo[k],
-                        (1 - half) * exact_half.albedo[k] + half * f.v[k], 1e-6f);
+        ramp_weight += lod.weight(prim, hi);
+        const PelageShade in_ramp = inst.shade(prim, b1, b2, hi, 1);
+        const PelageShade exact_ramp = off.shade(prim, b1, b2, hi, 1);
+        const bool took_filtered = in_ramp.albedo[0] == f.v[0] &&
+                                   in_ramp.albedo[1] == f.v[1] &&
+                                   in_ramp.albedo[2] == f.v[2];
+        const bool took_exact =
+            std::memcmp(&in_ramp, &exact_ramp, sizeof(PelageShade)) == 0;
+        ASSERT_TRUE(took_filtered || took_exact) << n;
+        filtered_in_ramp += took_filtered && !took_exact;
+        exact_in_ramp += took_exact && !took_filtered;
+        // The same hit always takes the same one (deterministic at any thread count).
+        const PelageShade again = inst.shade(prim, b1, b2, hi, 1);
+        ASSERT_EQ(std::memcmp(&in_ramp, &again, sizeof(PelageShade)), 0);
     }
     EXPECT_GT(differs, 100);  // the filtered look is not the point sample
+    // Of the ramp hits where the two looks differ, about 30 % took the filtered one.
+    const double fraction = double(filtered_in_ramp) / (filtered_in_ramp + exact_in_ramp);
+    EXPECT_NEAR(ramp_weight / 2000, 0.3, 1e-3);
+    EXPECT_NEAR(fraction, 0.3, 0.06) << filtered_in_ramp << " / " << exact_in_ramp;
 }
 
 }  // namespace
