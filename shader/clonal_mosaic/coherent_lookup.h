@@ -10,7 +10,8 @@
 // the other when it lies within the band, and nothing else — so the scan is skipped.
 // Keeping both cells serves the hits along a boundary (the blends of antialiasing) and
 // those moving along it: 83 % of the camera hits of sphere_cheetah at 2000 x 2000
-// reuse, against 60 % with c1 and F2 alone; the F3 bound costs the scan at most one more line.
+// reuse, against 60 % with c1 and F2 alone; the F3 bound costs the scan at most one
+// more line.
 // The result is the same bits: |q - c1|² is computed from c1's position exactly as the
 // scan computes it, and the comparison keeps a relative margin far above float
 // rounding. Keyed by an index serial (callers give each index a number never reused,
