@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstring>
 #include <numeric>
 #include <stdexcept>
 
@@ -380,11 +381,148 @@ const ClosestCellIndex::Block *ClosestCellIndex::scan(const Block *b, const Bloc
     return b;
 }
 
+namespace {
+
+// Four lanes in one register (GCC / Clang vector extensions: SSE2, NEON …).
+using Lanes4f = float __attribute__((vector_size(16)));
+using Lanes4u = uint32_t __attribute__((vector_size(16)));
+using Lanes4i = int32_t __attribute__((vector_size(16)));
+
+inline Lanes4f splat(float v) { return Lanes4f{v, v, v, v}; }
+inline Lanes4f vmin(Lanes4f a, Lanes4f b) { return b < a ? b : a; }  // std::min's order
+inline float hmin(Lanes4f v) {
+    v = vmin(v, __builtin_shufflevector(v, v, 2, 3, 0, 1));
+    return vmin(v, __builtin_shufflevector(v, v, 1, 0, 3, 2))[0];
+}
+inline uint32_t hor(Lanes4u v) {
+    v |= __builtin_shufflevector(v, v, 2, 3, 0, 1);
+    return (v | __builtin_shufflevector(v, v, 1, 0, 3, 2))[0];
+}
+inline int hcount(Lanes4i mask) {  // lanes set in a comparison's mask (-1 each)
+    mask += __builtin_shufflevector(mask, mask, 2, 3, 0, 1);
+    return -(mask + __builtin_shufflevector(mask, mask, 1, 0, 3, 2))[0];
+}
+
+// Four lanes' K nearest so far (m0 <= m1, in slots s0, s1) and the least distance of the
+// others each has seen (rest), given one more cell per lane (d, in slot s).
+template <int K>
+struct LaneNearest {
+    Lanes4f m0 = splat(std::numeric_limits<float>::infinity()), m1 = m0, rest = m0;
+    Lanes4u s0 = {}, s1 = {};
+    void add(Lanes4f d, Lanes4u s) {
+        const Lanes4i lt0 = d < m0;
+        if constexpr (K == 1) {
+            rest = vmin(rest, lt0 ? m0 : d);
+        } else {
+            const Lanes4i lt1 = d < m1;
+            rest = vmin(rest, lt1 ? m1 : d);
+            s1 = lt0 ? s0 : lt1 ? s : s1;
+            m1 = lt0 ? m0 : lt1 ? d : m1;
+        }
+        s0 = lt0 ? s : s0;
+        m0 = lt0 ? d : m0;
+    }
+};
+
+}  // namespace
+
+template <int K>
+const ClosestCellIndex::Block *ClosestCellIndex::scan_lanes(const Block *b,
+                                                            const Block *e, Vec2f q,
+                                                            Nearest<K> &n,
+                                                            float *cells_left_d2) const {
+    static_assert((K == 1 || K == 2) && per_block == 5);
+    // Lane l keeps the K nearest of the cells it has seen (the l-th of each block) and
+    // the least distance of the others; the K nearest overall are among the lanes'. So
+    // nothing branches on what a distance comparison decides (the order of distances in
+    // a list is unpredictable): lanes 0-3 in one vector (lo), lane 4 in another (hi,
+    // lanes 5-7 +inf). A cell is named by its slot in the list (5 per block): its index
+    // and position are read once, at the end.
+    LaneNearest<K> lo, hi;
+    const Lanes4f qx = splat(q.x), qy = splat(q.y), inf4 = splat(inf_f);
+    const Block *const first = b;
+    Lanes4u slot = {0, 1, 2, 3};
+    float d_min2 = inf_f;
+    for (; b != e; ++b, slot += per_block) {
+        if (b->bound2 > d_min2) break;  // sorted by bound: all later blocks lie beyond
+        Lanes4f x, y;
+        std::memcpy(&x, b->x, sizeof x);
+        std::memcpy(&y, b->y, sizeof y);
+        // squared_distance(), four at a time: the same operations, the same bits.
+        const Lanes4f dx = x - qx, dy = y - qy;
+        lo.add(dx * dx + dy * dy, slot);
+        Lanes4f d4 = inf4;
+        d4[0] = squared_distance(b->x[4], b->y[4], q);
+        hi.add(d4, slot + 4);
+        // D_min² (Teo Fig. 6.2): the K-th nearest so far. For K = 2 the least of the
+        // lanes' nearest but f1's lane, and that lane's second (when two lanes tie at f1
+        // this is more than F2: only ever looser, which scans more, not less).
+        const float f1 = hmin(vmin(lo.m0, hi.m0));
+        if constexpr (K == 1) {
+            d_min2 = f1;
+        } else {
+            const Lanes4f at = splat(f1);
+            d_min2 = hmin(vmin(lo.m0 == at ? lo.m1 : lo.m0, hi.m0 == at ? hi.m1 : hi.m0));
+        }
+    }
+    // The nearest: the lane at f1 (exactly one, else a tie); then, for K = 2, the least
+    // of the others' nearest and that lane's second. What is left bounds the rest.
+    const float f1 = hmin(vmin(lo.m0, hi.m0));
+    const Lanes4f at1 = splat(f1);
+    const Lanes4i a_lo = lo.m0 == at1, a_hi = hi.m0 == at1;
+    bool tie = f1 != inf_f && hcount(a_lo) + hcount(a_hi) > 1;
+    const uint32_t slot1 = hor((Lanes4u(a_lo) & lo.s0) | (Lanes4u(a_hi) & hi.s0));
+    float f2 = inf_f, rest;
+    uint32_t slot2 = 0;
+    if constexpr (K == 1) {
+        rest = hmin(vmin(vmin(lo.rest, hi.rest), vmin(a_lo ? inf4 : lo.m0, a_hi ? inf4 : hi.m0)));
+        tie |= f1 != inf_f && f1 == rest;
+    } else {
+        const Lanes4f c_lo = a_lo ? lo.m1 : lo.m0, c_hi = a_hi ? hi.m1 : hi.m0;
+        f2 = hmin(vmin(c_lo, c_hi));
+        const Lanes4f at2 = splat(f2);
+        const Lanes4i b_lo = c_lo == at2, b_hi = c_hi == at2;
+        tie |= f2 != inf_f && (f2 == f1 || hcount(b_lo) + hcount(b_hi) > 1);
+        slot2 = hor((Lanes4u(b_lo) & (a_lo ? lo.s1 : lo.s0)) |
+                    (Lanes4u(b_hi) & (a_hi ? hi.s1 : hi.s0)));
+        // Left in the lanes: the second of f2's lane unless it was f1's too, and the
+        // others' candidates.
+        const Lanes4f r_lo = b_lo ? (a_lo ? inf4 : lo.m1) : c_lo;
+        const Lanes4f r_hi = b_hi ? (a_hi ? inf4 : hi.m1) : c_hi;
+        rest = hmin(vmin(vmin(lo.rest, hi.rest), vmin(r_lo, r_hi)));
+        tie |= f2 != inf_f && f2 == rest;
+    }
+    // An exact tie among the K + 1 nearest: the order by (distance, stable id) needs the
+    // ids, which the reference scan reads. (Rare: equal floats of distinct points.)
+    if (tie) {
+        n = Nearest<K>();
+        return scan<true, false, K>(first, e, q, n, -1, cells_left_d2);
+    }
+    if (f1 != inf_f) {
+        const Block &blk = first[slot1 / per_block];
+        const uint32_t l = slot1 % per_block;
+        n.d2[0] = f1;
+        n.index[0] = blk.cell[l];
+        n.nearest_at = {blk.x[l], blk.y[l]};
+    }
+    if constexpr (K == 2)
+        if (f2 != inf_f) {
+            const Block &blk = first[slot2 / per_block];
+            const uint32_t l = slot2 % per_block;
+            n.d2[1] = f2;
+            n.index[1] = blk.cell[l];
+            n.second_at = {blk.x[l], blk.y[l]};
+        }
+    if (cells_left_d2) *cells_left_d2 = rest;
+    n.beyond_d2 = b != e ? std::min(rest, b->bound2) : rest;
+    return b;
+}
+
 ClosestCell ClosestCellIndex::find(sim::TriId t, Vec2f q) const {
     Nearest<2> n;
     const Block *e;
     const Block *b = blocks_of(t, q, e);
-    scan<true, false, 2>(b, e, q, n);
+    scan_lanes<2>(b, e, q, n);
     return {n.index[0], n.index[1], std::sqrt(n.d2[0]), std::sqrt(n.d2[1])};
 }
 
@@ -392,7 +530,7 @@ ClosestCell ClosestCellIndex::find_nearest(sim::TriId t, Vec2f q) const {
     Nearest<1> n;
     const Block *e;
     const Block *b = blocks_of(t, q, e);
-    scan<true, false, 1>(b, e, q, n);
+    scan_lanes<1>(b, e, q, n);
     return {n.index[0], ClosestCell::none, std::sqrt(n.d2[0]),
             std::numeric_limits<float>::infinity()};
 }
@@ -482,7 +620,7 @@ ClosestCell ClosestCellIndex::find_nearest(sim::TriId t, float b1, float b2) con
     Nearest<1> n;
     const Block *e;
     const Block *b = blocks_at(t, b1, b2, e);
-    scan<true, false, 1>(b, e, point(t, b1, b2), n);
+    scan_lanes<1>(b, e, point(t, b1, b2), n);
     return {n.index[0], ClosestCell::none, std::sqrt(n.d2[0]),
             std::numeric_limits<float>::infinity()};
 }

@@ -7,7 +7,9 @@
 
 #include <cmath>
 #include <limits>
+#include <numeric>
 #include <random>
+#include <algorithm>
 
 #include "shader/clonal_mosaic/edge_consistency.h"
 #include "sim/procedural_mesh.h"
@@ -185,6 +187,60 @@ TEST(ClosestCell, BandedSearchIsTheThreeNearestCutAtTheBand) {
     EXPECT_GT(kept[1], 1000u);
     EXPECT_GT(kept[2], 1000u);
     EXPECT_GT(kept[3], 1000u);
+}
+
+// find() and find_nearest() scan lane by lane (no branch on a distance comparison) and
+// hand exact ties to the reference scan, which orders them by stable id. Cells placed
+// two and three times at one point (under shuffled ids) tie at every query: the
+// results must still be the first two of find_three(), bit for bit, on every query.
+TEST(ClosestCell, LaneScansEqualTheReferenceScanAlsoOnExactTies) {
+    const sim::Surface s = sim::build_surface(test::sample_mesh("cow.off"));
+    std::vector<CellOnSurface> list;
+    for (const auto &p : sim::sample_surface_uniform(s.crps, 6000, 31))
+        for (uint32_t copies = 1 + list.size() % 3, k = 0; k < copies; ++k)
+            list.push_back({p.tri, p.p.x, p.p.y, 0, 0});
+    std::vector<uint32_t> ids(list.size());
+    std::iota(ids.begin(), ids.end(), 0u);
+    std::shuffle(ids.begin(), ids.end(), std::mt19937(4));
+    for (size_t k = 0; k < list.size(); ++k) list[k].id = ids[k];
+    const CellTable cells = make_cell_table(s.crps.num_triangles(), list);
+    const ClosestCellIndex index(s.crps, cells);
+    size_t ties12 = 0, ties23 = 0;
+    for (const auto &q : sim::sample_surface_uniform(s.crps, 30000, 32)) {
+        const auto ref = index.find_three(q.tri, to_f(q.p));
+        const ClosestCell two = index.find(q.tri, to_f(q.p)),
+                          one = index.find_nearest(q.tri, to_f(q.p));
+        ASSERT_EQ(two.index, ref.index[0]);
+        ASSERT_EQ(two.second, ref.index[1]);
+        ASSERT_EQ(two.f1, std::sqrt(ref.d2[0]));
+        ASSERT_EQ(two.f2, std::sqrt(ref.d2[1]));
+        ASSERT_EQ(one.index, ref.index[0]);
+        ASSERT_EQ(one.f1, two.f1);
+        ties12 += ref.d2[0] == ref.d2[1];
+        ties23 += ref.d2[1] == ref.d2[2];
+    }
+    EXPECT_GT(ties12, 10000u);
+    EXPECT_GT(ties23, 3000u);
+}
+
+// Random cells, no ties: the same, and the scan's K-nearest bookkeeping across blocks
+// (lists of 1 … 30 blocks) agrees with the reference scan's on the triceratops.
+TEST(ClosestCell, LaneScansEqualTheReferenceScan) {
+    const sim::Surface s = sim::build_surface(test::sample_mesh("triceratops.off"));
+    for (const size_t n : {300u, 20000u}) {
+        const CellTable cells = random_cells(s.crps, n, 33);
+        const ClosestCellIndex index(s.crps, cells);
+        for (const auto &q : sim::sample_surface_uniform(s.crps, 30000, 34)) {
+            const auto ref = index.find_three(q.tri, to_f(q.p));
+            const ClosestCell two = index.find(q.tri, to_f(q.p)),
+                              one = index.find_nearest(q.tri, to_f(q.p));
+            ASSERT_EQ(two.index, ref.index[0]) << n;
+            ASSERT_EQ(two.second, ref.index[1]) << n;
+            ASSERT_EQ(two.f1, std::sqrt(ref.d2[0])) << n;
+            ASSERT_EQ(two.f2, std::sqrt(ref.d2[1])) << n;
+            ASSERT_EQ(one.index, ref.index[0]) << n;
+        }
+    }
 }
 
 // The renderer's entry points (barycentric coordinates) give what the point ones give.
