@@ -182,11 +182,19 @@ class ClosestCellIndex {
     // it overlaps with the list's).
     ClosestCell find_nearest(sim::TriId t, float b1, float b2) const;
     Nearest<3> find_three_within(sim::TriId t, float b1, float b2, float band) const;
+    // The triangle in its frame, q = v0 + b1 e1 + b2 e2, and 1 / det(e1, e2) for the
+    // barycentric coordinates of a point (blocks_of()).
+    struct alignas(32) Frame {
+        float v0x, v0y, e1x, e1y, e2x, e2y, inv_det;
+        // Local CRPS coordinates of barycentric point (b1, b2).
+        Vec2f point(float b1, float b2) const {
+            return {v0x + b1 * e1x + b2 * e2x, v0y + b1 * e1y + b2 * e2y};
+        }
+    };
+    static_assert(sizeof(Frame) == 32);
+    const Frame &frame(sim::TriId t) const { return m_frames[t]; }
     // Local CRPS coordinates of barycentric point (b1, b2) of t (what those use).
-    Vec2f point(sim::TriId t, float b1, float b2) const {
-        const Frame &r = m_frames[t];
-        return {r.v0x + b1 * r.e1x + b2 * r.e2x, r.v0y + b1 * r.e1y + b2 * r.e2y};
-    }
+    Vec2f point(sim::TriId t, float b1, float b2) const { return m_frames[t].point(b1, b2); }
 
     // Distance from (t, q) to one cell as t's unfolding places it; infinity when the cell
     // is not in t's list. For diagnostics (cracks).
@@ -206,12 +214,6 @@ class ClosestCellIndex {
     };
     static_assert(sizeof(Block) == 64);
 
-    // The triangle in its frame, q = v0 + b1 e1 + b2 e2, and 1 / det(e1, e2) for the
-    // barycentric coordinates of a point (blocks_of()).
-    struct alignas(32) Frame {
-        float v0x, v0y, e1x, e1y, e2x, e2y, inv_det;
-    };
-    static_assert(sizeof(Frame) == 32);
     struct Built;  // one triangle's list while building
 
     const Block *blocks_of(sim::TriId t, Vec2f q, const Block *&end) const;

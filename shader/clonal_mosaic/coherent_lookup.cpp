@@ -7,8 +7,8 @@ namespace pelage::shader {
 ClosestCellIndex::Nearest<3> CoherentLookup::find_three_within(
     const ClosestCellIndex &index, uint64_t serial, sim::TriId t, float b1, float b2,
     float band) {
-    const Vec2f q = index.point(t, b1, b2);
     if (m_serial == serial && m_tri == t) {
+        const Vec2f q = m_frame.point(b1, b2);  // index.point(t, b1, b2), the same bits
         // c1 and c2 at q, the nearer first by (distance, id) as the scan orders.
         const float d1 = squared_distance(m_at[0].x, m_at[0].y, q),
                     d2 = squared_distance(m_at[1].x, m_at[1].y, q);
@@ -16,12 +16,12 @@ ClosestCellIndex::Nearest<3> CoherentLookup::find_three_within(
         const float da = a ? d2 : d1, db = a ? d1 : d2;
         // three_within's cap, and the proof that every other cell lies beyond it.
         const float f1 = std::sqrt(da), cap = f1 + std::max(band, 0.0f);
-        // Not std::hypot: these are small coordinates, and hypot is a libm call that
-        // cost as much as the rest of the check.
+        // F3 - moved > cap + margin, squared: no square root (nor std::hypot, a libm
+        // call) on the way to the decision; the margin dwarfs their rounding.
         const float dx = q.x - m_q.x, dy = q.y - m_q.y;
-        const float moved = std::sqrt(dx * dx + dy * dy);
         const float margin = 1e-4f * (std::abs(q.x) + std::abs(q.y) + cap);
-        if (m_f3 - moved > cap + margin) {
+        const float slack = m_f3 - cap - margin;
+        if (slack > 0 && dx * dx + dy * dy < slack * slack) {
             ++m_reused;
             ClosestCellIndex::Nearest<3> n;
             n.d2[0] = da;
@@ -41,7 +41,8 @@ ClosestCellIndex::Nearest<3> CoherentLookup::find_three_within(
         const uint32_t *id = index.cells().id.data();
         m_serial = serial;
         m_tri = t;
-        m_q = q;
+        m_frame = index.frame(t);
+        m_q = m_frame.point(b1, b2);
         m_cell[0] = n.index[0];
         m_cell[1] = n.second;
         m_id[0] = id[n.index[0]];

@@ -41,6 +41,7 @@ class CoherentLookup {
   private:
     uint64_t m_serial = 0;  // 0: nothing to reuse
     sim::TriId m_tri = 0;
+    ClosestCellIndex::Frame m_frame{};  // the triangle's (a copy: no index read to reuse)
     Vec2f m_q;             // the search's query, in the triangle's frame
     uint32_t m_cell[2]{};  // c1, c2 (none: no second cell)
     uint32_t m_id[2]{};    // their stable ids (ties)
