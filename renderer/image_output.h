@@ -31,14 +31,16 @@ struct ImageMetadata {
 };
 
 // A checksum of the pixels as the EXR stores them (`data`: packed pixels, each channel
-// `channel_bytes` wide), independent of channel order,
-// written as pelage:pixel_hash, so a frame can be checked complete (--resume).
+// `channel_bytes` wide), independent of channel order (XXH3-64 per channel, then over
+// the names and digests in name order), written as pelage:pixel_xxh3, so a frame can
+// be checked complete (--resume).
 uint64_t pixel_hash(const void *data, size_t pixels,
                     const std::vector<std::string> &names,
                     const std::vector<int> &channel_bytes);
 
 // True when `path` is an EXR pelage wrote completely: the header reads, every pixel
-// reads, and the pixels hash to pelage:pixel_hash. Otherwise false with the reason.
+// reads, and the pixels hash to pelage:pixel_xxh3 (or, in files written before
+// 2026-11-22, to pelage:pixel_hash, FNV-1a). Otherwise false with the reason.
 bool exr_is_complete(const std::string &path, std::string *why = nullptr);
 
 // `pixels`: Film::num_channels interleaved floats per pixel (Film::resolve()).

@@ -30,9 +30,9 @@ std::string turntable_scene(const std::string &turntable) {
            turntable + "}}";
 }
 
-// The pelage:pixel_hash attribute (16 hex digits) of an EXR, read from its header bytes.
+// The pelage:pixel_xxh3 attribute (16 hex digits) of an EXR, read from its header bytes.
 std::string pixel_hash_of(const std::string &exr) {
-    const std::string bytes = slurp(exr), key = std::string("pelage:pixel_hash\0string\0", 25);
+    const std::string bytes = slurp(exr), key = std::string("pelage:pixel_xxh3\0string\0", 25);
     const size_t at = bytes.find(key);
     return at == std::string::npos ? "" : bytes.substr(at + key.size() + 4, 16);
 }

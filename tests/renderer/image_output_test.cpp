@@ -5,8 +5,11 @@
 #include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 
 #include "renderer/color_management.h"
@@ -72,6 +75,107 @@ TEST(ImageOutput, ExrRoundTripKeepsLayersChannelNamesAndMetadata) {
         ++files;
     }
     EXPECT_EQ(files, 1u);
+}
+
+// The stored bytes of an EXR, channel formats as written, and its spec.
+std::vector<unsigned char> native_pixels(const std::string &path, OIIO::ImageSpec &spec) {
+    auto in = OIIO::ImageInput::open(path);
+    EXPECT_TRUE(in) << OIIO::geterror();
+    spec = in->spec();
+    std::vector<unsigned char> native(spec.image_bytes(true));
+    EXPECT_TRUE(
+        in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::UNKNOWN, native.data()));
+    return native;
+}
+
+void rewrite(const std::string &path, const OIIO::ImageSpec &spec,
+             const std::vector<unsigned char> &native) {
+    auto out = OIIO::ImageOutput::create(path);
+    ASSERT_TRUE(out && out->open(path, spec) &&
+                out->write_image(OIIO::TypeDesc::UNKNOWN, native.data()) && out->close());
+}
+
+// --resume trusts a frame only when its pixels hash to the header's checksum, whatever
+// order OpenEXR gives the channels back in; files from before the switch to XXH3 carry
+// an FNV-1a pelage:pixel_hash, which must still verify.
+TEST(ImageOutput, PixelChecksumMarksCompleteFramesAndLegacyFnvStillVerifies) {
+    TempDir tmp;
+    const int W = 7, H = 5, nc = Film::num_channels;
+    std::vector<float> px(size_t(W) * H * nc);
+    for (size_t i = 0; i < px.size(); ++i) px[i] = float(i % 89) * 0.125f;
+    const auto names = Film::channel_names({"cell_id"});
+    ImageMetadata meta{"/scenes/x.json", "pelage test", 4, 7, 0.5, false};
+    const std::string path = tmp.file("frame.exr");
+    write_exr(path, W, H, px, names, true, meta);
+    std::string why;
+    EXPECT_TRUE(exr_is_complete(path, &why)) << why;
+
+    OIIO::ImageSpec spec;
+    std::vector<unsigned char> native = native_pixels(path, spec);
+    std::vector<int> sizes(spec.nchannels);
+    for (int c = 0; c < spec.nchannels; ++c) sizes[c] = int(spec.channelformat(c).size());
+    const uint64_t h = pixel_hash(native.data(), size_t(W) * H, spec.channelnames, sizes);
+    // Channel order does not matter: the same pixels with channels 0 and 1 swapped.
+    {
+        std::vector<std::string> swapped_names = spec.channelnames;
+        std::swap(swapped_names[0], swapped_names[1]);
+        std::vector<int> swapped_sizes = sizes;
+        std::swap(swapped_sizes[0], swapped_sizes[1]);
+        const size_t stride = spec.pixel_bytes(true);
+        std::vector<unsigned char> swapped(native.size());
+        for (size_t i = 0; i < size_t(W) * H; ++i) {
+            const unsigned char *p = &native[i * stride];
+            unsigned char *q = &swapped[i * stride];
+            std::memcpy(q, p + sizes[0], size_t(sizes[1]));
+            std::memcpy(q + sizes[1], p, size_t(sizes[0]));
+            std::memcpy(q + sizes[0] + sizes[1], p + sizes[0] + sizes[1],
+                        stride - size_t(sizes[0] + sizes[1]));
+        }
+        EXPECT_EQ(pixel_hash(swapped.data(), size_t(W) * H, swapped_names, swapped_sizes),
+                  h);
+    }
+    // One changed byte: another checksum, and the file is no longer complete.
+    native[native.size() / 2] ^= 0x40;
+    EXPECT_NE(pixel_hash(native.data(), size_t(W) * H, spec.channelnames, sizes), h);
+    rewrite(path, spec, native);
+    EXPECT_FALSE(exr_is_complete(path, &why));
+    EXPECT_EQ(why, "pixel checksum mismatch");
+
+    // A legacy file: FNV-1a 64 over each channel's name and bytes, in name order.
+    std::vector<size_t> order(spec.nchannels), offset(spec.nchannels);
+    size_t stride = 0;
+    for (int c = 0; c < spec.nchannels; ++c) {
+        order[c] = size_t(c);
+        offset[c] = stride;
+        stride += size_t(sizes[c]);
+    }
+    std::sort(order.begin(), order.end(), [&](size_t a, size_t b) {
+        return spec.channelnames[a] < spec.channelnames[b];
+    });
+    uint64_t fnv = 0xcbf29ce484222325ull;
+    for (const size_t c : order) {
+        for (const char ch : spec.channelnames[c])
+            fnv = (fnv ^ static_cast<unsigned char>(ch)) * 0x100000001b3ull;
+        for (size_t i = 0; i < size_t(W) * H; ++i)
+            for (int k = 0; k < sizes[c]; ++k)
+                fnv =
+                    (fnv ^ native[i * stride + offset[c] + size_t(k)]) * 0x100000001b3ull;
+    }
+    OIIO::ImageSpec legacy = spec;
+    legacy.erase_attribute("pelage:pixel_xxh3");
+    char hex[17];
+    std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(fnv));
+    legacy.attribute("pelage:pixel_hash", hex);
+    rewrite(path, legacy, native);
+    EXPECT_TRUE(exr_is_complete(path, &why)) << why;
+    legacy.attribute("pelage:pixel_hash", "0123456789abcdef");
+    rewrite(path, legacy, native);
+    EXPECT_FALSE(exr_is_complete(path, &why));
+    // Neither checksum: not a pelage frame.
+    legacy.erase_attribute("pelage:pixel_hash");
+    rewrite(path, legacy, native);
+    EXPECT_FALSE(exr_is_complete(path, &why));
+    EXPECT_EQ(why, "no pelage:pixel_xxh3 in the header");
 }
 
 TEST(ColorManagement, LinearMidGreyMapsToSrgbCode118ThroughTheStandardView) {
