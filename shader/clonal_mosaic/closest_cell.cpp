@@ -475,7 +475,8 @@ const ClosestCellIndex::Block *ClosestCellIndex::scan_lanes(const Block *b,
     float f2 = inf_f, rest;
     uint32_t slot2 = 0;
     if constexpr (K == 1) {
-        rest = hmin(vmin(vmin(lo.rest, hi.rest), vmin(a_lo ? inf4 : lo.m0, a_hi ? inf4 : hi.m0)));
+        rest = hmin(
+            vmin(vmin(lo.rest, hi.rest), vmin(a_lo ? inf4 : lo.m0, a_hi ? inf4 : hi.m0)));
         tie |= f1 != inf_f && f1 == rest;
     } else {
         const Lanes4f c_lo = a_lo ? lo.m1 : lo.m0, c_hi = a_hi ? hi.m1 : hi.m0;

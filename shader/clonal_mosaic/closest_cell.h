@@ -194,7 +194,9 @@ class ClosestCellIndex {
     static_assert(sizeof(Frame) == 32);
     const Frame &frame(sim::TriId t) const { return m_frames[t]; }
     // Local CRPS coordinates of barycentric point (b1, b2) of t (what those use).
-    Vec2f point(sim::TriId t, float b1, float b2) const { return m_frames[t].point(b1, b2); }
+    Vec2f point(sim::TriId t, float b1, float b2) const {
+        return m_frames[t].point(b1, b2);
+    }
 
     // Distance from (t, q) to one cell as t's unfolding places it; infinity when the cell
     // is not in t's list. For diagnostics (cracks).
@@ -224,7 +226,7 @@ class ClosestCellIndex {
     // bound; *cells_left_d2, when given, gets the former alone.
     template <bool prune, bool dedupe, int K>
     const Block *scan(const Block *b, const Block *e, Vec2f q, Nearest<K> &n,
-              float band = -1, float *cells_left_d2 = nullptr) const;
+                      float band = -1, float *cells_left_d2 = nullptr) const;
     // scan<true, false, K> for K = 1, 2 (every search but find_three and the reference),
     // lane by lane without data-dependent branches; the same results, bit for bit.
     template <int K>

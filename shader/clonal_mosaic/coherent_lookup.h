@@ -42,11 +42,11 @@ class CoherentLookup {
     uint64_t m_serial = 0;  // 0: nothing to reuse
     sim::TriId m_tri = 0;
     ClosestCellIndex::Frame m_frame{};  // the triangle's (a copy: no index read to reuse)
-    Vec2f m_q;             // the search's query, in the triangle's frame
-    uint32_t m_cell[2]{};  // c1, c2 (none: no second cell)
-    uint32_t m_id[2]{};    // their stable ids (ties)
-    Vec2f m_at[2];         // their positions (+inf: none)
-    float m_f3 = 0;        // a lower bound on the search's F3
+    Vec2f m_q;                          // the search's query, in the triangle's frame
+    uint32_t m_cell[2]{};               // c1, c2 (none: no second cell)
+    uint32_t m_id[2]{};                 // their stable ids (ties)
+    Vec2f m_at[2];                      // their positions (+inf: none)
+    float m_f3 = 0;                     // a lower bound on the search's F3
     size_t m_reused = 0, m_searched = 0;
 };
 

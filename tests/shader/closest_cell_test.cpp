@@ -5,11 +5,11 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <numeric>
 #include <random>
-#include <algorithm>
 
 #include "shader/clonal_mosaic/edge_consistency.h"
 #include "sim/procedural_mesh.h"
