@@ -364,7 +364,8 @@ nlohmann::json CompareResult::report() const {
         if (r.shader == "clonal_mosaic") cm = &r;
     }
     nlohmann::json ratios = nlohmann::json::object(),
-                   lookup_ratios = nlohmann::json::object();
+                   lookup_ratios = nlohmann::json::object(),
+                   ratio_rounds = nlohmann::json::object();
     if (cm)
         for (const CompareRun &r : runs) {
             if (&r == cm) continue;
@@ -374,12 +375,30 @@ nlohmann::json CompareResult::report() const {
                 r.cpu_seconds > 0 ? cm->cpu_seconds / r.cpu_seconds : 0.0;
             lookup_ratios["clonal_mosaic_vs_" + r.shader] =
                 r.ns_per_lookup > 0 ? cm->ns_per_lookup / r.ns_per_lookup : 0.0;
+            // Round by round (the two renders of a round ran back to back): how far a
+            // ratio moves between rounds is the machine's noise, which a single figure
+            // hides. The ratio of the minima always lies within [min, max] of these.
+            std::vector<double> paired;
+            for (size_t k = 0;
+                 k < std::min(cm->cpu_seconds_each.size(), r.cpu_seconds_each.size());
+                 ++k)
+                if (r.cpu_seconds_each[k] > 0)
+                    paired.push_back(cm->cpu_seconds_each[k] / r.cpu_seconds_each[k]);
+            if (!paired.empty()) {
+                std::sort(paired.begin(), paired.end());
+                const size_t n = paired.size();
+                const double median =
+                    n % 2 ? paired[n / 2] : 0.5 * (paired[n / 2 - 1] + paired[n / 2]);
+                ratio_rounds["clonal_mosaic_vs_" + r.shader] = {
+                    {"min", paired.front()}, {"median", median}, {"max", paired.back()}};
+            }
         }
     return {{"width", width},
             {"height", height},
             {"repeats", runs.empty() ? 0 : runs[0].cpu_seconds_each.size()},
             {"shaders", shaders},
             {"ratios", ratios},
+            {"ratio_rounds", ratio_rounds},
             {"lookup_ratios", lookup_ratios},
             {"params", params}};
 }

@@ -1,6 +1,6 @@
 // `pelage compare SCENE.json`: one render per shader on the scene's patterned objects,
 // timings and a labelled contact sheet (renderer/compare.h). --report keys are a
-// contract: shaders {NAME: {seconds, ns_per_lookup}}, ratios, lookup_ratios.
+// contract: shaders {NAME: {seconds, ns_per_lookup}}, ratios, ratio_rounds, lookup_ratios.
 #include <fmt/core.h>
 #include <unistd.h>
 
@@ -117,8 +117,15 @@ int run(const CompareCliOptions &o) {
     for (const auto &run : r.runs)
         fmt::print("{:<14} render {:8.3f} s ({:8.3f} s CPU)   shade {:8.1f} ns/lookup\n",
                    run.shader, run.seconds, run.cpu_seconds, run.ns_per_lookup);
-    for (const auto &[k, v] : report["ratios"].items())
-        fmt::print("  render {:<32} {:.3f}\n", k, v.get<double>());
+    for (const auto &[k, v] : report["ratios"].items()) {
+        fmt::print("  render {:<32} {:.3f}", k, v.get<double>());
+        if (report["repeats"].get<size_t>() > 1 && report["ratio_rounds"].contains(k)) {
+            const auto &r = report["ratio_rounds"][k];
+            fmt::print("   (rounds {:.3f} … {:.3f}, median {:.3f})", r["min"].get<double>(),
+                       r["max"].get<double>(), r["median"].get<double>());
+        }
+        fmt::print("\n");
+    }
     for (const auto &[k, v] : report["lookup_ratios"].items())
         fmt::print("  lookup {:<32} {:.3f}\n", k, v.get<double>());
     if (!o.report.empty()) write_json_file(o.report, report);

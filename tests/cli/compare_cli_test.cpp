@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <vector>
 
 #include "tests/test_paths.h"
 
@@ -113,10 +114,23 @@ TEST(CompareCli, RepeatReportsTheMinimumOfEveryRender) {
         for (const auto &v : each) lo = std::min(lo, v.get<double>());
         EXPECT_EQ(r["shaders"][s]["cpu_seconds"].get<double>(), lo) << s;
     }
-    EXPECT_NEAR(r["ratios"]["clonal_mosaic_vs_diffuse"].get<double>(),
+    const double ratio = r["ratios"]["clonal_mosaic_vs_diffuse"].get<double>();
+    EXPECT_NEAR(ratio,
                 r["shaders"]["clonal_mosaic"]["cpu_seconds"].get<double>() /
                     r["shaders"]["diffuse"]["cpu_seconds"].get<double>(),
                 1e-12);
+    // Round by round: the paired ratios' range, which holds the ratio of the minima.
+    const auto &rounds = r["ratio_rounds"]["clonal_mosaic_vs_diffuse"];
+    const auto &cm = r["shaders"]["clonal_mosaic"]["cpu_seconds_each"];
+    const auto &df = r["shaders"]["diffuse"]["cpu_seconds_each"];
+    std::vector<double> paired;
+    for (size_t k = 0; k < 3; ++k) paired.push_back(cm[k].get<double>() / df[k].get<double>());
+    std::sort(paired.begin(), paired.end());
+    EXPECT_EQ(rounds["min"].get<double>(), paired[0]);
+    EXPECT_EQ(rounds["median"].get<double>(), paired[1]);
+    EXPECT_EQ(rounds["max"].get<double>(), paired[2]);
+    EXPECT_LE(rounds["min"].get<double>(), ratio * (1 + 1e-12));
+    EXPECT_GE(rounds["max"].get<double>(), ratio * (1 - 1e-12));
     EXPECT_EQ(run_pelage("compare " + scene + " --repeat 0", nullptr, &err), 2);
     EXPECT_NE(err.find("--repeat"), std::string::npos) << err;
 }
