@@ -499,21 +499,17 @@ const ClosestCellIndex::Block *ClosestCellIndex::scan_lanes(const Block *b,
         n = Nearest<K>();
         return scan<true, false, K>(first, e, q, n, -1, cells_left_d2);
     }
-    if (f1 != inf_f) {
-        const Block &blk = first[slot1 / per_block];
-        const uint32_t l = slot1 % per_block;
-        n.d2[0] = f1;
-        n.index[0] = blk.cell[l];
-        n.nearest_at = {blk.x[l], blk.y[l]};
-    }
-    if constexpr (K == 2)
-        if (f2 != inf_f) {
-            const Block &blk = first[slot2 / per_block];
-            const uint32_t l = slot2 % per_block;
-            n.d2[1] = f2;
-            n.index[1] = blk.cell[l];
-            n.second_at = {blk.x[l], blk.y[l]};
-        }
+    // The k-th nearest is the cell in `slot`, at squared distance d2 (none when +inf).
+    auto take = [&](int k, uint32_t slot, float d2, Vec2f &at) {
+        if (d2 == inf_f) return;
+        const Block &blk = first[slot / per_block];
+        const uint32_t l = slot % per_block;
+        n.d2[k] = d2;
+        n.index[k] = blk.cell[l];
+        at = {blk.x[l], blk.y[l]};
+    };
+    take(0, slot1, f1, n.nearest_at);
+    if constexpr (K == 2) take(1, slot2, f2, n.second_at);
     if (cells_left_d2) *cells_left_d2 = rest;
     n.beyond_d2 = b != e ? std::min(rest, b->bound2) : rest;
     return b;
