@@ -1,6 +1,7 @@
 // Implements Teo 2006 §6.2 (see closest_cell.h).
 #include "shader/clonal_mosaic/closest_cell.h"
 
+#include "shader/clonal_mosaic/lane_nearest.h"
 #include "shader/clonal_mosaic/subdivision.h"
 
 #include <tbb/enumerable_thread_specific.h>
@@ -381,57 +382,13 @@ const ClosestCellIndex::Block *ClosestCellIndex::scan(const Block *b, const Bloc
     return b;
 }
 
-namespace {
-
-// Four lanes in one register (GCC / Clang vector extensions: SSE2, NEON …).
-using Lanes4f = float __attribute__((vector_size(16)));
-using Lanes4u = uint32_t __attribute__((vector_size(16)));
-using Lanes4i = int32_t __attribute__((vector_size(16)));
-
-inline Lanes4f splat(float v) { return Lanes4f{v, v, v, v}; }
-inline Lanes4f vmin(Lanes4f a, Lanes4f b) { return b < a ? b : a; }  // std::min's order
-inline float hmin(Lanes4f v) {
-    v = vmin(v, __builtin_shufflevector(v, v, 2, 3, 0, 1));
-    return vmin(v, __builtin_shufflevector(v, v, 1, 0, 3, 2))[0];
-}
-inline uint32_t hor(Lanes4u v) {
-    v |= __builtin_shufflevector(v, v, 2, 3, 0, 1);
-    return (v | __builtin_shufflevector(v, v, 1, 0, 3, 2))[0];
-}
-inline int hcount(Lanes4i mask) {  // lanes set in a comparison's mask (-1 each)
-    mask += __builtin_shufflevector(mask, mask, 2, 3, 0, 1);
-    return -(mask + __builtin_shufflevector(mask, mask, 1, 0, 3, 2))[0];
-}
-
-// Four lanes' K nearest so far (m0 <= m1, in slots s0, s1) and the least distance of the
-// others each has seen (rest), given one more cell per lane (d, in slot s).
-template <int K>
-struct LaneNearest {
-    Lanes4f m0 = splat(std::numeric_limits<float>::infinity()), m1 = m0, rest = m0;
-    Lanes4u s0 = {}, s1 = {};
-    void add(Lanes4f d, Lanes4u s) {
-        const Lanes4i lt0 = d < m0;
-        if constexpr (K == 1) {
-            rest = vmin(rest, lt0 ? m0 : d);
-        } else {
-            const Lanes4i lt1 = d < m1;
-            rest = vmin(rest, lt1 ? m1 : d);
-            s1 = lt0 ? s0 : lt1 ? s : s1;
-            m1 = lt0 ? m0 : lt1 ? d : m1;
-        }
-        s0 = lt0 ? s : s0;
-        m0 = lt0 ? d : m0;
-    }
-};
-
-}  // namespace
-
 template <int K>
 const ClosestCellIndex::Block *ClosestCellIndex::scan_lanes(const Block *b,
                                                             const Block *e, Vec2f q,
                                                             Nearest<K> &n,
                                                             float *cells_left_d2) const {
     static_assert((K == 1 || K == 2) && per_block == 5);
+    using namespace lanes;
     // Lane l keeps the K nearest of the cells it has seen (the l-th of each block) and
     // the least distance of the others; the K nearest overall are among the lanes'. So
     // nothing branches on what a distance comparison decides (the order of distances in

@@ -227,8 +227,9 @@ class ClosestCellIndex {
     template <bool prune, bool dedupe, int K>
     const Block *scan(const Block *b, const Block *e, Vec2f q, Nearest<K> &n,
                       float band = -1, float *cells_left_d2 = nullptr) const;
-    // scan<true, false, K> for K = 1, 2 (every search but find_three and the reference),
-    // lane by lane without data-dependent branches; the same results, bit for bit.
+    // scan<true, false, K> for K = 1, 2 (find() and find_nearest(): hits in no useful
+    // order), lane by lane without data-dependent branches; the same results, bit for
+    // bit.
     template <int K>
     const Block *scan_lanes(const Block *b, const Block *e, Vec2f q, Nearest<K> &n,
                             float *cells_left_d2 = nullptr) const;
