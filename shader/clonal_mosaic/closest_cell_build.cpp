@@ -1,0 +1,295 @@
+// Builds the closest-cell index: per triangle, the cell lists of its regions (Teo 2006
+// §6.2; see closest_cell.h). The searches are in closest_cell.cpp.
+#include "shader/clonal_mosaic/closest_cell.h"
+
+#include "shader/clonal_mosaic/subdivision.h"
+
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <numeric>
+#include <stdexcept>
+
+namespace pelage::shader {
+namespace {
+
+constexpr double inf = std::numeric_limits<double>::infinity();
+constexpr float inf_f = std::numeric_limits<float>::infinity();
+
+}  // namespace
+
+// One triangle's lists for one choice of regions.
+struct ClosestCellIndex::Built {
+    Frame frame{};
+    uint32_t regions = 1;  // sub-triangles per side searched at run time
+    std::array<uint32_t, max_subdivision * max_subdivision> end{};  // each list's, in blocks
+    std::vector<Block> blocks;
+    size_t entries = 0, distinct_triangles = 0, longest = 0;
+};
+
+ClosestCellIndex::ClosestCellIndex(const sim::Crps &crps, const CellTable &cells,
+                                   const ClosestCellOptions &options)
+    : m_cells(&cells), m_options(options) {
+    const auto t0 = std::chrono::steady_clock::now();
+    const size_t nt = crps.num_triangles();
+    double area = 0;
+    for (sim::TriId t = 0; t < nt; ++t) area += crps.frame(t).area;
+    m_spacing = std::sqrt(area / std::max<size_t>(cells.size(), 1));
+    // First guess of the reach: two mean cell spacings (Walter's r with w_r = 2).
+    m_initial_radius = 2.0 * m_spacing;
+    // No unfolding reaches farther than the sum of all triangles' diameters.
+    for (sim::TriId t = 0; t < nt; ++t) m_max_radius += 2 * crps.frame(t).bound_radius;
+
+    // --- Per triangle, in parallel; then concatenated in triangle order ---
+    // Both layouts: [0] coarse regions (few, long lists), [1] fine (as many regions as
+    // cell spacings across, up to 3 per side).
+    std::vector<std::array<Built, 2>> built(nt);
+    struct Scratch {
+        sim::UnfoldScratch unfold;
+        std::vector<sim::UnfoldedTriangle> unfolded;
+    };
+    tbb::enumerable_thread_specific<Scratch> scratch;
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, nt, 64), [&](const auto &range) {
+        Scratch &s = scratch.local();
+        for (size_t t = range.begin(); t != range.end(); ++t)
+            build_triangle(crps, static_cast<sim::TriId>(t), s.unfold, s.unfolded,
+                           built[t]);
+    });
+
+    // Fine regions scan fewer cells, coarse ones need less memory: fine while the whole
+    // index stays within the budget (then it mostly stays in cache anyway).
+    size_t blocks_of_layout[2] = {0, 0};
+    for (const auto &b : built)
+        for (int l = 0; l < 2; ++l) blocks_of_layout[l] += b[l].blocks.size();
+    size_t regions_of_layout[2] = {0, 0};
+    for (const auto &b : built)
+        for (int l = 0; l < 2; ++l) regions_of_layout[l] += b[l].regions * b[l].regions;
+    const size_t fixed = nt * sizeof(Frame) + (nt + 1) * sizeof(uint32_t) +
+                         (regions_of_layout[1] + 1) * sizeof(uint32_t);
+    const int layout =
+        fixed + blocks_of_layout[1] * sizeof(Block) <= m_options.fine_regions_max_bytes;
+    m_stats.fine_regions = layout == 1;
+    size_t total_blocks = blocks_of_layout[layout], lists = 0, entries = 0, distinct = 0;
+    if (total_blocks >= (size_t(1) << 30))
+        throw std::length_error("closest-cell index: more than 2^30 candidate blocks");
+    m_frames.resize(nt);
+    m_first_region.resize(nt + 1);
+    m_region_block.reserve(regions_of_layout[layout] + 1);
+    m_blocks.reserve(total_blocks);
+    for (size_t t = 0; t < nt; ++t) {
+        Built &b = built[t][layout];
+        m_frames[t] = b.frame;
+        m_first_region[t] = static_cast<uint32_t>(m_region_block.size()) << 2 | b.regions;
+        const uint32_t first = static_cast<uint32_t>(m_blocks.size());
+        for (uint32_t k = 0; k < b.regions * b.regions; ++k)
+            m_region_block.push_back(first + (k ? b.end[k - 1] : 0));
+        m_blocks.insert(m_blocks.end(), b.blocks.begin(), b.blocks.end());
+        m_stats.triangles_without_cells_in_reach += b.entries == 0;
+        m_stats.triangles_with_regions += b.regions > 1;
+        m_stats.max_candidate_cells = std::max(m_stats.max_candidate_cells, b.longest);
+        lists += b.regions * b.regions;
+        entries += b.entries;
+        distinct += b.distinct_triangles;
+        built[t] = {};
+    }
+    m_first_region[nt] = static_cast<uint32_t>(m_region_block.size()) << 2 | 1;
+    m_region_block.push_back(static_cast<uint32_t>(m_blocks.size()));
+    m_stats.mean_candidates = lists ? double(distinct) / lists : 0;
+    m_stats.mean_candidate_cells = lists ? double(entries) / lists : 0;
+    m_stats.bytes = m_frames.size() * sizeof(Frame) +
+                    m_first_region.size() * sizeof(uint32_t) +
+                    m_region_block.size() * sizeof(uint32_t) +
+                    m_blocks.size() * sizeof(Block);
+    m_stats.build_seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+void ClosestCellIndex::build_triangle(const sim::Crps &crps, sim::TriId t,
+                                      sim::UnfoldScratch &scratch,
+                                      std::vector<sim::UnfoldedTriangle> &unfolded,
+                                      std::array<Built, 2> &out) const {
+    const CellTable &cells = *m_cells;
+    const sim::CrpsFrame &ft = crps.frame(t);
+
+    // --- Subdivisions: r regions per side searched at run time, n per side built ---
+    // Fine regions: about one per cell spacing across (the per-sub-triangle lists of
+    // before). Coarse ones: one list per triangle while the triangle is at most six
+    // cell spacings across (on the cow with 20 000 cells, 78 % of the triangles), as its
+    // sub-triangles' lists overlap so much that storing them apart costs more cache
+    // misses than their shorter scans save (a threshold of four spacings: 4.3 MB on the
+    // cow, no faster). The reach is computed per sub-triangle of a finer n-subdivision
+    // (about two per cell spacing, at most 6, nested in both r-subdivisions): finer
+    // sub-triangles have tighter radii R_S, so the lists are shorter (one list per
+    // triangle on the cow: 28.8 cells with n <= 3, 21.9 with n <= 6), at no cost to a
+    // lookup.
+    const double spacings = 2 * ft.bound_radius / std::max(m_spacing, 1e-300);
+    const uint32_t r_max =
+        std::clamp<uint32_t>(m_options.max_subdivision, 1, max_subdivision);
+    const uint32_t rs[2] = {
+        std::clamp<uint32_t>(static_cast<uint32_t>(std::ceil(spacings / 6)), 1, r_max),
+        std::clamp<uint32_t>(static_cast<uint32_t>(std::ceil(spacings)), 1, r_max)};
+    // n: about two per spacing, at most 6, a multiple of both r (lcm(r0, r1) <= 6).
+    const uint32_t lcm = rs[0] * rs[1] / std::gcd(rs[0], rs[1]);
+    const uint32_t fine =
+        std::clamp<uint32_t>(static_cast<uint32_t>(std::ceil(2 * spacings)), 1, 6);
+    const uint32_t n = lcm * ((fine + lcm - 1) / lcm);
+    const sim::Vec2d v0 = ft.v[0], e1 = ft.v[1] - ft.v[0], e2 = ft.v[2] - ft.v[0];
+    {
+        Frame &f = out[0].frame;
+        f = {float(v0.x), float(v0.y), float(e1.x), float(e1.y), float(e2.x), float(e2.y), 0};
+        f.inv_det = 1.0f / (f.e1x * f.e2y - f.e1y * f.e2x);  // in float, as it always was
+        out[1].frame = f;
+    }
+    struct Sub {
+        uint32_t region[2];  // the sub-triangles of the r-subdivisions holding this one
+        sim::Vec2d v[3], centre;
+        double bound = 0, reach_needed = 0;
+    };
+    std::vector<Sub> subs;
+    for (uint32_t i = 0; i < n; ++i)
+        for (uint32_t j = 0; i + j < n; ++j)
+            for (int upper = 0; upper < 2; ++upper) {
+                if (upper && i + j + 1 >= n) continue;
+                Sub s;
+                const auto b = sub_triangle(n, i, j, upper);
+                for (int c = 0; c < 3; ++c) s.v[c] = v0 + e1 * b[c][0] + e2 * b[c][1];
+                s.centre = (s.v[0] + s.v[1] + s.v[2]) / 3.0;
+                for (int c = 0; c < 3; ++c)
+                    s.bound = std::max(s.bound, length(s.v[c] - s.centre));
+                for (int l = 0; l < 2; ++l)
+                    s.region[l] = slot_at(rs[l], (b[0][0] + b[1][0] + b[2][0]) / 3,
+                                          (b[0][1] + b[1][1] + b[2][1]) / 3);
+                subs.push_back(s);
+            }
+
+    // --- Grow t's unfolding until it holds, for every S, all cells within R_S of S ---
+    // Every cell of the unfolding carried into t's frame once (Teo's F[j→t]), in double.
+    // When fewer than three cells are reachable the radius doubles up to the size of the
+    // whole surface, after which the lists hold whatever there is (possibly nothing).
+    struct Mapped {
+        sim::Vec2d p;
+        uint32_t cell;
+        sim::TriId tri;
+    };
+    std::vector<Mapped> mapped;
+    double radius = m_initial_radius + ft.bound_radius;
+    for (int iteration = 0; iteration < 64; ++iteration) {
+        sim::unfold_around_triangle(crps, t, radius, unfolded, scratch, m_options.paths);
+        mapped.clear();
+        for (const sim::UnfoldedTriangle &u : unfolded)
+            for (uint32_t k = cells.row[u.tri]; k < cells.row[u.tri + 1]; ++k)
+                mapped.push_back({u.to_master.apply({cells.x[k], cells.z[k]}), k, u.tri});
+        double needed = 0;
+        for (Sub &s : subs) {
+            // For any three cells T, F3(q) <= max_{c in T} |q - c| on all of S, and that
+            // maximum over the triangle S is reached at one of its corners. T = the three
+            // nearest to S's centroid or to one of its corners; the tightest bound wins.
+            // (It is at most d_3 + b_S, the centroid bound.)
+            s.reach_needed = inf;
+            const sim::Vec2d probes[4] = {s.centre, s.v[0], s.v[1], s.v[2]};
+            for (const sim::Vec2d &probe : probes) {
+                const Mapped *near[3] = {nullptr, nullptr, nullptr};
+                double d[3] = {inf, inf, inf};
+                for (const Mapped &m : mapped) {
+                    const double dk = length(m.p - probe);
+                    if (dk < d[2]) {
+                        d[2] = dk;
+                        near[2] = &m;
+                        if (d[2] < d[1])
+                            std::swap(d[1], d[2]), std::swap(near[1], near[2]);
+                        if (d[1] < d[0])
+                            std::swap(d[0], d[1]), std::swap(near[0], near[1]);
+                    }
+                }
+                if (!near[2]) continue;  // fewer than three cells within the radius
+                double reach = 0;
+                for (const Mapped *m : near)
+                    for (const sim::Vec2d &corner : s.v)
+                        reach = std::max(reach, length(m->p - corner));
+                s.reach_needed = std::min(s.reach_needed, reach);
+            }
+            needed = std::max(needed, s.reach_needed);
+        }
+        if (needed <= radius || radius >= m_max_radius) break;
+        // A larger radius may reach triangles by other paths: grow with a margin,
+        // re-check.
+        radius = std::isfinite(needed) ? std::min(needed * 1.0001 + 1e-12, m_max_radius)
+                                       : std::min(2 * radius, m_max_radius);
+    }
+
+    // --- Per region: the cells within R_S of one of its S, by distance from it ---
+    // (Each triangle occurs once in an unfolding, so each cell once in `mapped`.)
+    struct Entry {
+        double bound;
+        const Mapped *m;
+    };
+    std::vector<Entry> list;
+    std::vector<sim::TriId> tris;
+    for (int layout = 0; layout < 2; ++layout) {
+        Built &o = out[layout];
+        const uint32_t r = rs[layout];
+        o.regions = r;
+        if (layout == 1 && rs[1] == rs[0]) {  // the same lists
+            o = out[0];
+            break;
+        }
+        std::array<std::array<sim::Vec2d, 3>, max_subdivision * max_subdivision> regions;
+        for (uint32_t i = 0; i < r; ++i)
+            for (uint32_t j = 0; i + j < r; ++j)
+                for (int upper = 0; upper < 2; ++upper) {
+                    if (upper && i + j + 1 >= r) continue;
+                    const auto b = sub_triangle(r, i, j, upper);
+                    for (int c = 0; c < 3; ++c)
+                        regions[slot_index(r, i, j, upper)][c] =
+                            v0 + e1 * b[c][0] + e2 * b[c][1];
+                }
+        for (uint32_t k = 0; k < r * r; ++k) {
+            const std::array<sim::Vec2d, 3> &region = regions[k];
+            list.clear();
+            for (const Mapped &m : mapped)
+                for (const Sub &s : subs)
+                    // (The distance from S is at least that from its centre less its
+                    // radius: a cheap test first, with room for its rounding.)
+                    if (s.region[layout] == k &&
+                        length(m.p - s.centre) - s.bound <= s.reach_needed * (1 + 1e-6) &&
+                        sim::point_triangle_distance(m.p, s.v) <=
+                            s.reach_needed * (1 + 1e-9)) {
+                        list.push_back(
+                            {sim::point_triangle_distance(m.p, region.data()), &m});
+                        break;
+                    }
+            std::sort(list.begin(), list.end(), [](const Entry &a, const Entry &b) {
+                return a.bound < b.bound || (a.bound == b.bound && a.m->cell < b.m->cell);
+            });
+            tris.clear();
+            for (const Entry &e : list) tris.push_back(e.m->tri);
+            std::sort(tris.begin(), tris.end());
+            o.distinct_triangles += std::unique(tris.begin(), tris.end()) - tris.begin();
+            o.entries += list.size();
+            o.longest = std::max(o.longest, list.size());
+            for (size_t i = 0; i < list.size(); i += per_block) {
+                Block b;
+                // The bound is rounded down by more than float's error in the scan's
+                // distances (positions of size |p| + the triangle's radius), so rounding
+                // never prunes the true nearest.
+                const double margin =
+                    1e-5 * (list[i].bound + length(list[i].m->p) + ft.bound_radius);
+                const double lower = std::max(0.0, list[i].bound - margin);
+                b.bound2 = float(lower * lower * (1 - 1e-6));
+                for (size_t l = 0; l < per_block; ++l) {
+                    const bool real = i + l < list.size();
+                    b.x[l] = real ? float(list[i + l].m->p.x) : inf_f;
+                    b.y[l] = real ? float(list[i + l].m->p.y) : inf_f;
+                    b.cell[l] = real ? list[i + l].m->cell : ClosestCell::none;
+                }
+                o.blocks.push_back(b);
+            }
+            o.end[k] = static_cast<uint32_t>(o.blocks.size());
+        }
+    }
+}
+
+}  // namespace pelage::shader
