@@ -95,9 +95,17 @@ void PathIntegrator::render_tile(Film &film, Sampler &sampler, int x0, int y0, i
     RTCRayHit first[K];
     // Row by row, sample by sample, K neighbouring pixels at a time: their camera rays
     // form one coherent packet. Each pixel still receives its samples in sample order.
+    // The rows run back and forth (boustrophedon), so consecutive camera hits stay
+    // neighbours where one row ends and the next begins: shaders that reuse the previous
+    // hit's work (the clonal mosaic's CoherentLookup) reuse it there too. Pixels are
+    // independent (own sampler, own film pixel), so the order changes no result.
+    const int packets = (x1 - x0 + K - 1) / K;
+    int sweep = 0;
     for (int y = y0; y < y1; ++y)
-        for (int s = s0; s < s1; ++s)
-            for (int xs = x0; xs < x1; xs += K) {
+        for (int s = s0; s < s1; ++s, ++sweep)
+            for (int p = 0; p < packets; ++p) {
+                const bool backwards = sweep & 1;
+                const int xs = x0 + K * (backwards ? packets - 1 - p : p);
                 const int n = std::min(K, x1 - xs);
                 // --- Camera rays, offsets drawn from the filter (every sample has
                 // weight 1) ---
@@ -118,8 +126,8 @@ void PathIntegrator::render_tile(Film &film, Sampler &sampler, int x0, int y0, i
                 stats.camera_rays += uint64_t(n);
                 for (int i = 0; i < n; ++i) record(log, org[i], dir[i], inf, 0);
                 // --- The paths, one pixel at a time ---
-                for (int i = 0; i < n; ++i) {
-                    const int x = xs + i;
+                for (int j = 0; j < n; ++j) {
+                    const int i = backwards ? n - 1 - j : j, x = xs + i;
                     FilmSample fs;
                     FilmPointAovs aovs;
                     fs.L = radiance(cam[i], first[i], lane[i], fs,
