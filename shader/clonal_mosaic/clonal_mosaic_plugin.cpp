@@ -25,6 +25,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <limits>
 #include <memory>
 #include <sstream>
 #include <string>
@@ -67,6 +68,11 @@ struct ClonalMosaic {
     std::unique_ptr<shader::MosaicLod> lod;  // null: lod = 0
     float jitter = 0, edge_width = 0;
     bool antialias = true, coherence = true;
+    // shade()'s fast path for camera hits: their footprints up to this width see the
+    // exact pattern on every triangle (no level of detail); < 0: no fast path (coherence
+    // or antialiasing off).
+    float camera_reuse_up_to = -1;
+    uint32_t num_triangles = 0;
     uint64_t serial = 0;  // this instance among all ever created (never 0)
 };
 
@@ -279,6 +285,10 @@ void *create(const PelageParamSet *ps, PelageError *err) {
                                                  type.eumelanin, type.pheomelanin}};
                 },
                 cm->types.size());
+        cm->num_triangles = uint32_t(cm->cells_ptr->num_triangles());
+        if (cm->coherence && cm->antialias)
+            cm->camera_reuse_up_to =
+                cm->lod ? cm->lod->exact_up_to() : std::numeric_limits<float>::infinity();
         return cm.release();
     } catch (const std::exception &e) {
         set_error(err, e.what());
@@ -300,32 +310,12 @@ void shade_as(const ClonalMosaic &cm, const CellLook &cell, float f1, PelageShad
     out->aov_written = 1;
 }
 
-// The pattern itself at the hit: one cell's look, or a blend across a boundary.
-void shade_cells(const ClonalMosaic &cm, const PelageHit *hit, PelageShade *out) {
-    // Boundaries are blended over w: the user's soft width, or at least the footprint.
-    // Antialiasing matters for what the camera sees; indirect bounces average over wide
-    // footprints anyway, so they take the cheaper nearest-cell path.
-    const float w =
-        std::max(cm.edge_width, cm.antialias && hit->depth == 0 ? hit->footprint : 0.0f);
-    if (w <= 0) {
-        const shader::ClosestCell c =
-            cm.index->find_nearest(hit->primitive_id, hit->b1, hit->b2);
-        if (c.index == shader::ClosestCell::none) return;  // a component without cells
-        shade_as(cm, cm.looks[c.index], c.f1, out);
-        return;
-    }
-    // Blend the three nearest cells with weights 1 - smoothstep(0, 2w, F_i - F1): equal
-    // on a Voronoi edge (F1 = F2) and at a vertex (F1 = F2 = F3), zero once a cell is 2w
-    // farther than the nearest. Continuous everywhere except where four cells lie within
-    // 2w of each other's distance. One search finds them: it stops at F1 + 2w, so hits
-    // far from any boundary cost little more than the nearest cell alone.
-    const float band = 2 * w;
-    const auto n =
-        cm.coherence
-            ? coherent_lookup.find_three_within(*cm.index, cm.serial, hit->primitive_id,
-                                                hit->b1, hit->b2, band)
-            : cm.index->find_three_within(hit->primitive_id, hit->b1, hit->b2, band);
-    if (n.index[0] == shader::ClosestCell::none) return;
+// Blend the (up to) three nearest cells of n, nearest first, with weights
+// 1 - smoothstep(0, 2w, F_i - F1): equal on a Voronoi edge (F1 = F2) and at a vertex
+// (F1 = F2 = F3), zero once a cell is 2w farther than the nearest. Continuous everywhere
+// except where four cells lie within 2w of each other's distance.
+inline void shade_blend(const ClonalMosaic &cm, const shader::CoherentLookup::Result &n,
+                        float w, PelageShade *out) {
     const float f1 = std::sqrt(n.d2[0]);
     const CellLook &nearest = cm.looks[n.index[0]];
     // No other cell within 2w (most hits): the blend is the nearest cell's look exactly
@@ -352,18 +342,52 @@ void shade_cells(const ClonalMosaic &cm, const PelageHit *hit, PelageShade *out)
     out->pheomelanin = pheo / total;
 }
 
+// The pattern itself at the hit: one cell's look, or a blend across a boundary.
+// `tried`: this thread's CoherentLookup when shade()'s fast path already found its
+// reuse impossible (null otherwise).
+void shade_cells(const ClonalMosaic &cm, const PelageHit *hit, PelageShade *out,
+                 shader::CoherentLookup *tried) {
+    // Boundaries are blended over w: the user's soft width, or at least the footprint.
+    // Antialiasing matters for what the camera sees; indirect bounces average over wide
+    // footprints anyway, so they take the cheaper nearest-cell path.
+    const float w =
+        std::max(cm.edge_width, cm.antialias && hit->depth == 0 ? hit->footprint : 0.0f);
+    if (w <= 0) {
+        const shader::ClosestCell c =
+            cm.index->find_nearest(hit->primitive_id, hit->b1, hit->b2);
+        if (c.index == shader::ClosestCell::none) return;  // a component without cells
+        shade_as(cm, cm.looks[c.index], c.f1, out);
+        return;
+    }
+    // One search finds the cells to blend: it stops at F1 + 2w, so hits far from any
+    // boundary cost little more than the nearest cell alone.
+    const float band = 2 * w;
+    const uint32_t t = hit->primitive_id;
+    const auto n = !cm.coherence ? cm.index->find_three_within(t, hit->b1, hit->b2, band)
+                   : tried
+                       ? tried->search(*cm.index, cm.serial, t, hit->b1, hit->b2, band)
+                       : coherent_lookup.find_three_within(*cm.index, cm.serial, t,
+                                                           hit->b1, hit->b2, band);
+    if (n.index[0] == shader::ClosestCell::none) return;
+    shade_blend(cm, n, w, out);
+}
+
 // Footprints wider than the triangles: the cells' mean look (mosaic_lod.h), faded in
 // over footprints of one to two triangle sizes. In the ramp a hit takes one of the two
 // looks, the filtered one with probability equal to its weight (stochastic filtering,
 // Pharr et al. 2024, "Filtering after shading with stochastic texture filtering"): the
 // same mean over a pixel's samples as blending both, at the cost of one.
-void shade(const void *self, const PelageHit *hit, PelageShade *out) {
-    const ClonalMosaic &cm = *static_cast<const ClonalMosaic *>(self);
+//
+// Every hit but the camera's reused ones goes through shade_any(), out of line: the path
+// most calls take stays a few cache lines of code (the renderer's own hot loop shares
+// the instruction cache with it).
+[[gnu::noinline]] void shade_any(const ClonalMosaic &cm, const PelageHit *hit,
+                                 PelageShade *out, shader::CoherentLookup *tried) {
     const uint32_t t = hit->primitive_id;
-    if (t >= cm.cells_ptr->num_triangles()) return;  // defaults stay
+    if (t >= cm.num_triangles) return;  // defaults stay
     const float weight = cm.lod ? cm.lod->weight(t, hit->footprint) : 0.0f;
     if (weight < 1 && !(weight > 0 && hit_noise(*hit) < weight)) {
-        shade_cells(cm, hit, out);
+        shade_cells(cm, hit, out, tried);
     } else {
         // The filtered look. No single cell is seen, so roughness and ior come from the
         // triangle's dominant type; the camera's AOVs still name the nearest cell.
@@ -385,6 +409,29 @@ void shade(const void *self, const PelageHit *hit, PelageShade *out) {
         out->eumelanin = f.v[3];
         out->pheomelanin = f.v[4];
     }
+}
+
+void shade(const void *self, const PelageHit *hit, PelageShade *out) {
+    const ClonalMosaic &cm = *static_cast<const ClonalMosaic *>(self);
+    // Camera hits with a footprint that sees the exact pattern (most calls): when the
+    // previous hit's cells provably answer this one too (coherent_lookup.h), blend them
+    // here — what shade_any() would do, the same bits, with less code on the way.
+    const uint32_t t = hit->primitive_id;
+    if (hit->depth == 0 && hit->footprint <= cm.camera_reuse_up_to &&
+        t < cm.num_triangles) {
+        const float w = std::max(cm.edge_width, hit->footprint);
+        if (w > 0) {
+            shader::CoherentLookup &coherent = coherent_lookup;  // one TLS look-up
+            shader::CoherentLookup::Result n;
+            if (coherent.reuse(cm.serial, t, hit->b1, hit->b2, 2 * w, n)) {
+                shade_blend(cm, n, w, out);
+                return;
+            }
+            shade_any(cm, hit, out, &coherent);
+            return;
+        }
+    }
+    shade_any(cm, hit, out, nullptr);
 }
 
 void destroy(void *self) { delete static_cast<ClonalMosaic *>(self); }

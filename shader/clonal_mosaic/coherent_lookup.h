@@ -20,6 +20,8 @@
 // One object per thread (the plugin keeps it thread_local); not thread-safe.
 #pragma once
 
+#include <algorithm>
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 
@@ -29,11 +31,49 @@ namespace pelage::shader {
 
 class CoherentLookup {
   public:
+    using Result = ClosestCellIndex::Nearest<3>;
+
     // ClosestCellIndex::find_three_within(t, b1, b2, band) of `index`, whose results it
     // equals bit for bit; `serial` identifies the index (never 0).
-    ClosestCellIndex::Nearest<3> find_three_within(const ClosestCellIndex &index,
-                                                   uint64_t serial, sim::TriId t,
-                                                   float b1, float b2, float band);
+    Result find_three_within(const ClosestCellIndex &index, uint64_t serial, sim::TriId t,
+                             float b1, float b2, float band) {
+        Result n;
+        if (reuse(serial, t, b1, b2, band, n)) return n;
+        return search(index, serial, t, b1, b2, band);
+    }
+
+    // The reuse alone, inline, for callers with a fast path of their own: true, with
+    // `n` set (c1, and c2 when the band reaches it), when the last search's result
+    // provably answers the query; false when it takes search().
+    bool reuse(uint64_t serial, sim::TriId t, float b1, float b2, float band, Result &n) {
+        if (m_serial != serial || m_tri != t) return false;
+        const Vec2f q = m_frame.point(b1, b2);  // index.point(t, b1, b2), the same bits
+        // c1 and c2 at q, the nearer first by (distance, id) as the scan orders.
+        const float d1 = squared_distance(m_at[0].x, m_at[0].y, q),
+                    d2 = squared_distance(m_at[1].x, m_at[1].y, q);
+        const int a = d2 < d1 || (d2 == d1 && m_id[1] < m_id[0]) ? 1 : 0, b = 1 - a;
+        const float da = a ? d2 : d1, db = a ? d1 : d2;
+        // three_within's cap, and the proof that every other cell lies beyond it.
+        const float f1 = std::sqrt(da), cap = f1 + std::max(band, 0.0f);
+        // F3 - moved > cap + margin, squared: no square root (nor std::hypot, a libm
+        // call) on the way to the decision; the margin dwarfs their rounding.
+        const float dx = q.x - m_q.x, dy = q.y - m_q.y;
+        const float margin = 1e-4f * (std::abs(q.x) + std::abs(q.y) + cap);
+        const float slack = m_f3 - cap - margin;
+        if (!(slack > 0 && dx * dx + dy * dy < slack * slack)) return false;
+        ++m_reused;
+        n.d2[0] = da;
+        n.index[0] = m_cell[a];
+        n.nearest_at = m_at[a];
+        if (db <= cap * cap) {  // a blend of the two (the band reaches the other)
+            n.d2[1] = db;
+            n.index[1] = m_cell[b];
+        }
+        return true;
+    }
+    // The search, remembered for the next queries (out of line: the cold path).
+    Result search(const ClosestCellIndex &index, uint64_t serial, sim::TriId t, float b1,
+                  float b2, float band);
 
     size_t reused() const { return m_reused; }
     size_t searched() const { return m_searched; }

@@ -44,6 +44,9 @@ class MosaicLod {
         const float x = w * m_tris[t].inv_size - 1;
         return !(x > 0) ? 0.0f : (x >= 1 ? 1.0f : x);  // (a NaN footprint: 0)
     }
+    // Footprints up to this width get weight 0 on every triangle (the least triangle
+    // size).
+    float exact_up_to() const { return m_smallest; }
     // The filtered look at barycentric point (b1, b2) of t.
     FilteredLook at(uint32_t t, float b1, float b2) const;
     // The type covering most of t (for what is not blended: roughness, ior).

@@ -196,7 +196,8 @@ TEST(ClonalMosaicPlugin, SoftBoundariesAreContinuous) {
 
 // Reusing the previous hit's cell (coherence, on by default) must never change a result:
 // walks of tiny steps across every triangle, crossing many cell boundaries, with soft
-// edges and varying footprints, give bit-identical outputs with and without it. (Each
+// edges and varying footprints, give bit-identical outputs with and without it (with
+// it, shade() answers reused camera hits on a path of its own). (Each
 // instance walks on its own: they share the thread's reuse slot.)
 TEST(ClonalMosaicPlugin, ReusingThePreviousCellGivesTheSameResultsAsSearching) {
     TempDir tmp;
@@ -208,7 +209,10 @@ TEST(ClonalMosaicPlugin, ReusingThePreviousCellGivesTheSameResultsAsSearching) {
         for (uint32_t prim = 0; prim < 1280; prim += 3)
             for (int k = 0; k <= 300; ++k) {  // corner 0 to the middle of edge 1-2
                 const float t = k / 300.0f;
-                const float footprint = 0.001f * float((k / 50) % 3);  // 0, 1e-3, 2e-3
+                // 0, 1e-3, 2e-3, and 0.15: past the triangles' size (~0.1), where the
+                // level of detail's ramp takes over (the plugin's fast path must not).
+                const float footprints[] = {0, 0.001f, 0.002f, 0.15f};
+                const float footprint = footprints[(k / 50) % 4];
                 out.push_back(inst.shade(prim, 0.5f * t, 0.5f * t + 0.1f * t * (1 - t), footprint));
             }
         return out;
