@@ -265,6 +265,13 @@ ClosestCellIndex::Nearest<3> ClosestCellIndex::three_within(const Block *b,
         n.next_d2 = first.d2[1];
         return n;
     }
+    // The second lies within it but every other cell beyond (n.third_d2 bounds them
+    // all): the second pass would find the second cell alone.
+    if (n.third_d2 > cap2) {
+        n.d2[1] = first.d2[1];
+        n.index[1] = first.index[1];
+        return n;
+    }
     const uint32_t *id = m_cells->id.data();
     for (; b != e && b->bound2 <= cap2; ++b) {
         float d2[per_block];
