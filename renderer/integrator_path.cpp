@@ -81,8 +81,8 @@ PathIntegrator::PathIntegrator(const Scene &scene, const Camera &camera,
       m_rr_depth(scene.desc().integrator.rr_depth),
       m_spp(scene.desc().film.spp) {
     m_timer_overhead = timer_overhead_seconds();
-    m_pixel_spread =
-        2 * std::tan(0.5f * scene.desc().camera.fov_deg * pi / 180) / float(height);
+    m_pixel_spread = 2 * std::tan(0.5f * scene.desc().camera.fov_deg * pi / 180) /
+                     float(height) * camera_spread_scale(m_spp);
 }
 
 void PathIntegrator::render_tile(Film &film, Sampler &sampler, int x0, int y0, int x1,

@@ -81,7 +81,8 @@ class PathIntegrator {
     PacketIntersector m_packets;  // camera rays
     int m_max_depth, m_rr_depth;
     int m_spp;             // samples per pixel: how much a rough bounce widens a cone
-    float m_pixel_spread;  // radians per pixel: the camera rays' cone (ray_cone.h)
+    float m_pixel_spread;  // the camera rays' cone, radians: a pixel's share per sample
+                           // (ray_cone.h)
     double m_timer_overhead;
     uint64_t m_plugin_timing_stride = 16;
     std::function<Camera(float)> m_motion;

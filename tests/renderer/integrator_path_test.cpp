@@ -205,7 +205,7 @@ TEST(PathIntegrator, PluginAovsReachTheFilmAndNanAlbedosDoNot) {
     const renderer::PluginRegistry plugins;
     unsetenv("PELAGE_SHADER_PATH");
     const renderer::Scene scene(desc, plugins);
-    ASSERT_EQ(scene.shader_aov_names().size(), 2u);
+    ASSERT_EQ(scene.shader_aov_names().size(), 3u);
     EXPECT_EQ(scene.shader_aov_names()[1], "object_plus_offset");
     const renderer::RenderResult r = renderer::render(scene, {});
     const std::vector<float> px = r.film->resolve();
@@ -223,6 +223,46 @@ TEST(PathIntegrator, PluginAovsReachTheFilmAndNanAlbedosDoNot) {
     EXPECT_GT(covered, 50);
     EXPECT_EQ(r.stats.nonfinite_samples,
               0u);  // the NaN albedo was clamped to 0 at the hit
+}
+
+// A camera hit's footprint is the share of its pixel one sample stands for, at the hit's
+// distance, in the object's units: camera_spread_scale(spp) of a pixel's width.
+TEST(PathIntegrator, CameraFootprintsAreAPixelsSharePerSample) {
+    TempDir tmp;
+    setenv("PELAGE_SHADER_PATH", (std::string(PELAGE_TEST_PLUGIN_DIR) + "/probe").c_str(),
+           1);
+    const renderer::PluginRegistry plugins;
+    unsetenv("PELAGE_SHADER_PATH");
+    // Straight down from height 2 onto a plane scaled by 10, fov 90 over 16 pixels: at
+    // the image centre a pixel is 2 · 2 tan 45° / 16 = 0.25 world units wide, 0.025 in
+    // the plane's own units.
+    auto centre_footprint = [&](int spp) {
+        const std::string json = R"({
+          "camera": {"position": [0, 2, 0], "look_at": [0, 0, 0], "up": [0, 0, -1], "fov": 90},
+          "film": {"width": 16, "height": 16, "spp": )" +
+                                 std::to_string(spp) + R"(},
+          "lights": [{"type": "environment", "color": 1}],
+          "objects": [{"mesh": "procedural:plane:1x1", "transform": {"scale": 10},
+                       "material": {"shader": "aov_probe"}}]
+        })";
+        const renderer::SceneDesc desc = renderer::load_scene_file(
+            tmp.write("f" + std::to_string(spp) + ".json", json));
+        const renderer::Scene scene(desc, plugins);
+        const std::vector<float> px = renderer::render(scene, {}).film->resolve();
+        const int nc = renderer::Film::num_channels;
+        double sum = 0;
+        for (int y = 7; y <= 8; ++y)
+            for (int x = 7; x <= 8; ++x) sum += px[size_t(y * 16 + x) * nc + 15];
+        return sum / 4;  // shader.footprint of sample 0, the four centre pixels
+    };
+    const double one = centre_footprint(1), four = centre_footprint(4),
+                 many = centre_footprint(256);
+    // Sample 0 lands within 2 pixels of the image centre (its pixel, spread by the
+    // filter): off the axis by up to atan(2/8), so up to 1/cos − 1 = 3.1 % farther.
+    EXPECT_GE(one, 0.025 * 0.9999);
+    EXPECT_LE(one, 0.025 * 1.032);
+    EXPECT_NEAR(four / one, 0.5, 0.01);
+    EXPECT_NEAR(many / one, 0.125, 0.125 * 0.01);
 }
 
 }  // namespace

@@ -12,6 +12,16 @@ namespace {
 
 constexpr float pi = 3.14159265358979f;
 
+TEST(RayCone, CameraConeIsTheSharePerSampleOfThePixel) {
+    // 1/√spp of a pixel: a quarter of its area for 4 samples, down to 1/8 of its width.
+    EXPECT_EQ(renderer::camera_spread_scale(1), 1.0f);
+    EXPECT_EQ(renderer::camera_spread_scale(4), 0.5f);
+    EXPECT_NEAR(renderer::camera_spread_scale(2), 1 / std::sqrt(2.0f), 1e-7f);
+    EXPECT_EQ(renderer::camera_spread_scale(64), 0.125f);
+    EXPECT_EQ(renderer::camera_spread_scale(1 << 20), 0.125f);
+    EXPECT_EQ(renderer::camera_spread_scale(0), 1.0f);
+}
+
 TEST(RayCone, BounceSpreadIsTheConeOfOneSampledDirection) {
     // A cosine lobe at normal incidence has p = 1/π: one sample per pixel stands for
     // the solid angle π, a cone of full angle 2 (π (θ/2)² = π).

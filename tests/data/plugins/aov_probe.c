@@ -1,6 +1,6 @@
-/* A test plugin: writes its hit's ids into the shader AOV slots and returns a NaN albedo
- * on every third primitive, so tests can check the AOV path and that no NaN reaches the
- * film. */
+/* A test plugin: writes its hit's ids and footprint into the shader AOV slots and returns
+ * a NaN albedo on every third primitive, so tests can check the AOV path, the footprints
+ * plugins are given, and that no NaN reaches the film. */
 #include <math.h>
 #include <stdlib.h>
 
@@ -16,7 +16,7 @@ static const PelageParamSpec probe_params[] = {
      "added to the object id"},
     {0},
 };
-static const char *const probe_aovs[] = {"prim", "object_plus_offset", NULL};
+static const char *const probe_aovs[] = {"prim", "object_plus_offset", "footprint", NULL};
 
 static void *probe_create(const PelageParamSet *ps, PelageError *err) {
     float *offset = (float *)malloc(sizeof(float));
@@ -28,6 +28,7 @@ static void *probe_create(const PelageParamSet *ps, PelageError *err) {
 static void probe_shade(const void *self, const PelageHit *hit, PelageShade *out) {
     out->aov[0] = (float)hit->primitive_id;
     out->aov[1] = (float)hit->object_id + *(const float *)self;
+    out->aov[2] = hit->footprint;
     out->aov_written = 1;
     out->albedo[0] = out->albedo[1] = out->albedo[2] =
         hit->primitive_id % 3 == 0 ? NAN : 0.5f;
