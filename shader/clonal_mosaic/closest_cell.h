@@ -54,7 +54,8 @@
 // by distance from t's centroid with a mask byte per (S, block) (that order prunes
 // poorly). The banded search for soft edges runs as a two-nearest scan (F2 lets
 // coherent_lookup.h reuse the result for the next hits) followed by a pass over the
-// same, now cached, blocks for the cells within F1 + band (three_within()).
+// same, now cached, blocks for the cells within F1 + band (three_within()) — skipped
+// when F2 lies beyond F1 + band, or when the bound on every other cell does.
 // Two ways to scan a list. find() and find_nearest() serve hits in no useful order
 // (indirect hits, `pelage lookup`), where which cell of a block is nearer is a coin
 // toss and the insertion scan's branches mispredicted ~6 times per lookup: they keep
