@@ -237,16 +237,16 @@ TEST(PathIntegrator, CameraFootprintsAreAPixelsSharePerSample) {
     // the image centre a pixel is 2 · 2 tan 45° / 16 = 0.25 world units wide, 0.025 in
     // the plane's own units.
     auto centre_footprint = [&](int spp) {
-        const std::string json = R"({
+        const std::string json = std::string(R"({
           "camera": {"position": [0, 2, 0], "look_at": [0, 0, 0], "up": [0, 0, -1], "fov": 90},
-          "film": {"width": 16, "height": 16, "spp": )" +
+          "film": {"width": 16, "height": 16, "spp": )") +
                                  std::to_string(spp) + R"(},
           "lights": [{"type": "environment", "color": 1}],
           "objects": [{"mesh": "procedural:plane:1x1", "transform": {"scale": 10},
                        "material": {"shader": "aov_probe"}}]
         })";
-        const renderer::SceneDesc desc = renderer::load_scene_file(
-            tmp.write("f" + std::to_string(spp) + ".json", json));
+        const renderer::SceneDesc desc =
+            renderer::load_scene_file(tmp.write(std::to_string(spp) + "spp.json", json));
         const renderer::Scene scene(desc, plugins);
         const std::vector<float> px = renderer::render(scene, {}).film->resolve();
         const int nc = renderer::Film::num_channels;
