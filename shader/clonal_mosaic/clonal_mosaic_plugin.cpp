@@ -378,9 +378,10 @@ void shade_cells(const ClonalMosaic &cm, const PelageHit *hit, PelageShade *out,
 // Pharr et al. 2024, "Filtering after shading with stochastic texture filtering"): the
 // same mean over a pixel's samples as blending both, at the cost of one.
 //
-// Every hit but the camera's reused ones goes through shade_any(), out of line: the path
-// most calls take stays a few cache lines of code (the renderer's own hot loop shares
-// the instruction cache with it).
+// Every hit but the camera's reused ones goes through shade_any(), out of line, so the
+// path most calls take stays short: ~95 instructions for a reused single-cell hit, no
+// stack frame (callgrind: the plugin's instructions −19 % at 1000×1000; its instruction
+// cache misses did not change measurably).
 [[gnu::noinline]] void shade_any(const ClonalMosaic &cm, const PelageHit *hit,
                                  PelageShade *out, shader::CoherentLookup *tried) {
     const uint32_t t = hit->primitive_id;
