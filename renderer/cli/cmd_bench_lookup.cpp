@@ -1,11 +1,11 @@
 // `pelage bench lookup`: the clonal mosaic's closest-cell search (Teo 2006 §6.2) on the
 // cow, the triceratops and the 760-triangle sphere — ns per lookup (F1+F2, F1 only,
-// random and coherent query order; banded walks across triangles, as camera hits, with
-// and without CoherentLookup's reuse; the level of detail's filtered look, as wide indirect
-// hits see it), agreement with the exhaustive search, the crack rate
-// along edges, and, per mesh, both unfolding choices. Target: < 100 ns per lookup on the
-// cow with 20 000 cells. Times are the thread's CPU time (ns_per_lookup_wall: wall
-// clock).
+// random and coherent query order; F1+F2 with the four-lane scans beside the eight-lane
+// ones the CPU may have; banded walks across triangles, as camera hits, with
+// and without CoherentLookup's reuse; the level of detail's filtered look, as wide
+// indirect hits see it), agreement with the exhaustive search, the crack rate along
+// edges, and, per mesh, both unfolding choices. Target: < 100 ns per lookup on the cow
+// with 20 000 cells. Times are the thread's CPU time (ns_per_lookup_wall: wall clock).
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -63,6 +63,16 @@ nlohmann::json measure(const sim::Surface &s, const shader::CellTable &cells,
     for (const auto &[t, q] : queries) sink += index.find(t, q).index;
     const double ns = 1e9 * pruned.seconds() / queries.size();
     const double ns_wall = 1e9 * wall.seconds() / queries.size();
+    // The same lookups with the four-lane scans (lane_scan.h): their time, and that they
+    // find the same cells.
+    shader::ClosestCellOptions narrow_options{paths, subdivision};
+    narrow_options.wide_lanes = false;
+    const shader::ClosestCellIndex narrow(s.crps, cells, narrow_options);
+    uint64_t wide_sink = 0, narrow_sink = 0;
+    for (const auto &[t, q] : queries) wide_sink += index.find(t, q).index;
+    const CpuTimer four_lanes;
+    for (const auto &[t, q] : queries) narrow_sink += narrow.find(t, q).index;
+    const double ns_four_lanes = 1e9 * four_lanes.seconds() / queries.size();
     const CpuTimer nearest;
     for (const auto &[t, q] : queries) sink += index.find_nearest(t, q).index;
     const double ns_f1 = 1e9 * nearest.seconds() / queries.size();
@@ -146,11 +156,15 @@ nlohmann::json measure(const sim::Surface &s, const shader::CellTable &cells,
             {"ns_per_lookup", ns},
             {"ns_per_lookup_wall", ns_wall},
             {"ns_per_lookup_f1_only", ns_f1},
+            {"lanes", index.stats().lanes},
+            {"ns_per_lookup_four_lanes", ns_four_lanes},
+            {"lanes_agree", wide_sink == narrow_sink},
             {"ns_per_lookup_coherent", ns_coherent},
             {"ns_per_lookup_banded_coherent", ns_banded},
             {"ns_per_lookup_banded_walk", ns_walk},
             {"ns_per_lookup_banded_walk_reuse", ns_walk_reuse},
-            {"walk_reused", double(reuse.reused()) / double(std::max<size_t>(walk.size(), 1))},
+            {"walk_reused",
+             double(reuse.reused()) / double(std::max<size_t>(walk.size(), 1))},
             {"ns_per_lookup_lod", ns_lod},
             {"ns_per_lookup_exhaustive", ns_ex},
             {"exhaustive_agreement", double(agree) / n_ex},

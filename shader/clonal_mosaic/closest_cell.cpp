@@ -2,13 +2,13 @@
 // index is built in closest_cell_build.cpp.
 #include "shader/clonal_mosaic/closest_cell.h"
 
-#include "shader/clonal_mosaic/lane_nearest.h"
-#include "shader/clonal_mosaic/subdivision.h"
-
 #include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <limits>
+
+#include "shader/clonal_mosaic/lane_scan.h"
+#include "shader/clonal_mosaic/subdivision.h"
 
 namespace pelage::shader {
 namespace {
@@ -17,17 +17,18 @@ constexpr float inf_f = std::numeric_limits<float>::infinity();
 
 }  // namespace
 
-const ClosestCellIndex::Block *ClosestCellIndex::blocks_at(sim::TriId t, float b1,
-                                                           float b2,
-                                                           const Block *&end) const {
+// Both inline into every search: a lookup is short enough that two calls showed (~60
+// instructions of ~375 per random find(), callgrind).
+[[gnu::always_inline]] inline const ClosestCellIndex::Block *ClosestCellIndex::blocks_at(
+    sim::TriId t, float b1, float b2, const Block *&end) const {
     const uint32_t first = m_first_region[t], r = first & 3u;
     const uint32_t g = (first >> 2) + (r == 1 ? 0 : slot_at(r, b1, b2));
     end = m_blocks.data() + m_region_block[g + 1];
     return m_blocks.data() + m_region_block[g];
 }
 
-const ClosestCellIndex::Block *ClosestCellIndex::blocks_of(sim::TriId t, Vec2f q,
-                                                           const Block *&end) const {
+[[gnu::always_inline]] inline const ClosestCellIndex::Block *ClosestCellIndex::blocks_of(
+    sim::TriId t, Vec2f q, const Block *&end) const {
     if ((m_first_region[t] & 3u) == 1) return blocks_at(t, 0, 0, end);
     // q's barycentric coordinates, by Cramer's rule on q - v0 = b1 e1 + b2 e2.
     const Frame &r = m_frames[t];
@@ -111,89 +112,28 @@ const ClosestCellIndex::Block *ClosestCellIndex::scan_lanes(const Block *b,
                                                             const Block *e, Vec2f q,
                                                             Nearest<K> &n,
                                                             float *cells_left_d2) const {
-    static_assert((K == 1 || K == 2) && per_block == 5);
-    using namespace lanes;
-    // Lane l keeps the K nearest of the cells it has seen (the l-th of each block) and
-    // the least distance of the others; the K nearest overall are among the lanes'. So
-    // nothing branches on what a distance comparison decides (the order of distances in
-    // a list is unpredictable): lanes 0-3 in one vector (lo), lane 4 in another (hi,
-    // lanes 5-7 +inf). A cell is named by its slot in the list (5 per block): its index
-    // and position are read once, at the end.
-    LaneNearest<K> lo, hi;
-    const Lanes4f qx = splat(q.x), qy = splat(q.y), inf4 = splat(inf_f);
-    const Block *const first = b;
-    Lanes4u slot = {0, 1, 2, 3};
-    float d_min2 = inf_f;
-    for (; b != e; ++b, slot += per_block) {
-        if (b->bound2 > d_min2) break;  // sorted by bound: all later blocks lie beyond
-        Lanes4f x, y;
-        std::memcpy(&x, b->x, sizeof x);
-        std::memcpy(&y, b->y, sizeof y);
-        // squared_distance(), four at a time: the same operations, the same bits.
-        const Lanes4f dx = x - qx, dy = y - qy;
-        lo.add(dx * dx + dy * dy, slot);
-        Lanes4f d4 = inf4;
-        d4[0] = squared_distance(b->x[4], b->y[4], q);
-        hi.add(d4, slot + 4);
-        // D_min² (Teo Fig. 6.2): the K-th nearest so far. For K = 2 the least of the
-        // lanes' nearest but f1's lane, and that lane's second (when two lanes tie at f1
-        // this is more than F2: only ever looser, which scans more, not less).
-        const float f1 = hmin(vmin(lo.m0, hi.m0));
-        if constexpr (K == 1) {
-            d_min2 = f1;
-        } else {
-            const Lanes4f at = splat(f1);
-            d_min2 = hmin(vmin(lo.m0 == at ? lo.m1 : lo.m0, hi.m0 == at ? hi.m1 : hi.m0));
-        }
-    }
-    // The nearest: the lane at f1 (exactly one, else a tie); then, for K = 2, the least
-    // of the others' nearest and that lane's second. What is left bounds the rest.
-    const float f1 = hmin(vmin(lo.m0, hi.m0));
-    const Lanes4f at1 = splat(f1);
-    const Lanes4i a_lo = lo.m0 == at1, a_hi = hi.m0 == at1;
-    bool tie = f1 != inf_f && hcount(a_lo) + hcount(a_hi) > 1;
-    const uint32_t slot1 = hor((Lanes4u(a_lo) & lo.s0) | (Lanes4u(a_hi) & hi.s0));
-    float f2 = inf_f, rest;
-    uint32_t slot2 = 0;
-    if constexpr (K == 1) {
-        rest = hmin(
-            vmin(vmin(lo.rest, hi.rest), vmin(a_lo ? inf4 : lo.m0, a_hi ? inf4 : hi.m0)));
-        tie |= f1 != inf_f && f1 == rest;
-    } else {
-        const Lanes4f c_lo = a_lo ? lo.m1 : lo.m0, c_hi = a_hi ? hi.m1 : hi.m0;
-        f2 = hmin(vmin(c_lo, c_hi));
-        const Lanes4f at2 = splat(f2);
-        const Lanes4i b_lo = c_lo == at2, b_hi = c_hi == at2;
-        tie |= f2 != inf_f && (f2 == f1 || hcount(b_lo) + hcount(b_hi) > 1);
-        slot2 = hor((Lanes4u(b_lo) & (a_lo ? lo.s1 : lo.s0)) |
-                    (Lanes4u(b_hi) & (a_hi ? hi.s1 : hi.s0)));
-        // Left in the lanes: the second of f2's lane unless it was f1's too, and the
-        // others' candidates.
-        const Lanes4f r_lo = b_lo ? (a_lo ? inf4 : lo.m1) : c_lo;
-        const Lanes4f r_hi = b_hi ? (a_hi ? inf4 : hi.m1) : c_hi;
-        rest = hmin(vmin(vmin(lo.rest, hi.rest), vmin(r_lo, r_hi)));
-        tie |= f2 != inf_f && f2 == rest;
-    }
+    static_assert(K == 1 || K == 2);
+    const LaneScan r = (K == 1 ? m_lanes.nearest : m_lanes.nearest_two)(b, e, q);
     // An exact tie among the K + 1 nearest: the order by (distance, stable id) needs the
     // ids, which the reference scan reads. (Rare: equal floats of distinct points.)
-    if (tie) {
+    if (r.tie) {
         n = Nearest<K>();
-        return scan<true, false, K>(first, e, q, n, -1, cells_left_d2);
+        return scan<true, false, K>(b, e, q, n, -1, cells_left_d2);
     }
     // The k-th nearest is the cell in `slot`, at squared distance d2 (none when +inf).
     auto take = [&](int k, uint32_t slot, float d2, Vec2f &at) {
         if (d2 == inf_f) return;
-        const Block &blk = first[slot / per_block];
+        const Block &blk = b[slot / per_block];
         const uint32_t l = slot % per_block;
         n.d2[k] = d2;
         n.index[k] = blk.cell[l];
         at = {blk.x[l], blk.y[l]};
     };
-    take(0, slot1, f1, n.nearest_at);
-    if constexpr (K == 2) take(1, slot2, f2, n.second_at);
-    if (cells_left_d2) *cells_left_d2 = rest;
-    n.beyond_d2 = b != e ? std::min(rest, b->bound2) : rest;
-    return b;
+    take(0, r.slot1, r.f1, n.nearest_at);
+    if constexpr (K == 2) take(1, r.slot2, r.f2, n.second_at);
+    if (cells_left_d2) *cells_left_d2 = r.rest;
+    n.beyond_d2 = r.stop != e ? std::min(r.rest, r.stop->bound2) : r.rest;
+    return r.stop;
 }
 
 ClosestCell ClosestCellIndex::find(sim::TriId t, Vec2f q) const {
@@ -236,10 +176,14 @@ ClosestCellIndex::Nearest<3> ClosestCellIndex::three_within(const Block *b,
     // one two-nearest search. The result is what one three-nearest scan
     // cut at F1 + band gives (the second pass keeps the same (distance, id) order).
     // The first pass also leaves what CoherentLookup needs to reuse the result for
-    // the next hits: the second cell's position and a lower bound on F3.
+    // the next hits: the second cell's position and a lower bound on F3. It runs lane
+    // by lane with eight lanes, with the insertion scan otherwise (closest_cell.h: the
+    // faster on camera hits with four); the same bits either way.
     Nearest<2> first;
     float cells_left_d2;
-    const Block *stop = scan<true, false, 2>(b, e, q, first, -1, &cells_left_d2);
+    const Block *stop = m_lanes.lanes == 8
+                            ? scan_lanes<2>(b, e, q, first, &cells_left_d2)
+                            : scan<true, false, 2>(b, e, q, first, -1, &cells_left_d2);
     Nearest<3> n;
     n.d2[0] = first.d2[0];
     n.index[0] = first.index[0];

@@ -60,12 +60,16 @@
 // (indirect hits, `pelage lookup`), where which cell of a block is nearer is a coin
 // toss and the insertion scan's branches mispredicted ~6 times per lookup: they keep
 // each of a block's five lanes' own K nearest in vector registers instead, selects
-// only, and merge the lanes at the end (scan_lanes(); exact ties go to the insertion
+// only, and merge the lanes at the end (lane_scan.h; exact ties go to the insertion
 // scan, which orders them by id). Random F1 + F2 on the cow 89-97 ns instead of
 // 105-126, F1 63-67 instead of 72-94, and replayed indirect hits of sphere_cheetah
-// 47 instead of 54 ns. The banded search keeps the insertion scan: camera hits come
-// in runs along one list, where its branches predict well and it does half the work
-// (replayed camera hits: 49 ns searched both ways, 60 lane by lane).
+// 47 instead of 54 ns, with four lanes (SSE2). Eight lanes (AVX2, chosen at run time)
+// hold a whole block, with one-instruction selects: 375 instead of 668 instructions per
+// random F1 + F2 (callgrind), 77-92 ns instead of 93-112 (2026-11-22, same run). With
+// them the banded search's first pass (its two nearest) runs lane by lane too, where
+// with four lanes the insertion scan had been faster (camera hits come in runs along
+// one list, where its branches predict well): banded walks as camera hits 47-65 ns
+// instead of 60-72. Its second pass, rare, keeps the insertion scan.
 // By default the unfolding walks edges only (sim/unfold.h, UnfoldPaths): the two
 // triangles on either side of an edge then see identical maps for every triangle reached
 // through that edge, which reduces Teo's "cracks" (§6.3); `pelage bench lookup` measures
@@ -79,22 +83,13 @@
 #include <limits>
 #include <vector>
 
+#include "shader/clonal_mosaic/cell_block.h"
 #include "shader/clonal_mosaic/cell_table.h"
+#include "shader/clonal_mosaic/lane_scan.h"
 #include "sim/crps.h"
 #include "sim/unfold.h"
 
 namespace pelage::shader {
-
-struct Vec2f {
-    float x = 0, y = 0;
-};
-
-// |q - (x, y)|², the one expression every search and reuse uses (scan(),
-// coherent_lookup.h), so that their results are the same bits.
-inline float squared_distance(float x, float y, Vec2f q) {
-    const float dx = x - q.x, dy = y - q.y;
-    return dx * dx + dy * dy;
-}
 
 struct ClosestCell {
     static constexpr uint32_t none = 0xffffffffu;
@@ -114,6 +109,9 @@ struct ClosestCellOptions {
     // Fine regions (about one per cell spacing across) while the index stays within this
     // size, else one region per triangle up to six spacings across (see above).
     size_t fine_regions_max_bytes = 4'000'000;
+    // Eight-lane AVX2 scans when the CPU has them (lane_scan.h); the results are the same
+    // bits either way (false: the four-lane scans, for tests and benchmarks).
+    bool wide_lanes = true;
 };
 
 struct ClosestCellStats {
@@ -125,6 +123,7 @@ struct ClosestCellStats {
     size_t triangles_without_cells_in_reach = 0;
     size_t triangles_with_regions = 0;  // searched in r x r regions (r > 1)
     bool fine_regions = false;          // which layout fitted (fine_regions_max_bytes)
+    int lanes = 0;                      // the lane scans' width (lane_scan.h)
 };
 
 class ClosestCellIndex {
@@ -207,15 +206,8 @@ class ClosestCellIndex {
     const CellTable &cells() const { return *m_cells; }
 
   private:
-    // Five candidate cells in t's frame; padding entries have cell == none, x = y = +inf.
-    // Five (60 bytes and the bound) rather than four: the line has room for them.
-    static constexpr int per_block = 5;
-    struct alignas(64) Block {
-        float x[per_block], y[per_block];
-        uint32_t cell[per_block];
-        float bound2;  // squared lower bound of the distance from t, for all five cells
-    };
-    static_assert(sizeof(Block) == 64);
+    static constexpr int per_block = CellBlock::size;
+    using Block = CellBlock;
 
     struct Built;  // one triangle's list while building
 
@@ -229,8 +221,8 @@ class ClosestCellIndex {
     const Block *scan(const Block *b, const Block *e, Vec2f q, Nearest<K> &n,
                       float band = -1, float *cells_left_d2 = nullptr) const;
     // scan<true, false, K> for K = 1, 2 (find() and find_nearest(): hits in no useful
-    // order), lane by lane without data-dependent branches; the same results, bit for
-    // bit.
+    // order), lane by lane without data-dependent branches (lane_scan.h); the same
+    // results, bit for bit.
     template <int K>
     const Block *scan_lanes(const Block *b, const Block *e, Vec2f q, Nearest<K> &n,
                             float *cells_left_d2 = nullptr) const;
@@ -250,6 +242,7 @@ class ClosestCellIndex {
     std::vector<uint32_t> m_first_region;
     std::vector<uint32_t> m_region_block;
     std::vector<Block> m_blocks;
+    LaneScanners m_lanes;
     ClosestCellStats m_stats;
 };
 

@@ -32,7 +32,8 @@ struct ClosestCellIndex::Built {
 
 ClosestCellIndex::ClosestCellIndex(const sim::Crps &crps, const CellTable &cells,
                                    const ClosestCellOptions &options)
-    : m_cells(&cells), m_options(options) {
+    : m_cells(&cells), m_options(options), m_lanes(lane_scanners(options.wide_lanes)) {
+    m_stats.lanes = m_lanes.lanes;
     const auto t0 = std::chrono::steady_clock::now();
     const size_t nt = crps.num_triangles();
     double area = 0;

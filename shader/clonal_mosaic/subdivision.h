@@ -27,7 +27,7 @@ inline uint32_t slot_index(uint32_t n, uint32_t i, uint32_t j, bool upper) {
 // The sub-triangle of an n-subdivision holding barycentric point (b1, b2), clamped to the
 // triangle (hits may sit a rounding error outside it).
 template <typename Real>
-uint32_t slot_at(uint32_t n, Real b1, Real b2) {
+[[gnu::always_inline]] inline uint32_t slot_at(uint32_t n, Real b1, Real b2) {
     const Real nf = Real(n);
     const Real u = std::clamp(b1 * nf, Real(0), nf);
     const Real v = std::clamp(b2 * nf, Real(0), nf - u);

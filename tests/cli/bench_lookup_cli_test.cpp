@@ -1,6 +1,6 @@
 // `pelage bench lookup` end to end on a small sphere: the output contract's keys (other
-// tools read them), the pruned search agreeing with the exhaustive one, reuse on the
-// banded walks, and a bad mesh refused with exit 2.
+// tools read them), the pruned search agreeing with the exhaustive one and the two lane
+// widths with each other, reuse on the banded walks, and a bad mesh refused with exit 2.
 #include <gtest/gtest.h>
 
 #include <nlohmann/json.hpp>
@@ -21,16 +21,20 @@ TEST(BenchLookupCli, PrintsTheContractKeysAndExactSearches) {
     ASSERT_TRUE(j.contains("runs"));
     ASSERT_EQ(j["runs"].size(), 1u);
     const nlohmann::json &r = j["runs"][0];
-    for (const char *key : {"mesh", "cells", "ns_per_lookup", "exhaustive_agreement",
-                            "edge_disagreement", "ns_per_lookup_coherent",
-                            "ns_per_lookup_f1_only", "ns_per_lookup_banded_walk",
-                            "ns_per_lookup_banded_walk_reuse", "walk_reused",
-                            "ns_per_lookup_lod", "index_megabytes", "checksum"})
+    for (const char *key :
+         {"mesh", "cells", "ns_per_lookup", "exhaustive_agreement", "edge_disagreement",
+          "ns_per_lookup_coherent", "ns_per_lookup_f1_only", "ns_per_lookup_banded_walk",
+          "ns_per_lookup_banded_walk_reuse", "walk_reused", "ns_per_lookup_lod",
+          "index_megabytes", "lanes", "ns_per_lookup_four_lanes", "lanes_agree",
+          "checksum"})
         EXPECT_TRUE(r.contains(key)) << key;
     EXPECT_EQ(r["cells"].get<double>(), 800);
     EXPECT_GE(r["exhaustive_agreement"].get<double>(), 0.9999);
     EXPECT_GT(r["ns_per_lookup"].get<double>(), 0);
     EXPECT_GT(r["ns_per_lookup_lod"].get<double>(), 0);
+    // Four or eight lanes, whichever the CPU runs, find the cells the four-lane scans do.
+    EXPECT_TRUE(r["lanes"] == 4 || r["lanes"] == 8) << r["lanes"];
+    EXPECT_TRUE(r["lanes_agree"].get<bool>());
     // Walks of 32 steps across triangles about two cells wide: most steps reuse.
     EXPECT_GT(r["walk_reused"].get<double>(), 0.3);
     EXPECT_LE(r["walk_reused"].get<double>(), 1.0);

@@ -192,7 +192,8 @@ TEST(ClosestCell, BandedSearchIsTheThreeNearestCutAtTheBand) {
 // find() and find_nearest() scan lane by lane (no branch on a distance comparison) and
 // hand exact ties to the reference scan, which orders them by stable id. Cells placed
 // two and three times at one point (under shuffled ids) tie at every query: the
-// results must still be the first two of find_three(), bit for bit, on every query.
+// results must still be the first two of find_three(), bit for bit, on every query, with
+// four lanes and with eight (lane_scan.h; four twice where the CPU has no AVX2).
 TEST(ClosestCell, LaneScansEqualTheReferenceScanAlsoOnExactTies) {
     const sim::Surface s = sim::build_surface(test::sample_mesh("cow.off"));
     std::vector<CellOnSurface> list;
@@ -204,42 +205,87 @@ TEST(ClosestCell, LaneScansEqualTheReferenceScanAlsoOnExactTies) {
     std::shuffle(ids.begin(), ids.end(), std::mt19937(4));
     for (size_t k = 0; k < list.size(); ++k) list[k].id = ids[k];
     const CellTable cells = make_cell_table(s.crps.num_triangles(), list);
-    const ClosestCellIndex index(s.crps, cells);
-    size_t ties12 = 0, ties23 = 0;
-    for (const auto &q : sim::sample_surface_uniform(s.crps, 30000, 32)) {
-        const auto ref = index.find_three(q.tri, to_f(q.p));
-        const ClosestCell two = index.find(q.tri, to_f(q.p)),
-                          one = index.find_nearest(q.tri, to_f(q.p));
-        ASSERT_EQ(two.index, ref.index[0]);
-        ASSERT_EQ(two.second, ref.index[1]);
-        ASSERT_EQ(two.f1, std::sqrt(ref.d2[0]));
-        ASSERT_EQ(two.f2, std::sqrt(ref.d2[1]));
-        ASSERT_EQ(one.index, ref.index[0]);
-        ASSERT_EQ(one.f1, two.f1);
-        ties12 += ref.d2[0] == ref.d2[1];
-        ties23 += ref.d2[1] == ref.d2[2];
-    }
-    EXPECT_GT(ties12, 10000u);
-    EXPECT_GT(ties23, 3000u);
-}
-
-// Random cells, no ties: the same, and the scan's K-nearest bookkeeping across blocks
-// (lists of 1 … 30 blocks) agrees with the reference scan's on the triceratops.
-TEST(ClosestCell, LaneScansEqualTheReferenceScan) {
-    const sim::Surface s = sim::build_surface(test::sample_mesh("triceratops.off"));
-    for (const size_t n : {300u, 20000u}) {
-        const CellTable cells = random_cells(s.crps, n, 33);
-        const ClosestCellIndex index(s.crps, cells);
-        for (const auto &q : sim::sample_surface_uniform(s.crps, 30000, 34)) {
+    for (const bool wide : {false, true}) {
+        ClosestCellOptions options;
+        options.wide_lanes = wide;
+        const ClosestCellIndex index(s.crps, cells, options);
+        size_t ties12 = 0, ties23 = 0;
+        for (const auto &q : sim::sample_surface_uniform(s.crps, 30000, 32)) {
             const auto ref = index.find_three(q.tri, to_f(q.p));
             const ClosestCell two = index.find(q.tri, to_f(q.p)),
                               one = index.find_nearest(q.tri, to_f(q.p));
-            ASSERT_EQ(two.index, ref.index[0]) << n;
-            ASSERT_EQ(two.second, ref.index[1]) << n;
-            ASSERT_EQ(two.f1, std::sqrt(ref.d2[0])) << n;
-            ASSERT_EQ(two.f2, std::sqrt(ref.d2[1])) << n;
-            ASSERT_EQ(one.index, ref.index[0]) << n;
+            ASSERT_EQ(two.index, ref.index[0]);
+            ASSERT_EQ(two.second, ref.index[1]);
+            ASSERT_EQ(two.f1, std::sqrt(ref.d2[0]));
+            ASSERT_EQ(two.f2, std::sqrt(ref.d2[1]));
+            ASSERT_EQ(one.index, ref.index[0]);
+            ASSERT_EQ(one.f1, two.f1);
+            ties12 += ref.d2[0] == ref.d2[1];
+            ties23 += ref.d2[1] == ref.d2[2];
         }
+        EXPECT_GT(ties12, 10000u);
+        EXPECT_GT(ties23, 3000u);
+    }
+}
+
+// Random cells, no ties: the same, and the scan's K-nearest bookkeeping across blocks
+// (lists of 1 … 30 blocks) agrees with the reference scan's on the triceratops, at both
+// widths.
+TEST(ClosestCell, LaneScansEqualTheReferenceScan) {
+    const sim::Surface s = sim::build_surface(test::sample_mesh("triceratops.off"));
+    for (const size_t n : {300u, 20000u})
+        for (const bool wide : {false, true}) {
+            const CellTable cells = random_cells(s.crps, n, 33);
+            ClosestCellOptions options;
+            options.wide_lanes = wide;
+            const ClosestCellIndex index(s.crps, cells, options);
+            for (const auto &q : sim::sample_surface_uniform(s.crps, 30000, 34)) {
+                const auto ref = index.find_three(q.tri, to_f(q.p));
+                const ClosestCell two = index.find(q.tri, to_f(q.p)),
+                                  one = index.find_nearest(q.tri, to_f(q.p));
+                ASSERT_EQ(two.index, ref.index[0]) << n;
+                ASSERT_EQ(two.second, ref.index[1]) << n;
+                ASSERT_EQ(two.f1, std::sqrt(ref.d2[0])) << n;
+                ASSERT_EQ(two.f2, std::sqrt(ref.d2[1])) << n;
+                ASSERT_EQ(one.index, ref.index[0]) << n;
+            }
+        }
+}
+
+// The two lane widths are one algorithm: every field of every search that uses them —
+// including what CoherentLookup reuses (positions, the bounds on the cells left) — is
+// the same bits. Fails if the eight-lane scan drops or double-counts a lane.
+TEST(ClosestCell, EightLaneScansGiveTheFourLaneScansBits) {
+    if (!__builtin_cpu_supports("avx2")) GTEST_SKIP() << "this CPU has no AVX2";
+    const sim::Surface s = sim::build_surface(test::sample_mesh("cow.off"));
+    const CellTable cells = random_cells(s.crps, 20000, 35);
+    ClosestCellOptions narrow_options;
+    narrow_options.wide_lanes = false;
+    const ClosestCellIndex wide(s.crps, cells), narrow(s.crps, cells, narrow_options);
+    ASSERT_EQ(wide.stats().lanes, 8);
+    ASSERT_EQ(narrow.stats().lanes, 4);
+    const auto same = [](const auto &a, const auto &b) {
+        return a.index == b.index && a.d2 == b.d2 && a.nearest_at.x == b.nearest_at.x &&
+               a.nearest_at.y == b.nearest_at.y && a.second_at.x == b.second_at.x &&
+               a.second_at.y == b.second_at.y && a.second == b.second &&
+               a.beyond_d2 == b.beyond_d2 && a.next_d2 == b.next_d2 &&
+               a.third_d2 == b.third_d2;
+    };
+    size_t i = 0;
+    for (const auto &q : sim::sample_surface_uniform(s.crps, 50000, 36)) {
+        const Vec2f p = to_f(q.p);
+        const ClosestCell a = wide.find(q.tri, p), b = narrow.find(q.tri, p);
+        ASSERT_EQ(a.index, b.index);
+        ASSERT_EQ(a.second, b.second);
+        ASSERT_EQ(a.f1, b.f1);
+        ASSERT_EQ(a.f2, b.f2);
+        const ClosestCell c = wide.find_nearest(q.tri, p),
+                          d = narrow.find_nearest(q.tri, p);
+        ASSERT_EQ(c.index, d.index);
+        ASSERT_EQ(c.f1, d.f1);
+        const float band = float(i++ % 4) * 0.3f * a.f2;  // 0 … 0.9 F2
+        ASSERT_TRUE(same(wide.find_three_within(q.tri, p, band),
+                         narrow.find_three_within(q.tri, p, band)));
     }
 }
 
