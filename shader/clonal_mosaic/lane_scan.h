@@ -3,9 +3,10 @@
 // seen, with selects only, and the lanes merged at the end. Nothing branches on which of
 // two distances is smaller — in a list in no useful order (random and indirect hits) that
 // is a coin toss the insertion scan mispredicted ~6 times per lookup. What
-// ClosestCellIndex::find() and find_nearest() run (closest_cell.cpp), with Teo's pruning
-// (Fig. 6.2): blocks are sorted by bound, and the scan stops at the first whose bound
-// lies beyond the K-th nearest so far.
+// ClosestCellIndex::find() and find_nearest() run, and, at eight lanes, the banded
+// search's first pass (closest_cell.cpp), with Teo's pruning (Fig. 6.2): blocks are
+// sorted by bound, and the scan stops at the first whose bound lies beyond the K-th
+// nearest so far.
 //
 // Two widths, the same results bit for bit (the same lanes, the same float operations, no
 // fused multiply-add): four lanes and one, SSE2 (every x86-64; NEON on ARM), and eight
