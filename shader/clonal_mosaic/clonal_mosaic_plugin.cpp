@@ -80,7 +80,11 @@ std::atomic<uint64_t> instances_created{0};
 
 // Consecutive camera hits of a thread mostly fall in the same cell: reuse it when that
 // is provably right (coherent_lookup.h; identical results either way).
-thread_local shader::CoherentLookup coherent_lookup;
+// Initial-exec TLS: each access is one %fs-relative address instead of a TLS descriptor
+// call (two per camera hit). A dlopen()ed module may use it for a few bytes: glibc keeps
+// a static TLS surplus for them (rtld.optional_static_tls, 512 bytes by default; this
+// object is ~100), and loading fails cleanly, not silently, if it ever ran out.
+[[gnu::tls_model("initial-exec")]] thread_local shader::CoherentLookup coherent_lookup;
 
 const PelageParamSpec params[] = {
     {"jitter",
