@@ -306,8 +306,10 @@ void shade_as(const ClonalMosaic &cm, const CellLook &cell, float f1, PelageShad
     for (int k = 0; k < 3; ++k) out->albedo[k] = cell.rgb[k];
     out->eumelanin = type.eumelanin;
     out->pheomelanin = type.pheomelanin;
-    if (type.roughness >= 0) out->roughness = type.roughness;
-    if (type.ior > 0) out->ior = type.ior;
+    // Unconditionally: a type without an override holds the ABI's "keep the material's"
+    // values (roughness < 0, ior 0), so no branch is needed.
+    out->roughness = type.roughness;
+    out->ior = type.ior;
     out->aov[0] = cell.aov_id;
     out->aov[1] = type.aov_type;
     out->aov[2] = f1;

@@ -1,5 +1,7 @@
 #include "shader/clonal_mosaic/coherent_lookup.h"
 
+#include <cmath>
+
 namespace pelage::shader {
 
 CoherentLookup::Result CoherentLookup::search(const ClosestCellIndex &index,
@@ -20,7 +22,14 @@ CoherentLookup::Result CoherentLookup::search(const ClosestCellIndex &index,
         m_id[1] = n.second != ClosestCell::none ? id[n.second] : 0;
         m_at[0] = n.nearest_at;
         m_at[1] = n.second_at;  // +inf when there is no second cell
-        m_f3 = std::sqrt(n.third_d2);
+        // The margin is relative to the coordinates' and distances' size: 1e-4 of
+        // |q.x| + |q.y| + cap, far above float rounding. Taken once here, bounded over
+        // every query that can pass the test: it moves less than F3 from m_q (so
+        // |q.x| + |q.y| grows by under 1.5 F3) and its cap is under F3.
+        const float f3 = std::sqrt(n.third_d2);
+        m_f3_less_margin =
+            std::isinf(f3) ? f3
+                           : f3 - 1e-4f * (std::abs(m_q.x) + std::abs(m_q.y) + 3 * f3);
     }
     return n;
 }

@@ -56,11 +56,11 @@ class CoherentLookup {
         const float da = a ? d2 : d1, db = a ? d1 : d2;
         // three_within's cap, and the proof that every other cell lies beyond it.
         const float f1 = std::sqrt(da), cap = f1 + std::max(band, 0.0f);
-        // F3 - moved > cap + margin, squared: no square root (nor std::hypot, a libm
-        // call) on the way to the decision; the margin dwarfs their rounding.
+        // F3 - margin - moved > cap, squared: no square root (nor std::hypot, a libm
+        // call) on the way to the decision; the margin (set by search()) dwarfs their
+        // rounding.
         const float dx = q.x - m_q.x, dy = q.y - m_q.y;
-        const float margin = 1e-4f * (std::abs(q.x) + std::abs(q.y) + cap);
-        const float slack = m_f3 - cap - margin;
+        const float slack = m_f3_less_margin - cap;
         if (!(slack > 0 && dx * dx + dy * dy < slack * slack)) return false;
         ++m_reused;
         n.d2[0] = da;
@@ -87,7 +87,8 @@ class CoherentLookup {
     uint32_t m_cell[2]{};               // c1, c2 (none: no second cell)
     uint32_t m_id[2]{};                 // their stable ids (ties)
     Vec2f m_at[2];                      // their positions (+inf: none)
-    float m_f3 = 0;                     // a lower bound on the search's F3
+    // A lower bound on the search's F3, less a margin for float rounding (search()).
+    float m_f3_less_margin = 0;
     size_t m_reused = 0, m_searched = 0;
 };
 
