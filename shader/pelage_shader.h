@@ -68,7 +68,7 @@ typedef struct PelageMeshView {
     const char *cells_path;      /* absolute path of the object's .cells, or NULL */
     const char *mesh_path;       /* absolute path (or "procedural:...") the mesh was
                                     loaded from; triangles are in the order pelage's
-                                    loader (sim/mesh_load.h) gives them               */
+                                    loader (sim/mesh/mesh_load.h) gives them               */
 } PelageMeshView;
 
 typedef struct PelageParamSet {
@@ -94,7 +94,7 @@ typedef struct PelageHit {
     uint32_t has_uv;
     float footprint;   /* approximate ray footprint width at the hit, in the object's own
                           units (those of its mesh file: the scene's divided by the
-                          object's scale), widened at rough bounces (renderer/ray_cone.h) */
+                          object's scale), widened at rough bounces (renderer/core/ray_cone.h) */
     uint32_t depth;    /* path vertex index, 0 for camera rays */
     uint32_t reserved; /* zero */
 } PelageHit;

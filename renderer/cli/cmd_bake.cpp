@@ -3,10 +3,10 @@
 #include <fmt/core.h>
 
 #include "renderer/cli/common.h"
-#include "renderer/image_output.h"
+#include "renderer/image/image_output.h"
 #include "shader/clonal_mosaic/bake.h"
-#include "sim/input_error.h"
-#include "sim/mesh_write_obj.h"
+#include "sim/core/input_error.h"
+#include "sim/mesh/mesh_write_obj.h"
 
 namespace pelage::cli {
 namespace {

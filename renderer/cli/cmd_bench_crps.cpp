@@ -6,9 +6,9 @@
 #include <iostream>
 
 #include "renderer/cli/bench.h"
-#include "sim/input_error.h"
-#include "sim/surface.h"
-#include "sim/unfold.h"
+#include "sim/core/input_error.h"
+#include "sim/crps/surface.h"
+#include "sim/crps/unfold.h"
 
 namespace pelage::cli {
 namespace {

@@ -15,10 +15,10 @@
 #include <sstream>
 
 #include "renderer/cli/bench.h"
-#include "renderer/render.h"
-#include "renderer/scene_file.h"
-#include "sim/input_error.h"
-#include "sim/mesh_load.h"
+#include "renderer/integrator/render.h"
+#include "renderer/scene_file/scene_file.h"
+#include "sim/core/input_error.h"
+#include "sim/mesh/mesh_load.h"
 
 namespace pelage::cli {
 namespace {

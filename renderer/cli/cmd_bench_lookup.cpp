@@ -18,9 +18,9 @@
 #include "shader/clonal_mosaic/coherent_lookup.h"
 #include "shader/clonal_mosaic/edge_consistency.h"
 #include "shader/clonal_mosaic/mosaic_lod.h"
-#include "sim/input_error.h"
-#include "sim/surface.h"
-#include "sim/surface_sampling.h"
+#include "sim/core/input_error.h"
+#include "sim/crps/surface.h"
+#include "sim/crps/surface_sampling.h"
 
 namespace pelage::cli {
 namespace {

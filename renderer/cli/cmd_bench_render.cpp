@@ -16,10 +16,10 @@
 #include <thread>
 
 #include "renderer/cli/bench.h"
-#include "renderer/packet_intersect.h"
-#include "renderer/render.h"
-#include "renderer/scene_file.h"
-#include "sim/input_error.h"
+#include "renderer/geometry/packet_intersect.h"
+#include "renderer/integrator/render.h"
+#include "renderer/scene_file/scene_file.h"
+#include "sim/core/input_error.h"
 
 namespace pelage::cli {
 namespace {

@@ -10,10 +10,10 @@
 #include <iostream>
 
 #include "renderer/cli/bench.h"
-#include "sim/cells_file.h"
-#include "sim/cm_simulation.h"
-#include "sim/input_error.h"
-#include "sim/surface.h"
+#include "sim/cells_io/cells_file.h"
+#include "sim/mosaic/cm_simulation.h"
+#include "sim/core/input_error.h"
+#include "sim/crps/surface.h"
 
 namespace pelage::cli {
 namespace {

@@ -8,8 +8,8 @@
 #include <sstream>
 
 #include "renderer/cli/common.h"
-#include "sim/atomic_file.h"
-#include "sim/cells_file.h"
+#include "sim/core/atomic_file.h"
+#include "sim/cells_io/cells_file.h"
 
 namespace pelage::cli {
 namespace {

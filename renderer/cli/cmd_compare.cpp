@@ -1,5 +1,5 @@
 // `pelage compare SCENE.json`: one render per shader on the scene's patterned objects,
-// timings and a labelled contact sheet (renderer/compare.h). --report keys are a
+// timings and a labelled contact sheet (renderer/tools/compare.h). --report keys are a
 // contract: shaders {NAME: {seconds, ns_per_lookup}}, ratios, ratio_rounds, lookup_ratios.
 #include <fmt/core.h>
 #include <unistd.h>
@@ -8,12 +8,12 @@
 #include <sstream>
 
 #include "renderer/cli/common.h"
-#include "renderer/compare.h"
-#include "renderer/contact_sheet.h"
-#include "renderer/image_output.h"
+#include "renderer/tools/compare.h"
+#include "renderer/image/contact_sheet.h"
+#include "renderer/image/image_output.h"
 #include "shader/clonal_mosaic/bake.h"
-#include "sim/input_error.h"
-#include "sim/mesh_write_obj.h"
+#include "sim/core/input_error.h"
+#include "sim/mesh/mesh_write_obj.h"
 
 namespace pelage::cli {
 namespace {

@@ -5,8 +5,8 @@
 #include <fmt/core.h>
 
 #include "renderer/cli/common.h"
-#include "sim/crps_validation.h"
-#include "sim/surface.h"
+#include "sim/crps/crps_validation.h"
+#include "sim/crps/surface.h"
 
 namespace pelage::cli {
 namespace {

@@ -8,8 +8,8 @@
 
 #include "renderer/cli/common.h"
 #include "shader/clonal_mosaic/pattern.h"
-#include "sim/input_error.h"
-#include "sim/text_lines.h"
+#include "sim/core/input_error.h"
+#include "sim/core/text_lines.h"
 
 namespace pelage::cli {
 namespace {

@@ -1,12 +1,12 @@
 // `pelage movie out.####.exr -o turntable.mp4`: an EXR sequence through OpenColorIO to
-// display, encoded by ffmpeg (renderer/movie.h). Missing frames and a missing ffmpeg are
+// display, encoded by ffmpeg (renderer/image/movie.h). Missing frames and a missing ffmpeg are
 // reported before anything is encoded.
 #include <cstdio>
 #include <filesystem>
 
 #include "renderer/cli/common.h"
-#include "renderer/movie.h"
-#include "sim/input_error.h"
+#include "renderer/image/movie.h"
+#include "sim/core/input_error.h"
 
 namespace pelage::cli {
 namespace {

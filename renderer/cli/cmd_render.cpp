@@ -8,12 +8,12 @@
 #include <optional>
 
 #include "renderer/cli/common.h"
-#include "renderer/color_management.h"
-#include "renderer/image_output.h"
-#include "renderer/progress.h"
-#include "renderer/render.h"
-#include "renderer/scene_file.h"
-#include "sim/input_error.h"
+#include "renderer/image/color_management.h"
+#include "renderer/image/image_output.h"
+#include "renderer/core/progress.h"
+#include "renderer/integrator/render.h"
+#include "renderer/scene_file/scene_file.h"
+#include "sim/core/input_error.h"
 
 namespace pelage::cli {
 namespace {

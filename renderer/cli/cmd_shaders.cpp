@@ -5,8 +5,8 @@
 #include <memory>
 
 #include "renderer/cli/common.h"
-#include "renderer/plugin_loader.h"
-#include "sim/input_error.h"
+#include "renderer/plugins/plugin_loader.h"
+#include "sim/core/input_error.h"
 
 namespace pelage::cli {
 namespace {

@@ -1,5 +1,5 @@
 // `pelage sim --mesh FILE --preset NAME|FILE`: grows a Clonal Mosaic on the mesh's CRPS
-// and writes the .cells file (sim/cm_simulation.h, sim/cells_file.h). The keys of
+// and writes the .cells file (sim/mosaic/cm_simulation.h, sim/cells_io/cells_file.h). The keys of
 // --stats-json are a contract (issue 3): triangles, area, cells_by_type, spot_fraction,
 // divisions, relax_steps, seconds.
 #include <algorithm>
@@ -8,12 +8,12 @@
 #include <fmt/core.h>
 
 #include "renderer/cli/common.h"
-#include "renderer/progress.h"
-#include "sim/cells_file.h"
-#include "sim/cm_simulation.h"
-#include "sim/input_error.h"
-#include "sim/pattern_stats.h"
-#include "sim/surface.h"
+#include "renderer/core/progress.h"
+#include "sim/cells_io/cells_file.h"
+#include "sim/mosaic/cm_simulation.h"
+#include "sim/core/input_error.h"
+#include "sim/cells_io/pattern_stats.h"
+#include "sim/crps/surface.h"
 
 namespace pelage::cli {
 namespace {

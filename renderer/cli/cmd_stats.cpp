@@ -1,14 +1,14 @@
 // `pelage stats FILE.cells [--json]`: pattern statistics of a .cells file
-// (sim/pattern_stats.h). JSON keys are a contract: cells_by_type, spot_fraction, spots,
+// (sim/cells_io/pattern_stats.h). JSON keys are a contract: cells_by_type, spot_fraction, spots,
 // mean_spot_area.
 #include <iostream>
 
 #include <fmt/core.h>
 
 #include "renderer/cli/common.h"
-#include "sim/cells_file.h"
-#include "sim/mesh_load.h"
-#include "sim/pattern_stats.h"
+#include "sim/cells_io/cells_file.h"
+#include "sim/mesh/mesh_load.h"
+#include "sim/cells_io/pattern_stats.h"
 
 namespace pelage::cli {
 namespace {

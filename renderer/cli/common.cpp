@@ -4,8 +4,8 @@
 #include <cstdlib>
 #include <filesystem>
 
-#include "sim/atomic_file.h"
-#include "sim/input_error.h"
+#include "sim/core/atomic_file.h"
+#include "sim/core/input_error.h"
 
 namespace pelage::cli {
 

@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "renderer/cli/common.h"
-#include "sim/input_error.h"
+#include "sim/core/input_error.h"
 
 int main(int argc, char **argv) {
     using namespace pelage;

@@ -7,7 +7,7 @@
 #include <array>
 #include <vector>
 
-#include "sim/crps.h"
+#include "sim/crps/crps.h"
 
 namespace pelage::shader {
 

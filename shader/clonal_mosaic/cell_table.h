@@ -8,13 +8,13 @@
 #include <span>
 #include <vector>
 
-#include "sim/mesh.h"
+#include "sim/mesh/mesh.h"
 
 namespace pelage::shader {
 
 struct CellOnSurface {
     sim::TriId tri;
-    double x, z;  // local CRPS coordinates on `tri` (sim/crps.h)
+    double x, z;  // local CRPS coordinates on `tri` (sim/crps/crps.h)
     uint32_t id;  // stable: survives re-simulation with the same seed, keys per-cell jitter
     uint8_t type;
 };

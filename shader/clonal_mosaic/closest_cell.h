@@ -10,7 +10,7 @@
 // What we precompute (Teo's method, kept, made fast). Each triangle t is split into n²
 // sub-triangles S (regular subdivision in barycentric coordinates; n grows with the
 // triangle's size, about two per cell spacing across, up to 6). For each S, t's
-// breadth-first unfolding (sim/unfold.h) supplies every cell that can be among the three
+// breadth-first unfolding (sim/crps/unfold.h) supplies every cell that can be among the three
 // nearest of some point of S: those within R_S of S, where R_S bounds F3 on S (at most
 // d_3 + b_S, d_3 the distance from S's centroid to its third-nearest cell and b_S S's
 // radius, because F3(q) <= |q - c_3| <= d_3 + b_S). Each such cell is stored *already
@@ -70,7 +70,7 @@
 // with four lanes the insertion scan had been faster (camera hits come in runs along
 // one list, where its branches predict well): banded walks as camera hits 47-65 ns
 // instead of 60-72. Its second pass, rare, keeps the insertion scan.
-// By default the unfolding walks edges only (sim/unfold.h, UnfoldPaths): the two
+// By default the unfolding walks edges only (sim/crps/unfold.h, UnfoldPaths): the two
 // triangles on either side of an edge then see identical maps for every triangle reached
 // through that edge, which reduces Teo's "cracks" (§6.3); `pelage bench lookup` measures
 // both.
@@ -86,8 +86,8 @@
 #include "shader/clonal_mosaic/cell_block.h"
 #include "shader/clonal_mosaic/cell_table.h"
 #include "shader/clonal_mosaic/lane_scan.h"
-#include "sim/crps.h"
-#include "sim/unfold.h"
+#include "sim/crps/crps.h"
+#include "sim/crps/unfold.h"
 
 namespace pelage::shader {
 

@@ -9,7 +9,7 @@
 #pragma once
 
 #include "shader/clonal_mosaic/closest_cell.h"
-#include "sim/mesh.h"
+#include "sim/mesh/mesh.h"
 
 namespace pelage::shader {
 

@@ -9,8 +9,8 @@
 #include <vector>
 
 #include "shader/clonal_mosaic/closest_cell.h"
-#include "sim/cells_file.h"
-#include "sim/surface.h"
+#include "sim/cells_io/cells_file.h"
+#include "sim/crps/surface.h"
 
 namespace pelage::shader {
 

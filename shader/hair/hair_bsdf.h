@@ -12,7 +12,7 @@
 //     direction from the axis to the hit for a round curve), y = z × x.
 //   * h ∈ [-1, 1] is the offset across the fibre where the ray hits it (h = sin γ_o):
 //     h = 0 at the axis, ±1 at the silhouettes. It is constant for one hit.
-// Conventions shared with renderer/bsdf.h, so the renderer can wrap this class 1:1:
+// Conventions shared with renderer/bsdf/bsdf.h, so the renderer can wrap this class 1:1:
 //   * eval(wo, wi) returns f WITHOUT the |cos θ_i| factor, where cos θ_i = wi.z. Internally
 //     f = S(wo, wi) / |wi.z|, S = Σ_p M_p A_p N_p the fibre scattering function, so the
 //     path tracer's |wi.z| cancels and throughput gets S exactly (as in pbrt).
@@ -99,7 +99,7 @@ class HairBsdf {
     std::array<float, 3> m_cos_2k_alpha;
 };
 
-// The signatures renderer/bsdf.h's Bsdf concept expects (with this folder's own types,
+// The signatures renderer/bsdf/bsdf.h's Bsdf concept expects (with this folder's own types,
 // which shader/ cannot take from the renderer): a wrapper only converts types.
 static_assert(requires(const HairBsdf &b, Vec3f w, float u) {
     { b.eval(w, w) } -> std::same_as<Rgb>;

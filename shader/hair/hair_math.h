@@ -1,6 +1,6 @@
 // The few value types shared inside shader/hair. shader/ must not include renderer
 // headers (data flows sim → shader → renderer), so the hair BSDF carries its own minimal
-// vector and colour types; their layout ({x, y, z} floats) matches renderer/math.h so the
+// vector and colour types; their layout ({x, y, z} floats) matches renderer/core/math.h so the
 // renderer's wrapper converts member by member.
 #pragma once
 

@@ -1,4 +1,4 @@
-// libFuzzer target: the .cells reader (sim/cells_file.cpp). The FNV-1a checksum would
+// libFuzzer target: the .cells reader (sim/cells_io/cells_file.cpp). The FNV-1a checksum would
 // reject almost every mutation before the structural checks, so each input is parsed
 // twice: as given, and with its last 8 bytes replaced by the checksum of the rest. A file
 // that parses must survive a write/read round trip unchanged; bad input must end in
@@ -8,12 +8,12 @@
 #include <cstring>
 #include <vector>
 
-#include "sim/cells_file.h"
-#include "sim/input_error.h"
+#include "sim/cells_io/cells_file.h"
+#include "sim/core/input_error.h"
 
 namespace {
 
-// FNV-1a 64 (Fowler, Noll, Vo), as the .cells format specifies (sim/cells_file.h).
+// FNV-1a 64 (Fowler, Noll, Vo), as the .cells format specifies (sim/cells_io/cells_file.h).
 uint64_t fnv1a(const uint8_t *p, size_t n) {
     uint64_t h = 0xcbf29ce484222325ull;
     for (size_t i = 0; i < n; ++i) h = (h ^ p[i]) * 0x100000001b3ull;

@@ -1,11 +1,11 @@
 // libFuzzer target: the OFF reader and the clean-up every subcommand applies after it
-// (sim/mesh_io_off.cpp, sim/mesh_clean.cpp). Bad input must end in pelage::InputError;
+// (sim/mesh/mesh_io_off.cpp, sim/mesh/mesh_clean.cpp). Bad input must end in pelage::InputError;
 // any other exception, crash, leak or sanitizer report is a bug.
 #include <cstddef>
 #include <cstdint>
 
-#include "sim/input_error.h"
-#include "sim/mesh_load.h"
+#include "sim/core/input_error.h"
+#include "sim/mesh/mesh_load.h"
 #include "tests/fuzz/fuzz_input_file.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {

@@ -1,12 +1,12 @@
-// libFuzzer target: the scene JSON loader (renderer/scene_file.cpp), including the
+// libFuzzer target: the scene JSON loader (renderer/scene_file/scene_file.cpp), including the
 // per-frame views a turntable render derives from it. Bad input must end in
 // pelage::InputError; any other exception, crash or sanitizer report is a bug.
 #include <cstddef>
 #include <cstdint>
 #include <string>
 
-#include "renderer/scene_file.h"
-#include "sim/input_error.h"
+#include "renderer/scene_file/scene_file.h"
+#include "sim/core/input_error.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
     const std::string text(reinterpret_cast<const char *>(data), size);

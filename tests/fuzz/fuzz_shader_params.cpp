@@ -1,5 +1,5 @@
 // libFuzzer target: the shader parameter parser (validate_plugin_params in
-// renderer/plugin_loader.cpp), which checks a material's "params" object against a
+// renderer/plugins/plugin_loader.cpp), which checks a material's "params" object against a
 // plugin's PelageParamSpec table. The table below has one entry of every type, with and
 // without a range, as the shipped plugins declare them. Bad input must end in
 // pelage::InputError; any other exception, crash or sanitizer report is a bug.
@@ -8,8 +8,8 @@
 #include <cstdint>
 #include <string>
 
-#include "renderer/plugin_loader.h"
-#include "sim/input_error.h"
+#include "renderer/plugins/plugin_loader.h"
+#include "sim/core/input_error.h"
 
 namespace {
 

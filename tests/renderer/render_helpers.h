@@ -6,9 +6,9 @@
 #include <string>
 #include <vector>
 
-#include "renderer/render.h"
-#include "renderer/scene.h"
-#include "renderer/scene_file.h"
+#include "renderer/integrator/render.h"
+#include "renderer/scene/scene.h"
+#include "renderer/scene_file/scene_file.h"
 #include "tests/test_paths.h"
 
 namespace pelage::test {

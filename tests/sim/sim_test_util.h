@@ -4,9 +4,9 @@
 
 #include <string>
 
-#include "sim/cell_types.h"
-#include "sim/cells.h"
-#include "sim/crps.h"
+#include "sim/mosaic/cell_types.h"
+#include "sim/mosaic/cells.h"
+#include "sim/crps/crps.h"
 
 namespace pelage::test {
 

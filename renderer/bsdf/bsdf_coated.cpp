@@ -1,0 +1,151 @@
+#include "renderer/bsdf/bsdf_coated.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+#include "renderer/core/sampling.h"
+
+namespace pelage::renderer {
+
+namespace {
+constexpr float min_alpha = 1e-3f;  // below this the lobe is a delta in float precision
+}
+
+BsdfCoated::BsdfCoated(Rgb rho, float roughness, float ior, float F_int)
+    : m_rho(rho), m_alpha(std::max(min_alpha, roughness * roughness)), m_eta(ior) {
+    // The base seen through the coat, inter-reflection summed (file header).
+    const float k = inv_pi / (ior * ior);
+    m_base_scale = {rho.x * k / (1 - rho.x * F_int), rho.y * k / (1 - rho.y * F_int),
+                    rho.z * k / (1 - rho.z * F_int)};
+}
+
+float BsdfCoated::internal_diffuse_reflectance(float eta) {
+    // F̄_ext = 2 ∫_0^1 F(μ) μ dμ by the midpoint rule; F is smooth, 1024 points give
+    // ~1e-6.
+    constexpr int n = 1024;
+    double F_ext = 0;
+    for (int i = 0; i < n; ++i) {
+        const double mu = (i + 0.5) / n;
+        F_ext += 2 * fresnel_dielectric(float(mu), eta) * mu / n;
+    }
+    return float(1 - (1 - F_ext) / (double(eta) * eta));
+}
+
+float BsdfCoated::internal_diffuse_reflectance_table(float eta) {
+    // Sampled uniformly in u = sqrt(eta - 1): F̄_int rises steeply just above 1 and
+    // evenly in u, where linear interpolation is then accurate.
+    constexpr int n = 256;
+    static const float u_max = std::sqrt(2.0f);
+    static const std::array<float, n + 1> table = [] {
+        std::array<float, n + 1> t{};
+        for (int i = 0; i <= n; ++i) {
+            const float u = u_max * float(i) / n;
+            t[i] = internal_diffuse_reflectance(1 + u * u);
+        }
+        return t;
+    }();
+    const float x = std::sqrt(std::clamp(eta, 1.0f, 3.0f) - 1) * (n / u_max);
+    const int i = std::min(int(x), n - 1);
+    return table[i] + (table[i + 1] - table[i]) * (x - float(i));
+}
+
+float BsdfCoated::fresnel_dielectric(float cos_i, float eta) {
+    cos_i = std::clamp(cos_i, 0.0f, 1.0f);
+    const float sin2_t = (1 - cos_i * cos_i) / (eta * eta);
+    if (sin2_t >= 1) return 1.0f;
+    const float cos_t = std::sqrt(1 - sin2_t);
+    const float r_parl = (eta * cos_i - cos_t) / (eta * cos_i + cos_t);
+    const float r_perp = (cos_i - eta * cos_t) / (cos_i + eta * cos_t);
+    return 0.5f * (r_parl * r_parl + r_perp * r_perp);
+}
+
+float BsdfCoated::distribution(Vec3f h) const {
+    if (h.z <= 0) return 0.0f;
+    const float a2 = m_alpha * m_alpha;
+    const float d = h.z * h.z * (a2 - 1) + 1;
+    return a2 / (pi * d * d);
+}
+
+float BsdfCoated::smith_g1(Vec3f w) const {
+    if (w.z <= 0) return 0.0f;
+    const float tan2 = (1 - w.z * w.z) / (w.z * w.z);
+    return 2 / (1 + std::sqrt(1 + m_alpha * m_alpha * tan2));
+}
+
+const BsdfCoated::WoTerms &BsdfCoated::wo_terms(Vec3f wo) const {
+    if (m_wo.cos_o == wo.z) return m_wo;
+    m_wo.cos_o = wo.z;
+    m_wo.F_o = fresnel_dielectric(wo.z, m_eta);
+    m_wo.G1_o = smith_g1(wo);
+    // Pick the coat in proportion to its reflectance, but never starve either lobe.
+    const float base = luminance(m_rho) * (1 - m_wo.F_o);
+    m_wo.p_spec = std::clamp(m_wo.F_o / std::max(m_wo.F_o + base, 1e-6f), 0.1f, 0.9f);
+    return m_wo;
+}
+
+Rgb BsdfCoated::eval_pdf(Vec3f wo, Vec3f wi, float *pdf_out) const {
+    if (wo.z <= 0 || wi.z <= 0) {
+        *pdf_out = 0;
+        return {};
+    }
+    const Vec3f h = normalize(wo + wi);
+    const WoTerms &o = wo_terms(wo);
+    const float D = distribution(h);
+    // Visible-normal density D_wo(h) = G1(wo) max(0, wo·h) D(h) / cos θ_o, then the
+    // reflection Jacobian 1 / (4 wo·h).
+    const float pdf_spec = o.G1_o * D / (4 * wo.z);
+    *pdf_out = o.p_spec * pdf_spec + (1 - o.p_spec) * wi.z * inv_pi;
+    const float f_h = fresnel_dielectric(dot(wo, h), m_eta);
+    const float spec = f_h * D * o.G1_o * smith_g1(wi) / (4 * wo.z * wi.z);
+    const float t = (1 - fresnel_dielectric(wi.z, m_eta)) * (1 - o.F_o);
+    return m_base_scale * t + Rgb{spec, spec, spec};
+}
+
+Rgb BsdfCoated::eval(Vec3f wo, Vec3f wi) const {
+    float pdf_unused;
+    return eval_pdf(wo, wi, &pdf_unused);
+}
+
+float BsdfCoated::pdf(Vec3f wo, Vec3f wi) const {
+    if (wo.z <= 0 || wi.z <= 0) return 0.0f;
+    const Vec3f h = normalize(wo + wi);
+    const WoTerms &o = wo_terms(wo);
+    const float pdf_spec = o.G1_o * distribution(h) / (4 * wo.z);
+    return o.p_spec * pdf_spec + (1 - o.p_spec) * wi.z * inv_pi;
+}
+
+std::optional<BsdfSample> BsdfCoated::sample(Vec3f wo, float u_lobe, float u1,
+                                             float u2) const {
+    if (wo.z <= 0) return std::nullopt;
+    Vec3f wi;
+    if (u_lobe < specular_probability(wo)) {
+        // --- Sample a visible normal (Heitz 2018, listing 1) and reflect ---
+        const Vec3f vh = normalize(Vec3f{m_alpha * wo.x, m_alpha * wo.y, wo.z});
+        const float len2 = vh.x * vh.x + vh.y * vh.y;
+        const Vec3f t1 =
+            len2 > 0 ? Vec3f{-vh.y, vh.x, 0} / std::sqrt(len2) : Vec3f{1, 0, 0};
+        const Vec3f t2 = cross(vh, t1);
+        const float r = std::sqrt(u1);
+        float sin_phi, cos_phi;
+        sin_cos_turn(u2, &sin_phi, &cos_phi);  // φ = 2π u2
+        const float p1 = r * cos_phi;
+        float p2 = r * sin_phi;
+        const float s = 0.5f * (1 + vh.z);
+        p2 = (1 - s) * std::sqrt(std::max(0.0f, 1 - p1 * p1)) + s * p2;
+        const Vec3f nh =
+            t1 * p1 + t2 * p2 + vh * std::sqrt(std::max(0.0f, 1 - p1 * p1 - p2 * p2));
+        const Vec3f h =
+            normalize(Vec3f{m_alpha * nh.x, m_alpha * nh.y, std::max(1e-6f, nh.z)});
+        wi = h * (2 * dot(wo, h)) - wo;
+    } else {
+        wi = sample_cosine_hemisphere(u1, u2);
+    }
+    if (wi.z <= 0) return std::nullopt;
+    float pdf_wi;
+    const Rgb f = eval_pdf(wo, wi, &pdf_wi);
+    if (!(pdf_wi > 0)) return std::nullopt;
+    return BsdfSample{wi, f, pdf_wi, f * (wi.z / pdf_wi), false};
+}
+
+}  // namespace pelage::renderer

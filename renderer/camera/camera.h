@@ -1,0 +1,29 @@
+// Pinhole and thin-lens cameras. Raster space: x right, y down, pixel (i, j) covers
+// [i, i+1) × [j, j+1). The vertical field of view spans the image height.
+#pragma once
+
+#include "renderer/core/math.h"
+#include "renderer/scene_file/scene_file.h"
+
+namespace pelage::renderer {
+
+struct CameraRay {
+    Vec3f o, d;        // d unit length
+    Vec3f forward{};   // the viewing direction of the camera that made it (depth AOV)
+};
+
+class Camera {
+  public:
+    Camera(const CameraDesc &desc, int width, int height);
+
+    // A ray through raster position (x, y); (u1, u2) pick the point on the lens.
+    CameraRay generate(float x, float y, float u1, float u2) const;
+    Vec3f forward() const { return m_w; }
+
+  private:
+    Vec3f m_pos, m_u, m_v, m_w;  // right, up, forward
+    float m_tan_half_h, m_aspect, m_lens_radius, m_focus;
+    float m_scale_x, m_scale_y;  // raster → image plane
+};
+
+}  // namespace pelage::renderer

@@ -1,0 +1,229 @@
+#include "renderer/geometry/embree_scene.h"
+
+#include <cmath>
+#include <map>
+#include <stdexcept>
+#include <tuple>
+
+#include "renderer/geometry/deform.h"
+#include "sim/core/input_error.h"
+#include "sim/mesh/mesh_load.h"
+
+namespace pelage::renderer {
+
+namespace {
+
+std::shared_ptr<MeshData> load_mesh_data(const ObjectDesc &o,
+                                         const std::string &scene_path, size_t index) {
+    sim::TriangleMesh mesh;
+    try {
+        mesh = sim::load_mesh(o.mesh);
+    } catch (const InputError &e) {
+        // Keep the mesh file's own location, and say which object asked for it.
+        throw InputError(
+            e.file(), e.line(), e.field(),
+            std::string(e.what()).substr(std::string(e.what()).find(": ") + 2) +
+                " (objects[" + std::to_string(index) + "].mesh in " + scene_path + ")");
+    }
+    if (!o.deform_mesh.empty() && o.deform_weight > 0)
+        apply_pose(mesh, o.deform_mesh, o.deform_weight, scene_path,
+                   "objects[" + std::to_string(index) + "].deform");
+    auto m = std::make_shared<MeshData>();
+    m->source = o.mesh;
+    m->num_vertices = uint32_t(mesh.num_vertices());
+    m->num_triangles = uint32_t(mesh.num_triangles());
+    m->object_positions.resize(size_t(m->num_vertices) * 3 + 1, 0.0f);
+    for (size_t v = 0; v < mesh.num_vertices(); ++v) {
+        m->object_positions[3 * v + 0] = float(mesh.positions[v].x);
+        m->object_positions[3 * v + 1] = float(mesh.positions[v].y);
+        m->object_positions[3 * v + 2] = float(mesh.positions[v].z);
+    }
+    m->triangles.resize(size_t(m->num_triangles) * 3);
+    for (size_t t = 0; t < mesh.num_triangles(); ++t)
+        for (int c = 0; c < 3; ++c) m->triangles[3 * t + c] = mesh.triangles[t][c];
+    // --- Shading normals: from the file, area-weighted smooth, or none (flat) ---
+    const bool file_normals =
+        !mesh.corner_normals.empty() && o.normals != ObjectDesc::Normals::flat;
+    if (file_normals) {
+        m->corner_normals.resize(size_t(m->num_triangles) * 9);
+        for (size_t i = 0; i < mesh.corner_normals.size(); ++i) {
+            const sim::Vec3d n = mesh.corner_normals[i];
+            m->corner_normals[3 * i + 0] = float(n.x);
+            m->corner_normals[3 * i + 1] = float(n.y);
+            m->corner_normals[3 * i + 2] = float(n.z);
+        }
+    } else if (o.normals == ObjectDesc::Normals::smooth) {
+        std::vector<sim::Vec3d> vn(mesh.num_vertices());
+        for (size_t t = 0; t < mesh.num_triangles(); ++t) {
+            const sim::Vec3d n =
+                mesh.face_normal_unnormalized(sim::TriId(t));  // |n| = 2 area
+            for (int c = 0; c < 3; ++c) vn[mesh.triangles[t][c]] += n;
+        }
+        m->corner_normals.resize(size_t(m->num_triangles) * 9);
+        for (size_t t = 0; t < mesh.num_triangles(); ++t)
+            for (int c = 0; c < 3; ++c) {
+                sim::Vec3d n = vn[mesh.triangles[t][c]];
+                const double len = sim::length(n);
+                n = len > 0 ? n / len : mesh.face_normal_unnormalized(sim::TriId(t));
+                for (int k = 0; k < 3; ++k)
+                    m->corner_normals[9 * t + 3 * c + k] = float(n[k]);
+            }
+    }
+    if (!mesh.corner_uvs.empty()) {
+        m->corner_uvs.resize(size_t(m->num_triangles) * 6);
+        for (size_t i = 0; i < mesh.corner_uvs.size(); ++i) {
+            m->corner_uvs[2 * i + 0] = float(mesh.corner_uvs[i].x);
+            m->corner_uvs[2 * i + 1] = float(mesh.corner_uvs[i].y);
+        }
+    }
+    m->positions = m->object_positions;
+    return m;
+}
+
+// A baked copy: positions and normals moved to world space.
+std::shared_ptr<MeshData> bake(const MeshData &src, const Affine &to_world,
+                               const Affine &normal_m) {
+    auto m = std::make_shared<MeshData>(src);
+    for (uint32_t v = 0; v < m->num_vertices; ++v) {
+        const Vec3f p = to_world.point(
+            {src.positions[3 * v], src.positions[3 * v + 1], src.positions[3 * v + 2]});
+        m->positions[3 * v] = p.x;
+        m->positions[3 * v + 1] = p.y;
+        m->positions[3 * v + 2] = p.z;
+    }
+    for (size_t i = 0; i + 2 < m->corner_normals.size(); i += 3) {
+        const Vec3f n =
+            normalize(normal_m.vector({src.corner_normals[i], src.corner_normals[i + 1],
+                                       src.corner_normals[i + 2]}));
+        m->corner_normals[i] = n.x;
+        m->corner_normals[i + 1] = n.y;
+        m->corner_normals[i + 2] = n.z;
+    }
+    return m;
+}
+
+RTCGeometry make_triangle_geometry(RTCDevice device, const MeshData &m) {
+    RTCGeometry g = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
+    rtcSetSharedGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
+                               m.positions.data(), 0, 3 * sizeof(float), m.num_vertices);
+    rtcSetSharedGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
+                               m.triangles.data(), 0, 3 * sizeof(uint32_t),
+                               m.num_triangles);
+    rtcCommitGeometry(g);
+    return g;
+}
+
+}  // namespace
+
+void EmbreeScene::error_callback(void *user, RTCError code, const char *message) {
+    auto *self = static_cast<EmbreeScene *>(user);
+    std::lock_guard<std::mutex> lock(self->m_error_mutex);
+    if (self->m_error.empty())
+        self->m_error =
+            "Embree error " + std::to_string(int(code)) + ": " + (message ? message : "");
+}
+
+void EmbreeScene::check() const {
+    std::lock_guard<std::mutex> lock(m_error_mutex);
+    if (!m_error.empty()) throw std::runtime_error(m_error);
+}
+
+EmbreeScene::EmbreeScene(const SceneDesc &scene) {
+    m_device = rtcNewDevice(nullptr);
+    if (!m_device)
+        throw std::runtime_error("cannot create the Embree device (error " +
+                                 std::to_string(int(rtcGetDeviceError(nullptr))) + ")");
+    // A throw below (a bad mesh, an Embree error) skips the destructor: release what was
+    // created so far (LeakSanitizer found this with the bad-scene corpus).
+    struct ReleaseOnThrow {
+        EmbreeScene &s;
+        bool armed = true;
+        ~ReleaseOnThrow() {
+            if (armed) s.release();
+        }
+    } guard{*this};
+    rtcSetDeviceErrorFunction(m_device, error_callback, this);
+    m_scene = rtcNewScene(m_device);
+    rtcSetSceneBuildQuality(m_scene, RTC_BUILD_QUALITY_HIGH);
+
+    // --- Load each distinct mesh once; count its users ---
+    // A mesh is its file, its normals and its pose.
+    using Key = std::tuple<std::string, int, std::string, float>;
+    auto key_of = [](const ObjectDesc &o) {
+        return o.deform_weight > 0
+                   ? Key{o.mesh, int(o.normals), o.deform_mesh, o.deform_weight}
+                   : Key{o.mesh, int(o.normals), std::string(), 0.0f};
+    };
+    std::map<Key, std::shared_ptr<MeshData>> loaded;
+    std::map<Key, int> users;
+    for (const auto &o : scene.objects) ++users[key_of(o)];
+    std::map<Key, RTCScene> child_of;
+    m_objects.resize(scene.objects.size());
+    for (size_t i = 0; i < scene.objects.size(); ++i) {
+        const ObjectDesc &o = scene.objects[i];
+        const Key key = key_of(o);
+        auto &mesh = loaded[key];
+        if (!mesh) mesh = load_mesh_data(o, scene.path, i);
+        ObjectGeometry &og = m_objects[i];
+        const Affine normal_m = o.transform.normal_matrix();
+        if (const float det = std::abs(o.transform.determinant3()); det > 0)
+            og.to_object_length = 1 / std::cbrt(det);
+        m_num_triangles += mesh->num_triangles;
+        if (users[key] == 1) {
+            og.baked = true;
+            og.mesh =
+                o.transform.is_identity() ? mesh : bake(*mesh, o.transform, normal_m);
+            RTCGeometry g = make_triangle_geometry(m_device, *og.mesh);
+            const unsigned id = rtcAttachGeometry(m_scene, g);
+            rtcReleaseGeometry(g);
+            if (m_object_of_geometry.size() <= id) m_object_of_geometry.resize(id + 1, 0);
+            m_object_of_geometry[id] = uint32_t(i);
+        } else {
+            og.baked = false;
+            og.mesh = mesh;
+            og.to_world = o.transform;
+            og.normal_to_world = normal_m;
+            RTCScene &child = child_of[key];
+            if (!child) {
+                child = rtcNewScene(m_device);
+                RTCGeometry g = make_triangle_geometry(m_device, *mesh);
+                rtcAttachGeometry(child, g);
+                rtcReleaseGeometry(g);
+                rtcCommitScene(child);
+                m_child_scenes.push_back(child);
+            }
+            RTCGeometry inst = rtcNewGeometry(m_device, RTC_GEOMETRY_TYPE_INSTANCE);
+            rtcSetGeometryInstancedScene(inst, child);
+            rtcSetGeometryTransform(inst, 0, RTC_FORMAT_FLOAT3X4_ROW_MAJOR,
+                                    &o.transform.m[0][0]);
+            rtcCommitGeometry(inst);
+            const unsigned id = rtcAttachGeometry(m_scene, inst);
+            rtcReleaseGeometry(inst);
+            if (m_object_of_instance.size() <= id) m_object_of_instance.resize(id + 1, 0);
+            m_object_of_instance[id] = uint32_t(i);
+        }
+    }
+    attach_area_lights(scene.lights);
+    rtcCommitScene(m_scene);
+    check();
+    RTCBounds b;
+    rtcGetSceneBounds(m_scene, &b);
+    if (b.lower_x <= b.upper_x)
+        m_bounding_radius =
+            0.5f * length(Vec3f{b.upper_x - b.lower_x, b.upper_y - b.lower_y,
+                                b.upper_z - b.lower_z});
+    guard.armed = false;
+}
+
+EmbreeScene::~EmbreeScene() { release(); }
+
+void EmbreeScene::release() {
+    for (RTCScene s : m_child_scenes) rtcReleaseScene(s);
+    m_child_scenes.clear();
+    if (m_scene) rtcReleaseScene(m_scene);
+    if (m_device) rtcReleaseDevice(m_device);
+    m_scene = nullptr;
+    m_device = nullptr;
+}
+
+}  // namespace pelage::renderer

@@ -1,0 +1,92 @@
+// The Embree 3 side of a scene: one device, one top-level scene, one triangle geometry
+// per distinct mesh. Vertex and index buffers are shared with Embree
+// (rtcSetSharedGeometryBuffer) from float copies this class keeps alive. A mesh used by
+// one object has its transform baked into the vertices; a mesh used by several objects
+// is built once as a child scene and instanced. Area lights are geometry too (quads as
+// RTC_GEOMETRY_TYPE_QUAD, spheres as RTC_GEOMETRY_TYPE_SPHERE_POINT; embree_lights.cpp),
+// so they occlude and are hit like any surface; light_of() tells their hits apart.
+//
+// Errors: the device error callback records the first error; check() throws it as
+// std::runtime_error, so an Embree failure fails the run instead of being printed.
+#pragma once
+
+#include <embree3/rtcore.h>
+
+#include <atomic>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <vector>
+
+#include "renderer/core/math.h"
+#include "renderer/scene_file/scene_file.h"
+
+namespace pelage::renderer {
+
+struct MeshData {
+    std::string source;
+    uint32_t num_vertices = 0, num_triangles = 0;
+    std::vector<float> positions;     // xyz per vertex (+1 pad float: Embree reads 16 B)
+    std::vector<uint32_t> triangles;  // 3 per triangle
+    std::vector<float> corner_normals;    // 9 per triangle, or empty (flat shading)
+    std::vector<float> corner_uvs;        // 6 per triangle, or empty
+    std::vector<float> object_positions;  // untransformed copy for plugins (same layout)
+};
+
+struct ObjectGeometry {
+    std::shared_ptr<const MeshData> mesh;
+    bool baked = true;       // mesh already in world space
+    Affine to_world;         // identity when baked
+    Affine normal_to_world;  // inverse transpose of to_world's linear part
+    // Scene lengths to the mesh's own (PelageHit::footprint): 1 / the transform's scale,
+    // the cube root of its linear part's |determinant| (exact for uniform scales).
+    float to_object_length = 1;
+};
+
+class EmbreeScene {
+  public:
+    // Loads every object's mesh (throws pelage::InputError naming the mesh file and the
+    // object's JSON path) and commits the Embree scene.
+    explicit EmbreeScene(const SceneDesc &scene);
+    ~EmbreeScene();
+    EmbreeScene(const EmbreeScene &) = delete;
+    EmbreeScene &operator=(const EmbreeScene &) = delete;
+
+    RTCScene scene() const { return m_scene; }
+    RTCDevice device() const { return m_device; }  // for geometry added later (fur)
+    const std::vector<ObjectGeometry> &objects() const { return m_objects; }
+    // Object id for an Embree hit: instID[0] for instanced meshes, else geomID.
+    uint32_t object_of(unsigned geom_id, unsigned inst_id) const {
+        return inst_id != RTC_INVALID_GEOMETRY_ID ? m_object_of_instance[inst_id]
+                                                  : m_object_of_geometry[geom_id];
+    }
+    // Light index (into SceneDesc::lights) for a hit on an area light, else -1.
+    int light_of(unsigned geom_id, unsigned inst_id) const {
+        return inst_id == RTC_INVALID_GEOMETRY_ID && geom_id < m_light_of_geometry.size()
+                   ? m_light_of_geometry[geom_id]
+                   : -1;
+    }
+    // Radius of the bounding sphere of everything in the scene (0 when empty).
+    float bounding_radius() const { return m_bounding_radius; }
+    size_t num_triangles() const { return m_num_triangles; }
+    // Throws the first device error recorded so far, if any.
+    void check() const;
+
+  private:
+    static void error_callback(void *user, RTCError code, const char *message);
+    void attach_area_lights(const std::vector<LightDesc> &lights);
+    void release();  // the Embree objects, in reverse order of creation
+
+    RTCDevice m_device = nullptr;
+    RTCScene m_scene = nullptr;
+    std::vector<RTCScene> m_child_scenes;
+    std::vector<ObjectGeometry> m_objects;
+    std::vector<uint32_t> m_object_of_geometry, m_object_of_instance;
+    std::vector<int> m_light_of_geometry;  // -1: not a light
+    float m_bounding_radius = 0;
+    size_t m_num_triangles = 0;
+    mutable std::mutex m_error_mutex;
+    std::string m_error;
+};
+
+}  // namespace pelage::renderer

@@ -1,0 +1,186 @@
+#include "renderer/geometry/fur_geometry.h"
+
+#include <chrono>
+#include <stdexcept>
+
+#include "renderer/geometry/embree_scene.h"
+#include "sim/core/input_error.h"
+
+namespace pelage::renderer {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double seconds_since(Clock::time_point t0) {
+    return std::chrono::duration<double>(Clock::now() - t0).count();
+}
+
+// Rejects hits on the strand the ray left (its id is that strand's global index + 1).
+void skip_own_strand(const RTCFilterFunctionNArguments *args) {
+    const FurLayer &layer = *static_cast<const FurLayer *>(args->geometryUserPtr);
+    for (unsigned i = 0; i < args->N; ++i) {
+        if (args->valid[i] != -1) continue;
+        const unsigned id = RTCRayN_id(args->ray, args->N, i);
+        if (id == 0) continue;
+        const unsigned prim = RTCHitN_primID(args->hit, args->N, i);
+        if (layer.strand_offset + prim / unsigned(layer.strands.segments) + 1 == id)
+            args->valid[i] = 0;
+    }
+}
+
+// The object's world-space triangles and shading normals, for growing fur on them.
+struct WorldMesh {
+    std::vector<float> positions, normals;
+};
+WorldMesh world_mesh(const ObjectGeometry &og) {
+    const MeshData &m = *og.mesh;
+    WorldMesh w;
+    w.positions.assign(m.positions.begin(),
+                       m.positions.begin() + 3 * size_t(m.num_vertices));
+    w.normals = m.corner_normals;
+    if (og.baked) return w;
+    for (uint32_t v = 0; v < m.num_vertices; ++v) {
+        const Vec3f p = og.to_world.point(
+            {w.positions[3 * v], w.positions[3 * v + 1], w.positions[3 * v + 2]});
+        w.positions[3 * v] = p.x;
+        w.positions[3 * v + 1] = p.y;
+        w.positions[3 * v + 2] = p.z;
+    }
+    for (size_t i = 0; i + 2 < w.normals.size(); i += 3) {
+        const Vec3f n = normalize(og.normal_to_world.vector(
+            {w.normals[i], w.normals[i + 1], w.normals[i + 2]}));
+        w.normals[i] = n.x;
+        w.normals[i + 1] = n.y;
+        w.normals[i + 2] = n.z;
+    }
+    return w;
+}
+
+}  // namespace
+
+void FurLayer::centre(unsigned prim, float u, Vec3f *c, Vec3f *tangent,
+                      float *radius) const {
+    const unsigned S = unsigned(strands.segments);
+    const size_t first = size_t(prim / S) * strands.points_per_strand + prim % S;
+    const float *P = &strands.points[4 * first];
+    auto pt = [&](int k) { return Vec3f{P[4 * k], P[4 * k + 1], P[4 * k + 2]}; };
+    if (!round) {
+        *c = pt(0) * (1 - u) + pt(1) * u;
+        *tangent = pt(1) - pt(0);
+        *radius = P[3] * (1 - u) + P[7] * u;
+    } else {
+        // Uniform cubic B-spline basis and its derivative.
+        const float v = 1 - u;
+        const float b[4] = {v * v * v / 6, (3 * u * u * u - 6 * u * u + 4) / 6,
+                            (-3 * u * u * u + 3 * u * u + 3 * u + 1) / 6, u * u * u / 6};
+        const float db[4] = {-v * v / 2, (3 * u * u - 4 * u) / 2,
+                             (-3 * u * u + 2 * u + 1) / 2, u * u / 2};
+        *c = pt(0) * b[0] + pt(1) * b[1] + pt(2) * b[2] + pt(3) * b[3];
+        *tangent = pt(0) * db[0] + pt(1) * db[1] + pt(2) * db[2] + pt(3) * db[3];
+        *radius = P[3] * b[0] + P[7] * b[1] + P[11] * b[2] + P[15] * b[3];
+    }
+    const float len = length(*tangent);
+    *tangent = len > 0 ? *tangent / len : Vec3f{1, 0, 0};
+}
+
+size_t FurGeometry::num_strands() const {
+    size_t n = 0;
+    for (const FurLayer &l : m_layers) n += l.strands.size();
+    return n;
+}
+
+FurGeometry::FurGeometry(const SceneDesc &desc, EmbreeScene &scene,
+                         const ObjectPigmentLookup &pigment) {
+    size_t count = 0;
+    for (const ObjectDesc &o : desc.objects) count += o.fur.has_value();
+    m_layers.reserve(count);  // layers never move: Embree holds pointers into them
+    uint64_t offset = 0;
+    for (size_t i = 0; i < desc.objects.size(); ++i) {
+        if (!desc.objects[i].fur) continue;
+        // The comb is in object space, so the coat turns with its object (turntables);
+        // gravity stays world −y.
+        fur::FurParams params = *desc.objects[i].fur;
+        {
+            const fur::Vec3f c = params.comb_direction;
+            const Vec3f w = desc.objects[i].transform.vector({c.x, c.y, c.z});
+            if (length(w) > 0) params.comb_direction = {w.x, w.y, w.z};
+        }
+        const std::string field = "objects[" + std::to_string(i) + "].fur";
+        const ObjectGeometry &og = scene.objects()[i];
+        const WorldMesh wm = world_mesh(og);
+        fur::SkinMesh skin;
+        skin.positions = wm.positions.data();
+        skin.triangles = og.mesh->triangles.data();
+        skin.corner_normals = wm.normals.empty() ? nullptr : wm.normals.data();
+        skin.num_vertices = og.mesh->num_vertices;
+        skin.num_triangles = og.mesh->num_triangles;
+
+        const fur::PigmentLookup lookup = [&](const fur::SurfacePoint &s, fur::Vec3f p,
+                                              fur::Vec3f n) { return pigment(i, s, p, n); };
+
+        FurLayer layer;
+        layer.object = uint32_t(i);
+        layer.round = params.curve == fur::FurParams::Curve::round;
+        layer.beta_m = params.beta_m;
+        layer.beta_n = params.beta_n;
+        layer.alpha = params.alpha_deg * pi / 180;
+        const auto t0 = Clock::now();
+        try {
+            layer.strands = fur::grow_fur(params, skin, lookup);
+        } catch (const std::invalid_argument &e) {
+            throw InputError(desc.path, 0, field, e.what());
+        }
+        m_grow_seconds += seconds_since(t0);
+        if (offset + layer.strands.size() >= 0xffffffffull)
+            throw InputError(desc.path, 0, field, "more than 2^32 strands in the scene");
+        layer.strand_offset = uint32_t(offset);
+        offset += layer.strands.size();
+        if (layer.strands.size() == 0) continue;
+        m_layers.push_back(std::move(layer));
+    }
+
+    // --- Curves into the top-level scene, then rebuild it ---
+    const auto t1 = Clock::now();
+    for (size_t li = 0; li < m_layers.size(); ++li) {
+        FurLayer &layer = m_layers[li];
+        const fur::Strands &s = layer.strands;
+        RTCGeometry g = rtcNewGeometry(scene.device(),
+                                       layer.round ? RTC_GEOMETRY_TYPE_ROUND_BSPLINE_CURVE
+                                                   : RTC_GEOMETRY_TYPE_FLAT_LINEAR_CURVE);
+        const size_t num_points = s.size() * s.points_per_strand;
+        rtcSetSharedGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT4,
+                                   s.points.data(), 0, 4 * sizeof(float), num_points);
+        const size_t num_segments = s.size() * size_t(s.segments);
+        auto *index = static_cast<uint32_t *>(
+            rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT,
+                                    sizeof(uint32_t), num_segments));
+        if (!index) {
+            rtcReleaseGeometry(g);
+            scene.check();
+            throw std::runtime_error("Embree could not allocate the fur's index buffer");
+        }
+        for (size_t strand = 0; strand < s.size(); ++strand)
+            for (int k = 0; k < s.segments; ++k)
+                index[strand * size_t(s.segments) + size_t(k)] =
+                    uint32_t(strand * s.points_per_strand + size_t(k));
+        rtcSetGeometryUserData(g, &layer);
+        rtcSetGeometryIntersectFilterFunction(g, skip_own_strand);
+        rtcSetGeometryOccludedFilterFunction(g, skip_own_strand);
+        rtcCommitGeometry(g);
+        layer.geom_id = rtcAttachGeometry(scene.scene(), g);
+        rtcReleaseGeometry(g);
+        if (m_layer_of_geom.size() <= layer.geom_id)
+            m_layer_of_geom.resize(layer.geom_id + 1, -1);
+        m_layer_of_geom[layer.geom_id] = int(li);
+    }
+    if (!m_layers.empty()) {
+        // Embree's high-quality (spatial split) build costs seconds per 100 k strands
+        // for curves; the medium build is several times faster and traces about as fast.
+        rtcSetSceneBuildQuality(scene.scene(), RTC_BUILD_QUALITY_MEDIUM);
+        rtcCommitScene(scene.scene());
+        scene.check();
+    }
+    m_embree_seconds = seconds_since(t1);
+}
+
+}  // namespace pelage::renderer

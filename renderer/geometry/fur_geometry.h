@@ -1,0 +1,71 @@
+// Fur in the Embree scene: for every object with a `"fur"` block, shader/fur grows its
+// strands on the object's world-space mesh, each taking its pigment from the object's
+// own material plugin at the root (so fur follows whatever pattern the skin shows), and
+// the strands become one Embree curve geometry in the scene's top level:
+// RTC_GEOMETRY_TYPE_ROUND_BSPLINE_CURVE (tubes, close-ups) or FLAT_LINEAR_CURVE
+// (ray-facing ribbons, distance). Control points are shared with Embree as FLOAT4
+// (x, y, z, radius), 16 bytes each; per strand the renderer keeps only its two melanin
+// concentrations.
+//
+// Self-intersection: a ray leaving a strand carries (global strand index + 1) in its
+// `id`; the curves' filter function rejects hits on that strand, so transmitted (TT)
+// paths pass through their own fibre as the hair BSDF assumes. Other rays carry id 0.
+#pragma once
+
+#include <embree3/rtcore.h>
+
+#include <functional>
+#include <memory>
+#include <vector>
+
+#include "renderer/geometry/embree_scene.h"
+#include "renderer/core/math.h"
+#include "renderer/scene_file/scene_file.h"
+#include "shader/fur/fur_grow.h"
+
+namespace pelage::renderer {
+
+// A root's pigment on object `object`: the skin's material evaluated at that point.
+using ObjectPigmentLookup = std::function<fur::RootPigment(
+    size_t object, const fur::SurfacePoint &, fur::Vec3f p, fur::Vec3f n)>;
+
+struct FurLayer {
+    uint32_t object = 0;  // the scene object the fur grows on
+    unsigned geom_id = RTC_INVALID_GEOMETRY_ID;
+    uint32_t strand_offset = 0;  // global index of this layer's first strand
+    bool round = true;
+    float beta_m = 0.25f, beta_n = 0.3f, alpha = 0;  // alpha in radians
+    fur::Strands strands;
+
+    // Centre-line point and unit tangent of segment `prim` at curve parameter u.
+    void centre(unsigned prim, float u, Vec3f *c, Vec3f *tangent, float *radius) const;
+};
+
+class FurGeometry {
+  public:
+    // Grows the fur of every object that has some, attaches the curves to `scene` and
+    // recommits it. Throws pelage::InputError naming objects[i].fur when the fur cannot
+    // be grown (e.g. more strands than max_strands).
+    FurGeometry(const SceneDesc &desc, EmbreeScene &scene,
+                const ObjectPigmentLookup &pigment);
+    FurGeometry(const FurGeometry &) = delete;
+    FurGeometry &operator=(const FurGeometry &) = delete;
+
+    // The layer a hit belongs to, or null when geom_id is not fur.
+    const FurLayer *layer_of(unsigned geom_id) const {
+        return geom_id < m_layer_of_geom.size() && m_layer_of_geom[geom_id] >= 0
+                   ? &m_layers[size_t(m_layer_of_geom[geom_id])]
+                   : nullptr;
+    }
+    const std::vector<FurLayer> &layers() const { return m_layers; }
+    size_t num_strands() const;
+    double grow_seconds() const { return m_grow_seconds; }      // strands (shader/fur)
+    double embree_seconds() const { return m_embree_seconds; }  // curves + BVH commit
+
+  private:
+    std::vector<FurLayer> m_layers;
+    std::vector<int> m_layer_of_geom;
+    double m_grow_seconds = 0, m_embree_seconds = 0;
+};
+
+}  // namespace pelage::renderer

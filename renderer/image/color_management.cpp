@@ -1,0 +1,65 @@
+#include "renderer/image/color_management.h"
+
+#include <cstdlib>
+#include <filesystem>
+#include <stdexcept>
+
+#include "sim/core/input_error.h"
+
+namespace OCIO = OCIO_NAMESPACE;
+
+namespace pelage::renderer {
+
+namespace fs = std::filesystem;
+
+std::string DisplayTransform::config_location() {
+    if (const char *env = std::getenv("OCIO"); env && *env) return env;
+    std::error_code ec;
+    const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
+    if (!ec) {
+        const fs::path p =
+            exe.parent_path().parent_path() / "share" / "pelage" / "ocio" / "config.ocio";
+        if (fs::exists(p)) return p.string();
+    }
+    return PELAGE_OCIO_CONFIG;
+}
+
+DisplayTransform::DisplayTransform(const std::string &view, const std::string &display) {
+    m_config_path = config_location();
+    OCIO::ConstConfigRcPtr config;
+    try {
+        config = OCIO::Config::CreateFromFile(m_config_path.c_str());
+        m_display = display.empty() ? config->getDefaultDisplay() : display;
+        m_view = view.empty() ? config->getDefaultView(m_display.c_str()) : view;
+    } catch (const OCIO::Exception &e) {
+        throw std::runtime_error(m_config_path +
+                                 ": cannot read OpenColorIO config: " + e.what());
+    }
+    bool found = false;
+    std::string views;
+    for (int i = 0; i < config->getNumViews(m_display.c_str()); ++i) {
+        const std::string v = config->getView(m_display.c_str(), i);
+        found |= v == m_view;
+        views += (views.empty() ? "" : ", ") + v;
+    }
+    if (!found)
+        throw InputError(m_config_path, 0, "film.view",
+                         "unknown view \"" + m_view + "\" for display \"" + m_display +
+                             "\" (views: " + views + ")");
+    try {
+        auto t = OCIO::DisplayViewTransform::Create();
+        t->setSrc(OCIO::ROLE_SCENE_LINEAR);
+        t->setDisplay(m_display.c_str());
+        t->setView(m_view.c_str());
+        m_cpu = config->getProcessor(t)->getDefaultCPUProcessor();
+    } catch (const OCIO::Exception &e) {
+        throw std::runtime_error(m_config_path + ": OpenColorIO: " + e.what());
+    }
+}
+
+void DisplayTransform::apply_rgb(float *rgb, size_t pixels) const {
+    OCIO::PackedImageDesc img(rgb, long(pixels), 1, 3);
+    m_cpu->apply(img);
+}
+
+}  // namespace pelage::renderer

@@ -1,0 +1,63 @@
+// Writing renders through OpenImageIO, always atomically (a temporary file in the
+// destination folder, renamed into place once complete).
+//   * EXR: one part, channel-prefixed layers (Film::channel_names: R G B A, albedo.*,
+//   N.*,
+//     depth.Z, id.*, shader.*), colour layers half or float, depth/ids/shader always
+//     float, ZIP compression, metadata pelage:scene, pelage:spp, pelage:seed,
+//     pelage:render_seconds, pelage:interrupted, Software = "pelage <version>".
+//   * PNG/JPEG preview: the beauty through an OCIO display transform, 8 bits per channel.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "renderer/image/color_management.h"
+#include "renderer/image/film.h"
+
+namespace pelage::renderer {
+
+struct ImageMetadata {
+    std::string scene, software;
+    int spp = 0;
+    unsigned long long seed = 0;
+    double render_seconds = 0;
+    bool interrupted = false;
+    int frame = -1;  // animation frame (pelage:frame), -1 = a still
+    double fps = 0;  // animation.fps (pelage:fps), 0 = none
+    bool record_time =
+        true;  // false: no pelage:render_seconds, so that the same frame
+               // rendered twice (another machine, --resume) is the same file
+};
+
+// A checksum of the pixels as the EXR stores them (`data`: packed pixels, each channel
+// `channel_bytes` wide), independent of channel order (XXH3-64 per channel, then over
+// the names and digests in name order), written as pelage:pixel_xxh3, so a frame can
+// be checked complete (--resume).
+uint64_t pixel_hash(const void *data, size_t pixels,
+                    const std::vector<std::string> &names,
+                    const std::vector<int> &channel_bytes);
+
+// True when `path` is an EXR pelage wrote completely: the header reads, every pixel
+// reads, and the pixels hash to pelage:pixel_xxh3 (or, in files written before
+// 2026-11-22, to pelage:pixel_hash, FNV-1a). Otherwise false with the reason.
+bool exr_is_complete(const std::string &path, std::string *why = nullptr);
+
+// `pixels`: Film::num_channels interleaved floats per pixel (Film::resolve()).
+void write_exr(const std::string &path, int width, int height,
+               const std::vector<float> &pixels,
+               const std::vector<std::string> &channel_names, bool half,
+               const ImageMetadata &meta);
+
+// The first three channels of `pixels` (stride `channels`) through `display`, as 8-bit
+// RGB.
+void write_preview(const std::string &path, int width, int height,
+                   const std::vector<float> &pixels, int channels,
+                   const DisplayTransform &display);
+
+// Already display-referred 8-bit RGB (e.g. `pelage preview`), in the format the
+// extension names (PNG, JPEG, …), sRGB-tagged.
+void write_rgb8(const std::string &path, int width, int height,
+                const std::vector<unsigned char> &rgb);
+
+}  // namespace pelage::renderer

@@ -1,0 +1,141 @@
+#include "renderer/integrator/integrator_fur.h"
+
+#include <cmath>
+#include <limits>
+
+#include "renderer/geometry/embree_ray.h"
+#include "renderer/core/sampling.h"
+#include "shader/hair/hair_bsdf.h"
+
+namespace pelage::renderer {
+
+namespace {
+
+constexpr float inf = std::numeric_limits<float>::infinity();
+constexpr float shadow_ray_shortening = 1e-4f;  // as integrator_path.cpp
+
+hair::Vec3f to_hair(Vec3f v) { return {v.x, v.y, v.z}; }
+Rgb from_hair(hair::Vec3f v) { return {v.x, v.y, v.z}; }
+
+// The fibre frame: x the tangent, z ⊥ x facing wo, y = z × x.
+struct FibreFrame {
+    Vec3f x, y, z;
+    Vec3f to_local(Vec3f v) const { return {dot(v, x), dot(v, y), dot(v, z)}; }
+    Vec3f to_world(Vec3f v) const { return x * v.x + y * v.y + z * v.z; }
+};
+
+}  // namespace
+
+bool scatter_at_strand(const Scene &scene, const FurLayer &layer, const RTCRayHit &rh,
+                       int depth, bool last, Sampler &sampler, FurPathState &st,
+                       FilmSample &fs, FilmPointAovs *aovs, const CameraRay &cam,
+                       RenderStats &stats, std::vector<RecordedRay> *log) {
+    const Lights &lights = scene.lights();
+    const RTCScene rtc = scene.geometry().scene();
+    const Vec3f wo = -st.d;
+    const Vec3f p = st.o + st.d * rh.ray.tfar;
+    const unsigned prim = rh.hit.primID;
+    const uint32_t strand = prim / uint32_t(layer.strands.segments);
+
+    // --- Fibre frame and offset h across the fibre ---
+    Vec3f c, x;
+    float radius;
+    layer.centre(prim, rh.hit.u, &c, &x, &radius);
+    // The tube's outward normal: Embree's Ng for round curves; for ribbons, rebuilt from
+    // the hit's offset across the centre line as if the ribbon were a tube.
+    Vec3f n;
+    Vec3f wo_perp = wo - x * dot(wo, x);
+    if (length(wo_perp) <= 0) wo_perp = Frame::from_z(x).s;
+    wo_perp = normalize(wo_perp);
+    if (layer.round) {
+        n = Vec3f{rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z};
+        n = n - x * dot(n, x);
+    } else {
+        Vec3f e = p - c;
+        e = e - x * dot(e, x);
+        const float s = std::min(length(e) / std::max(radius, 1e-30f), 1.0f);
+        n = e + wo_perp * (radius * std::sqrt(std::max(0.0f, 1 - s * s)));
+    }
+    n = length(n) > 0 ? normalize(n) : wo_perp;
+    const float h = hair::offset_h(to_hair(x), to_hair(n), to_hair(wo));
+    // z: the normal turned to face wo (the model only uses φ_i − φ_o, hair_bsdf.h).
+    FibreFrame frame;
+    frame.x = x;
+    frame.z = dot(n, wo) >= 0 ? n : wo_perp;
+    frame.y = cross(frame.z, frame.x);
+
+    // --- The strand's BSDF from its melanin ---
+    const float eu = layer.strands.melanin[2 * size_t(strand)],
+                pheo = layer.strands.melanin[2 * size_t(strand) + 1];
+    hair::HairParams hp =
+        hair::HairParams::from_melanin(eu, pheo, layer.beta_m, layer.beta_n);
+    hp.alpha = layer.alpha;
+    const hair::HairBsdf bsdf(hp, h);
+
+    if (depth == 0) {
+        fs.alpha = 1;
+        fs.albedo = from_hair(bsdf.albedo());
+        fs.normal = frame.z;
+        if (aovs) {
+            aovs->depth = rh.ray.tfar * dot(st.d, cam.forward);
+            aovs->object_id = float(layer.object);
+            aovs->primitive_id = float(strand);
+        }
+    }
+    if (last) return false;
+
+    const unsigned own_id = layer.strand_offset + strand + 1;
+    const Vec3f wo_local = frame.to_local(wo);
+    const float u_light = sampler.get_1d(), ul1 = sampler.get_1d(),
+                ul2 = sampler.get_1d();
+    const float u_lobe = sampler.get_1d(), ub1 = sampler.get_1d(), ub2 = sampler.get_1d();
+    auto origin = [&](Vec3f w) { return offset_ray_origin(p, frame.z, w); };
+
+    // --- Next-event estimation: one light, either side of the fibre ---
+    const int num_lights = lights.count();
+    float select_pdf = 0;
+    const int li = num_lights > 0 ? lights.select(u_light, &select_pdf) : -1;
+    LightSample ls;
+    if (li >= 0 && lights.sample(li, p, frame.z, ul1, ul2, &ls)) {
+        const Vec3f wi_local = frame.to_local(ls.wi);
+        const Rgb f = from_hair(bsdf.eval(to_hair(wo_local), to_hair(wi_local)));
+        if (!is_black(f)) {
+            const Vec3f so = origin(ls.wi);
+            const float tfar =
+                std::isinf(ls.distance) ? inf : ls.distance * (1 - shadow_ray_shortening);
+            RTCIntersectContext sctx;
+            rtcInitIntersectContext(&sctx);
+            sctx.flags = RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT;
+            RTCRay sr;
+            set_ray(sr, so, ls.wi, tfar, own_id);
+            rtcOccluded1(rtc, &sctx, &sr);
+            if (log)
+                log->push_back(
+                    {{so.x, so.y, so.z}, tfar, {ls.wi.x, ls.wi.y, ls.wi.z}, 2});
+            ++stats.shadow_rays;
+            if (sr.tfar >= 0) {
+                const float light_pdf = select_pdf * ls.pdf;
+                const float w =
+                    ls.delta ? 1.0f
+                             : power_heuristic(light_pdf, bsdf.pdf(to_hair(wo_local),
+                                                                   to_hair(wi_local)));
+                st.L += st.beta * f * ls.Li * (std::abs(wi_local.z) * w / light_pdf);
+            }
+        }
+    }
+
+    // --- Continue the path by sampling the hair BSDF ---
+    const auto bs = bsdf.sample(to_hair(wo_local), u_lobe, ub1, ub2);
+    if (!bs) return false;
+    const Vec3f wi = frame.to_world({bs->wi.x, bs->wi.y, bs->wi.z});
+    st.beta *= from_hair(bs->weight);
+    st.prev_pdf = bs->pdf;
+    st.prev_specular = false;
+    st.prev_ng = frame.z;
+    st.o = origin(wi);
+    st.d = wi;
+    st.skip_id = own_id;
+    return true;
+}
+
+}  // namespace pelage::renderer

@@ -1,0 +1,79 @@
+#include "renderer/integrator/render.h"
+
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <chrono>
+
+#include "renderer/core/progress.h"
+
+namespace pelage::renderer {
+
+namespace {
+constexpr int tile_size = 16;
+}  // namespace
+
+RenderResult render(const Scene &scene, const RenderOptions &opt) {
+    const auto t0 = std::chrono::steady_clock::now();
+    const FilmDesc &fd = scene.desc().film;
+    const int W = fd.width, H = fd.height, spp = fd.spp;
+    const Camera camera(opt.camera ? *opt.camera : scene.desc().camera, W, H);
+    const PixelFilter filter(fd.filter, fd.filter_radius);
+    PathIntegrator integrator(scene, camera, filter, W, H);
+    integrator.set_plugin_timing_stride(opt.plugin_timing_stride);
+    if (opt.camera_motion)
+        integrator.set_camera_motion(
+            [&opt, W, H](float u) { return Camera(opt.camera_motion(u), W, H); });
+
+    RenderResult result;
+    result.film = std::make_unique<Film>(W, H);
+    const int tiles_x = (W + tile_size - 1) / tile_size,
+              tiles_y = (H + tile_size - 1) / tile_size;
+    const int num_tiles = tiles_x * tiles_y;
+    // Passes of 1, 1, 2, 4, 8 ... samples: an early stop still has a whole image.
+    std::vector<int> bounds = {0};
+    while (bounds.back() < spp)
+        bounds.push_back(std::min(spp, std::max(1, 2 * bounds.back())));
+    const int passes = int(bounds.size()) - 1;
+
+    tbb::enumerable_thread_specific<RenderStats> stats;
+    tbb::enumerable_thread_specific<std::vector<RecordedRay>> logs;
+    Progress progress("render", uint64_t(num_tiles) * passes, opt.progress);
+    std::atomic<bool> stopped{false};
+
+    for (int pass = 0; pass < passes && !stopped.load(); ++pass) {
+        const int s0 = bounds[pass], s1 = bounds[pass + 1];
+        tbb::parallel_for(
+            tbb::blocked_range<int>(0, num_tiles, 1),
+            [&](const tbb::blocked_range<int> &range) {
+                RenderStats &st = stats.local();
+                std::vector<RecordedRay> *log = opt.record_rays ? &logs.local() : nullptr;
+                Sampler sampler(opt.seed, opt.frame);
+                for (int tile = range.begin(); tile != range.end(); ++tile) {
+                    if (opt.cancel && opt.cancel->load(std::memory_order_relaxed)) {
+                        stopped.store(true);
+                        return;
+                    }
+                    const int tx = tile % tiles_x, ty = tile / tiles_x;
+                    const int x0 = tx * tile_size, y0 = ty * tile_size;
+                    integrator.render_tile(*result.film, sampler, x0, y0,
+                                           std::min(W, x0 + tile_size),
+                                           std::min(H, y0 + tile_size), s0, s1, st, log);
+                    progress.advance();
+                }
+            });
+        scene.geometry().check();  // an Embree error fails the run
+        if (!stopped.load()) result.spp_done = s1;
+    }
+    progress.finish();
+    result.interrupted = stopped.load();
+    for (const RenderStats &s : stats) result.stats.add(s);
+    if (opt.record_rays)
+        for (auto &l : logs) result.rays.push_back(std::move(l));
+    result.seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    return result;
+}
+
+}  // namespace pelage::renderer

@@ -1,0 +1,45 @@
+// Rendering a scene: progressive passes of 1, 1, 2, 4, 8 ... samples over all pixels,
+// each pass a TBB parallel loop over 16×16 tiles. Every pixel's samples are summed in
+// sample order, and random numbers depend only on (seed, frame, x, y, sample), so the
+// image is bit-identical at any thread count. A cancel request stops at the next tile;
+// the film then holds all completed work (each pixel is normalized by its own weight
+// sum).
+#pragma once
+
+#include <atomic>
+#include <functional>
+#include <memory>
+#include <optional>
+#include <vector>
+
+#include "renderer/image/film.h"
+#include "renderer/integrator/integrator_path.h"
+#include "renderer/scene/scene.h"
+
+namespace pelage::renderer {
+
+struct RenderOptions {
+    uint64_t seed = 0;
+    uint32_t frame = 0;
+    const std::atomic<bool> *cancel = nullptr;
+    bool progress = false;     // draw a progress bar (the caller checks for a TTY)
+    bool record_rays = false;  // keep every ray cast (benchmarks only)
+    uint64_t plugin_timing_stride = 16;  // time 1 plugin call in N (1: every call)
+    // Animation: the camera to use instead of the scene's, and camera motion blur (the
+    // camera at shutter position u in [0, 1)); both optional.
+    std::optional<CameraDesc> camera;
+    std::function<CameraDesc(float)> camera_motion;
+};
+
+struct RenderResult {
+    std::unique_ptr<Film> film;
+    RenderStats stats;
+    int spp_done = 0;  // samples every pixel received
+    bool interrupted = false;
+    double seconds = 0;
+    std::vector<std::vector<RecordedRay>> rays;  // per thread, when record_rays
+};
+
+RenderResult render(const Scene &scene, const RenderOptions &options);
+
+}  // namespace pelage::renderer

@@ -1,0 +1,124 @@
+#include "renderer/scene/scene.h"
+
+#include <cmath>
+
+#include <filesystem>
+#include <stdexcept>
+
+#include "renderer/bsdf/bsdf_coated.h"
+#include "sim/core/input_error.h"
+
+namespace pelage::renderer {
+
+Scene::Scene(const SceneDesc &desc, const PluginRegistry &plugins) : m_desc(desc) {
+    // A constructor that throws never runs its destructor: plugin instances created
+    // before the failure (e.g. fur asking for too many strands) are released here.
+    try {
+        build(m_desc, plugins);
+    } catch (...) {
+        destroy_instances();
+        throw;
+    }
+}
+
+void Scene::build(const SceneDesc &desc, const PluginRegistry &plugins) {
+    // --- Check every material's shader and parameters before loading any mesh ---
+    std::vector<const LoadedPlugin *> chosen;
+    std::vector<PluginParams> params;
+    for (size_t i = 0; i < desc.objects.size(); ++i) {
+        const std::string field = "objects[" + std::to_string(i) + "].material";
+        const LoadedPlugin &p =
+            plugins.get(desc.objects[i].material.shader, desc.path, field + ".shader");
+        params.push_back(validate_plugin_params(*p.desc, desc.objects[i].material.params,
+                                                desc.path, field + ".params"));
+        chosen.push_back(&p);
+    }
+    for (size_t i = 0; i < desc.objects.size(); ++i)
+        if (const std::string &c = desc.objects[i].cells;
+            !c.empty() && !std::filesystem::is_regular_file(c))
+            throw InputError(c, 0, "",
+                             "cannot open file (objects[" + std::to_string(i) +
+                                 "].cells in " + desc.path + ")");
+    m_geometry = std::make_unique<EmbreeScene>(desc);
+    m_lights = std::make_unique<Lights>(desc.lights, m_geometry->bounding_radius(),
+                                        desc.integrator.light_selection);
+
+    m_materials.resize(desc.objects.size());
+    for (size_t i = 0; i < desc.objects.size(); ++i) {
+        const ObjectDesc &o = desc.objects[i];
+        const MeshData &mesh = *m_geometry->objects()[i].mesh;
+        PelageParamSet ps{};
+        ps.count = uint32_t(params[i].values.size());
+        ps.values = params[i].values.data();
+        ps.object_id = uint32_t(i);
+        ps.mesh.num_vertices = mesh.num_vertices;
+        ps.mesh.num_triangles = mesh.num_triangles;
+        ps.mesh.positions = mesh.object_positions.data();
+        ps.mesh.triangles = mesh.triangles.data();
+        ps.mesh.corner_uvs = mesh.corner_uvs.empty() ? nullptr : mesh.corner_uvs.data();
+        ps.mesh.cells_path = o.cells.empty() ? nullptr : o.cells.c_str();
+        ps.mesh.mesh_path = o.mesh.c_str();
+        ps.scene_dir = desc.dir.c_str();
+        PelageError err{};
+        Material &m = m_materials[i];
+        m.plugin = chosen[i]->desc;
+        m.instance = m.plugin->create(&ps, &err);
+        if (!m.instance) {
+            err.message[sizeof(err.message) - 1] = 0;
+            throw InputError(desc.path, 0, "objects[" + std::to_string(i) + "].material",
+                             std::string("shader \"") + m.plugin->name + "\" (" +
+                                 chosen[i]->file + ") refused its parameters: " +
+                                 (err.message[0] ? err.message : "no reason given"));
+        }
+        m.bsdf = o.material.bsdf;
+        m.roughness = o.material.roughness;
+        m.ior = o.material.ior;
+        if (m.bsdf == MaterialDesc::Bsdf::coated)
+            m.coat_F_int = BsdfCoated::internal_diffuse_reflectance(m.ior);
+        if (m_aov_names.empty() && m.plugin->aov_names)
+            for (int k = 0; k < PELAGE_SHADER_AOV_SLOTS && m.plugin->aov_names[k]; ++k)
+                m_aov_names.push_back(m.plugin->aov_names[k]);
+    }
+    // --- Fur: strands grown from each furry object's skin, added to the Embree scene ---
+    for (const ObjectDesc &o : desc.objects)
+        if (o.fur) {
+            // Each root's pigment: the skin's own material plugin at that point.
+            const auto pigment = [this](size_t i, const fur::SurfacePoint &s, fur::Vec3f p,
+                                        fur::Vec3f n) {
+                const Material &mat = m_materials[i];
+                PelageHit hit{};
+                hit.object_id = uint32_t(i);
+                hit.primitive_id = s.triangle;
+                hit.b1 = s.b1;
+                hit.b2 = s.b2;
+                hit.p[0] = p.x, hit.p[1] = p.y, hit.p[2] = p.z;
+                hit.n[0] = n.x, hit.n[1] = n.y, hit.n[2] = n.z;
+                hit.depth = 1;  // not a camera hit: no antialiasing blend across cell edges
+                PelageShade sh{};
+                sh.albedo[0] = sh.albedo[1] = sh.albedo[2] = 0.5f;
+                sh.roughness = -1;
+                mat.plugin->shade(mat.instance, &hit, &sh);
+                fur::RootPigment rp{sh.eumelanin, sh.pheomelanin, -1};
+                // The cell type, when the plugin names an AOV slot "cell_type".
+                if (sh.aov_written && mat.plugin->aov_names)
+                    for (int k = 0; k < PELAGE_SHADER_AOV_SLOTS && mat.plugin->aov_names[k];
+                         ++k)
+                        if (std::string(mat.plugin->aov_names[k]) == "cell_type" &&
+                            std::isfinite(sh.aov[k]) && sh.aov[k] >= 0)
+                            rp.cell_type = int(sh.aov[k]);
+                return rp;
+            };
+            m_fur = std::make_unique<FurGeometry>(desc, *m_geometry, pigment);
+            if (m_fur->layers().empty()) m_fur.reset();
+            break;
+        }
+}
+
+Scene::~Scene() { destroy_instances(); }
+
+void Scene::destroy_instances() {
+    for (Material &m : m_materials)
+        if (m.instance) m.plugin->destroy(m.instance), m.instance = nullptr;
+}
+
+}  // namespace pelage::renderer

@@ -1,0 +1,491 @@
+#include "renderer/scene_file/scene_file.h"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <set>
+#include <sstream>
+
+#include "renderer/scene_file/json_fields.h"
+#include "renderer/scene_file/scene_fur.h"
+#include "sim/core/input_error.h"
+
+namespace pelage::renderer {
+namespace {
+
+namespace fs = std::filesystem;
+using json = nlohmann::json;
+
+// One object of the scene file (json_fields.h), with paths resolved against the file's
+// folder.
+class Reader : public JsonFields {
+  public:
+    Reader(const json &j, std::string path, const SceneDesc &scene)
+        : JsonFields(j, std::move(path), scene.path), m_scene(scene) {}
+
+    // A path relative to the scene file, made absolute.
+    std::string path(const std::string &key, bool required = false) {
+        const std::string s = string(key, "", required);
+        if (s.empty()) {
+            if (has(key)) fail(field(key), "empty path");
+            return s;
+        }
+        return resolve(s);
+    }
+    std::string resolve(const std::string &s) const {
+        const fs::path p(s);
+        return p.is_absolute() ? s
+                               : (fs::path(m_scene.dir) / p).lexically_normal().string();
+    }
+    static const SceneDesc &scene_of(const Reader &r) { return r.m_scene; }
+
+  private:
+    const SceneDesc &m_scene;
+};
+
+CameraDesc read_camera(Reader r) {
+    CameraDesc c;
+    c.type = r.choice<CameraDesc::Type>("type", c.type,
+                                        {{"pinhole", CameraDesc::Type::pinhole},
+                                         {"thin_lens", CameraDesc::Type::thin_lens}});
+    c.position = r.vec3("position", c.position);
+    c.look_at = r.vec3("look_at", c.look_at);
+    c.up = r.vec3("up", c.up);
+    c.fov_deg = float(r.number("fov", c.fov_deg, 0.01, 179.0));
+    c.aperture_radius = float(r.number("aperture_radius", 0, 0, 1e9));
+    c.focus_distance = float(r.number("focus_distance", 0, 0, 1e9));
+    if (c.type == CameraDesc::Type::pinhole &&
+        (r.has("aperture_radius") || r.has("focus_distance")))
+        r.fail(r.field(r.has("aperture_radius") ? "aperture_radius" : "focus_distance"),
+               "only a thin_lens camera has an aperture (set \"type\": \"thin_lens\")");
+    r.finish();
+    const Vec3f fwd = c.look_at - c.position;
+    if (length(fwd) <= 0) r.fail(r.field("look_at"), "equals the camera position");
+    if (length(c.up) <= 0 || length(cross(normalize(fwd), normalize(c.up))) < 1e-6f)
+        r.fail(r.field("up"), "is zero or parallel to the viewing direction");
+    return c;
+}
+
+LightDesc read_light(Reader r) {
+    LightDesc l;
+    const std::string type = r.string("type", "", true);
+    if (type == "environment")
+        l.type = LightDesc::Type::environment;
+    else if (type == "distant")
+        l.type = LightDesc::Type::distant;
+    else if (type == "sphere")
+        l.type = LightDesc::Type::sphere;
+    else if (type == "quad")
+        l.type = LightDesc::Type::quad;
+    else
+        r.fail(r.field("type"), "unknown light type \"" + type +
+                                    "\" (expected environment, distant, sphere or quad)");
+    l.color = r.color("color", l.color);
+    l.intensity = float(r.number("intensity", l.intensity, 0, 1e12));
+    switch (l.type) {
+        case LightDesc::Type::environment:
+            l.image = r.path("image");
+            l.rotation_deg = float(r.number("rotation", 0, -360, 360));
+            if (!l.image.empty() && r.has("color"))
+                r.fail(r.field("color"),
+                       "conflicts with \"image\" (scale an image with \"intensity\")");
+            break;
+        case LightDesc::Type::distant:
+            l.direction = r.vec3("direction", l.direction, -1e30, 1e30, true);
+            if (length(l.direction) <= 0)
+                r.fail(r.field("direction"), "must not be zero");
+            l.direction = normalize(l.direction);
+            l.angle_deg = float(r.number("angle", 0, 0, 90));
+            break;
+        case LightDesc::Type::sphere:
+            l.center = r.vec3("center", l.center, -1e30, 1e30, true);
+            l.radius = float(r.number("radius", 1, 1e-9, 1e30, true));
+            break;
+        case LightDesc::Type::quad:
+            l.corner = r.vec3("corner", l.corner, -1e30, 1e30, true);
+            l.edge_u = r.vec3("edge_u", l.edge_u, -1e30, 1e30, true);
+            l.edge_v = r.vec3("edge_v", l.edge_v, -1e30, 1e30, true);
+            l.two_sided = r.boolean("two_sided", false);
+            if (!(length(cross(l.edge_u, l.edge_v)) > 0))
+                r.fail(r.field("edge_v"), "edge_u and edge_v span no area");
+            break;
+    }
+    r.finish();
+    return l;
+}
+
+Affine read_transform(Reader r) {
+    Affine m;
+    if (r.has("matrix")) {
+        for (const char *k : {"translate", "rotate", "scale"})
+            if (r.has(k)) r.fail(r.field(k), "conflicts with \"matrix\"");
+        const json &v = *r.take("matrix");
+        if (!v.is_array() || v.size() != 12)
+            r.fail(r.field("matrix"), "expected 12 numbers (a row-major 3x4 matrix)");
+        for (int i = 0; i < 12; ++i)
+            m.m[i / 4][i % 4] = float(r.check_number(
+                v[i], r.field("matrix") + "[" + std::to_string(i) + "]", -1e30, 1e30));
+    } else {
+        Vec3f s{1, 1, 1};
+        if (const json *sv = r.take("scale")) {
+            if (sv->is_number()) {
+                const float x = float(r.check_number(*sv, r.field("scale"), 1e-30, 1e30));
+                s = {x, x, x};
+            } else {
+                s = r.check_vec3(*sv, r.field("scale"), -1e30, 1e30);
+            }
+        }
+        Affine sm;
+        sm.m[0][0] = s.x;
+        sm.m[1][1] = s.y;
+        sm.m[2][2] = s.z;
+        Affine rm;
+        if (const json *rv = r.take("rotate")) {
+            // [angle in degrees, axis x, y, z]
+            if (!rv->is_array() || rv->size() != 4)
+                r.fail(r.field("rotate"),
+                       "expected [angle_degrees, axis_x, axis_y, axis_z]");
+            float a[4];
+            for (int i = 0; i < 4; ++i)
+                a[i] = float(r.check_number(
+                    (*rv)[i], r.field("rotate") + "[" + std::to_string(i) + "]", -1e30,
+                    1e30));
+            Vec3f axis{a[1], a[2], a[3]};
+            if (length(axis) <= 0) r.fail(r.field("rotate"), "zero rotation axis");
+            axis = normalize(axis);
+            const float th = a[0] * pi / 180, c = std::cos(th), sn = std::sin(th),
+                        t = 1 - c;
+            const float x = axis.x, y = axis.y, z = axis.z;
+            const float rot[3][3] = {
+                {t * x * x + c, t * x * y - sn * z, t * x * z + sn * y},
+                {t * x * y + sn * z, t * y * y + c, t * y * z - sn * x},
+                {t * x * z - sn * y, t * y * z + sn * x, t * z * z + c}};
+            for (int i = 0; i < 3; ++i)
+                for (int j = 0; j < 3; ++j) rm.m[i][j] = rot[i][j];
+        }
+        const Vec3f tr = r.vec3("translate", {});
+        Affine tm;
+        tm.m[0][3] = tr.x;
+        tm.m[1][3] = tr.y;
+        tm.m[2][3] = tr.z;
+        m = tm * (rm * sm);
+    }
+    r.finish();
+    if (!(std::abs(m.determinant3()) > 1e-30f))
+        r.fail(r.path_prefix(), "singular transform");
+    return m;
+}
+
+MaterialDesc read_material(Reader r) {
+    MaterialDesc m;
+    m.shader = r.string("shader", m.shader);
+    if (m.shader.empty()) r.fail(r.field("shader"), "empty shader name");
+    if (const json *p = r.take("params")) {
+        if (!p->is_object())
+            r.fail(r.field("params"),
+                   std::string("expected an object, got ") + json_type_name(*p));
+        m.params = *p;
+    }
+    m.bsdf = r.choice<MaterialDesc::Bsdf>("bsdf", m.bsdf,
+                                          {{"lambert", MaterialDesc::Bsdf::lambert},
+                                           {"coated", MaterialDesc::Bsdf::coated}});
+    if (m.bsdf == MaterialDesc::Bsdf::lambert && (r.has("roughness") || r.has("ior")))
+        r.fail(r.field(r.has("roughness") ? "roughness" : "ior"),
+               "only the \"coated\" bsdf has a coat (set \"bsdf\": \"coated\")");
+    m.roughness = float(r.number("roughness", m.roughness, 0, 1));
+    m.ior = float(r.number("ior", m.ior, 1.0, 3.0));
+    r.finish();
+    return m;
+}
+
+TurntableDesc read_turntable(Reader r) {
+    TurntableDesc t;
+    t.axis = r.vec3("axis", t.axis);
+    if (!(length(t.axis) > 0)) r.fail(r.field("axis"), "must not be zero");
+    t.axis = normalize(t.axis);
+    t.center = r.vec3("center", t.center);
+    t.degrees = float(r.number("degrees", t.degrees, -36000, 36000));
+    t.target =
+        r.choice<TurntableDesc::Target>("target", t.target,
+                                        {{"camera", TurntableDesc::Target::camera},
+                                         {"object", TurntableDesc::Target::object}});
+    if (const json *v = r.take("objects")) {
+        const std::string f = r.field("objects");
+        if (t.target != TurntableDesc::Target::object)
+            r.fail(f,
+                   "only an object turntable turns objects (set \"target\": \"object\")");
+        if (!v->is_array() || v->empty())
+            r.fail(f, "expected a non-empty array of object names");
+        for (size_t i = 0; i < v->size(); ++i) {
+            if (!(*v)[i].is_string())
+                r.fail(f + "[" + std::to_string(i) + "]",
+                       std::string("expected an object name, got ") +
+                           json_type_name((*v)[i]));
+            t.objects.push_back((*v)[i].get<std::string>());
+        }
+    }
+    if (const json *v = r.take("shutter")) {
+        const std::string f = r.field("shutter");
+        if (!v->is_array() || v->size() != 2)
+            r.fail(f, "expected [open, close] in frames, within [0, 1]");
+        t.shutter_open = float(r.check_number((*v)[0], f + "[0]", 0, 1));
+        t.shutter_close = float(r.check_number((*v)[1], f + "[1]", 0, 1));
+        if (t.shutter_close < t.shutter_open)
+            r.fail(f + "[1]", "the shutter closes before it opens");
+        if (t.motion_blur() && t.target == TurntableDesc::Target::object)
+            r.fail(f,
+                   "motion blur is camera-only: an object turntable takes no open "
+                   "shutter (use \"target\": \"camera\")");
+    }
+    r.finish();
+    return t;
+}
+
+AnimationDesc read_animation(Reader r) {
+    AnimationDesc a;
+    a.present = true;
+    a.frames = r.integer("frames", a.frames, 1, 1000000);
+    a.fps = r.number("fps", a.fps, 0.001, 1000);
+    if (const json *v = r.take("turntable"))
+        a.turntable =
+            read_turntable(Reader(*v, r.field("turntable"), Reader::scene_of(r)));
+    r.finish();
+    return a;
+}
+
+ObjectDesc read_object(Reader r, size_t index) {
+    ObjectDesc o;
+    o.name = r.string("name", "object" + std::to_string(index));
+    const std::string mesh = r.string("mesh", "", true);
+    if (mesh.empty()) r.fail(r.field("mesh"), "empty mesh path");
+    o.mesh = mesh.rfind("procedural:", 0) == 0 ? mesh : r.resolve(mesh);
+    o.cells = r.path("cells");
+    o.normals = r.choice<ObjectDesc::Normals>("normals", o.normals,
+                                              {{"auto", ObjectDesc::Normals::automatic},
+                                               {"flat", ObjectDesc::Normals::flat},
+                                               {"smooth", ObjectDesc::Normals::smooth}});
+    // "deform": "pose.obj" or ["frame0.obj", "frame1.obj", ...]
+    if (const json *v = r.take("deform")) {
+        const std::string f = r.field("deform");
+        auto one = [&](const json &e, const std::string &ef) {
+            if (!e.is_string() || e.get<std::string>().empty())
+                r.fail(ef, std::string("expected a mesh path, got ") +
+                               (e.is_string() ? "an empty string" : json_type_name(e)));
+            o.deform.push_back(r.resolve(e.get<std::string>()));
+        };
+        if (v->is_array()) {
+            if (v->empty()) r.fail(f, "empty list of meshes");
+            for (size_t i = 0; i < v->size(); ++i)
+                one((*v)[i], f + "[" + std::to_string(i) + "]");
+        } else {
+            one(*v, f);
+        }
+        if (o.mesh.rfind("procedural:", 0) == 0)
+            r.fail(f, "a procedural mesh cannot deform (give the rest pose as a file)");
+        o.deform_mesh = o.deform.back();
+        o.deform_weight = 1;
+    }
+    if (const json *v = r.take("fur"))
+        o.fur = read_fur(*v, r.field("fur"), Reader::scene_of(r).path);
+    r.finish();
+    return o;
+}
+
+}  // namespace
+
+SceneDesc parse_scene(const std::string &text, const std::string &path) {
+    SceneDesc scene;
+    scene.path = path;
+    scene.dir = path.empty() ? fs::current_path().string()
+                             : fs::absolute(fs::path(path)).parent_path().string();
+    json root;
+    try {
+        root = json::parse(text);
+    } catch (const json::parse_error &e) {
+        // nlohmann reports a byte offset; turn it into a line number.
+        const size_t at = std::min<size_t>(e.byte, text.size());
+        const size_t line = 1 + std::count(text.begin(), text.begin() + long(at), '\n');
+        std::string what = e.what();
+        const auto pos = what.find("parse error");
+        throw InputError(
+            path, line, "",
+            "invalid JSON: " + (pos == std::string::npos ? what : what.substr(pos)));
+    } catch (const json::exception &e) {
+        // out_of_range: a number such as 1e400 that overflows a double.
+        throw InputError(path, 0, "", std::string("invalid JSON: ") + e.what());
+    }
+    Reader r(root, "", scene);
+    if (const json *v = r.take("camera"))
+        scene.camera = read_camera(Reader(*v, "camera", scene));
+    else
+        r.fail("camera", "missing required field");
+
+    if (const json *v = r.take("film")) {
+        Reader fr(*v, "film", scene);
+        FilmDesc &f = scene.film;
+        f.width = fr.integer("width", f.width, 1, 65536);
+        f.height = fr.integer("height", f.height, 1, 65536);
+        f.spp = fr.integer("spp", f.spp, 1, 1 << 20);
+        if (const json *fv = fr.take("filter")) {
+            Reader flt(*fv, "film.filter", scene);
+            f.filter = flt.choice<FilterType>(
+                "type", f.filter,
+                {{"box", FilterType::box},
+                 {"gaussian", FilterType::gaussian},
+                 {"blackman_harris", FilterType::blackman_harris}});
+            const float def = f.filter == FilterType::box
+                                  ? 0.5f
+                                  : (f.filter == FilterType::gaussian ? 1.5f : 2.0f);
+            f.filter_radius = float(flt.number("radius", def, 0.5, 8));
+            flt.finish();
+        }
+        f.output = fr.path("output");
+        f.preview = fr.path("preview");
+        f.half = fr.choice<bool>("pixel_type", true, {{"half", true}, {"float", false}});
+        f.view = fr.string("view", f.view);
+        fr.finish();
+    }
+
+    if (const json *v = r.take("lights")) {
+        if (!v->is_array())
+            r.fail("lights", std::string("expected an array, got ") + json_type_name(*v));
+        for (size_t i = 0; i < v->size(); ++i)
+            scene.lights.push_back(
+                read_light(Reader((*v)[i], "lights[" + std::to_string(i) + "]", scene)));
+    }
+    size_t environments = 0;
+    for (const auto &l : scene.lights)
+        environments += l.type == LightDesc::Type::environment;
+    if (environments > 1) r.fail("lights", "more than one environment light");
+
+    const json &objs = r.require("objects");
+    if (!objs.is_array())
+        r.fail("objects", std::string("expected an array, got ") + json_type_name(objs));
+    for (size_t i = 0; i < objs.size(); ++i) {
+        const std::string p = "objects[" + std::to_string(i) + "]";
+        Reader orr(objs[i], p, scene);
+        ObjectDesc o;
+        if (const json *t = orr.take("transform"))
+            o.transform = read_transform(Reader(*t, p + ".transform", scene));
+        if (const json *m = orr.take("material"))
+            o.material = read_material(Reader(*m, p + ".material", scene));
+        const Affine t = o.transform;
+        const MaterialDesc mat = o.material;
+        // The remaining keys: name, mesh, cells, normals.
+        o = read_object(std::move(orr), i);
+        o.transform = t;
+        o.material = mat;
+        scene.objects.push_back(std::move(o));
+    }
+
+    if (const json *v = r.take("animation"))
+        scene.animation = read_animation(Reader(*v, "animation", scene));
+    if (const auto &tt = scene.animation.turntable)
+        for (size_t i = 0; i < tt->objects.size(); ++i)
+            if (std::none_of(
+                    scene.objects.begin(), scene.objects.end(),
+                    [&](const ObjectDesc &o) { return o.name == tt->objects[i]; }))
+                r.fail("animation.turntable.objects[" + std::to_string(i) + "]",
+                       "no object is named \"" + tt->objects[i] + "\"");
+    for (size_t i = 0; i < scene.objects.size(); ++i) {
+        const auto &d = scene.objects[i].deform;
+        if (d.size() > 1 && int(d.size()) != scene.animation.frames)
+            r.fail("objects[" + std::to_string(i) + "].deform",
+                   "a per-frame list of " + std::to_string(d.size()) +
+                       " meshes needs animation.frames = " + std::to_string(d.size()) +
+                       " (it is " + std::to_string(scene.animation.frames) + ")");
+    }
+
+    if (const json *v = r.take("integrator")) {
+        Reader ir(*v, "integrator", scene);
+        scene.integrator.max_depth =
+            ir.integer("max_depth", scene.integrator.max_depth, 1, 1024);
+        scene.integrator.rr_depth =
+            ir.integer("rr_depth", scene.integrator.rr_depth, 1, 1024);
+        scene.integrator.light_selection = ir.choice<IntegratorDesc::LightSelection>(
+            "light_selection", scene.integrator.light_selection,
+            {{"power", IntegratorDesc::LightSelection::power},
+             {"uniform", IntegratorDesc::LightSelection::uniform}});
+        ir.finish();
+    }
+    r.finish();
+    if (scene.objects.empty() && scene.lights.empty())
+        r.fail("objects", "the scene is empty (no objects, no lights)");
+    return scene;
+}
+
+Affine rotation_about(Vec3f axis, Vec3f center, float degrees) {
+    // Rodrigues' rotation matrix, conjugated by the translation to `center`
+    const double th = double(degrees) * 3.14159265358979323846 / 180;
+    const double c = std::cos(th), sn = std::sin(th), t = 1 - c;
+    const double x = axis.x, y = axis.y, z = axis.z;
+    const double rot[3][3] = {{t * x * x + c, t * x * y - sn * z, t * x * z + sn * y},
+                              {t * x * y + sn * z, t * y * y + c, t * y * z - sn * x},
+                              {t * x * z - sn * y, t * y * z + sn * x, t * z * z + c}};
+    Affine m;
+    for (int i = 0; i < 3; ++i) {
+        double off = center[i];
+        for (int j = 0; j < 3; ++j) {
+            m.m[i][j] = float(rot[i][j]);
+            off -= rot[i][j] * center[j];
+        }
+        m.m[i][3] = float(off);
+    }
+    return m;
+}
+
+float turntable_degrees(const AnimationDesc &a, double frame_time) {
+    if (!a.turntable) return 0;
+    return float(double(a.turntable->degrees) * frame_time / double(a.frames));
+}
+
+CameraDesc camera_at(const SceneDesc &scene, double frame_time) {
+    CameraDesc c = scene.camera;
+    const auto &tt = scene.animation.turntable;
+    if (!tt || tt->target != TurntableDesc::Target::camera) return c;
+    const Affine m = rotation_about(tt->axis, tt->center,
+                                    turntable_degrees(scene.animation, frame_time));
+    c.position = m.point(c.position);
+    c.look_at = m.point(c.look_at);
+    c.up = m.vector(c.up);
+    return c;
+}
+
+SceneDesc scene_at_frame(const SceneDesc &scene, int frame) {
+    SceneDesc s = scene;
+    const auto &tt = scene.animation.turntable;
+    const double t0 = frame + (tt ? tt->shutter_open : 0.0);
+    s.camera = camera_at(scene, t0);
+    if (tt && tt->target == TurntableDesc::Target::object) {
+        const Affine m =
+            rotation_about(tt->axis, tt->center, turntable_degrees(scene.animation, t0));
+        for (ObjectDesc &o : s.objects)
+            if (tt->objects.empty() || std::find(tt->objects.begin(), tt->objects.end(),
+                                                 o.name) != tt->objects.end())
+                o.transform = m * o.transform;
+    }
+    for (ObjectDesc &o : s.objects) {
+        if (o.deform.empty()) continue;
+        if (o.deform.size() > 1) {
+            o.deform_mesh = o.deform[size_t(frame) % o.deform.size()];
+            o.deform_weight = 1;
+        } else {
+            // One pose: from rest at frame 0 to the pose at the last frame.
+            const int n = scene.animation.frames;
+            o.deform_mesh = o.deform[0];
+            o.deform_weight = n > 1 ? float(frame) / float(n - 1) : 1.0f;
+        }
+    }
+    return s;
+}
+
+SceneDesc load_scene_file(const std::string &path) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw InputError(path, 0, "", "cannot open scene file");
+    std::ostringstream ss;
+    ss << in.rdbuf();
+    return parse_scene(ss.str(), path);
+}
+
+}  // namespace pelage::renderer

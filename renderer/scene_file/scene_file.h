@@ -1,0 +1,143 @@
+// Scene files (scenes/*.json): the description of what to render, parsed and fully
+// validated before any work starts. Every field is checked (type, range); unknown keys
+// are errors; errors are pelage::InputError naming the scene file and the JSON path, e.g.
+// `objects[2].material.shader: unknown shader "wroley"`. Paths inside a scene are
+// resolved relative to the scene file. The format is documented in README.md
+// ("Scene files").
+#pragma once
+
+#include <array>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "renderer/core/math.h"
+#include "shader/fur/fur_params.h"
+
+namespace pelage::renderer {
+
+struct CameraDesc {
+    enum class Type { pinhole, thin_lens } type = Type::pinhole;
+    Vec3f position{0, 1, 5}, look_at{0, 0, 0}, up{0, 1, 0};
+    float fov_deg = 40;         // vertical field of view
+    float aperture_radius = 0;  // thin lens only, scene units
+    float focus_distance = 0;   // thin lens only; 0 = distance to look_at
+};
+
+enum class FilterType { box, gaussian, blackman_harris };
+
+struct FilmDesc {
+    int width = 640, height = 360, spp = 16;
+    FilterType filter = FilterType::gaussian;
+    float filter_radius = 1.5f;  // pixels
+    std::string output;          // absolute, "" = none given
+    std::string preview;         // absolute, "" = none
+    bool half = true;  // beauty/albedo/normal as half; depth/ids/shader always float
+    std::string view = "Standard";  // OCIO view of the preview
+};
+
+struct LightDesc {
+    enum class Type { environment, distant, sphere, quad } type = Type::environment;
+    Rgb color{1, 1, 1};
+    float intensity = 1;
+    std::string image;          // environment: absolute path of a lat-long image, or ""
+    float rotation_deg = 0;     // environment: about +y
+    Vec3f direction{0, -1, 0};  // distant: the direction light travels
+    float angle_deg = 0;        // distant: apparent diameter (0.53 for the sun)
+    Vec3f center{};             // sphere
+    float radius = 1;           // sphere
+    Vec3f corner{}, edge_u{1, 0, 0},
+        edge_v{0, 0, 1};     // quad; emits towards edge_u × edge_v
+    bool two_sided = false;  // quad
+};
+
+struct ParamValue {
+    std::string name;
+    int type = 0;  // PelageParamType
+    std::array<float, 3> f{};
+    int i = 0;
+    std::string s;
+};
+
+struct MaterialDesc {
+    std::string shader = "diffuse";
+    nlohmann::json params =
+        nlohmann::json::object();  // validated against the plugin later
+    enum class Bsdf { lambert, coated } bsdf = Bsdf::lambert;
+    float roughness = 0.3f, ior = 1.5f;
+};
+
+struct ObjectDesc {
+    std::string name;
+    std::string mesh;  // absolute path or "procedural:..."
+    Affine transform;
+    MaterialDesc material;
+    std::string cells;  // absolute path or ""
+    enum class Normals { automatic, flat, smooth } normals = Normals::automatic;
+    // Deformation (same topology as `mesh`): one pose, or one mesh per animation frame.
+    std::vector<std::string> deform;  // absolute paths; empty = rigid
+    // The pose rendered: positions = lerp(mesh, deform_mesh, deform_weight). Set by the
+    // parser (the last pose, weight 1) and by scene_at_frame().
+    std::string deform_mesh;
+    float deform_weight = 0;
+    std::optional<fur::FurParams> fur;  // strands on this object (renderer/scene_file/scene_fur.h)
+};
+
+// "animation": {"frames", "fps", "turntable": {...}}. A turntable turns the camera about
+// the axis through `center` (target camera; the scene turns the other way in the image)
+// or every object (target object) by `degrees` over the whole animation: frame f at
+// degrees·f/frames, so a 360° loop does not repeat its first frame. The shutter is in
+// frames, [open, close] ⊂ [0, 1]; an open shutter blurs the camera's motion (camera
+// target only).
+struct TurntableDesc {
+    Vec3f axis{0, 1, 0}, center{0, 0, 0};
+    float degrees = 360;
+    enum class Target { camera, object } target = Target::camera;
+    std::vector<std::string> objects;  // target object: the names turned ({} = all)
+    float shutter_open = 0, shutter_close = 0;
+    bool motion_blur() const { return shutter_close > shutter_open; }
+};
+
+struct AnimationDesc {
+    bool present = false;
+    int frames = 1;
+    double fps = 24;
+    std::optional<TurntableDesc> turntable;
+};
+
+struct IntegratorDesc {
+    int max_depth = 8;  // path vertices after the camera
+    int rr_depth = 3;   // Russian roulette from this depth on
+    // Next-event estimation picks one light per vertex: in proportion to its estimated
+    // power, or uniformly.
+    enum class LightSelection { power, uniform } light_selection = LightSelection::power;
+};
+
+struct SceneDesc {
+    std::string path;  // the scene file ("" when parsed from a string)
+    std::string dir;   // its folder: relative paths resolve against it
+    CameraDesc camera;
+    FilmDesc film;
+    std::vector<LightDesc> lights;
+    std::vector<ObjectDesc> objects;
+    IntegratorDesc integrator;
+    AnimationDesc animation;
+};
+
+// Reads and validates a scene file. Throws pelage::InputError.
+SceneDesc load_scene_file(const std::string &path);
+// The same, from text; `path` names it in errors and anchors relative paths.
+SceneDesc parse_scene(const std::string &text, const std::string &path);
+
+// Rotation by `degrees` about `axis` (unit) through `center`.
+Affine rotation_about(Vec3f axis, Vec3f center, float degrees);
+// The turntable angle at frame `frame` plus `time` (in frames, the shutter position).
+float turntable_degrees(const AnimationDesc &a, double frame_time);
+// The camera at frame + time (time in frames): orbited for a camera turntable.
+CameraDesc camera_at(const SceneDesc &scene, double frame_time);
+// The scene as frame `frame` shows it (shutter open): camera orbited or objects turned,
+// deforming objects at their pose for the frame.
+SceneDesc scene_at_frame(const SceneDesc &scene, int frame);
+
+}  // namespace pelage::renderer

@@ -1,0 +1,101 @@
+#include "renderer/scene_file/scene_fur.h"
+
+#include <algorithm>
+
+#include "renderer/scene_file/json_fields.h"
+
+namespace pelage::renderer {
+
+namespace {
+
+using json = nlohmann::json;
+
+// A list of per-cell-type multipliers, each in (0, 1000] (or [0, 1000] when zero_ok).
+std::vector<float> per_type(JsonFields &r, const std::string &key, bool zero_ok) {
+    const json *v = r.take(key);
+    if (!v) return {};
+    if (!v->is_array() || v->empty() || v->size() > 16)
+        r.fail(r.field(key), "expected an array of 1 to 16 numbers (one per cell type)");
+    std::vector<float> out;
+    for (size_t i = 0; i < v->size(); ++i)
+        out.push_back(float(r.check_number(
+            (*v)[i], r.field(key) + "[" + std::to_string(i) + "]", 0, 1000, !zero_ok)));
+    return out;
+}
+
+// An optional number in [lo, hi] ((lo, hi] when open_lo), as the float FurParams holds.
+float num(JsonFields &r, const std::string &key, float def, double lo, double hi,
+          bool open_lo = false) {
+    return float(r.number(key, def, lo, hi, false, open_lo));
+}
+
+}  // namespace
+
+fur::FurParams read_fur(const json &j, const std::string &field,
+                        const std::string &scene_path) {
+    JsonFields r(j, field, scene_path);
+    fur::FurParams p;
+    if (const json *v = r.take("density"))
+        p.density = r.check_number(*v, r.field("density"), 0, 1e12);
+    p.density_by_type = per_type(r, "density_by_type", true);
+    if (!p.density_by_type.empty() &&
+        *std::max_element(p.density_by_type.begin(), p.density_by_type.end()) <= 0)
+        r.fail(r.field("density_by_type"), "every multiplier is 0: no strand could grow");
+    p.seed = r.unsigned_integer("seed", p.seed, 0, ~0ull);
+    p.max_strands = r.unsigned_integer("max_strands", p.max_strands, 1, 50'000'000);
+    p.length = num(r, "length", p.length, 0, 1e9, true);
+    p.length_by_type = per_type(r, "length_by_type", false);
+    p.length_variation = num(r, "length_variation", p.length_variation, 0, 0.99);
+    p.root_radius = num(r, "root_radius", p.root_radius, 0, 1e9, true);
+    p.tip_radius = num(r, "tip_radius", p.tip_radius, 0, 1e9, true);
+    p.segments = int(r.unsigned_integer("segments", uint64_t(p.segments), 1, 64));
+    if (const json *v = r.take("comb")) {
+        if (v->is_string() && v->get<std::string>() == "normal") {
+            p.comb = fur::FurParams::Comb::normal;
+        } else if (v->is_array() && v->size() == 3) {
+            for (int k = 0; k < 3; ++k)
+                (k == 0   ? p.comb_direction.x
+                 : k == 1 ? p.comb_direction.y
+                          : p.comb_direction.z) =
+                    float(r.check_number((*v)[k],
+                                         r.field("comb") + "[" + std::to_string(k) + "]",
+                                         -1e6, 1e6));
+            const fur::Vec3f c = p.comb_direction;
+            if (c.x * c.x + c.y * c.y + c.z * c.z <= 0)
+                r.fail(r.field("comb"), "must not be zero");
+        } else {
+            r.fail(r.field("comb"),
+                   "expected [x, y, z] (a world direction) or \"normal\"");
+        }
+    }
+    p.comb_angle_deg = num(r, "comb_angle", p.comb_angle_deg, 0, 90);
+    p.comb_jitter_deg = num(r, "comb_jitter", p.comb_jitter_deg, 0, 60);
+    p.gravity = num(r, "gravity", p.gravity, 0, 10);
+    p.curl_radius = num(r, "curl_radius", p.curl_radius, 0, 1);
+    p.curl_turns = num(r, "curl_turns", p.curl_turns, 0, 100);
+    p.clump = num(r, "clump", p.clump, 0, 1);
+    p.clump_radius = num(r, "clump_radius", p.clump_radius, 0, 1e9, true);
+    p.melanin_scale = num(r, "melanin_scale", p.melanin_scale, 0, 100);
+    p.melanin_jitter = num(r, "melanin_jitter", p.melanin_jitter, 0, 1);
+    p.beta_m = num(r, "beta_m", p.beta_m, 0, 1, true);
+    p.beta_n = num(r, "beta_n", p.beta_n, 0, 1, true);
+    p.alpha_deg = num(r, "alpha", p.alpha_deg, -44, 44);
+    if (const json *v = r.take("curve")) {
+        const std::string s = v->is_string() ? v->get<std::string>() : "";
+        if (s == "round")
+            p.curve = fur::FurParams::Curve::round;
+        else if (s == "flat")
+            p.curve = fur::FurParams::Curve::flat;
+        else
+            r.fail(r.field("curve"),
+                   "expected \"round\" (B-spline tubes, close-ups) or "
+                   "\"flat\" (linear ribbons, distance)");
+    }
+    if (p.curve == fur::FurParams::Curve::round && p.segments < 2)
+        r.fail(r.field("segments"),
+               "a round (B-spline) strand needs at least 2 segments");
+    r.finish();
+    return p;
+}
+
+}  // namespace pelage::renderer

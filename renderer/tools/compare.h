@@ -1,0 +1,83 @@
+// `pelage compare`: the same scene rendered once per shader on its patterned objects
+// (same camera, lights, seed), with render times and in-process shading cost per lookup —
+// the comparison of Teo 2006 Table 7.9 (CM vs Perlin, Worley, texture).
+#pragma once
+
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "renderer/scene_file/scene_file.h"
+
+namespace pelage::renderer {
+
+struct CompareOptions {
+    std::vector<std::string> shaders{"clonal_mosaic", "worley", "perlin", "texture",
+                                     "diffuse"};
+    uint64_t seed = 0;
+    size_t lookups = 200000;  // surface points timed per shader
+    // Renders (and shading timings) per shader, the shaders alternating round by round;
+    // the times reported are each shader's minimum: on a shared machine other jobs only
+    // ever add time, so the minimum is the least disturbed estimate.
+    int repeats = 1;
+    // Give worley and perlin the mosaic's look (compare.cpp, match_baselines) unless the
+    // scene's own material is that shader; false: the plugins' defaults.
+    bool match_baselines = true;
+    // For `texture`: an atlas of the mosaic and the mesh with its UVs (`pelage bake`),
+    // used when the scene's material is not a texture already.
+    std::string texture_file, texture_mesh;
+    float texels_per_unit = 0;
+};
+
+struct CompareRun {
+    std::string shader;
+    double seconds = 0;      // the whole render, wall clock (minimum over the repeats)
+    double cpu_seconds = 0;  // ... CPU time of all threads (the ratios use it)
+    std::vector<double> cpu_seconds_each;  // every repeat's, in order
+    double ns_per_lookup =
+        0;  // shade() alone, same points for every shader, thread CPU time
+    std::vector<float> rgb;  // resolved beauty, linear RGB, width × height × 3
+};
+
+struct CompareResult {
+    int width = 0, height = 0;
+    std::vector<CompareRun> runs;
+    nlohmann::json params =
+        nlohmann::json::object();   // per shader, the params it ran with
+    nlohmann::json report() const;  // the `--report` contract (README, issue 5)
+};
+
+// Pattern drift under deformation: for each shader, the mean (and max) over `points`
+// area-uniform surface points (triangle, barycentrics) of the rest mesh of
+// |albedo(rest) - albedo(pose)|, averaged over R, G, B. The pose is the object's last
+// "deform" mesh. A pattern attached to the surface (clonal_mosaic) has drift 0; one on
+// object-space position (worley, perlin) swims.
+struct DriftRun {
+    std::string shader;
+    double mean = 0, max = 0;
+    size_t points = 0;
+};
+struct DriftResult {
+    size_t object = 0;  // the deforming patterned object measured
+    std::string pose;   // its pose mesh
+    std::vector<DriftRun> runs;
+    nlohmann::json report() const;
+};
+// InputError when no patterned object has a "deform".
+DriftResult measure_pattern_drift(const SceneDesc &desc, const CompareOptions &options);
+
+// The patterned objects are those with a "cells" file or the clonal_mosaic shader; each
+// shader is applied to them with the scene's params when the scene names that shader,
+// matched params (worley, perlin: options.match_baselines) or the atlas (texture)
+// otherwise, the plugin's defaults for the rest. InputError when the scene has no
+// patterned object.
+CompareResult compare_shaders(const SceneDesc &desc, const CompareOptions &options);
+
+// The look of a .cells mosaic as baseline parameters: spot and base colours (types F and
+// B when present), the spot fraction, and a frequency giving about as many spots per unit
+// area. `worley` or `perlin`; the perlin threshold is set by compare_shaders from the
+// noise's distribution on the surface. An empty object for other shaders.
+nlohmann::json matched_baseline_params(const std::string &shader,
+                                       const std::string &cells_path);
+
+}  // namespace pelage::renderer

@@ -1,0 +1,75 @@
+// The .cells file: what `pelage sim` writes and the shader, `pelage stats` and `pelage
+// preview` read. Self-contained: it carries the CRPS frames and neighbour maps, so tools
+// need no mesh, and the mesh identity, so a renderer refuses cells made for another mesh.
+//
+// Layout, version 1, all little-endian, no padding:
+//   fixed header (80 bytes)
+//     char[8] magic "PELCELLS"   u32 version (1)        u32 num_types (1..8)
+//     u64 mesh_hash              u64 num_triangles      u64 num_cells
+//     u64 num_maps               u64 seed               u64 params_bytes
+//     u64 payload_bytes          u64 reserved (0)
+//   payload (payload_bytes)
+//     params: params_bytes of UTF-8 JSON (the preset and run options)
+//     type table, per type: u32 name_bytes, name, f32 colour[3] (linear RGB),
+//         f32 eumelanin, f32 pheomelanin, f64 division_time (inf = never),
+//         f64 initial_probability
+//     frames, per triangle 22 × f64: rotation (3×3 row-major), normal (3), y_offset,
+//         centre (2), reference vertices v0 v1 v2 (6), area
+//     neighbour CSR: u32 nbr_row[num_triangles + 1], u32 nbr[num_maps],
+//         maps F[j→i] as 4 × f64 (cos, sin, ax, ay) [num_maps]  (sim/crps/crps.h)
+//     cells sorted by (triangle, id): u32 cell_row[num_triangles + 1],
+//         f64 x[num_cells], f64 z[num_cells] (2D CRPS, the triangle's local frame),
+//         u8 type[num_cells], u32 id[num_cells] (stable id = creation order)
+//   u64 checksum: FNV-1a 64 of the header and payload bytes
+// Readers check the counts against the file size before allocating, then the checksum,
+// then the structure (monotone rows, indices in range); any failure is an InputError.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "sim/mosaic/cell_types.h"
+#include "sim/mosaic/cells.h"
+#include "sim/crps/crps.h"
+
+namespace pelage::sim {
+
+inline constexpr uint32_t cells_file_version = 1;
+
+struct CellsData {
+    uint64_t mesh_hash = 0;
+    uint64_t seed = 0;
+    std::string params_json;
+    std::vector<CellType> types;
+    std::vector<CrpsFrame> frames;
+    std::vector<uint32_t> nbr_row;
+    std::vector<TriId> nbr;
+    std::vector<RigidMap2> to_master;  // F[nbr → i], parallel to nbr
+    std::vector<uint32_t> cell_row;
+    std::vector<double> x, z;
+    std::vector<uint8_t> type;
+    std::vector<uint32_t> id;
+
+    size_t num_triangles() const { return frames.size(); }
+    size_t num_cells() const { return x.size(); }
+    double area() const;
+    bool operator==(const CellsData &) const;
+};
+
+// Identity of a mesh: FNV-1a 64 over the triangle count, positions and indices.
+uint64_t mesh_hash(const TriangleMesh &mesh);
+
+CellsData make_cells_data(const TriangleMesh &mesh, const Crps &crps, const CellTypes &types,
+                          const Cells &cells, const std::string &params_json, uint64_t seed);
+
+std::vector<uint8_t> serialize_cells(const CellsData &data);
+// `name` is used in error messages.
+CellsData parse_cells(const std::vector<uint8_t> &bytes, const std::string &name);
+
+void write_cells_file(const std::string &path, const CellsData &data);  // atomic
+CellsData read_cells_file(const std::string &path);                     // one bulk read
+// InputError when the file was made for another mesh.
+void check_cells_match_mesh(const CellsData &data, const TriangleMesh &mesh, const std::string &path);
+
+}  // namespace pelage::sim

@@ -1,0 +1,76 @@
+#include "sim/cells_io/pattern_stats.h"
+
+#include <cmath>
+#include <numeric>
+
+namespace pelage::sim {
+
+namespace {
+
+int find_type(const CellsData &d, const std::string &name, int fallback) {
+    for (size_t i = 0; i < d.types.size(); ++i)
+        if (d.types[i].name == name) return static_cast<int>(i);
+    return fallback < static_cast<int>(d.types.size()) ? fallback : -1;
+}
+
+struct DisjointSets {
+    std::vector<uint32_t> parent;
+    explicit DisjointSets(size_t n) : parent(n) { std::iota(parent.begin(), parent.end(), 0u); }
+    uint32_t find(uint32_t a) {
+        while (parent[a] != a) a = parent[a] = parent[parent[a]];
+        return a;
+    }
+    void unite(uint32_t a, uint32_t b) {
+        a = find(a); b = find(b);
+        if (a != b) parent[std::max(a, b)] = std::min(a, b);  // lower root wins: deterministic
+    }
+};
+
+}  // namespace
+
+PatternStats compute_pattern_stats(const CellsData &d) {
+    PatternStats s;
+    const size_t n = d.num_cells();
+    s.total_cells = n;
+    s.area = d.area();
+    std::vector<size_t> count(d.types.size(), 0);
+    for (uint8_t t : d.type) ++count[t];
+    for (size_t i = 0; i < d.types.size(); ++i) s.cells_by_type.emplace_back(d.types[i].name, count[i]);
+    const int F = find_type(d, "F", 0), B = find_type(d, "B", 1);
+    const size_t nf = F >= 0 ? count[F] : 0, nb = B >= 0 && B != F ? count[B] : 0;
+    s.spot_fraction = nf + nb > 0 ? double(nf) / double(nf + nb) : 0.0;
+    if (nf == 0) return s;
+
+    // --- Connected F cells through the triangle and its 1-ring (maps F[j→t]) ---
+    const double delta = 1.5 * std::sqrt(s.area / double(n)), delta2 = delta * delta;
+    DisjointSets sets(n);
+    const size_t nt = d.num_triangles();
+    for (TriId t = 0; t < nt; ++t) {
+        for (uint32_t a = d.cell_row[t]; a < d.cell_row[t + 1]; ++a) {
+            if (d.type[a] != F) continue;
+            const Vec2d pa{d.x[a], d.z[a]};
+            for (uint32_t b = a + 1; b < d.cell_row[t + 1]; ++b)
+                if (d.type[b] == F && length_squared(Vec2d{d.x[b], d.z[b]} - pa) < delta2) sets.unite(a, b);
+            for (uint32_t k = d.nbr_row[t]; k < d.nbr_row[t + 1]; ++k) {
+                const TriId j = d.nbr[k];
+                if (j < t) continue;  // each pair of triangles once
+                const RigidMap2 &Fjt = d.to_master[k];
+                for (uint32_t b = d.cell_row[j]; b < d.cell_row[j + 1]; ++b)
+                    if (d.type[b] == F && length_squared(Fjt.apply({d.x[b], d.z[b]}) - pa) < delta2)
+                        sets.unite(a, b);
+            }
+        }
+    }
+    std::vector<size_t> size(n, 0);
+    for (uint32_t c = 0; c < n; ++c)
+        if (d.type[c] == F) ++size[sets.find(c)];
+    for (size_t c = 0; c < n; ++c)
+        if (size[c] > 0) {
+            ++s.spots;
+            s.largest_spot_cells = std::max(s.largest_spot_cells, size[c]);
+        }
+    s.mean_spot_area = double(nf) * (s.area / double(n)) / double(s.spots);
+    return s;
+}
+
+}  // namespace pelage::sim

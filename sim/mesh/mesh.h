@@ -1,0 +1,43 @@
+// A triangle mesh as pelage sees it: indexed positions plus optional per-corner normals
+// and UVs (OBJ stores them with their own indices, so they stay per corner).
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "sim/core/vec.h"
+
+namespace pelage::sim {
+
+using TriId = uint32_t;
+using VertId = uint32_t;
+inline constexpr uint32_t invalid_id = 0xffffffffu;
+
+struct Bounds3 {
+    Vec3d lo{1e300, 1e300, 1e300}, hi{-1e300, -1e300, -1e300};
+    void extend(Vec3d p);
+    double diagonal() const;  // 0 for an empty box
+};
+
+struct TriangleMesh {
+    std::vector<Vec3d> positions;
+    std::vector<std::array<VertId, 3>> triangles;
+    // Either empty or 3 entries per triangle (corner order follows `triangles`).
+    std::vector<Vec3d> corner_normals;
+    std::vector<Vec2d> corner_uvs;
+    // For each triangle, the face of the source file it came from (polygons are fanned,
+    // degenerate triangles dropped), so errors and tools can point back at the file.
+    std::vector<uint32_t> source_face;
+
+    size_t num_triangles() const { return triangles.size(); }
+    size_t num_vertices() const { return positions.size(); }
+    Vec3d vertex(TriId t, int corner) const { return positions[triangles[t][corner]]; }
+    Vec3d face_normal_unnormalized(TriId t) const;  // (v1 - v0) x (v2 - v0)
+    double triangle_area(TriId t) const;
+    Bounds3 bounds() const;
+    double surface_area() const;
+};
+
+}  // namespace pelage::sim

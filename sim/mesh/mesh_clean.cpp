@@ -1,0 +1,114 @@
+#include "sim/mesh/mesh_clean.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+#include <unordered_map>
+
+#include "sim/core/input_error.h"
+
+namespace pelage::sim {
+namespace {
+
+// Welds vertices on a uniform grid of cell size eps: a vertex joins the lowest-index
+// representative found within eps in its own or the 26 neighbouring cells, so the result
+// does not depend on hash-table order.
+std::vector<VertId> weld_vertices(const std::vector<Vec3d> &p, Vec3d origin, double eps,
+                                  size_t *num_welded) {
+    std::vector<VertId> rep(p.size());
+    if (!(eps > 0)) {
+        std::iota(rep.begin(), rep.end(), 0);
+        return rep;
+    }
+    // Relative to the box corner, cell indices stay below 1/weld_relative: no overflow.
+    auto cell_of = [&](Vec3d q) {
+        q = q - origin;
+        return std::array<int64_t, 3>{static_cast<int64_t>(std::floor(q.x / eps)),
+                                      static_cast<int64_t>(std::floor(q.y / eps)),
+                                      static_cast<int64_t>(std::floor(q.z / eps))};
+    };
+    auto key_of = [](int64_t x, int64_t y, int64_t z) {
+        uint64_t h = static_cast<uint64_t>(x) * 0x9E3779B97F4A7C15ull;
+        h ^= static_cast<uint64_t>(y) * 0xC2B2AE3D27D4EB4Full + (h << 6) + (h >> 2);
+        h ^= static_cast<uint64_t>(z) * 0x165667B19E3779F9ull + (h << 6) + (h >> 2);
+        return h;
+    };
+    std::unordered_map<uint64_t, std::vector<VertId>> grid;
+    grid.reserve(p.size());
+    size_t welded = 0;
+    for (VertId v = 0; v < p.size(); ++v) {
+        const auto c = cell_of(p[v]);
+        VertId best = v;
+        for (int dx = -1; dx <= 1; ++dx)
+            for (int dy = -1; dy <= 1; ++dy)
+                for (int dz = -1; dz <= 1; ++dz) {
+                    auto it = grid.find(key_of(c[0] + dx, c[1] + dy, c[2] + dz));
+                    if (it == grid.end()) continue;
+                    for (VertId u : it->second)
+                        if (u < best && length_squared(p[u] - p[v]) <= eps * eps) best = u;
+                }
+        rep[v] = best;
+        if (best == v) {
+            grid[key_of(c[0], c[1], c[2])].push_back(v);
+        } else {
+            ++welded;
+        }
+    }
+    *num_welded = welded;
+    return rep;
+}
+
+}  // namespace
+
+TriangleMesh clean_mesh(const TriangleMesh &in, const std::string &source_path,
+                        const MeshCleanOptions &opt, MeshCleanStats *stats) {
+    MeshCleanStats local;
+    MeshCleanStats &st = stats ? *stats : local;
+    st = {};
+    const Bounds3 box = in.bounds();
+    const double diag = box.diagonal();
+
+    const std::vector<VertId> rep = weld_vertices(in.positions, box.lo, opt.weld_relative * diag,
+                                                  &st.vertices_welded);
+    // Compact the surviving vertices, keeping their file order.
+    std::vector<VertId> new_index(in.positions.size(), invalid_id);
+    TriangleMesh out;
+    for (VertId v = 0; v < in.positions.size(); ++v)
+        if (rep[v] == v) {
+            new_index[v] = static_cast<VertId>(out.positions.size());
+            out.positions.push_back(in.positions[v]);
+        }
+
+    const bool has_n = !in.corner_normals.empty(), has_uv = !in.corner_uvs.empty();
+    const double min_area = opt.area_relative * diag * diag;
+    for (TriId t = 0; t < in.num_triangles(); ++t) {
+        std::array<VertId, 3> tri;
+        for (int c = 0; c < 3; ++c) tri[c] = new_index[rep[in.triangles[t][c]]];
+        const bool repeated = tri[0] == tri[1] || tri[1] == tri[2] || tri[0] == tri[2];
+        const Vec3d p0 = out.positions[tri[0]];
+        const double area =
+            0.5 * length(cross(out.positions[tri[1]] - p0, out.positions[tri[2]] - p0));
+        if (repeated || !(area > min_area)) {
+            ++st.degenerate_dropped;
+            continue;
+        }
+        out.triangles.push_back(tri);
+        out.source_face.push_back(in.source_face.empty() ? t : in.source_face[t]);
+        for (int c = 0; c < 3; ++c) {
+            if (has_n) out.corner_normals.push_back(in.corner_normals[3 * t + c]);
+            if (has_uv) out.corner_uvs.push_back(in.corner_uvs[3 * t + c]);
+        }
+    }
+    if (out.triangles.empty())
+        throw InputError(source_path, 0, "",
+                         "empty mesh: no triangle with non-zero area (" +
+                             std::to_string(st.degenerate_dropped) + " degenerate dropped)");
+
+    std::vector<char> used(out.positions.size(), 0);
+    for (const auto &tri : out.triangles)
+        for (VertId v : tri) used[v] = 1;
+    st.unused_vertices = static_cast<size_t>(std::count(used.begin(), used.end(), 0));
+    return out;
+}
+
+}  // namespace pelage::sim

@@ -1,0 +1,26 @@
+// Turning a mesh as stored into one the CRPS can be built on: duplicate vertices welded,
+// zero-area triangles dropped. Both are counted so tools can report them.
+#pragma once
+
+#include "sim/mesh/mesh.h"
+
+namespace pelage::sim {
+
+struct MeshCleanOptions {
+    // Vertices closer than weld_relative * (bounding-box diagonal) become one vertex.
+    double weld_relative = 1e-7;
+    // Triangles with area below area_relative * diagonal^2 are degenerate.
+    double area_relative = 1e-14;
+};
+
+struct MeshCleanStats {
+    size_t vertices_welded = 0;     // vertices merged into another
+    size_t degenerate_dropped = 0;  // zero-area triangles removed
+    size_t unused_vertices = 0;     // vertices no triangle references (kept, harmless)
+};
+
+// Throws InputError(source_path, ...) when nothing is left (an empty mesh).
+TriangleMesh clean_mesh(const TriangleMesh &in, const std::string &source_path,
+                        const MeshCleanOptions &opt = {}, MeshCleanStats *stats = nullptr);
+
+}  // namespace pelage::sim

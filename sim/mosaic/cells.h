@@ -1,0 +1,46 @@
+// The cells of a Clonal Mosaic, structure of arrays (style.md §2.4). A cell's index is
+// its creation order and its stable id: cells are never destroyed, so ids are dense.
+// Each triangle keeps the list of cells living on it (its "bucket"), in a deterministic
+// order that the relaxation's fixed summation order relies on.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "sim/crps/cell_walk.h"
+
+namespace pelage::sim {
+
+using CellId = uint32_t;
+
+class Cells {
+  public:
+    explicit Cells(size_t num_triangles = 0) : m_buckets(num_triangles) {}
+
+    size_t size() const { return m_tri.size(); }
+    size_t num_triangles() const { return m_buckets.size(); }
+
+    CellId add(SurfacePoint at, uint8_t type);
+    // Moves cell c to `to`, keeping buckets consistent (appends to the new bucket).
+    void move(CellId c, SurfacePoint to);
+
+    TriId tri(CellId c) const { return m_tri[c]; }
+    Vec2d pos(CellId c) const { return {m_x[c], m_z[c]}; }
+    uint8_t type(CellId c) const { return m_type[c]; }
+    const std::vector<CellId> &on(TriId t) const { return m_buckets[t]; }
+
+    const std::vector<double> &x() const { return m_x; }
+    const std::vector<double> &z() const { return m_z; }
+    const std::vector<uint8_t> &types() const { return m_type; }
+    const std::vector<TriId> &tris() const { return m_tri; }
+
+    void reserve(size_t n);
+
+  private:
+    std::vector<TriId> m_tri;
+    std::vector<double> m_x, m_z;
+    std::vector<uint8_t> m_type;
+    std::vector<std::vector<CellId>> m_buckets;
+};
+
+}  // namespace pelage::sim

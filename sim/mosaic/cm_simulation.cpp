@@ -1,0 +1,233 @@
+#include "sim/mosaic/cm_simulation.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <functional>
+
+namespace pelage::sim {
+
+namespace {
+
+double now_seconds() {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
+
+}  // namespace
+
+CmSimulation::CmSimulation(const Crps &crps, CellTypes types, SimParams params, uint64_t seed)
+    : m_crps(crps),
+      m_types(std::move(types)),
+      m_params(params),
+      m_seed(seed),
+      m_cells(crps.num_triangles()),
+      m_steps_left(crps.num_triangles(), 0) {
+    for (TriId t = 0; t < crps.num_triangles(); ++t) m_area += crps.frame(t).area;
+    if (m_params.w_a > 0)
+        m_field = constant_world_field(crps, m_params.anisotropy_direction, m_params.anisotropy_magnitude);
+}
+
+double CmSimulation::radius() const {
+    // Walter 1998 §3.3: r = w_r·sqrt(A/m)
+    const double m = std::max<double>(1.0, double(m_cells.size()));
+    return m_params.w_r * std::sqrt(m_area / m);
+}
+
+std::vector<size_t> CmSimulation::count_by_type() const {
+    std::vector<size_t> n(m_types.size(), 0);
+    for (uint8_t t : m_cells.types()) ++n[t];
+    return n;
+}
+
+double CmSimulation::division_delay(int type, CounterRng &rng) const {
+    const double mean = m_types[type].division_time;
+    if (m_params.division_distribution == DivisionDistribution::exponential) {
+        // Divisions as a Poisson process: exponential inter-division times (Teo §3.2).
+        return std::max(rng.exponential(mean), 1e-9);
+    }
+    // Walter 1998 §3.4: "given by a Poisson distribution with average equal to the rate
+    // of division": integer time units. A zero delay is raised to one relaxation step so
+    // a cell never divides twice at the same instant (deviation; P(0) = e^-mean is tiny
+    // for the published means).
+    const double d = double(rng.poisson(mean));
+    return d > 0 ? d : 1.0 / m_params.rho;
+}
+
+std::vector<TriId> CmSimulation::all_triangles_with_cells() const {
+    std::vector<TriId> out;
+    for (TriId t = 0; t < m_crps.num_triangles(); ++t)
+        if (!m_cells.on(t).empty()) out.push_back(t);
+    return out;
+}
+
+RelaxStepResult CmSimulation::relax(const std::vector<TriId> &active, bool uniform_alpha) {
+    RelaxContext ctx;
+    ctx.crps = &m_crps;
+    ctx.types = &m_types;
+    ctx.field = &m_field;
+    ctx.r = radius();
+    ctx.w_d = m_params.w_d;
+    ctx.w_a = uniform_alpha ? 0.0 : m_params.w_a;
+    ctx.uniform_alpha = uniform_alpha;
+    ctx.alpha = m_params.initial_relax_alpha;
+    ctx.seed = m_seed;
+    const RelaxStepResult r = m_relaxer.step(ctx, m_cells, active);
+    m_stats.cell_steps += r.cells_moved;
+    return r;
+}
+
+void CmSimulation::initialize(uint64_t override_cells) {
+    const double t0 = now_seconds();
+    const size_t nt = m_crps.num_triangles();
+    uint64_t n = override_cells > 0 ? override_cells : m_params.initial_cells;
+    if (n == 0) n = static_cast<uint64_t>(std::llround(m_params.initial_density * m_area));
+    n = std::max<uint64_t>(n, 1);
+    m_cells.reserve(std::max<uint64_t>(n, m_params.target_cells));
+
+    // --- Turk's method (Walter thesis §6.4): triangle by cumulative area, then a
+    //     uniform point in it from two square-rooted numbers ---
+    std::vector<double> cumulative(nt);
+    double sum = 0;
+    for (TriId t = 0; t < nt; ++t) cumulative[t] = (sum += m_crps.frame(t).area);
+    // --- Initial types: exactly round(P_k·n) cells of type k (largest remainder), in a
+    //     seeded random order. Walter lets "the system" pick F cells at random; exact
+    //     proportions remove the binomial spread of the few founders (20 F cells in
+    //     the reticulata run), which otherwise dominates the final counts. ---
+    std::vector<uint8_t> initial_type;
+    {
+        std::vector<uint64_t> count(m_types.size());
+        std::vector<std::pair<double, int>> remainder;
+        uint64_t assigned = 0;
+        for (int k = 0; k < m_types.size(); ++k) {
+            const double exact = m_types[k].initial_probability * double(n);
+            count[k] = static_cast<uint64_t>(std::floor(exact));
+            assigned += count[k];
+            remainder.push_back({-(exact - std::floor(exact)), k});  // largest first, then lower k
+        }
+        std::sort(remainder.begin(), remainder.end());
+        for (size_t i = 0; assigned < n; ++i, ++assigned) ++count[remainder[i % remainder.size()].second];
+        for (int k = 0; k < m_types.size(); ++k) initial_type.insert(initial_type.end(), count[k], uint8_t(k));
+        CounterRng shuffle(m_seed, RandomStream::initial_type, 0);
+        for (uint64_t i = n; i > 1; --i) std::swap(initial_type[i - 1], initial_type[shuffle.next_u64() % i]);
+    }
+    for (uint64_t i = 0; i < n; ++i) {
+        CounterRng rng(m_seed, RandomStream::initial_position, i);
+        const double u = rng.uniform() * sum;
+        TriId t = static_cast<TriId>(std::upper_bound(cumulative.begin(), cumulative.end(), u) - cumulative.begin());
+        t = std::min<TriId>(t, static_cast<TriId>(nt - 1));
+        const double s = std::sqrt(rng.uniform()), v = rng.uniform();
+        const auto &f = m_crps.frame(t);
+        const Vec2d p = f.v[0] * (1 - s) + f.v[1] * (s * (1 - v)) + f.v[2] * (s * v);
+        m_cells.add({t, p}, initial_type[i]);
+    }
+    m_stats.initial_cells = n;
+
+    // --- Initial relaxation with one α for every pair (Walter 1998 §3.3), global ---
+    for (int k = 0; k < m_params.initial_relax_steps; ++k) {
+        const RelaxStepResult r = relax(all_triangles_with_cells(), true);
+        ++m_stats.initial_relax_steps;
+        if (r.max_move < m_params.initial_relax_tolerance * radius()) break;
+    }
+
+    // --- First division of every initial cell ---
+    m_heap.clear();
+    for (CellId c = 0; c < m_cells.size(); ++c) {
+        if (!m_types[m_cells.type(c)].divides()) continue;
+        CounterRng rng(m_seed, RandomStream::initial_division, c);
+        m_heap.push_back({division_delay(m_cells.type(c), rng), c});
+    }
+    std::make_heap(m_heap.begin(), m_heap.end(), std::greater<>());
+    m_stats.seconds_initial = now_seconds() - t0;
+}
+
+void CmSimulation::mark_local(SurfacePoint at) {
+    // The cached unfolding of the child's triangle covers radius R ≥ r; the triangles
+    // within r of the child are among its entries (bounding circle first, then exact).
+    const double r = radius();
+    Neighbourhoods &nb = m_relaxer.neighbourhoods();
+    nb.update(m_crps, r);
+    for (const Neighbourhoods::Entry &e : nb.of(at.tri)) {
+        const double reach = r + nb.bounding_radius(e.tri);
+        const Vec2d q = e.to_nbr.apply(at.p);
+        if (length_squared(q) > reach * reach) continue;
+        if (point_triangle_distance(q, m_crps.frame(e.tri).v.data()) > r) continue;
+        if (m_steps_left[e.tri] == 0) m_marked.push_back(e.tri);
+        m_steps_left[e.tri] = m_params.local_steps;
+    }
+}
+
+std::vector<TriId> CmSimulation::take_local_active() {
+    std::sort(m_marked.begin(), m_marked.end());
+    std::vector<TriId> active = m_marked;
+    // Teo Fig. 5.6: decrease each triangle's step count; drop it at zero.
+    size_t keep = 0;
+    for (TriId t : m_marked)
+        if (--m_steps_left[t] > 0) m_marked[keep++] = t;
+    m_marked.resize(keep);
+    return active;
+}
+
+void CmSimulation::divide(const Event &e) {
+    std::pop_heap(m_heap.begin(), m_heap.end(), std::greater<>());
+    m_heap.pop_back();
+    const uint64_t k = m_stats.divisions++;
+    CounterRng rng(m_seed, RandomStream::division, k);
+    const CellId parent = e.cell;
+    const int parent_type = m_cells.type(parent);
+    const int child_type = m_types.mutate(parent_type, rng.uniform());
+    // Walter 1998 §3.4: the child is uniformly random within a circle of diameter 1% of
+    // r around the parent (radius child_radius_factor·r), then walked onto the surface.
+    const double rad = m_params.child_radius_factor * radius() * std::sqrt(rng.uniform());
+    const double angle = 6.283185307179586 * rng.uniform();
+    const SurfacePoint at = walk(m_crps, {m_cells.tri(parent), m_cells.pos(parent)},
+                                 {rad * std::cos(angle), rad * std::sin(angle)});
+    const CellId child = m_cells.add(at, static_cast<uint8_t>(child_type));
+    // Both are rescheduled: parent and child divide again after their own delays.
+    if (m_types[parent_type].divides()) {
+        m_heap.push_back({e.time + division_delay(parent_type, rng), parent});
+        std::push_heap(m_heap.begin(), m_heap.end(), std::greater<>());
+    }
+    if (m_types[child_type].divides()) {
+        m_heap.push_back({e.time + division_delay(child_type, rng), child});
+        std::push_heap(m_heap.begin(), m_heap.end(), std::greater<>());
+    }
+    if (m_params.relax == RelaxMode::local) mark_local(at);
+}
+
+void CmSimulation::run(const std::function<void(double)> &progress) {
+    const double t0 = now_seconds();
+    const double dt = 1.0 / m_params.rho;
+    const uint64_t n_steps = static_cast<uint64_t>(std::ceil(m_params.end_time * m_params.rho - 1e-9));
+    const uint64_t target = m_params.target_cells;
+    const bool open_ended = n_steps == 0 && target > 0;
+    constexpr uint64_t max_open_steps = 10'000'000;  // same cap as the preset checker
+    for (uint64_t step = 0; open_ended ? step < max_open_steps : step < n_steps; ++step) {
+        const double t_next = double(step + 1) * dt;
+        bool reached = false;
+        // --- Divisions due in this step, in heap order ---
+        while (!m_heap.empty() && m_heap.front().time <= t_next) {
+            if (target > 0 && m_cells.size() >= target) { reached = true; break; }
+            divide(m_heap.front());
+        }
+        if (target > 0 && m_cells.size() >= target) reached = true;
+        // --- One relaxation event ---
+        const std::vector<TriId> active =
+            m_params.relax == RelaxMode::global ? all_triangles_with_cells() : take_local_active();
+        if (!active.empty()) relax(active, false);
+        ++m_stats.relax_steps;
+        m_stats.final_time = t_next;
+        if (progress) {
+            double f = n_steps > 0 ? double(step + 1) / double(n_steps) : 0.0;
+            if (target > 0) f = std::max(f, double(m_cells.size()) / double(target));
+            progress(std::min(f, 1.0));
+        }
+        if (reached) break;
+        if (open_ended && m_heap.empty()) break;
+    }
+    m_stats.final_radius = radius();
+    m_stats.seconds_neighbourhoods = m_relaxer.neighbourhoods().seconds();
+    m_stats.neighbourhood_builds = m_relaxer.neighbourhoods().rebuilds();
+    m_stats.seconds_total = m_stats.seconds_initial + (now_seconds() - t0);
+}
+
+}  // namespace pelage::sim

@@ -1,0 +1,96 @@
+// The Clonal Mosaic simulation on a mesh's CRPS: Walter, Fournier, Reimers, GI 1998 §3
+// (event heap, Poisson division times, mutation, repulsion with adhesion), Walter's
+// thesis ch. 6 (on polyhedral surfaces; Turk's area-uniform initial cells, §6.4) and
+// Teo 2006 ch. 5 (Global and Local Relaxation, §5.1.2 and §5.1.4; cell walk, §5.2).
+//
+// Time: ρ relaxation steps per time unit. Step k covers (k/ρ, (k+1)/ρ]: every division
+// due by (k+1)/ρ is executed in heap order (time, then cell id), then one relaxation
+// step runs. The run stops at end_time, or once m reaches target_cells (when set), or
+// when no division is left and end_time is 0.
+//
+// Local relaxation (Teo §5.1.4, second approach): a division marks the triangles within
+// r of the *child* for S = local_steps steps; each step relaxes the cells of the marked
+// triangles, with every cell within r (marked or not) pushing. Deviation from Teo, who
+// marks the child's triangle and all of its neighbours: the disc of radius r around the
+// child holds every cell the new cell pushes directly, and is much smaller than a
+// triangle's neighbourhood when triangles are larger than r.
+//
+// Determinism: all random numbers are hashed from (seed, stream, counter) where the
+// counter is a cell index or the division number; divisions run serially in heap order.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <vector>
+
+#include "sim/mosaic/cell_types.h"
+#include "sim/mosaic/cells.h"
+#include "sim/core/random.h"
+#include "sim/mosaic/relaxation.h"
+#include "sim/crps/unfold.h"
+
+namespace pelage::sim {
+
+struct SimStats {
+    size_t initial_cells = 0;
+    size_t initial_relax_steps = 0;
+    size_t relax_steps = 0;   // relaxation events after initialisation
+    size_t divisions = 0;
+    uint64_t cell_steps = 0;  // Σ cells relaxed per step (initial phase included)
+    double final_time = 0;
+    double final_radius = 0;
+    double seconds_initial = 0, seconds_total = 0;
+    double seconds_neighbourhoods = 0;  // building the unfolding cache (once per ~2× cells)
+    size_t neighbourhood_builds = 0;
+};
+
+class CmSimulation {
+  public:
+    // The CRPS must outlive the simulation.
+    CmSimulation(const Crps &crps, CellTypes types, SimParams params, uint64_t seed);
+
+    // Places the initial cells (count from params, or `override_cells` when > 0), draws
+    // their types, relaxes them with one α for all pairs, schedules first divisions.
+    void initialize(uint64_t override_cells = 0);
+    // Runs to the end. `progress(fraction)` is called once per relaxation step.
+    void run(const std::function<void(double)> &progress = {});
+
+    // One relaxation step over `active` triangles (tests drive this directly).
+    RelaxStepResult relax(const std::vector<TriId> &active, bool uniform_alpha);
+
+    const Cells &cells() const { return m_cells; }
+    Cells &cells() { return m_cells; }
+    const SimStats &stats() const { return m_stats; }
+    const CellTypes &types() const { return m_types; }
+    const SimParams &params() const { return m_params; }
+    double area() const { return m_area; }
+    double radius() const;  // r = w_r·sqrt(A/m), Walter 1998 §3.3
+    std::vector<size_t> count_by_type() const;
+
+  private:
+    struct Event {
+        double time;
+        CellId cell;
+        bool operator>(const Event &o) const { return time > o.time || (time == o.time && cell > o.cell); }
+    };
+    double division_delay(int type, CounterRng &rng) const;
+    void divide(const Event &e);
+    void mark_local(SurfacePoint at);
+    std::vector<TriId> all_triangles_with_cells() const;
+    std::vector<TriId> take_local_active();
+
+    const Crps &m_crps;
+    CellTypes m_types;
+    SimParams m_params;
+    uint64_t m_seed;
+    double m_area = 0;
+    TangentField m_field;
+    Cells m_cells;
+    Relaxer m_relaxer;
+    std::vector<Event> m_heap;  // min-heap via std::push_heap with greater<>
+    std::vector<int> m_steps_left;   // local relaxation: S countdown per triangle
+    std::vector<TriId> m_marked;     // triangles with m_steps_left > 0
+    SimStats m_stats;
+};
+
+}  // namespace pelage::sim

@@ -1,0 +1,88 @@
+// One Jacobi relaxation step of the Clonal Mosaic on the CRPS (Walter 1998 Fig. 1 / thesis
+// Fig. 3.2; Teo 2006 Fig. 5.3 for global, Fig. 5.6 for local relaxation):
+//   D = unit(C − P)·(1 − d/r)·(1 − α[C][P])·r           for every neighbour P within r
+//   C' = C + Σ (w_a·O + (1 − w_a)·w_d·D),   O = (D·Â)·A   (SG01 §3.2.1, A per triangle)
+// All displacements are computed from the old positions, then every cell moves (Jacobi).
+//
+// Neighbour search (Teo §5.1.2): the cells of triangle t and of every triangle in t's
+// breadth-first unfolding within r. Distances go through the CRPS maps, never 3D: the
+// query cell is carried into the neighbour's frame (reverse mapping, Teo §6.2) and the
+// summed displacement rotated back once per neighbour triangle.
+//
+// Determinism: each triangle's forces are summed in a fixed order (unfolding order, then
+// bucket order) by one task; moves are applied serially in triangle order. Results do
+// not depend on the number of threads.
+#pragma once
+
+#include <vector>
+
+#include "sim/mosaic/cell_types.h"
+#include "sim/mosaic/cells.h"
+#include "sim/crps/tangent_field.h"
+
+namespace pelage::sim {
+
+// Unfoldings within a radius R ≥ r, cached per triangle while the radius stays close: r
+// only shrinks as cells are added, so the cache is rebuilt when r < R / rebuild_ratio
+// (keeping the candidate set tight) or r > R (it would miss triangles).
+class Neighbourhoods {
+  public:
+    struct Entry {
+        TriId tri;
+        RigidMap2 to_nbr;  // F[t→j]: carries a point of t into j's frame
+    };
+    static constexpr double slack = 1.15, rebuild_ratio = 1.5;
+
+    // Makes sure the cache covers radius r.
+    void update(const Crps &crps, double r);
+    const std::vector<Entry> &of(TriId t) const { return m_entries[t]; }
+    // Radius of t's bounding circle about its centroid (the origin of its 2D frame).
+    double bounding_radius(TriId t) const { return m_bounding[t]; }
+    double radius() const { return m_radius; }
+    size_t rebuilds() const { return m_rebuilds; }
+    double seconds() const { return m_seconds; }  // total time spent building
+
+  private:
+    std::vector<std::vector<Entry>> m_entries;
+    std::vector<double> m_bounding;
+    double m_radius = 0;
+    size_t m_rebuilds = 0;
+    double m_seconds = 0;
+};
+
+struct RelaxContext {
+    const Crps *crps = nullptr;
+    const CellTypes *types = nullptr;
+    const TangentField *field = nullptr;  // may be empty (no anisotropy)
+    double r = 0, w_d = 0.1, w_a = 0;
+    bool uniform_alpha = false;  // the initial phase: same α for every pair
+    double alpha = 0;            // used when uniform_alpha
+    uint64_t seed = 0;           // tie-break directions for coincident cells
+};
+
+struct RelaxStepResult {
+    double max_move = 0;    // largest displacement length, for convergence
+    size_t cells_moved = 0; // cells relaxed in this step (the cost measure)
+};
+
+class Relaxer {
+  public:
+    // One Jacobi step over the cells of `active` (sorted triangle ids). Cells of other
+    // triangles push but do not move (Teo §5.1.3, Fig. 5.5(b)).
+    RelaxStepResult step(const RelaxContext &ctx, Cells &cells, const std::vector<TriId> &active);
+    Neighbourhoods &neighbourhoods() { return m_nbhd; }
+
+  private:
+    Neighbourhoods m_nbhd;
+    // Cells copied into triangle order at the start of each step: the force loop then
+    // reads contiguous memory instead of cells scattered by creation order.
+    std::vector<uint32_t> m_row;
+    std::vector<double> m_sx, m_sz;
+    std::vector<uint8_t> m_st;
+    std::vector<CellId> m_sid;
+    std::vector<Vec2d> m_move;          // per active cell, in active order
+    std::vector<uint32_t> m_active_row; // offsets of each active triangle's cells
+    std::vector<SurfacePoint> m_dest;
+};
+
+}  // namespace pelage::sim

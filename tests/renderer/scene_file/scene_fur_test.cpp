@@ -1,0 +1,89 @@
+// The `"fur"` block of a scene object: every key reaches FurParams, defaults stay when a
+// key is absent, and bad values name their JSON path (more cases in
+// tests/data/bad_scenes/fur_*.json).
+#include <gtest/gtest.h>
+
+#include "renderer/scene_file/scene_file.h"
+#include "sim/core/input_error.h"
+
+namespace pelage::renderer {
+namespace {
+
+SceneDesc with_fur(const std::string &fur) {
+    return parse_scene(R"({"camera": {}, "objects": [{"mesh": "procedural:icosphere:1"},
+        {"mesh": "procedural:icosphere:1", "fur": )" +
+                           fur + "}]}",
+                       "fur.json");
+}
+
+TEST(SceneFur, EveryKeyReachesTheParameters) {
+    const SceneDesc s = with_fur(R"({"density": 1234, "density_by_type": [1.5, 0.5],
+        "seed": 9, "max_strands": 777777, "length": 0.2, "length_by_type": [1, 2],
+        "length_variation": 0.4, "root_radius": 0.01, "tip_radius": 0.002, "segments": 5,
+        "comb": [1, 0, 0], "comb_angle": 45, "comb_jitter": 3, "gravity": 0.7,
+        "curl_radius": 0.1, "curl_turns": 3, "clump": 0.6, "clump_radius": 0.05,
+        "melanin_scale": 2, "melanin_jitter": 0.25, "beta_m": 0.4, "beta_n": 0.5,
+        "alpha": -3, "curve": "flat"})");
+    ASSERT_FALSE(s.objects[0].fur.has_value());
+    ASSERT_TRUE(s.objects[1].fur.has_value());
+    const fur::FurParams &p = *s.objects[1].fur;
+    EXPECT_EQ(p.density, 1234);
+    EXPECT_EQ(p.density_by_type, (std::vector<float>{1.5f, 0.5f}));
+    EXPECT_EQ(p.seed, 9u);
+    EXPECT_EQ(p.max_strands, 777777u);
+    EXPECT_FLOAT_EQ(p.length, 0.2f);
+    EXPECT_EQ(p.length_by_type, (std::vector<float>{1, 2}));
+    EXPECT_FLOAT_EQ(p.length_variation, 0.4f);
+    EXPECT_FLOAT_EQ(p.root_radius, 0.01f);
+    EXPECT_FLOAT_EQ(p.tip_radius, 0.002f);
+    EXPECT_EQ(p.segments, 5);
+    EXPECT_EQ(p.comb, fur::FurParams::Comb::world);
+    EXPECT_EQ(p.comb_direction, (fur::Vec3f{1, 0, 0}));
+    EXPECT_FLOAT_EQ(p.comb_angle_deg, 45);
+    EXPECT_FLOAT_EQ(p.comb_jitter_deg, 3);
+    EXPECT_FLOAT_EQ(p.gravity, 0.7f);
+    EXPECT_FLOAT_EQ(p.curl_radius, 0.1f);
+    EXPECT_FLOAT_EQ(p.curl_turns, 3);
+    EXPECT_FLOAT_EQ(p.clump, 0.6f);
+    EXPECT_FLOAT_EQ(p.clump_radius, 0.05f);
+    EXPECT_FLOAT_EQ(p.melanin_scale, 2);
+    EXPECT_FLOAT_EQ(p.melanin_jitter, 0.25f);
+    EXPECT_FLOAT_EQ(p.beta_m, 0.4f);
+    EXPECT_FLOAT_EQ(p.beta_n, 0.5f);
+    EXPECT_FLOAT_EQ(p.alpha_deg, -3);
+    EXPECT_EQ(p.curve, fur::FurParams::Curve::flat);
+
+    const fur::FurParams d = *with_fur("{}").objects[1].fur;
+    EXPECT_EQ(d.density, fur::FurParams{}.density);
+    EXPECT_EQ(d.curve, fur::FurParams::Curve::round);
+    EXPECT_EQ(with_fur(R"({"comb": "normal"})").objects[1].fur->comb,
+              fur::FurParams::Comb::normal);
+}
+
+TEST(SceneFur, BadValuesNameTheirJsonPath) {
+    const std::pair<const char *, const char *> cases[] = {
+        {R"({"segments": 1})", "objects[1].fur.segments"},  // round needs 2
+        {R"({"density": -1})", "objects[1].fur.density"},
+        {R"({"tip_radius": 0})", "objects[1].fur.tip_radius"},
+        {R"({"clump": 1.5})", "objects[1].fur.clump"},
+        {R"({"alpha": 60})", "objects[1].fur.alpha"},
+        {R"({"comb": "up"})", "objects[1].fur.comb"},
+        {R"({"comb": [1, "x", 0]})", "objects[1].fur.comb[1]"},
+        {R"({"density_by_type": [0, 0]})", "objects[1].fur.density_by_type"},
+        {R"({"length_by_type": [1, 0]})", "objects[1].fur.length_by_type[1]"},
+        {R"({"seed": -4})", "objects[1].fur.seed"},
+        {R"({"max_strands": 100000000})", "objects[1].fur.max_strands"},
+    };
+    for (const auto &[fur, field] : cases) {
+        try {
+            with_fur(fur);
+            ADD_FAILURE() << fur << " was accepted";
+        } catch (const InputError &e) {
+            EXPECT_NE(std::string(e.what()).find(field), std::string::npos)
+                << fur << ": " << e.what();
+        }
+    }
+}
+
+}  // namespace
+}  // namespace pelage::renderer

@@ -1,0 +1,100 @@
+// The .cells file: bit-exact round trip, and every kind of corruption is an InputError.
+#include <gtest/gtest.h>
+
+#include <cstring>
+#include <fstream>
+
+#include "sim/cells_io/cells_file.h"
+#include "sim/mosaic/cm_simulation.h"
+#include "sim/core/input_error.h"
+#include "sim/crps/surface.h"
+#include "tests/sim/sim_test_util.h"
+#include "tests/test_paths.h"
+
+namespace pelage::sim {
+namespace {
+
+CellsData small_cells(const Surface &s) {
+    const Preset p = parse_preset(test::preset_json(
+        R"({"initial_cells": 300, "initial_relax_steps": 3, "w_r": 2.0, "w_d": 0.1, "rho": 4, "end_time": 1})",
+        true, "0.5"), "t");
+    CmSimulation sim(s.crps, p.types, p.params, 1);
+    sim.initialize();
+    sim.run();
+    return make_cells_data(s.mesh, s.crps, sim.types(), sim.cells(), p.json_text, 1);
+}
+
+TEST(CellsFile, RoundTripIsBitExact) {
+    const Surface s = build_surface("procedural:sphere:10x10");
+    const CellsData d = small_cells(s);
+    test::TempDir tmp;
+    write_cells_file(tmp.file("a.cells"), d);
+    const CellsData back = read_cells_file(tmp.file("a.cells"));
+    EXPECT_EQ(serialize_cells(back), serialize_cells(d));
+    EXPECT_EQ(back.num_cells(), d.num_cells());
+    EXPECT_EQ(back.params_json, d.params_json);
+    ASSERT_EQ(back.types.size(), 2u);
+    EXPECT_EQ(back.types[1].name, "B");
+    // Positions survive as the same doubles.
+    for (size_t c = 0; c < d.num_cells(); ++c) {
+        ASSERT_EQ(back.x[c], d.x[c]);
+        ASSERT_EQ(back.z[c], d.z[c]);
+        ASSERT_EQ(back.id[c], d.id[c]);
+    }
+    // Sorted by (triangle, id), and every id appears once.
+    std::vector<bool> seen(d.num_cells(), false);
+    for (size_t t = 0; t < d.num_triangles(); ++t)
+        for (uint32_t c = d.cell_row[t]; c < d.cell_row[t + 1]; ++c) {
+            if (c > d.cell_row[t]) { EXPECT_LT(d.id[c - 1], d.id[c]); }
+            ASSERT_FALSE(seen[d.id[c]]);
+            seen[d.id[c]] = true;
+        }
+}
+
+void expect_rejected(const std::vector<uint8_t> &bytes, const std::string &what) {
+    EXPECT_THROW(parse_cells(bytes, "bad.cells"), InputError) << what;
+}
+
+TEST(CellsFile, CorruptedFilesAreRejected) {
+    const Surface s = build_surface("procedural:sphere:6x6");
+    const std::vector<uint8_t> good = serialize_cells(small_cells(s));
+    ASSERT_NO_THROW(parse_cells(good, "good.cells"));
+    // Truncated anywhere: header, payload, checksum.
+    for (size_t n : {size_t(0), size_t(7), size_t(40), size_t(79), size_t(80), good.size() / 2, good.size() - 1})
+        expect_rejected(std::vector<uint8_t>(good.begin(), good.begin() + n), "truncated to " + std::to_string(n));
+    // Trailing garbage.
+    auto longer = good;
+    longer.push_back(0);
+    expect_rejected(longer, "one extra byte");
+    // A flipped bit anywhere is caught by the checksum (or a header check before it).
+    for (size_t at : {size_t(3), size_t(12), size_t(30), size_t(100), good.size() / 3, good.size() - 20, good.size() - 3}) {
+        auto bad = good;
+        bad[at] ^= 0x10;
+        expect_rejected(bad, "bit flip at " + std::to_string(at));
+    }
+    // Huge counts are refused before anything is allocated.
+    auto huge = good;
+    const uint64_t big = 1ull << 40;
+    std::memcpy(huge.data() + 32, &big, 8);  // num_cells
+    try {
+        parse_cells(huge, "huge.cells");
+        ADD_FAILURE() << "huge count accepted";
+    } catch (const InputError &e) {
+        EXPECT_NE(std::string(e.what()).find("huge.cells"), std::string::npos);
+    }
+}
+
+TEST(CellsFile, WrongMeshIsRefused) {
+    const Surface s = build_surface("procedural:sphere:10x10");
+    const CellsData d = small_cells(s);
+    EXPECT_NO_THROW(check_cells_match_mesh(d, s.mesh, "a.cells"));
+    const Surface other = build_surface("procedural:sphere:10x11");
+    EXPECT_THROW(check_cells_match_mesh(d, other.mesh, "a.cells"), InputError);
+    // Same topology, one vertex moved: still refused.
+    TriangleMesh moved = s.mesh;
+    moved.positions[5].x += 1e-6;
+    EXPECT_THROW(check_cells_match_mesh(d, moved, "a.cells"), InputError);
+}
+
+}  // namespace
+}  // namespace pelage::sim
