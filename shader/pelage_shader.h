@@ -1,4 +1,4 @@
-/* The pelage shader plugin ABI (style.md §2.3). Plain C, versioned; exceptions never
+/* The pelage shader plugin ABI. Plain C, versioned; exceptions never
  * cross it.
  *
  * A plugin is a shared library exporting one symbol, `pelage_shader_plugin`, which

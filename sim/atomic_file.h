@@ -1,4 +1,4 @@
-// Writing outputs atomically (design.md, "Conventions"): data goes to a temporary file in
+// Writing outputs atomically (docs/design.md, "Conventions"): data goes to a temporary file in
 // the destination's folder, which is renamed over the final name only once complete. A
 // killed run never leaves a truncated file under the final name.
 #pragma once

@@ -1,5 +1,5 @@
 // Closest-cell search by reverse neighbour mapping: H. J. Teo, M.Eng thesis, NTU 2006,
-// ch. 6 (shared/seeds/001_…), §6.2 and Fig. 6.2.
+// ch. 6, §6.2 and Fig. 6.2.
 //
 // A surface point (t, q) — q in triangle t's local CRPS coordinates — is coloured by the
 // cell nearest to it across the unfolded neighbourhood of t. Teo maps the *query* into

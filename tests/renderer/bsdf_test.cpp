@@ -1,4 +1,4 @@
-// Property tests of the built-in BSDFs (style.md §2.7): energy, and agreement of sample()
+// Property tests of the built-in BSDFs: energy, and agreement of sample()
 // with eval() and pdf().
 #include <gtest/gtest.h>
 

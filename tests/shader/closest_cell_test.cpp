@@ -32,7 +32,7 @@ CellTable random_cells(const sim::Crps &crps, size_t n, uint64_t seed) {
 
 Vec2f to_f(sim::Vec2d p) { return {float(p.x), float(p.y)}; }
 
-// The bound: the pruned search equals the exhaustive search over the same
+// The required bound: the pruned search equals the exhaustive search over the same
 // unfolded neighbourhood on >= 99.99 % of random surface points.
 void expect_pruned_equals_exhaustive(const sim::Surface &s, size_t n_cells) {
     const CellTable cells = random_cells(s.crps, n_cells, 5);
