@@ -39,8 +39,8 @@ uint64_t pixel_hash(const void *data, size_t pixels,
                     const std::vector<int> &channel_bytes);
 
 // True when `path` is an EXR pelage wrote completely: the header reads, every pixel
-// reads, and the pixels hash to pelage:pixel_xxh3 (or, in files written before
-// 2026-11-22, to pelage:pixel_hash, FNV-1a). Otherwise false with the reason.
+// reads, and the pixels hash to pelage:pixel_xxh3 (or, in older files, to
+// pelage:pixel_hash, FNV-1a). Otherwise false with the reason.
 bool exr_is_complete(const std::string &path, std::string *why = nullptr);
 
 // `pixels`: Film::num_channels interleaved floats per pixel (Film::resolve()).

@@ -1,5 +1,5 @@
 // Sine and cosine for the samplers' angles, as inlined polynomials instead of libm's
-// sincosf (a call per sample, 3 % of a render). Only + and × on floats: without -march
+// sincosf (a call per sample, a visible share of a render). Only + and × on floats: without -march
 // the compiler has no FMA to contract them into, so the results are the same bits on
 // every x86-64 machine and at any thread count. On |x| ≤ π/4 the truncated Taylor series
 // (Abramowitz & Stegun 4.3.65/4.3.66) to x⁹ (sin) and x¹⁰ (cos) leave a remainder below
