@@ -139,7 +139,7 @@ void ClosestCellIndex::build_triangle(const sim::Crps &crps, sim::TriId t,
     {
         Frame &f = out[0].frame;
         f = {float(v0.x), float(v0.y), float(e1.x), float(e1.y), float(e2.x), float(e2.y), 0};
-        f.inv_det = 1.0f / (f.e1x * f.e2y - f.e1y * f.e2x);  // in float, like the searches that use it
+        f.inv_det = 1.0f / (f.e1x * f.e2y - f.e1y * f.e2x);  // in float, like the searches
         out[1].frame = f;
     }
     struct Sub {
