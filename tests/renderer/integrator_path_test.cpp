@@ -364,7 +364,7 @@ TEST(PathIntegrator, PowerLightSelectionConvergesToTheSameImageWithLessNoise) {
         }
     }
     // Less noise: at 16 spp the image error is Monte Carlo noise; choosing the bright
-    // light 40× more often than the dim one must lower it (measured 0.22× the error of
+    // light 40× more often than the dim one must lower it (it gives about 0.22× the error of
     // uniform selection; 0.8 leaves room for the noise of the noise estimate).
     const double e_power = relative_rms_error(
                      render_json(two_quads_scene("power", 16), tmp), expected),
