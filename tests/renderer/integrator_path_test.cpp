@@ -364,8 +364,8 @@ TEST(PathIntegrator, PowerLightSelectionConvergesToTheSameImageWithLessNoise) {
         }
     }
     // Less noise: at 16 spp the image error is Monte Carlo noise; choosing the bright
-    // light 40× more often than the dim one must lower it (it gives about 0.22× the error of
-    // uniform selection; 0.8 leaves room for the noise of the noise estimate).
+    // light 40× more often than the dim one must lower it (to about 0.22× the error of
+    // uniform selection here; 0.8 leaves room for the noise of the noise estimate).
     const double e_power = relative_rms_error(
                      render_json(two_quads_scene("power", 16), tmp), expected),
                  e_uniform = relative_rms_error(
