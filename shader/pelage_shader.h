@@ -1,4 +1,4 @@
-/* The pelage shader plugin ABI (style.md §2.3). Plain C, versioned; exceptions never
+/* The pelage shader plugin ABI. Plain C, versioned; exceptions never
  * cross it.
  *
  * A plugin is a shared library exporting one symbol, `pelage_shader_plugin`, which
@@ -108,7 +108,8 @@ typedef struct PelageShade {
     float aov[PELAGE_SHADER_AOV_SLOTS]; /* values of the `shader` AOV layer; 0 default */
     uint32_t aov_written;               /* set to 1 when aov[] was written */
     float ior; /* coat index of refraction override in [1, 3]; 0 keeps the material's.
-                  (Was reserved and zero: plugins built before it keep the material's.) */
+                  0 is a zeroed field's value, so a plugin that never sets it leaves
+                  the coat alone. */
     uint32_t reserved[4]; /* zero; room to grow without changing the size */
 } PelageShade;
 

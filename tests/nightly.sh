@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The nightly hardening run (issue "Hardening"); too long for CI, which runs the ASan +
+# The nightly hardening run; too long for CI, which runs the ASan +
 # UBSan input-handling subset only (quickstart.sh test). Run from anywhere:
 #   tests/nightly.sh [FUZZ_SECONDS]        (default 300 s per fuzz target)
 # 1. the whole suite under AddressSanitizer + UndefinedBehaviorSanitizer (build-asan);

@@ -1,4 +1,4 @@
-// The BSDF interface (style.md §2.3). BSDFs are value types built per hit in the shading
+// The BSDF interface. BSDFs are value types built per hit in the shading
 // frame: directions are local, +z is the shading normal, wo points away from the surface
 // towards where light goes. Conventions stated once here:
 //   * eval(wo, wi) returns f(wo, wi) WITHOUT the |cos θ_i| factor;

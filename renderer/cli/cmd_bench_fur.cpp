@@ -5,7 +5,7 @@
 // and without fur, and its own peak resident memory (getrusage ru_maxrss): one process
 // per count, so each peak is that configuration's alone. Prints one JSON object:
 // {"runs": [{strands, build_seconds, peak_rss_mb, rays_per_second,
-// rays_per_second_no_fur, ...}, ...]} (issue 6's output contract).
+// rays_per_second_no_fur, ...}, ...]} (an output contract).
 #include <sys/resource.h>
 #include <unistd.h>
 

@@ -1,5 +1,5 @@
 // `pelage bench hair`: the Chiang et al. 2016 hair BSDF (shader/hair). Prints one JSON
-// object: furnace_max_error (issue 6's contract: the worst |∫ f|cos θ_i| dω − 1| over a
+// object: furnace_max_error (a contract: the worst |∫ f|cos θ_i| dω − 1| over a
 // fixed, seeded set of σ_a = 0 fibres with random β_m, β_n ∈ [0.1, 1], α ∈ [−5°, 5°],
 // h and wo, by the midpoint quadrature of shader/hair/hair_furnace.h), the worst
 // |∫ pdf dω − 1|, and nanoseconds per eval / pdf / sample call on one thread.

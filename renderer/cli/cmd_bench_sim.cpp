@@ -2,7 +2,7 @@
 // w_r = 2.0, 50 steps; 10 % F dividing at 2.0, 90 % B not dividing, repulsiveness FF 0.1,
 // BB 0.5, FB 1.0) for 1000, 5000 and 10000 initial cells in both relaxation modes, plus a
 // large case (1 000 000 final cells on bunny00). Prints one JSON object; the keys `runs`
-// and `large` are a contract (issue 3). Speed is reported here, never asserted in tests.
+// and `large` are a contract. Speed is reported here, never asserted in tests.
 #include <sys/resource.h>
 
 #include <filesystem>
@@ -107,7 +107,7 @@ int run(const BenchSimOptions &o) {
                           {"triangles", sphere.mesh.num_triangles()},
                           {"threads", o.threads.threads},
                           {"runs", runs}};
-    // --- Ratios the issue targets ---
+    // --- Ratios with speed targets (local vs global relaxation, scaling) ---
     const uint64_t lo = o.cells.front(), hi = o.cells.back();
     if (by_key.count({hi, "local"}) && by_key.count({hi, "global"})) {
         const auto &l = by_key[{hi, "local"}], &g = by_key[{hi, "global"}];

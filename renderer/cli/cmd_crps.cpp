@@ -1,5 +1,5 @@
 // `pelage crps --mesh FILE`: builds the CRPS of a mesh and prints its summary and
-// self-validation (issue "Foundation"; keys of --stats-json are a contract).
+// self-validation (keys of --stats-json are a contract).
 #include <cstdio>
 
 #include <fmt/core.h>

@@ -1,6 +1,6 @@
 // `pelage sim --mesh FILE --preset NAME|FILE`: grows a Clonal Mosaic on the mesh's CRPS
 // and writes the .cells file (sim/mosaic/cm_simulation.h, sim/cells_io/cells_file.h). The keys of
-// --stats-json are a contract (issue 3): triangles, area, cells_by_type, spot_fraction,
+// --stats-json are a contract: triangles, area, cells_by_type, spot_fraction,
 // divisions, relax_steps, seconds.
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-// pelage: one binary, subcommands composed through files and JSON (design.md).
+// pelage: one binary, subcommands composed through files and JSON (docs/design.md).
 // Exit codes: 0 success, 1 runtime failure, 2 bad usage or bad input.
 #include <cstdio>
 #include <exception>

@@ -1,6 +1,6 @@
 // A counter-based sampler: every number is a hash of (seed, frame, pixel x, pixel y,
 // sample index, dimension), so an image does not depend on thread count or tile order
-// (style.md §2.4). No state is shared between pixels.
+// (determinism, docs/design.md). No state is shared between pixels.
 #pragma once
 
 #include <cstdint>

@@ -1,11 +1,11 @@
 // Sine and cosine for the samplers' angles, as inlined polynomials instead of libm's
-// sincosf (a call per sample, 3 % of a render). Only + and × on floats: without -march
-// the compiler has no FMA to contract them into, so the results are the same bits on
-// every x86-64 machine and at any thread count. On |x| ≤ π/4 the truncated Taylor series
-// (Abramowitz & Stegun 4.3.65/4.3.66) to x⁹ (sin) and x¹⁰ (cos) leave a remainder below
-// 2e-9, under float rounding: measured |error| ≤ 1.0e-7 against double precision over
-// 2²² angles 2πu (libm on the rounded float angle: 4.1e-7), tested by SinCos.* in
-// tests/renderer/core/sampling_test.cpp.
+// sincosf (a call per sample, a visible share of a render). Only + and × on floats:
+// without -march the compiler has no FMA to contract them into, so the results are the
+// same bits on every x86-64 machine and at any thread count. On |x| ≤ π/4 the truncated
+// Taylor series (Abramowitz & Stegun 4.3.65/4.3.66) to x⁹ (sin) and x¹⁰ (cos) leave a
+// remainder below 2e-9, under float rounding: |error| ≤ 1.0e-7 against double precision
+// over 2²² angles 2πu (libm on the rounded float angle: 4.1e-7), as SinCos.* in
+// tests/renderer/core/sampling_test.cpp checks.
 #pragma once
 
 #include "renderer/core/math.h"

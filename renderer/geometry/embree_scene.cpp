@@ -134,7 +134,7 @@ EmbreeScene::EmbreeScene(const SceneDesc &scene) {
         throw std::runtime_error("cannot create the Embree device (error " +
                                  std::to_string(int(rtcGetDeviceError(nullptr))) + ")");
     // A throw below (a bad mesh, an Embree error) skips the destructor: release what was
-    // created so far (LeakSanitizer found this with the bad-scene corpus).
+    // created so far (the bad-scene corpus checks this under LeakSanitizer).
     struct ReleaseOnThrow {
         EmbreeScene &s;
         bool armed = true;

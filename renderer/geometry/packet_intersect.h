@@ -1,5 +1,5 @@
 // Coherent rays traced together as Embree packets (rtcIntersect4/8/16, the widest the
-// device runs natively; Embree tutorials' "coherent" mode, style.md §2.4). Camera rays
+// device runs natively; Embree tutorials' "coherent" mode). Camera rays
 // through neighbouring pixels share most of their BVH traversal: on the cow a 16-ray
 // packet costs about a third of tracing its rays one by one (README "Performance").
 // The hits are handed back one RTCRayHit per ray, exactly what rtcIntersect1 fills, so

@@ -1,7 +1,6 @@
 // Writing renders through OpenImageIO, always atomically (a temporary file in the
 // destination folder, renamed into place once complete).
-//   * EXR: one part, channel-prefixed layers (Film::channel_names: R G B A, albedo.*,
-//   N.*,
+//   * EXR: one part, channel-prefixed layers (Film::channel_names: R G B A, albedo.*, N.*,
 //     depth.Z, id.*, shader.*), colour layers half or float, depth/ids/shader always
 //     float, ZIP compression, metadata pelage:scene, pelage:spp, pelage:seed,
 //     pelage:render_seconds, pelage:interrupted, Software = "pelage <version>".
@@ -39,8 +38,8 @@ uint64_t pixel_hash(const void *data, size_t pixels,
                     const std::vector<int> &channel_bytes);
 
 // True when `path` is an EXR pelage wrote completely: the header reads, every pixel
-// reads, and the pixels hash to pelage:pixel_xxh3 (or, in files written before
-// 2026-11-22, to pelage:pixel_hash, FNV-1a). Otherwise false with the reason.
+// reads, and the pixels hash to pelage:pixel_xxh3 (or, in older files, to
+// pelage:pixel_hash, FNV-1a). Otherwise false with the reason.
 bool exr_is_complete(const std::string &path, std::string *why = nullptr);
 
 // `pixels`: Film::num_channels interleaved floats per pixel (Film::resolve()).

@@ -236,7 +236,7 @@ Rgb PathIntegrator::radiance(const CameraRay &cam, const RTCRayHit &first,
         const uint32_t prim = rh.hit.primID;
         const float b1 = rh.hit.u, b2 = rh.hit.v, b0 = 1 - b1 - b2;
         // Normals are built in locals and stored into the vertex once: field-wise writes
-        // followed by a whole-Vec3f copy made store-forwarding stalls (perf).
+        // followed by a whole-Vec3f copy cause store-forwarding stalls.
         Vec3f ng;
         // The hit point from the ray (its float error is far below the origin offset);
         // Embree's Ng for baked meshes, so the vertices are not fetched again.

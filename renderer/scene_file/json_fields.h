@@ -1,6 +1,6 @@
 // One JSON object of a scene file being read (scene_file.cpp, scene_fur.cpp): every field
 // is taken at most once, typed and range-checked, and finish() rejects the keys nobody
-// took — unknown or misspelled fields are errors, never warnings (style.md §2.6). Every
+// took — unknown or misspelled fields are errors, never warnings. Every
 // failure is a pelage::InputError naming the file and the field's JSON path
 // ("objects[0].fur.length = -1: must be in (0, 1e+09]").
 #pragma once

@@ -44,7 +44,7 @@ struct CompareResult {
     std::vector<CompareRun> runs;
     nlohmann::json params =
         nlohmann::json::object();   // per shader, the params it ran with
-    nlohmann::json report() const;  // the `--report` contract (README, issue 5)
+    nlohmann::json report() const;  // the `--report` contract (README)
 };
 
 // Pattern drift under deformation: for each shader, the mean (and max) over `points`

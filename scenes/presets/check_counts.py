@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """Runs every preset that has published counts and prints a Markdown table of final
-counts by type against the published ones (the ±10 % check of issue 3).
+counts by type against the published ones (the ±10 % check).
 Usage: scenes/presets/check_counts.py build/bin/pelage [mesh] [seed]"""
 import json, os, subprocess, sys, tempfile
 

@@ -330,8 +330,8 @@ inline void shade_blend(const ClonalMosaic &cm, const shader::CoherentLookup::Re
         shade_as(cm, nearest, f1, out);
         return;
     }
-    // Multiplications by reciprocals, not divisions: one camera hit in eight blends
-    // (sphere_cheetah at 2000 x 2000), and a division costs several multiplications.
+    // Multiplications by reciprocals, not divisions: a fair share of camera hits blend,
+    // and a division costs several multiplications.
     // (A width below the least normal float would make the reciprocal infinite, and the
     // nearest cell's 0 · inf a NaN.)
     const float inv_width = 1 / std::max(2 * w, std::numeric_limits<float>::min());
@@ -391,9 +391,8 @@ void shade_cells(const ClonalMosaic &cm, const PelageHit *hit, PelageShade *out,
 // same mean over a pixel's samples as blending both, at the cost of one.
 //
 // Every hit but the camera's reused ones goes through shade_any(), out of line, so the
-// path most calls take stays short: ~95 instructions for a reused single-cell hit, no
-// stack frame (callgrind: the plugin's instructions −19 % at 1000×1000; its instruction
-// cache misses did not change measurably).
+// path most calls take stays short: a reused single-cell hit runs without a stack
+// frame and with few instructions.
 [[gnu::noinline]] void shade_any(const ClonalMosaic &cm, const PelageHit *hit,
                                  PelageShade *out, shader::CoherentLookup *tried) {
     const uint32_t t = hit->primitive_id;

@@ -16,8 +16,8 @@ constexpr float inf_f = std::numeric_limits<float>::infinity();
 
 }  // namespace
 
-// Both inline into every search: a lookup is short enough that two calls showed (~60
-// instructions of ~375 per random find(), callgrind).
+// Both inline into every search: a lookup is short enough that the cost of two calls
+// would be a visible share of it.
 [[gnu::always_inline]] inline const ClosestCellIndex::Block *ClosestCellIndex::blocks_at(
     sim::TriId t, float b1, float b2, const Block *&end) const {
     const uint32_t first = m_first_region[t], r = first & 3u;
@@ -176,8 +176,8 @@ ClosestCellIndex::Nearest<3> ClosestCellIndex::three_within(const Block *b,
     // cut at F1 + band gives (the second pass keeps the same (distance, id) order).
     // The first pass also leaves what CoherentLookup needs to reuse the result for
     // the next hits: the second cell's position and a lower bound on F3. It runs lane
-    // by lane with eight lanes, with the insertion scan otherwise (closest_cell.h: the
-    // faster on camera hits with four); the same bits either way.
+    // by lane with eight lanes, with the insertion scan otherwise (closest_cell.h: with
+    // four lanes it is the better fit for camera hits); the same bits either way.
     Nearest<2> first;
     float cells_left_d2;
     const Block *stop = m_lanes.lanes == 8

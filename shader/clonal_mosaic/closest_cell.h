@@ -1,5 +1,5 @@
 // Closest-cell search by reverse neighbour mapping: H. J. Teo, M.Eng thesis, NTU 2006,
-// ch. 6 (shared/seeds/001_…), §6.2 and Fig. 6.2.
+// ch. 6, §6.2 and Fig. 6.2.
 //
 // A surface point (t, q) — q in triangle t's local CRPS coordinates — is coloured by the
 // cell nearest to it across the unfolded neighbourhood of t. Teo maps the *query* into
@@ -7,7 +7,7 @@
 // cell into t's frame, visits triangles outward from t, and shrinks the search radius
 // D_min whenever a closer cell turns up.
 //
-// What we precompute (Teo's method, kept, made fast). Each triangle t is split into n²
+// What is precomputed (Teo's method, made fast). Each triangle t is split into n²
 // sub-triangles S (regular subdivision in barycentric coordinates; n grows with the
 // triangle's size, about two per cell spacing across, up to 6). For each S, t's
 // breadth-first unfolding (sim/crps/unfold.h) supplies every cell that can be among the three
@@ -18,58 +18,43 @@
 // per candidate triangle at every lookup is applied once here, so a lookup is a scan of
 // one flat list.
 //
-// Which list. The lists of neighbouring sub-triangles overlap heavily: they come from the
-// same cells at the same positions. Stored apart (one per S, n <= 3, as until 2026-11)
-// they made the cow with 20 000 cells a 10.6 MB index, 9 lists of 14 cells for 3.4 cells
-// per triangle, and a random lookup waited ~150 ns on DRAM for its list. So a lookup now
-// searches a *region* of t, and a region's list is the union of the lists of the S in
-// it. Two layouts, one per index: *fine* regions, r = about one per cell spacing across
-// t (at most 3 per side), when the whole index stays within
-// ClosestCellOptions::fine_regions_max_bytes (4 MB: then it mostly stays in cache), else
-// *coarse* ones: one region (t itself) for triangles up to six spacings across, r x r
-// (r = 2, 3) beyond. Each list is sorted by its cells' distance from the region (a lower
-// bound for every query in it) and packed five cells to a 64-byte block (float x[5],
-// y[5], uint32 cell[5] and the block's squared bound: no padding bytes); the scan stops
-// at the first block whose bound exceeds the current K-th nearest distance (Teo's
-// adaptive radius D_min, for the K wanted). A triangle's blocks are contiguous; two
-// tables of uint32 offsets (per triangle its first region, 23 kB on the cow, and per
-// region its first block; both cache-resident) locate a region's list from a hit's
-// (b1, b2), so a random lookup is one cache miss on a contiguous run. (A search from a
-// point q instead reads t's 32-byte frame for q's barycentric coordinates when r > 1.)
-// The finer sub-triangles cost nothing at lookup and shorten the lists.
-// Measured on the cow with 20 000 cells (`pelage bench lookup`, one thread, ns per F1 +
-// F2 lookup in random / coherent order, banded coherent): per-S lists as before 10.6 MB,
-// 14.2 cells per list, 132-214 / 62-67 / 64-71 ns; fine regions 7.9 MB, 10.0 cells,
-// 117-142 / 65-66 / 64-65; coarse regions (chosen) 3.2 MB, 19.3 cells, 22 % of triangles
-// with r > 1, 100-120 / 66-70 / 72-80: the coarse bounds, measured from the whole
-// triangle, let the scan read more cells (3.6 blocks per F1 + F2 lookup, 2.1 for F1
-// alone), which coherent lookups pay for. The 760-triangle sphere (26 cells per
-// triangle) gets fine regions, 2.8 MB (4.8 before).
+// Regions. The lists of neighbouring sub-triangles overlap heavily (the same cells at
+// the same positions), so a lookup searches a *region* of t, whose list is the union of
+// the lists of the S in it: fewer, shorter-in-total lists keep the index small enough
+// to stay mostly in cache. Two layouts, one per index: *fine* regions, r = about one per
+// cell spacing across t (at most 3 per side), when the whole index stays within
+// ClosestCellOptions::fine_regions_max_bytes, else *coarse* ones: one region (t itself)
+// for triangles up to six spacings across, r x r (r = 2, 3) beyond. Each list is sorted
+// by its cells' distance from the region (a lower bound for every query in it) and
+// packed five cells to a 64-byte block (float x[5], y[5], uint32 cell[5] and the block's
+// squared bound: no padding bytes); the scan stops at the first block whose bound
+// exceeds the current K-th nearest distance (Teo's adaptive radius D_min, for the K
+// wanted). A triangle's blocks are contiguous; two small, cache-resident tables of
+// uint32 offsets (per triangle its first region, per region its first block) locate a
+// region's list from a hit's (b1, b2), so a random lookup is one cache miss on a
+// contiguous run. (A search from a point q instead reads t's 32-byte frame for q's
+// barycentric coordinates when r > 1.) The finer sub-triangles cost nothing at lookup
+// and shorten the lists. Coarse regions trade longer scans (their bounds are taken
+// from the whole triangle) for a smaller index; `pelage bench lookup` compares both.
 // Positions stay float in t's frame: results are bit-identical to scanning the unfolding
-// itself, and the same as the per-sub-triangle lists gave (a cell outside S's list is
-// farther than F3 from all of S; `pelage bench lookup` checksums are unchanged). Tried
-// and slower (see git log): 16-bit positions with exact floats aside (a second miss per
-// lookup); one union per triangle in Hilbert order with, per S, a sorted list of (block,
-// mask, bound) visits (an S's cells spread over ~6 partly used blocks); the union sorted
-// by distance from t's centroid with a mask byte per (S, block) (that order prunes
-// poorly). The banded search for soft edges runs as a two-nearest scan (F2 lets
+// itself (a cell outside S's list is farther than F3 from all of S).
+//
+// The banded search for soft edges runs as a two-nearest scan (F2 lets
 // coherent_lookup.h reuse the result for the next hits) followed by a pass over the
-// same, now cached, blocks for the cells within F1 + band (three_within()) — skipped
-// when F2 lies beyond F1 + band, or when the bound on every other cell does.
+// same, by then cached, blocks for the cells within F1 + band (three_within()) —
+// skipped when F2 lies beyond F1 + band, or when the bound on every other cell does.
+//
 // Two ways to scan a list. find() and find_nearest() serve hits in no useful order
 // (indirect hits, `pelage lookup`), where which cell of a block is nearer is a coin
-// toss and the insertion scan's branches mispredicted ~6 times per lookup: they keep
-// each of a block's five lanes' own K nearest in vector registers instead, selects
-// only, and merge the lanes at the end (lane_scan.h; exact ties go to the insertion
-// scan, which orders them by id). Random F1 + F2 on the cow 89-97 ns instead of
-// 105-126, F1 63-67 instead of 72-94, and replayed indirect hits of sphere_cheetah
-// 47 instead of 54 ns, with four lanes (SSE2). Eight lanes (AVX2, chosen at run time)
-// hold a whole block, with one-instruction selects: 375 instead of 668 instructions per
-// random F1 + F2 (callgrind), 77-92 ns instead of 93-112 (2026-11-22, same run). With
-// them the banded search's first pass (its two nearest) runs lane by lane too, where
-// with four lanes the insertion scan had been faster (camera hits come in runs along
-// one list, where its branches predict well): banded walks as camera hits 47-65 ns
-// instead of 60-72. Its second pass, rare, keeps the insertion scan.
+// toss and an insertion scan's branches mispredict: they keep each of a block's lanes'
+// own K nearest in vector registers instead, selects only, and merge the lanes at the
+// end (lane_scan.h; exact ties go to the insertion scan, which orders them by id). Four
+// lanes with SSE2; eight with AVX2 (chosen at run time), which hold a whole block and
+// select in one instruction. The banded search's first pass (its two nearest) runs lane
+// by lane too when eight lanes are available; with four, it keeps the insertion scan,
+// whose branches predict well on camera hits (they come in runs along one list). Its
+// second pass, rare, always uses the insertion scan.
+//
 // By default the unfolding walks edges only (sim/crps/unfold.h, UnfoldPaths): the two
 // triangles on either side of an edge then see identical maps for every triangle reached
 // through that edge, which reduces Teo's "cracks" (§6.3); `pelage bench lookup` measures
@@ -238,7 +223,7 @@ class ClosestCellIndex {
     // bits hold r, the regions per side. Region g's blocks are [m_region_block[g],
     // m_region_block[g + 1]). Neither needs t's frame: a hit's (b1, b2) picks the list
     // with reads of two small, cache-resident tables, so a random lookup waits on one
-    // miss only (the frame was a second one, before the list's, when it held the ends).
+    // miss only, the list's (reading the frame first would add a second).
     std::vector<uint32_t> m_first_region;
     std::vector<uint32_t> m_region_block;
     std::vector<Block> m_blocks;

@@ -116,16 +116,14 @@ void ClosestCellIndex::build_triangle(const sim::Crps &crps, sim::TriId t,
     const sim::CrpsFrame &ft = crps.frame(t);
 
     // --- Subdivisions: r regions per side searched at run time, n per side built ---
-    // Fine regions: about one per cell spacing across (the per-sub-triangle lists of
-    // before). Coarse ones: one list per triangle while the triangle is at most six
-    // cell spacings across (on the cow with 20 000 cells, 78 % of the triangles), as its
-    // sub-triangles' lists overlap so much that storing them apart costs more cache
-    // misses than their shorter scans save (a threshold of four spacings: 4.3 MB on the
-    // cow, no faster). The reach is computed per sub-triangle of a finer n-subdivision
-    // (about two per cell spacing, at most 6, nested in both r-subdivisions): finer
-    // sub-triangles have tighter radii R_S, so the lists are shorter (one list per
-    // triangle on the cow: 28.8 cells with n <= 3, 21.9 with n <= 6), at no cost to a
-    // lookup.
+    // Fine regions: about one per cell spacing across. Coarse ones: one list per
+    // triangle while the triangle is at most six cell spacings across (most triangles
+    // of a typical mesh), as its sub-triangles' lists overlap so much that storing them
+    // apart costs more cache misses than their shorter scans save (a lower threshold
+    // only makes the index larger). The reach is computed per sub-triangle of a finer
+    // n-subdivision (about two per cell spacing, at most 6, nested in both
+    // r-subdivisions): finer sub-triangles have tighter radii R_S, so the lists are
+    // shorter, at no cost to a lookup.
     const double spacings = 2 * ft.bound_radius / std::max(m_spacing, 1e-300);
     const uint32_t r_max =
         std::clamp<uint32_t>(m_options.max_subdivision, 1, max_subdivision);
@@ -141,7 +139,7 @@ void ClosestCellIndex::build_triangle(const sim::Crps &crps, sim::TriId t,
     {
         Frame &f = out[0].frame;
         f = {float(v0.x), float(v0.y), float(e1.x), float(e1.y), float(e2.x), float(e2.y), 0};
-        f.inv_det = 1.0f / (f.e1x * f.e2y - f.e1y * f.e2x);  // in float, as it always was
+        f.inv_det = 1.0f / (f.e1x * f.e2y - f.e1y * f.e2x);  // in float, like the searches
         out[1].frame = f;
     }
     struct Sub {

@@ -9,10 +9,9 @@
 // |q - c1| and |q - c2|, the banded search at q would find the nearer of the two, and
 // the other when it lies within the band, and nothing else — so the scan is skipped.
 // Keeping both cells serves the hits along a boundary (the blends of antialiasing) and
-// those moving along it: 86 % of the camera hits of sphere_cheetah at 2000 x 2000
-// reuse (the renderer runs a tile's rows back and forth), against 60 % with c1 and F2
-// alone; the F3 bound costs the scan at most one more line, and the exact F3 would
-// save 0.3 % of the searches.
+// those moving along it, which c1 and F2 alone would send back to the scan; most
+// camera hits reuse (the renderer runs a tile's rows back and forth). The F3 bound
+// costs the scan at most one more line, and the exact F3 would save few searches.
 // The result is the same bits: |q - c1|² is computed from c1's position exactly as the
 // scan computes it, and the comparison keeps a relative margin far above float
 // rounding. Keyed by an index serial (callers give each index a number never reused,

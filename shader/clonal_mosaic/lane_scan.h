@@ -2,7 +2,7 @@
 // cells side by side in vector lanes, each lane keeping the K nearest of the cells it has
 // seen, with selects only, and the lanes merged at the end. Nothing branches on which of
 // two distances is smaller — in a list in no useful order (random and indirect hits) that
-// is a coin toss the insertion scan mispredicted ~6 times per lookup. What
+// is a coin toss, on which the insertion scan's branches mispredict. What
 // ClosestCellIndex::find() and find_nearest() run, and, at eight lanes, the banded
 // search's first pass (closest_cell.cpp), with Teo's pruning (Fig. 6.2): blocks are
 // sorted by bound, and the scan stops at the first whose bound lies beyond the K-th

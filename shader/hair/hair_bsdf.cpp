@@ -26,8 +26,8 @@ constexpr float ln_2 = 0.693147181f;
 // Modified Bessel function of the first kind, order 0, by its power series
 // Σ_k (x²/4)^k / (k!)², summed in double until the terms stop mattering (used for
 // x <= 12). Deviates from pbrt, which stops after 10 terms: that underestimates I0 by
-// 0.3 % at x = 10 and 2 % at x = 12 (for x <= 12, 40 terms reach 1e-8), and the lost M_p mass showed up as a pdf integral of
-// 0.998 in PdfIntegratesToOne.
+// 0.3 % at x = 10 and 2 % at x = 12 (for x <= 12, 40 terms reach 1e-8), and the lost
+// M_p mass would leave the pdf integral short of 1 (PdfIntegratesToOne).
 float bessel_i0(float x) {
     // 1/k², so the recurrence is a chain of multiplies, not divides
     static constexpr auto inv_k2 = [] {

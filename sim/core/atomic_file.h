@@ -1,6 +1,6 @@
-// Writing outputs atomically (design.md, "Conventions"): data goes to a temporary file in
-// the destination's folder, which is renamed over the final name only once complete. A
-// killed run never leaves a truncated file under the final name.
+// Writing outputs atomically (docs/design.md, "Conventions"): data goes to a temporary
+// file in the destination's folder, which is renamed over the final name only once
+// complete. A killed run never leaves a truncated file under the final name.
 #pragma once
 
 #include <functional>

@@ -1,5 +1,5 @@
 // The one error type for bad input anywhere in pelage. Library code throws it; only the
-// CLI's main() catches it and exits with code 2 (design.md, "Conventions").
+// CLI's main() catches it and exits with code 2 (docs/design.md, "Conventions").
 #pragma once
 
 #include <cstddef>

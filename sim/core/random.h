@@ -1,7 +1,7 @@
 // Counter-based random numbers: every draw is a pure function of (seed, stream, index),
-// so a result never depends on which thread asked for it or in what order (design.md,
-// "Determinism"). The mixer is SplitMix64's finaliser (Steele, Lea, Flood 2014), applied
-// to a combination of the three counters.
+// so a result never depends on which thread asked for it or in what order
+// (docs/design.md, "Determinism"). The mixer is SplitMix64's finaliser (Steele, Lea,
+// Flood 2014), applied to a combination of the three counters.
 #pragma once
 
 #include <cmath>

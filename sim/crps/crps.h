@@ -1,5 +1,5 @@
 // The Canonical Reference Plane Structure of H. J. Teo, "Pattern Formation and Mapping
-// for Animal Skin Synthesis", M.Eng thesis, NTU 2006, ch. 4 (shared/seeds/001_…).
+// for Animal Skin Synthesis", M.Eng thesis, NTU 2006, ch. 4.
 //
 // Every triangle t is rotated by R_t so its (consistently oriented) normal points to +Y;
 // dropping Y gives its *reference triangle* in 2D (Teo §4.2, Fig. 4.4). pelage keeps each

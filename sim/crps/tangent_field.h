@@ -1,7 +1,7 @@
 // The anisotropy direction A of Walter et al. SIGGRAPH 2001 §3.2.1 on a surface: one 2D
 // vector per triangle, in that triangle's CRPS frame, whose length is |A|. The
-// relaxation reads only this array, so any field (constant world direction today, a
-// painted or interpolated field later) plugs in by filling it.
+// relaxation reads only this array, so any field (a constant world direction, or a
+// painted or interpolated field) plugs in by filling it.
 #pragma once
 
 #include <array>

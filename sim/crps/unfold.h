@@ -44,9 +44,9 @@ class UnfoldScratch {
 
 // Which neighbour maps the walk may compose. Teo's neighbourhood uses both; walking
 // across edges only makes the unfoldings of two edge-adjacent triangles agree on every
-// triangle reached through their shared edge (F[i→j] is exactly F[j→i]^-1). On the cow
-// with 20 000 cells that cuts the closest-cell search's edge disagreements ("cracks",
-// Teo §6.3) from 13.5 % to 4.1 % of edge points (`pelage bench lookup`).
+// triangle reached through their shared edge (F[i→j] is exactly F[j→i]^-1). That cuts
+// the closest-cell search's edge disagreements ("cracks", Teo §6.3) to about a third
+// (`pelage bench lookup` measures both).
 enum class UnfoldPaths { edges_and_vertices, edges_only };
 
 // Triangles whose mapped reference triangle lies within `radius` of the master triangle.

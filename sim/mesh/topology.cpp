@@ -18,7 +18,7 @@ void build_edges(const TriangleMesh &mesh, Topology &topo) {
     const size_t nt = mesh.num_triangles();
     struct HalfEdge { VertId lo, hi; TriId t; uint8_t k; };
     // Counting sort by the lower vertex, then a tiny sort inside each vertex's bucket:
-    // linear in the mesh size (a global sort was the build's only n log n step).
+    // linear in the mesh size (a global sort would be the build's only n log n step).
     const size_t nv = mesh.num_vertices();
     std::vector<uint32_t> bucket(nv + 1, 0);
     for (TriId t = 0; t < nt; ++t)

@@ -1,6 +1,6 @@
 // Connectivity of a cleaned triangle mesh: edges with their faces, vertex fans (one-ring
 // of faces), and per-triangle primary (edge-sharing) and secondary (vertex-only)
-// neighbours, all in compact CSR arrays (style.md §2.4). Also a consistent orientation:
+// neighbours, all in compact CSR arrays. Also a consistent orientation:
 // the CRPS unfolds neighbours with rotations only, which needs all faces of a component
 // to agree on which side is "up".
 #pragma once

@@ -59,7 +59,7 @@ int CellTypes::background() const {
 namespace {
 
 // Reads one JSON object with known keys; every error names the file and JSON path, and
-// unknown keys are errors (style.md §2.6: never warn-and-ignore).
+// unknown keys are errors (never warn-and-ignore).
 class Reader {
   public:
     explicit Reader(std::string file) : m_file(std::move(file)) {}

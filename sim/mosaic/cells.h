@@ -1,4 +1,4 @@
-// The cells of a Clonal Mosaic, structure of arrays (style.md §2.4). A cell's index is
+// The cells of a Clonal Mosaic, structure of arrays. A cell's index is
 // its creation order and its stable id: cells are never destroyed, so ids are dense.
 // Each triangle keeps the list of cells living on it (its "bucket"), in a deterministic
 // order that the relaxation's fixed summation order relies on.

@@ -75,7 +75,7 @@ void Neighbourhoods::update(const Crps &crps, double r) {
 namespace {
 
 // Deterministic direction for two coincident cells (d = 0): a hashed angle of the pair,
-// opposite for the two members so they separate (style.md §2.4: ties break on ids).
+// opposite for the two members so they separate (ties break on ids, never on memory order).
 Vec2d tie_break_direction(uint64_t seed, CellId c, CellId p) {
     const CellId lo = std::min(c, p), hi = std::max(c, p);
     const uint64_t h = hash_counters(seed, static_cast<uint64_t>(RandomStream::tie_break),

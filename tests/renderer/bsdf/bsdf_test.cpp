@@ -1,4 +1,4 @@
-// Property tests of the built-in BSDFs (style.md §2.7): energy, and agreement of sample()
+// Property tests of the built-in BSDFs: energy, and agreement of sample()
 // with eval() and pdf().
 #include <gtest/gtest.h>
 
@@ -62,8 +62,7 @@ TEST(BsdfCoated, SamplingAgreesWithEvalAndPdf) {
 
 TEST(BsdfCoated, WhiteFurnaceNeverGainsEnergyAndBoundsItsLoss) {
     // Directional albedo of a white base (ρ = 1) under a non-absorbing coat. Never above
-    // 1
-    // (+1 % Monte Carlo margin). The layering term keeps the base's share exact, so what
+    // 1 (+1 % Monte Carlo margin). The layering term keeps the base's share exact, so what
     // is lost is the coat's: single-scattering GGX (no inter-reflection between
     // microfacets) with the smooth transmittance 1 − F(cos θ), while a rough coat
     // reflects less than F(cos θ) at grazing angles. Measured albedos (2·10^5 samples),

@@ -1,4 +1,4 @@
-// Geometric robustness (issue "Hardening"): meshes with needle and sliver triangles,
+// Geometric robustness: meshes with needle and sliver triangles,
 // boundaries and holes, disconnected components, and scales from 1e-4 to 1e4 units go
 // through the whole pipeline (pelage sim, the clonal_mosaic plugin, a render). Cells stay
 // on the surface (valid barycentrics in their own triangle), the shader finds a cell at

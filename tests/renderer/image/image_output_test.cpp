@@ -96,8 +96,8 @@ void rewrite(const std::string &path, const OIIO::ImageSpec &spec,
 }
 
 // --resume trusts a frame only when its pixels hash to the header's checksum, whatever
-// order OpenEXR gives the channels back in; files from before the switch to XXH3 carry
-// an FNV-1a pelage:pixel_hash, which must still verify.
+// order OpenEXR gives the channels back in; older files carry an FNV-1a
+// pelage:pixel_hash instead of the XXH3 one, which must still verify.
 TEST(ImageOutput, PixelChecksumMarksCompleteFramesAndLegacyFnvStillVerifies) {
     TempDir tmp;
     const int W = 7, H = 5, nc = Film::num_channels;

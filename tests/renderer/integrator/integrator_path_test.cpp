@@ -1,4 +1,4 @@
-// Analytic scenes for the path tracer (style.md §2.7): the furnace, a quad light's
+// Analytic scenes for the path tracer: the furnace, a quad light's
 // closed-form irradiance, and determinism across thread counts.
 #include <gtest/gtest.h>
 
@@ -48,7 +48,7 @@ TEST(PathIntegrator, FurnaceDiffuseSphereRendersAlbedoTimesEnvironment) {
     const double mean = covered_mean(img, &n);
     ASSERT_GT(n, 100);
     // Convex Lambertian sphere under uniform L: L_o = ∫ (a/π) L cos θ dω = a·L exactly.
-    // 1 %: the tolerance; the Monte Carlo error of the mean is far below it.
+    // 1 %: the required tolerance; the Monte Carlo error of the mean is far below it.
     EXPECT_NEAR(mean, a * L, 0.01 * a * L);
     EXPECT_EQ(img.stats.nonfinite_samples, 0u);
 }
@@ -140,7 +140,7 @@ TEST(PathIntegrator, QuadLightOverDiffusePlaneMatchesClosedFormIrradiance) {
                                 polygon_irradiance(corners, 4, p, {0, 1, 0}, Le) / 64;
                 }
             const double got = (img.at(x, y, 0) + img.at(x, y, 1) + img.at(x, y, 2)) / 3;
-            // 2 %: the tolerance (the Monte Carlo error at 8192 spp is ~0.3 %).
+            // 2 %: the required tolerance (the Monte Carlo error at 8192 spp is ~0.3 %).
             EXPECT_NEAR(got, expected, 0.02 * expected) << "pixel " << x << "," << y;
         }
 }
@@ -364,8 +364,8 @@ TEST(PathIntegrator, PowerLightSelectionConvergesToTheSameImageWithLessNoise) {
         }
     }
     // Less noise: at 16 spp the image error is Monte Carlo noise; choosing the bright
-    // light 40× more often than the dim one must lower it (measured 0.22× the error of
-    // uniform selection; 0.8 leaves room for the noise of the noise estimate).
+    // light 40× more often than the dim one must lower it (to about 0.22× the error of
+    // uniform selection here; 0.8 leaves room for the noise of the noise estimate).
     const double e_power = relative_rms_error(
                      render_json(two_quads_scene("power", 16), tmp), expected),
                  e_uniform = relative_rms_error(

@@ -38,8 +38,8 @@ float rel_diff(float a, float b) { return std::abs(a - b) / std::max({std::abs(a
 
 // σ_a = 0: ∫ f |cos θ_i| dω_i = 1 for 40 random (β_m, β_n ∈ [0.1, 1], α ∈ [−5°, 5°],
 // h ∈ [−1, 1], wo uniform on the sphere), by the 512 × 1024 midpoint quadrature of
-// hair_furnace.h. Bound 1e-3, ten times tighter than the issue's 1 %: the quadrature
-// is converged to ~1e-5 at this grid (same value at 256 × 512), measured worst 4.2e-5.
+// hair_furnace.h. Bound 1e-3, ten times tighter than the required 1 %: the quadrature
+// is converged to ~1e-5 at this grid (same value at 256 × 512); the worst case is 4.2e-5.
 TEST(HairBsdf, WhiteFurnaceConservesEnergy) {
     Rng rng(20160101);
     float worst = 0;
@@ -356,8 +356,8 @@ TEST(HairBsdf, BadParametersThrow) {
 }  // namespace
 }  // namespace pelage::hair
 
-// `pelage bench hair` output contract (issue 6): one JSON object with furnace_max_error.
-// A small, fast set (2 fibres, 128 × 256 grid); the error bound is the issue's 1 %.
+// `pelage bench hair` output contract: one JSON object with furnace_max_error.
+// A small, fast set (2 fibres, 128 × 256 grid); the error bound is the required 1 %.
 #include <nlohmann/json.hpp>
 
 #include "tests/test_paths.h"

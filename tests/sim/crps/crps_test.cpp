@@ -12,7 +12,7 @@
 namespace pelage::sim {
 namespace {
 
-// The bound: 1e-5 of the bounding-box diagonal. Double precision gives ~1e-15,
+// The required bound: 1e-5 of the bounding-box diagonal. Double precision gives ~1e-15,
 // so a real bug (wrong rotation, wrong centre, a swapped corner) is far above it.
 constexpr double tolerance = 1e-5;
 

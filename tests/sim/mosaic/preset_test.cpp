@@ -94,7 +94,7 @@ namespace pelage::sim {
 namespace {
 
 TEST(Preset, PublishedCountsAreReproducedWithin10Percent) {
-    // Issue 3: each preset with published final counts ends within ±10 % of them on the
+    // Each preset with published final counts ends within ±10 % of them on the
     // 760-triangle sphere with the default seed (see README for the spread over seeds).
     const Surface s = build_surface("procedural:sphere:20x20");
     size_t checked = 0;
