@@ -107,4 +107,19 @@ rows = [l.rstrip("\n").split("\t") for l in open(sys.argv[1])]
 print(json.dumps({"wall_seconds": {k: round(float(v), 2) for k, v in rows},
                   "total_wall_seconds": round(sum(float(v) for _, v in rows), 1)}, indent=2))
 PY
+# Paths inside the repository are recorded relative to it; temporary paths by name only.
+python3 - "$repo" "$work" <<'PY'
+import glob, json, os, sys
+repo, work = sys.argv[1] + "/", sys.argv[2] + "/"
+def clean(v):
+    if isinstance(v, dict): return {k: clean(x) for k, x in v.items()}
+    if isinstance(v, list): return [clean(x) for x in v]
+    if isinstance(v, str) and v.startswith(repo): return v[len(repo):]
+    if isinstance(v, str) and v.startswith(("/tmp/", work)): return os.path.basename(v)
+    return v
+for f in glob.glob("docs/data/*.json"):
+    d = clean(json.load(open(f)))
+    with open(f, "w") as out:
+        out.write(json.dumps(d, indent=2) + "\n")
+PY
 echo "run_benchmarks: done; now run python3 docs/tools/make_tables.py" >&2
