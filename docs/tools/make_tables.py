@@ -219,8 +219,8 @@ def t_compare():
                      "—" if name == "clonal_mosaic" else f"{sh['clonal_mosaic']['cpu_seconds'] / sh[name]['cpu_seconds']:.2f}",
                      "—" if not ratio else f"{ratio['median']:.2f} ({ratio['min']:.2f}–{ratio['max']:.2f})",
                      "—" if name == "clonal_mosaic" else f"{d['lookup_ratios'][key]:.3g}"])
-    return (table(["shader", "render CPU s (least of the runs)", "shade ns / lookup",
-                   "CM / shader, render", "CM / shader, per round: median (range)",
+    return (table(["shader", "render CPU s (least of the repetitions)", "shade ns / lookup",
+                   "CM / shader, render", "CM / shader, per repetition: median (range)",
                    "CM / shader, lookup"], rows) +
             f"\n{d['width']}×{d['height']} pixels, each shader rendered {d['repeats']} times, "
             f"alternating.\n")
