@@ -1,0 +1,351 @@
+#!/usr/bin/env python3
+"""Rewrites the generated tables of docs/performance.md and docs/validation.md from the
+JSON files in docs/data/ (written by docs/tools/run_benchmarks.sh).
+
+A generated region is everything between
+    <!-- BEGIN generated: NAME -->
+    <!-- END generated: NAME -->
+on lines of their own; NAME selects one of the TABLES below. Text outside the markers is
+never touched, and running the script twice changes nothing the second time.
+
+Usage:
+    python3 docs/tools/make_tables.py           rewrite the files that are out of date
+    python3 docs/tools/make_tables.py --check   exit 1 (and name them) if any file is out of date
+
+Python 3 standard library only.
+"""
+import argparse
+import json
+import os
+import re
+import statistics
+import sys
+
+DOCS = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+DATA = os.path.join(DOCS, "data")
+FILES = ["performance.md", "validation.md"]
+MARKER = re.compile(
+    r"(<!-- BEGIN generated: (?P<name>[\w.-]+) -->\n)(?P<body>.*?)(<!-- END generated: (?P=name) -->)",
+    re.S)
+
+_cache = {}
+
+
+def data(name):
+    """docs/data/NAME.json, parsed once."""
+    if name not in _cache:
+        path = os.path.join(DATA, name + ".json")
+        try:
+            with open(path, encoding="utf-8") as f:
+                _cache[name] = json.load(f)
+        except (OSError, ValueError) as e:
+            sys.exit(f"make_tables: {path}: {e}")
+    return _cache[name]
+
+
+def table(header, rows, align=None):
+    """A Markdown table; align is a string of 'l'/'r' per column (default: l, then r)."""
+    align = align or "l" + "r" * (len(header) - 1)
+    rule = ["---:" if a == "r" else "---" for a in align]
+    lines = ["| " + " | ".join(header) + " |", "| " + " | ".join(rule) + " |"]
+    lines += ["| " + " | ".join(str(c) for c in row) + " |" for row in rows]
+    return "\n".join(lines) + "\n"
+
+
+def mesh_name(path):
+    if path.startswith("procedural:"):
+        return path[len("procedural:"):].replace(":", " ").replace("x", "×")
+    base = os.path.basename(path)
+    return base[:-4] if base.endswith((".off", ".obj")) else path
+
+
+def num(x, digits=3):
+    """A number with `digits` significant digits (whole numbers from 100 up), thousands
+    separated by spaces."""
+    if x is None:
+        return "—"
+    if x == 0:
+        return "0"
+    if abs(x) >= 100 or (isinstance(x, int)):
+        return f"{x:,.0f}".replace(",", " ")
+    s = f"{x:.{digits}g}"
+    if "e" in s:
+        mant, exp = s.split("e")
+        return f"{mant}·10^{int(exp)}"
+    return s
+
+
+def pct(x, digits=1):
+    return f"{100 * x:.{digits}f} %"
+
+
+def signed_pct(x):
+    return f"{100 * x:+.1f} %"
+
+
+def millions(x):
+    return f"{x / 1e6:.2f} M"
+
+
+# --- performance.md -------------------------------------------------------------------
+
+def t_machine():
+    m, r = data("machine"), data("run_times")
+    return table(["", ""], [
+        ["CPU", m["cpu"]],
+        ["logical CPUs", m["logical_cpus"]],
+        ["system", m["system"]],
+        ["pelage", m["pelage"]],
+        ["wall time of every command in `run_benchmarks.sh`", f"{r['total_wall_seconds']} s"],
+    ], "ll")
+
+
+def t_crps():
+    d = data("bench_crps")
+    rows = [[mesh_name(r["mesh"]), num(r["triangles"]), num(r["ns_per_triangle"]),
+             num(r["topology_seconds"] * 1e3), num(r["crps_seconds"] * 1e3),
+             millions(r["maps_per_second"]) + "/s", num(r["unfold_ns"] / 1e3),
+             num(r["unfold_triangles_mean"])] for r in d["runs"]]
+    out = table(["mesh", "triangles", "build ns / triangle", "topology ms", "CRPS ms",
+                 "neighbour maps", "unfold µs", "triangles unfolded"], rows)
+    return out + (f"\nBuild time per triangle, largest mesh over smallest: "
+                  f"**{d['ns_per_triangle_ratio']:.2f}** (`ns_per_triangle_ratio`; "
+                  f"{d['threads']} thread).\n")
+
+
+def t_sim():
+    d = data("bench_sim")
+    rows = [[num(r["initial_cells"]), r["relax"], num(r["final_cells"]),
+             f"{r['spot_fraction']:.4f}", num(r["seconds"]), num(r["seconds_simulation"]),
+             num(r["ns_per_cell_step"]), num(r["ns_per_cell_step_relax"])]
+            for r in d["runs"]]
+    out = table(["initial cells", "relaxation", "final cells", "spot fraction",
+                 "seconds (total)", "simulation phase s", "ns / cell-step",
+                 "ns / cell-step, relaxation only"], rows)
+    out += (f"\n* Local over global relaxation, simulation phase (`local_speedup`): "
+            f"**{d['local_speedup']:.2f}×**; including the initial relaxation both share "
+            f"(`local_speedup_total`): {d['local_speedup_total']:.2f}×.\n"
+            f"* Spot fraction, local minus global (`spot_fraction_difference`): "
+            f"{d['spot_fraction_difference']}.\n"
+            f"* Cost per cell-step, largest over smallest run (`cost_per_cell_step_ratio_*`): "
+            f"global {d['cost_per_cell_step_ratio_global']:.2f}, local "
+            f"{d['cost_per_cell_step_ratio_local']:.2f}; relaxation only "
+            f"(`relax_cost_per_cell_step_ratio_*`): global "
+            f"{d['relax_cost_per_cell_step_ratio_global']:.2f}, local "
+            f"{d['relax_cost_per_cell_step_ratio_local']:.2f}.\n")
+    if "large" in d:
+        g = d["large"]
+        out += (f"* Large run on {mesh_name(g['mesh'])} ({num(g['triangles'])} triangles): "
+                f"{num(g['initial_cells'])} → {num(g['final_cells'])} cells, "
+                f"{num(g['divisions'])} divisions, {g['relax_steps']} relaxation steps, "
+                f"{num(g['seconds'])} s ({num(g['seconds_initial'])} s of it the initial "
+                f"relaxation), peak RSS {g['peak_rss_mb']:.0f} MB.\n")
+    return out
+
+
+def t_default_job():
+    s, st = data("sim_cow_giraffe"), data("stats_cow_giraffe")
+    by_type = ", ".join(f"{k} {num(v)}" for k, v in sorted(s["cells_by_type"].items()))
+    return table(["", ""], [
+        ["command", f"`pelage sim --mesh scenes/meshes/cow.off --preset {s['preset']} "
+                    f"--seed {s['seed']}`"],
+        ["triangles", num(s["triangles"])],
+        ["cells", f"{num(s['initial_cells'])} → {num(s['final_cells'])} ({by_type})"],
+        ["divisions, relaxation steps", f"{num(s['divisions'])}, {num(s['relax_steps'])} "
+                                        f"(+{s['initial_relax_steps']} initial, {s['relax']})"],
+        ["seconds (one thread)", f"{num(s['seconds'])} ({num(s['seconds_initial'])} initial relaxation)"],
+        ["spot fraction, spots, largest spot", f"{st['spot_fraction']:.3f}, {st['spots']}, "
+                                               f"{num(st['largest_spot_cells'])} cells"],
+    ], "ll")
+
+
+def lookup_runs():
+    return data("bench_lookup")["runs"]
+
+
+def t_lookup():
+    rows = [[mesh_name(r["mesh"]), num(r["triangles"]), num(r["ns_per_lookup"]),
+             num(r["ns_per_lookup_f1_only"]), num(r["ns_per_lookup_coherent"]),
+             num(r["ns_per_lookup_banded_coherent"]),
+             f"{num(r['ns_per_lookup_banded_walk_reuse'])} ({pct(r['walk_reused'], 0)})",
+             num(r["ns_per_lookup_lod"]), num(r["ns_per_lookup_exhaustive"]),
+             f"{r['index_megabytes']:.1f}", num(r["build_seconds"])]
+            for r in lookup_runs()]
+    d = data("bench_lookup")
+    cells = lookup_runs()[0]["cells"]
+    return (table(["mesh", "triangles", "F1+F2 random", "F1 random", "F1+F2 coherent",
+                   "banded coherent", "banded walk, reuse (reused)", "level of detail",
+                   "exhaustive", "index MB", "index build s"], rows) +
+            f"\nns per lookup, thread CPU time; {num(cells)} random cells per surface, "
+            f"{num(d['queries'])} queries.\n")
+
+
+def t_lookup_lanes():
+    rows = [[mesh_name(r["mesh"]), r["lanes"], num(r["ns_per_lookup"]),
+             num(r["ns_per_lookup_four_lanes"]),
+             f"{r['ns_per_lookup_four_lanes'] / r['ns_per_lookup']:.2f}",
+             "yes" if r["lanes_agree"] else "**no**"] for r in lookup_runs()]
+    return table(["mesh", "lanes used", "ns, widest scan", "ns, four lanes", "ratio",
+                  "same results"], rows)
+
+
+def t_render():
+    d = data("bench_render")
+    return table(["quantity", "value"], [
+        ["scene, size", f"{os.path.basename(d['scene'])}, {d['width']}×{d['height']}, "
+                        f"{d['spp']} spp, {num(d['triangles'])} triangles"],
+        ["rays (camera + secondary + shadow)", f"{millions(d['rays'])} ({millions(d['camera_rays'])} + "
+                                               f"{millions(d['secondary_rays'])} + {millions(d['shadow_rays'])})"],
+        ["camera packet width", d["camera_packet_width"]],
+        ["path tracer / raw Embree `rtcIntersect1`, per CPU second (`ratio_cpu`)", f"**{d['ratio_cpu']:.2f}**"],
+        ["the same, wall clock (`ratio`)", f"{d['ratio']:.2f}"],
+        ["path tracer / Embree doing the same calls (`ratio_same_calls`)", f"{d['ratio_same_calls']:.2f}"],
+        [f"1-thread time over {d['threads']}-thread time, wall clock (`thread_scaling`)", f"{d['thread_scaling']:.2f}"],
+        ["path tracer, 1 thread", f"{millions(d['path_tracer_rays_per_second_1_thread'])} rays/s"],
+        ["plugin time, sampled against timed on every call "
+         "(`plugin_seconds_extrapolation_error`)", signed_pct(d["plugin_seconds_extrapolation_error"])],
+    ], "ll")
+
+
+def t_compare():
+    d = data("compare_sphere_cheetah")
+    sh = d["shaders"]
+    order = ["clonal_mosaic", "worley", "perlin", "texture", "diffuse"]
+    rows = []
+    for name in [n for n in order if n in sh] + sorted(set(sh) - set(order)):
+        key = "clonal_mosaic_vs_" + name
+        ratio = d["ratio_rounds"].get(key)
+        rows.append([f"`{name}`", num(sh[name]["cpu_seconds"]), num(sh[name]["ns_per_lookup"]),
+                     "—" if name == "clonal_mosaic" else f"{sh['clonal_mosaic']['cpu_seconds'] / sh[name]['cpu_seconds']:.2f}",
+                     "—" if not ratio else f"{ratio['median']:.2f} ({ratio['min']:.2f}–{ratio['max']:.2f})",
+                     "—" if name == "clonal_mosaic" else f"{d['lookup_ratios'][key]:.3g}"])
+    return (table(["shader", "render CPU s (least of the repetitions)", "shade ns / lookup",
+                   "CM / shader, render", "CM / shader, per repetition: median (range)",
+                   "CM / shader, lookup"], rows) +
+            f"\n{d['width']}×{d['height']} pixels, each shader rendered {d['repeats']} times, "
+            f"alternating.\n")
+
+
+def t_hair():
+    d = data("bench_hair")
+    return table(["call", "ns"], [[k, num(d[k + "_ns"])] for k in
+                                  ["eval", "pdf", "sample", "construct"]])
+
+
+def t_fur():
+    d = data("bench_fur")
+    rows = [[num(r["strands"]), num(r["grow_seconds"]), num(r["embree_seconds"]),
+             num(r["scene_cpu_seconds"]), num(r["strands_per_second"]),
+             f"{r['peak_rss_mb']:.0f} MB", millions(r["rays_per_second"]),
+             millions(r["rays_per_second_no_fur"]), f"{r['ratio']:.2f}"] for r in d["runs"]]
+    r0 = d["runs"][0]
+    return (table(["strands", "grow s", "Embree build s", "scene CPU s", "strands / s",
+                   "peak RSS", "rays/s, fur", "rays/s, bare", "ratio"], rows) +
+            f"\n{r0['width']}×{r0['height']}, {r0['spp']} spp, {r0['curve']} curves, "
+            f"{r0['segments']} segments per strand.\n")
+
+
+# --- validation.md --------------------------------------------------------------------
+
+def t_presets():
+    d = data("presets")["presets"]
+    rows, worst1 = [], 0.0
+    for name in sorted(d):
+        p = d[name]
+        seeds = p["seeds"]
+        for t, want in p["published"].items():
+            got = {s: v["cells_by_type"].get(t, 0) for s, v in seeds.items()}
+            errs = [(g - want) / want for g in got.values()]
+            g1 = got.get("1")
+            if g1 is not None:
+                worst1 = max(worst1, abs(g1 - want) / want)
+            mean = statistics.mean(got.values())
+            rows.append([f"`{name}`", t, num(want),
+                         "—" if g1 is None else f"{num(g1)} ({signed_pct((g1 - want) / want)})",
+                         f"{num(round(mean))} ({signed_pct((mean - want) / want)})",
+                         f"{signed_pct(min(errs))} … {signed_pct(max(errs))}"])
+    n = len(next(iter(d.values()))["seeds"])
+    return (table(["preset", "type", "published", "ours, seed 1", f"mean of {n} seeds",
+                   f"range over {n} seeds"], rows, "llrrrr") +
+            f"\nWorst deviation at seed 1: **{pct(worst1)}**.\n")
+
+
+def t_crps_errors():
+    keys = ["roundtrip_max_error", "barycentric_max_error", "edge_map_max_error",
+            "vertex_map_max_error", "edge_length_max_error", "inverse_max_error"]
+    meshes = [data("crps_cow"), data("crps_sphere")]
+    header = ["error (relative to the bounding-box diagonal)"] + [
+        f"{mesh_name(m['mesh'])} ({num(m['triangles'])} triangles)" for m in meshes]
+    rows = [[f"`{k}`"] + [f"{m[k]:.1e}" for m in meshes] for k in keys]
+    rows.append(["non-manifold edges / vertices"] +
+                [f"{m['nonmanifold_edges']} / {m['nonmanifold_vertices']}" for m in meshes])
+    rows.append(["primary / secondary neighbour maps"] +
+                [f"{num(m['primary_maps'])} / {num(m['secondary_maps'])}" for m in meshes])
+    return table(header, rows)
+
+
+def t_lookup_quality():
+    rows = [[mesh_name(r["mesh"]), num(r["triangles"]), pct(r["exhaustive_agreement"]),
+             pct(r["edge_disagreement"]), pct(r["teo_unfolding"]["edge_disagreement"]),
+             num(r["edge_samples"])] for r in lookup_runs()]
+    return table(["mesh", "triangles", "agreement with exhaustive search",
+                  "edge disagreement, edge maps (default)",
+                  "edge disagreement, edge + vertex maps (`teo`)", "edge samples"], rows)
+
+
+def t_hair_furnace():
+    d = data("bench_hair")
+    g = d["furnace_grid"]
+    return table(["check", "worst error"], [
+        [f"white furnace: ∫ f·\\|cos θ_i\\| dω = 1 for σ_a = 0 ({d['furnace_configs']} random fibres, "
+         f"{g[0]} × {g[1]} quadrature)", f"{d['furnace_max_error']:.1e}"],
+        ["∫ pdf dω = 1 (same fibres and quadrature)", f"{d['pdf_integral_max_error']:.1e}"],
+    ], "lr")
+
+
+TABLES = {
+    "machine": t_machine, "crps": t_crps, "sim": t_sim, "default-job": t_default_job,
+    "lookup": t_lookup, "lookup-lanes": t_lookup_lanes, "render": t_render,
+    "compare": t_compare, "hair": t_hair, "fur": t_fur, "presets": t_presets,
+    "crps-errors": t_crps_errors, "lookup-quality": t_lookup_quality,
+    "hair-furnace": t_hair_furnace,
+}
+
+
+def regenerate(text, path):
+    def sub(m):
+        name = m.group("name")
+        if name not in TABLES:
+            sys.exit(f"make_tables: {path}: unknown generated region '{name}'")
+        return m.group(1) + TABLES[name]() + m.group(4)
+    return MARKER.sub(sub, text)
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    ap.add_argument("--check", action="store_true",
+                    help="exit 1 if a file is out of date, writing nothing")
+    args = ap.parse_args()
+    stale = []
+    for name in FILES:
+        path = os.path.join(DOCS, name)
+        with open(path, encoding="utf-8") as f:
+            old = f.read()
+        new = regenerate(old, path)
+        if new != old:
+            stale.append(path)
+            if not args.check:
+                with open(path, "w", encoding="utf-8") as f:
+                    f.write(new)
+    if args.check:
+        for path in stale:
+            print(f"make_tables: {os.path.relpath(path)} is out of date "
+                  f"(run python3 docs/tools/make_tables.py)", file=sys.stderr)
+        return 1 if stale else 0
+    for path in stale:
+        print(f"make_tables: rewrote {os.path.relpath(path)}")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,125 @@
+#!/usr/bin/env bash
+# Re-runs every benchmark and validation command whose output docs/performance.md and
+# docs/validation.md show, writing the JSON files of docs/data/. Then run
+#   python3 docs/tools/make_tables.py
+# to rewrite the generated tables. Sizes are kept small (a few CPU-minutes in all); every
+# command runs under `nice -n 19`, one at a time, on one thread where the command allows.
+#
+# Usage: docs/tools/run_benchmarks.sh [PELAGE_BINARY]     (default: build/bin/pelage)
+# Needs the sample meshes (scenes/fetch_meshes.sh) and python3.
+set -euo pipefail
+repo="$(cd "$(dirname "$0")/../.." && pwd)"
+pelage="$(realpath "${1:-$repo/build/bin/pelage}")"
+cd "$repo"
+export PELAGE_DATA_DIR="${PELAGE_DATA_DIR:-$repo}"
+out=docs/data
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+mkdir -p "$out" build
+if [ ! -f scenes/meshes/cow.off ]; then
+    echo "run_benchmarks.sh: run scenes/fetch_meshes.sh first" >&2
+    exit 2
+fi
+
+log="$work/times.tsv"
+run() {   # run NAME COMMAND...: time one command (wall seconds go to run_times.json)
+    local name="$1"; shift
+    echo "run_benchmarks: $name" >&2
+    local t0 t1
+    t0=$(date +%s.%N)
+    nice -n 19 "$@"
+    t1=$(date +%s.%N)
+    printf '%s\t%s\n' "$name" "$(echo "$t1 - $t0" | bc)" >>"$log"
+}
+
+# --- The machine the figures come from ---
+python3 - "$pelage" >"$out/machine.json" <<'PY'
+import json, os, platform, subprocess, sys
+model = next((l.split(":", 1)[1].strip() for l in open("/proc/cpuinfo")
+              if l.startswith("model name")), platform.processor())
+version = subprocess.run([sys.argv[1], "--version"], capture_output=True, text=True).stdout.strip()
+print(json.dumps({"cpu": model, "logical_cpus": os.cpu_count(),
+                  "system": platform.system() + " " + platform.machine(),
+                  "pelage": version}, indent=2))
+PY
+
+# --- Performance ---
+run bench_crps    "$pelage" bench crps --repeat 2 --threads 1 >"$out/bench_crps.json"
+run bench_sim     "$pelage" bench sim --cells 1000 5000 10000 --large-initial 25000 \
+                      --large-target 100000 --threads 1 \
+                      >"$out/bench_sim.json"
+run bench_lookup  "$pelage" bench lookup --cells 20000 --queries 500000 --threads 1 \
+                      >"$out/bench_lookup.json"
+run bench_render  "$pelage" bench render --res 1280x720 --spp 4 --repeat 3 >"$out/bench_render.json"
+run bench_hair    "$pelage" bench hair --configs 16 >"$out/bench_hair.json"
+run bench_fur     "$pelage" bench fur --strands 20000 100000 --res 320x240 --spp 4 --threads 1 \
+                      >"$out/bench_fur.json"
+run sim_cheetah   "$pelage" sim --mesh procedural:sphere:20x20 --preset teo-cheetah --seed 1 \
+                      --threads 1 -o build/sphere_cheetah.cells
+run compare       "$pelage" compare scenes/sphere_cheetah.json --res 500x500 --spp 2 \
+                      --shaders clonal_mosaic,worley,perlin,texture,diffuse --repeat 3 \
+                      --atlas-res 1024 --lookups 100000 --threads 1 \
+                      --report "$out/compare_sphere_cheetah.json"
+
+# --- Validation and the default job's statistics ---
+run crps_cow      "$pelage" crps --mesh scenes/meshes/cow.off --threads 1 \
+                      --stats-json "$out/crps_cow.json"
+run crps_sphere   "$pelage" crps --mesh procedural:sphere:20x20 --threads 1 \
+                      --stats-json "$out/crps_sphere.json"
+run sim_cow       "$pelage" sim --mesh scenes/meshes/cow.off --preset giraffe-reticulata \
+                      --seed 1 --threads 1 -o "$work/cow_giraffe.cells" \
+                      --stats-json "$out/sim_cow_giraffe.json"
+run stats_cow     "$pelage" stats "$work/cow_giraffe.cells" --mesh scenes/meshes/cow.off \
+                      --stats-json "$out/stats_cow_giraffe.json"
+
+# Every preset with published counts, seeds 1-5, on Teo's 760-triangle sphere.
+for preset in scenes/presets/*.json; do
+    name=$(basename "$preset" .json)
+    python3 -c 'import json,sys; sys.exit(0 if json.load(open(sys.argv[1])).get("published") else 1)' \
+        "$preset" || continue
+    for seed in 1 2 3 4 5; do
+        run "preset_${name}_$seed" "$pelage" sim --mesh procedural:sphere:20x20 \
+            --preset "$preset" --seed "$seed" --threads 1 \
+            --stats-json "$work/preset_${name}_$seed.json" >/dev/null
+    done
+done
+python3 - "$work" >"$out/presets.json" <<'PY'
+import glob, json, os, sys
+work, runs = sys.argv[1], {}
+for f in sorted(glob.glob("scenes/presets/*.json")):
+    preset = json.load(open(f))
+    published = preset.get("published", {}).get("cells_by_type")
+    if not published:
+        continue
+    seeds = {}
+    for s in sorted(glob.glob(os.path.join(work, "preset_%s_*.json" % preset["name"]))):
+        st = json.load(open(s))
+        seeds[str(st["seed"])] = {"cells_by_type": st["cells_by_type"],
+                                  "relax_steps": st["relax_steps"]}
+    runs[preset["name"]] = {"published": published, "mesh": "procedural:sphere:20x20",
+                            "seeds": seeds}
+print(json.dumps({"presets": runs}, indent=2, sort_keys=True))
+PY
+
+python3 - "$log" >"$out/run_times.json" <<'PY'
+import json, sys
+rows = [l.rstrip("\n").split("\t") for l in open(sys.argv[1])]
+print(json.dumps({"wall_seconds": {k: round(float(v), 2) for k, v in rows},
+                  "total_wall_seconds": round(sum(float(v) for _, v in rows), 1)}, indent=2))
+PY
+# Paths inside the repository are recorded relative to it; temporary paths by name only.
+python3 - "$repo" "$work" <<'PY'
+import glob, json, os, sys
+repo, work = sys.argv[1] + "/", sys.argv[2] + "/"
+def clean(v):
+    if isinstance(v, dict): return {k: clean(x) for k, x in v.items()}
+    if isinstance(v, list): return [clean(x) for x in v]
+    if isinstance(v, str) and v.startswith(repo): return v[len(repo):]
+    if isinstance(v, str) and v.startswith(("/tmp/", work)): return os.path.basename(v)
+    return v
+for f in glob.glob("docs/data/*.json"):
+    d = clean(json.load(open(f)))
+    with open(f, "w") as out:
+        out.write(json.dumps(d, indent=2) + "\n")
+PY
+echo "run_benchmarks: done; now run python3 docs/tools/make_tables.py" >&2
