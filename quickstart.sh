@@ -11,7 +11,8 @@ case "$mode" in run|test) ;; *) echo "usage: $0 [run|test]" >&2; exit 2 ;; esac
 
 # --- Debian packages the project builds and runs with (kept in one place) ---
 packages=(
-    cmake g++ make pkg-config ca-certificates
+    cmake g++ make pkg-config ca-certificates git python3
+    clang-format         # tests: the style check (tests/style/check_style.py)
     libtbb-dev libtinyobjloader-dev nlohmann-json3-dev libcli11-dev libfmt-dev libxxhash-dev
     libembree-dev libopenimageio-dev openimageio-tools libopenexr-dev libopencolorio-dev
     libopencv-core-dev   # Debian's OpenImageIO CMake config names an opencv4 include folder

@@ -14,8 +14,10 @@ namespace pelage::shader {
 class ObjectSpacePositions {
   public:
     void copy_from(const PelageMeshView &mesh) {
-        m_positions.assign(mesh.positions, mesh.positions + 3 * size_t(mesh.num_vertices));
-        m_triangles.assign(mesh.triangles, mesh.triangles + 3 * size_t(mesh.num_triangles));
+        m_positions.assign(mesh.positions,
+                           mesh.positions + 3 * size_t(mesh.num_vertices));
+        m_triangles.assign(mesh.triangles,
+                           mesh.triangles + 3 * size_t(mesh.num_triangles));
     }
     // False when the primitive is not a triangle of this mesh.
     bool position(const PelageHit &hit, float p[3]) const {

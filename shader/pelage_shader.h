@@ -62,13 +62,13 @@ typedef struct PelageParamValue {
 /* A read-only view of the object's mesh (object space) and its optional .cells file. */
 typedef struct PelageMeshView {
     uint32_t num_vertices, num_triangles;
-    const float *positions;      /* 3 floats per vertex                       */
-    const uint32_t *triangles;   /* 3 indices per triangle                    */
-    const float *corner_uvs;     /* 6 floats per triangle, or NULL            */
-    const char *cells_path;      /* absolute path of the object's .cells, or NULL */
-    const char *mesh_path;       /* absolute path (or "procedural:...") the mesh was
-                                    loaded from; triangles are in the order pelage's
-                                    loader (sim/mesh/mesh_load.h) gives them               */
+    const float *positions;    /* 3 floats per vertex                       */
+    const uint32_t *triangles; /* 3 indices per triangle                    */
+    const float *corner_uvs;   /* 6 floats per triangle, or NULL            */
+    const char *cells_path;    /* absolute path of the object's .cells, or NULL */
+    const char *mesh_path;     /* absolute path (or "procedural:...") the mesh was
+                                  loaded from; triangles are in the order pelage's
+                                  loader (sim/mesh/mesh_load.h) gives them */
 } PelageMeshView;
 
 typedef struct PelageParamSet {
@@ -76,8 +76,8 @@ typedef struct PelageParamSet {
     const PelageParamValue *values; /* the plugin's table order */
     uint32_t object_id;
     PelageMeshView mesh;
-    const char *scene_dir;          /* folder of the scene file: relative paths in STRING
-                                       parameters resolve against it; "" when unknown */
+    const char *scene_dir; /* folder of the scene file: relative paths in STRING
+                              parameters resolve against it; "" when unknown */
 } PelageParamSet;
 
 typedef struct PelageError {
@@ -94,7 +94,8 @@ typedef struct PelageHit {
     uint32_t has_uv;
     float footprint;   /* approximate ray footprint width at the hit, in the object's own
                           units (those of its mesh file: the scene's divided by the
-                          object's scale), widened at rough bounces (renderer/core/ray_cone.h) */
+                          object's scale), widened at rough bounces
+                          (renderer/core/ray_cone.h) */
     uint32_t depth;    /* path vertex index, 0 for camera rays */
     uint32_t reserved; /* zero */
 } PelageHit;

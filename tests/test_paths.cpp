@@ -25,7 +25,8 @@ TempDir::TempDir() {
     const auto *info = ::testing::UnitTest::GetInstance()->current_test_info();
     std::random_device rd;
     m_path = std::filesystem::temp_directory_path() /
-             ("pelage_test_" + std::string(info ? info->name() : "x") + "_" + std::to_string(rd()));
+             ("pelage_test_" + std::string(info ? info->name() : "x") + "_" +
+              std::to_string(rd()));
     std::filesystem::create_directories(m_path);
 }
 
@@ -47,27 +48,35 @@ std::string slurp(const std::string &path) {
     return ss.str();
 }
 
-std::string simulate_two_type_cells(const TempDir &tmp, const std::string &mesh, int initial_cells,
-                                    double f_probability, uint64_t seed) {
-    const std::string preset = tmp.write("two_types.json", R"({"name": "t", "types": [
+std::string simulate_two_type_cells(const TempDir &tmp, const std::string &mesh,
+                                    int initial_cells, double f_probability,
+                                    uint64_t seed) {
+    const std::string preset = tmp.write("two_types.json",
+                                         R"({"name": "t", "types": [
         {"name": "F", "colour": [0.1, 0.05, 0.02], "eumelanin": 0.8, "division_time": "never",
-         "initial_probability": )" + std::to_string(f_probability) + R"(},
+         "initial_probability": )" + std::to_string(f_probability) +
+                                             R"(},
         {"name": "B", "colour": [0.9, 0.6, 0.3], "pheomelanin": 0.5, "division_time": "never",
-         "initial_probability": )" + std::to_string(1 - f_probability) + R"(}],
+         "initial_probability": )" + std::to_string(1 - f_probability) +
+                                             R"(}],
         "adhesion": [[0.5, 0.0], [0.0, 0.5]],
-        "simulation": {"initial_cells": )" + std::to_string(initial_cells) + R"(, "initial_relax_steps": 10,
+        "simulation": {"initial_cells": )" + std::to_string(initial_cells) +
+                                             R"(, "initial_relax_steps": 10,
                        "w_r": 2.0, "w_d": 0.1, "rho": 5, "end_time": 1, "relax": "global"}})");
     const std::string cells = tmp.file("mosaic.cells");
     std::string err;
-    EXPECT_EQ(run_pelage("sim --mesh " + mesh + " --preset " + preset + " -o " + cells + " --seed " +
-                             std::to_string(seed), nullptr, &err), 0) << err;
+    EXPECT_EQ(run_pelage("sim --mesh " + mesh + " --preset " + preset + " -o " + cells +
+                             " --seed " + std::to_string(seed),
+                         nullptr, &err),
+              0)
+        << err;
     return cells;
 }
 
 int run_pelage(const std::string &args, std::string *out, std::string *err) {
     TempDir tmp;
-    const std::string cmd = std::string(PELAGE_BINARY) + " " + args + " >" + tmp.file("out") +
-                            " 2>" + tmp.file("err");
+    const std::string cmd = std::string(PELAGE_BINARY) + " " + args + " >" +
+                            tmp.file("out") + " 2>" + tmp.file("err");
     const int status = std::system(cmd.c_str());
     if (out) *out = slurp(tmp.file("out"));
     if (err) *err = slurp(tmp.file("err"));

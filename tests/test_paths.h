@@ -27,18 +27,20 @@ class TempDir {
     std::filesystem::path m_path;
 };
 
-// `pelage sim` of a small two-type mosaic (F dark 10 %..40 %, B light) on `mesh`, as a user
-// would run it; returns the .cells path inside `tmp`. F is type 0 with colour
-// (0.1, 0.05, 0.02) and eumelanin 0.8, B type 1 with (0.9, 0.6, 0.3) and pheomelanin 0.5.
-std::string simulate_two_type_cells(const TempDir &tmp, const std::string &mesh, int initial_cells,
-                                    double f_probability = 0.3, uint64_t seed = 2);
+// `pelage sim` of a small two-type mosaic (F dark 10 %..40 %, B light) on `mesh`, as a
+// user would run it; returns the .cells path inside `tmp`. F is type 0 with colour (0.1,
+// 0.05, 0.02) and eumelanin 0.8, B type 1 with (0.9, 0.6, 0.3) and pheomelanin 0.5.
+std::string simulate_two_type_cells(const TempDir &tmp, const std::string &mesh,
+                                    int initial_cells, double f_probability = 0.3,
+                                    uint64_t seed = 2);
 
 // The whole file as bytes (empty when it cannot be read).
 std::string slurp(const std::string &path);
 
 // Runs the pelage binary with `args` (shell-quoted by the caller); captures stderr into
 // *err when given. Returns the exit code.
-int run_pelage(const std::string &args, std::string *out = nullptr, std::string *err = nullptr);
+int run_pelage(const std::string &args, std::string *out = nullptr,
+               std::string *err = nullptr);
 
 // `timeout --preserve-status -s INT N ` for a command that a test interrupts with Ctrl-C
 // once it is rendering: N = 3 s, or 30 s under ThreadSanitizer, where loading the scene

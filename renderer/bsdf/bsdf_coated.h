@@ -12,13 +12,13 @@
 // geometric series 1 / (1 − ρ F̄_int) sums, and leaving the denser coat divides radiance
 // by η². With ρ = 1 the base term alone reflects exactly 1 − F(cos θ_i).
 // Model limitation (measured by BsdfCoated.WhiteFurnace* in
-// tests/renderer/bsdf/bsdf_test.cpp): the coat is single-scattering GGX and its transmittance
-// is the smooth 1 − F(cos θ), while a rough coat reflects less than F(cos θ) at grazing
-// angles. A white base keeps ≥ 97 % of the energy at normal incidence; at cos θ_o = 0.1
-// it keeps 99 % (roughness 0.1), 65 % (0.4), 47 % (1.0). Coupling the base to the coat's
-// directional albedo (Kelemen & Szirmay-Kalos 2001) would close the gap; it needs a
-// per-ior table. The specular lobe is sampled from the distribution of visible normals
-// (Heitz 2018, "Sampling the GGX Distribution of Visible Normals", JCGT 7(4)).
+// tests/renderer/bsdf/bsdf_test.cpp): the coat is single-scattering GGX and its
+// transmittance is the smooth 1 − F(cos θ), while a rough coat reflects less than F(cos
+// θ) at grazing angles. A white base keeps ≥ 97 % of the energy at normal incidence; at
+// cos θ_o = 0.1 it keeps 99 % (roughness 0.1), 65 % (0.4), 47 % (1.0). Coupling the base
+// to the coat's directional albedo (Kelemen & Szirmay-Kalos 2001) would close the gap; it
+// needs a per-ior table. The specular lobe is sampled from the distribution of visible
+// normals (Heitz 2018, "Sampling the GGX Distribution of Visible Normals", JCGT 7(4)).
 #pragma once
 
 #include "renderer/bsdf/bsdf.h"

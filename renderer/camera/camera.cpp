@@ -6,8 +6,7 @@
 
 namespace pelage::renderer {
 
-Camera::Camera(const CameraDesc &d, int width, int height)
-    : m_pos(d.position) {
+Camera::Camera(const CameraDesc &d, int width, int height) : m_pos(d.position) {
     m_w = normalize(d.look_at - d.position);
     m_u = normalize(cross(m_w, d.up));
     m_v = cross(m_u, m_w);

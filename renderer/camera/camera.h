@@ -8,8 +8,8 @@
 namespace pelage::renderer {
 
 struct CameraRay {
-    Vec3f o, d;        // d unit length
-    Vec3f forward{};   // the viewing direction of the camera that made it (depth AOV)
+    Vec3f o, d;       // d unit length
+    Vec3f forward{};  // the viewing direction of the camera that made it (depth AOV)
 };
 
 class Camera {

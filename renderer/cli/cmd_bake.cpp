@@ -1,5 +1,5 @@
-// `pelage bake FILE.cells --mesh M --res 4096 -o pattern.exr --obj out.obj`: the mosaic as
-// an ordinary texture on an undistorted CRPS atlas, and the mesh with those UVs.
+// `pelage bake FILE.cells --mesh M --res 4096 -o pattern.exr --obj out.obj`: the mosaic
+// as an ordinary texture on an undistorted CRPS atlas, and the mesh with those UVs.
 #include <fmt/core.h>
 
 #include "renderer/cli/common.h"
@@ -20,7 +20,8 @@ struct BakeOptions {
 int run(const BakeOptions &o) {
     const auto control = o.threads.apply();
     if (o.output.size() < 4 || o.output.substr(o.output.size() - 4) != ".exr")
-        throw InputError("", 0, "-o", "\"" + o.output + "\": the atlas is written as OpenEXR (.exr)");
+        throw InputError("", 0, "-o",
+                         "\"" + o.output + "\": the atlas is written as OpenEXR (.exr)");
     const Timer timer;
     const shader::MosaicPattern pattern(o.cells, o.mesh);
     shader::BakedPattern baked;
@@ -33,16 +34,20 @@ int run(const BakeOptions &o) {
     meta.software = "pelage " PELAGE_VERSION " bake";
     meta.scene = o.cells;
     renderer::write_exr(o.output, o.res, o.res, baked.pixels,
-                        {"R", "G", "B", "A", "shader.cell_type", "shader.cell_id"}, false, meta);
+                        {"R", "G", "B", "A", "shader.cell_type", "shader.cell_id"}, false,
+                        meta);
     if (!o.obj.empty()) {
         std::vector<sim::Vec2d> uvs;
         for (sim::TriId t = 0; t < pattern.num_triangles(); ++t)
             for (int c = 0; c < 3; ++c) uvs.push_back(baked.atlas.uv(t, c));
-        sim::write_obj(o.obj, pattern.surface().mesh, uvs, "pelage bake: CRPS atlas UVs for " + o.output);
+        sim::write_obj(o.obj, pattern.surface().mesh, uvs,
+                       "pelage bake: CRPS atlas UVs for " + o.output);
     }
     const double used = double(baked.texels_inside) / (double(o.res) * o.res);
-    fmt::print("pelage bake: {} ({}x{}): {:.1f} % of texels inside triangles, {:.1f} texels per unit, {:.2f} s\n",
-               o.output, o.res, o.res, 100 * used, baked.atlas.texels_per_unit, timer.seconds());
+    fmt::print(
+        "pelage bake: {} ({}x{}): {:.1f} % of texels inside triangles, {:.1f} texels per "
+        "unit, {:.2f} s\n",
+        o.output, o.res, o.res, 100 * used, baked.atlas.texels_per_unit, timer.seconds());
     return 0;
 }
 
@@ -50,11 +55,15 @@ int run(const BakeOptions &o) {
 
 Runner add_bake_command(CLI::App &app) {
     auto o = std::make_shared<BakeOptions>();
-    CLI::App *sub = app.add_subcommand("bake", "Bake a mosaic into a texture atlas (EXR) and write the mesh with its UVs");
+    CLI::App *sub = app.add_subcommand(
+        "bake",
+        "Bake a mosaic into a texture atlas (EXR) and write the mesh with its UVs");
     sub->add_option("cells", o->cells, "The .cells file")->required();
     sub->add_option("--mesh", o->mesh, "The mesh the cells were grown on")->required();
-    sub->add_option("--res", o->res, "Atlas resolution (square)")->check(CLI::Range(16, 32768));
-    sub->add_option("--gutter", o->gutter, "Texels of padding around each triangle")->check(CLI::Range(0, 64));
+    sub->add_option("--res", o->res, "Atlas resolution (square)")
+        ->check(CLI::Range(16, 32768));
+    sub->add_option("--gutter", o->gutter, "Texels of padding around each triangle")
+        ->check(CLI::Range(0, 64));
     sub->add_option("-o,--output", o->output, "Atlas image (.exr)")->required();
     sub->add_option("--obj", o->obj, "Also write the mesh as OBJ with the atlas UVs");
     o->threads.add_to(*sub);

@@ -1,12 +1,13 @@
 // `pelage bench <what>`: benchmarks of the hot paths, one JSON object on stdout each.
-#include "renderer/cli/bench.h"
-
 #include <vector>
+
+#include "renderer/cli/bench.h"
 
 namespace pelage::cli {
 
 Runner add_bench_command(CLI::App &app) {
-    CLI::App *bench = app.add_subcommand("bench", "Benchmarks of the hot paths; each prints JSON");
+    CLI::App *bench =
+        app.add_subcommand("bench", "Benchmarks of the hot paths; each prints JSON");
     bench->require_subcommand(1);
     std::vector<std::pair<CLI::App *, Runner>> children;
     auto add = [&](Runner (*fn)(CLI::App &)) {

@@ -1,6 +1,7 @@
-// `pelage bench crps`: CRPS build time per triangle on a small and a large mesh (the build
-// must be linear: the ratio of per-triangle costs should stay near 1), neighbour-map
-// throughput (Teo §4.3: 4 mul + 4 add per point) and breadth-first unfolding cost.
+// `pelage bench crps`: CRPS build time per triangle on a small and a large mesh (the
+// build must be linear: the ratio of per-triangle costs should stay near 1),
+// neighbour-map throughput (Teo §4.3: 4 mul + 4 add per point) and breadth-first
+// unfolding cost.
 #include <algorithm>
 #include <filesystem>
 #include <iostream>
@@ -29,7 +30,11 @@ nlohmann::json bench_one(const std::string &path, int repeat) {
     for (int r = 0; r < repeat; ++r) {
         const sim::Surface s = sim::build_surface(mesh);
         const double total = s.seconds_topology + s.seconds_crps;
-        if (total < best) { best = total; best_topo = s.seconds_topology; best_crps = s.seconds_crps; }
+        if (total < best) {
+            best = total;
+            best_topo = s.seconds_topology;
+            best_crps = s.seconds_crps;
+        }
     }
     const sim::Surface s = sim::build_surface(mesh);
     const sim::Crps &crps = s.crps;
@@ -55,11 +60,13 @@ nlohmann::json bench_one(const std::string &path, int repeat) {
     const double radius = 2.0 * sim::mean_edge_length(mesh, crps.topology());
     sim::UnfoldScratch scratch;
     std::vector<sim::UnfoldedTriangle> out;
-    const size_t samples = std::min<size_t>(nt, 4096), stride = std::max<size_t>(nt / samples, 1);
+    const size_t samples = std::min<size_t>(nt, 4096),
+                 stride = std::max<size_t>(nt / samples, 1);
     size_t found = 0;
     const Timer unfold_timer;
     for (size_t n = 0; n < samples; ++n) {
-        sim::unfold_around_triangle(crps, static_cast<sim::TriId>(n * stride % nt), radius, out, scratch);
+        sim::unfold_around_triangle(crps, static_cast<sim::TriId>(n * stride % nt),
+                                    radius, out, scratch);
         found += out.size();
     }
     const double unfold_ns = 1e9 * unfold_timer.seconds() / samples;
@@ -82,20 +89,23 @@ int run(const BenchCrpsOptions &o) {
     const auto control = o.threads.apply();
     std::vector<std::string> meshes = o.meshes;
     if (meshes.empty()) {
-        meshes = {data_path("scenes/meshes/cow.off"), data_path("scenes/meshes/bunny00.off")};
+        meshes = {data_path("scenes/meshes/cow.off"),
+                  data_path("scenes/meshes/bunny00.off")};
         for (const auto &m : meshes)
             if (!std::filesystem::exists(m))
-                throw InputError(m, 0, "", "sample mesh missing: run scenes/fetch_meshes.sh "
-                                           "(or pass --mesh)");
+                throw InputError(m, 0, "",
+                                 "sample mesh missing: run scenes/fetch_meshes.sh "
+                                 "(or pass --mesh)");
     }
     nlohmann::json runs = nlohmann::json::array();
     for (const auto &m : meshes) runs.push_back(bench_one(m, o.repeat));
-    nlohmann::json j = {{"benchmark", "crps"}, {"threads", o.threads.threads}, {"runs", runs}};
+    nlohmann::json j = {
+        {"benchmark", "crps"}, {"threads", o.threads.threads}, {"runs", runs}};
     if (runs.size() >= 2) {
         // Linear build <=> per-triangle cost independent of size: the last (largest) run
         // over the first.
-        j["ns_per_triangle_ratio"] =
-            runs.back()["ns_per_triangle"].get<double>() / runs.front()["ns_per_triangle"].get<double>();
+        j["ns_per_triangle_ratio"] = runs.back()["ns_per_triangle"].get<double>() /
+                                     runs.front()["ns_per_triangle"].get<double>();
     }
     std::cout << j.dump(2) << std::endl;
     return 0;
@@ -105,10 +115,13 @@ int run(const BenchCrpsOptions &o) {
 
 Runner add_bench_crps(CLI::App &bench) {
     auto o = std::make_shared<BenchCrpsOptions>();
-    CLI::App *sub = bench.add_subcommand("crps", "CRPS build time per triangle, map throughput, unfolding");
-    sub->add_option("--mesh", o->meshes,
-                    "Meshes to measure, smallest first (default: the cow and bunny00 samples)");
-    sub->add_option("--repeat", o->repeat, "Builds per mesh; the fastest counts")->check(CLI::Range(1, 100));
+    CLI::App *sub = bench.add_subcommand(
+        "crps", "CRPS build time per triangle, map throughput, unfolding");
+    sub->add_option(
+        "--mesh", o->meshes,
+        "Meshes to measure, smallest first (default: the cow and bunny00 samples)");
+    sub->add_option("--repeat", o->repeat, "Builds per mesh; the fastest counts")
+        ->check(CLI::Range(1, 100));
     o->threads.add_to(*sub);
     return [o] { return run(*o); };
 }

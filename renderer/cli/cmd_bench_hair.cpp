@@ -35,8 +35,9 @@ struct Rng {
 };
 
 hair::HairParams random_params(Rng &rng, bool absorbing) {
-    hair::HairParams p = absorbing ? hair::HairParams::from_melanin(rng.in(0, 4), rng.in(0, 2), 0.3f, 0.3f)
-                                   : hair::HairParams{};
+    hair::HairParams p =
+        absorbing ? hair::HairParams::from_melanin(rng.in(0, 4), rng.in(0, 2), 0.3f, 0.3f)
+                  : hair::HairParams{};
     p.beta_m = rng.in(0.1f, 1.0f);
     p.beta_n = rng.in(0.1f, 1.0f);
     p.alpha = rng.in(-5.0f, 5.0f) * hair::pi / 180;
@@ -51,19 +52,26 @@ int run(const BenchHairOptions &o) {
     for (int k = 0; k < o.configs; ++k) {
         const hair::HairBsdf white(random_params(rng, false), rng.in(-1, 1));
         const hair::Vec3f wo = rng.direction();
-        const hair::FurnaceResult r = hair::furnace_quadrature(white, wo, o.theta_steps, 2 * o.theta_steps, true);
-        for (int c = 0; c < 3; ++c) furnace_max = std::max(furnace_max, std::abs(double(r.f_cos_integral[c]) - 1));
+        const hair::FurnaceResult r =
+            hair::furnace_quadrature(white, wo, o.theta_steps, 2 * o.theta_steps, true);
+        for (int c = 0; c < 3; ++c)
+            furnace_max =
+                std::max(furnace_max, std::abs(double(r.f_cos_integral[c]) - 1));
         pdf_max = std::max(pdf_max, std::abs(r.pdf_integral - 1));
     }
     const double furnace_seconds = furnace_timer.seconds();
 
     // --- Timing: 256 absorbing fibres, 2^20 calls each of eval, pdf, sample ---
     std::vector<hair::HairBsdf> fibres;
-    for (int k = 0; k < 256; ++k) fibres.emplace_back(random_params(rng, true), rng.in(-1, 1));
+    for (int k = 0; k < 256; ++k)
+        fibres.emplace_back(random_params(rng, true), rng.in(-1, 1));
     const int n = 1 << 20;
     std::vector<hair::Vec3f> wo(n), wi(n);
     std::vector<float> u(3 * n);
-    for (int k = 0; k < n; ++k) { wo[k] = rng.direction(); wi[k] = rng.direction(); }
+    for (int k = 0; k < n; ++k) {
+        wo[k] = rng.direction();
+        wi[k] = rng.direction();
+    }
     for (float &x : u) x = rng();
     double sink = 0;
     auto time_ns = [&](auto &&call) {
@@ -71,8 +79,10 @@ int run(const BenchHairOptions &o) {
         for (int k = 0; k < n; ++k) sink += call(fibres[k & 255], k);
         return 1e9 * t.seconds() / n;
     };
-    const double eval_ns = time_ns([&](const hair::HairBsdf &b, int k) { return b.eval(wo[k], wi[k]).y; });
-    const double pdf_ns = time_ns([&](const hair::HairBsdf &b, int k) { return b.pdf(wo[k], wi[k]); });
+    const double eval_ns =
+        time_ns([&](const hair::HairBsdf &b, int k) { return b.eval(wo[k], wi[k]).y; });
+    const double pdf_ns =
+        time_ns([&](const hair::HairBsdf &b, int k) { return b.pdf(wo[k], wi[k]); });
     const double sample_ns = time_ns([&](const hair::HairBsdf &b, int k) {
         const auto s = b.sample(wo[k], u[3 * k], u[3 * k + 1], u[3 * k + 2]);
         return s ? s->weight.y : 0.0f;
@@ -104,12 +114,16 @@ int run(const BenchHairOptions &o) {
 
 Runner add_bench_hair(CLI::App &bench) {
     auto o = std::make_shared<BenchHairOptions>();
-    CLI::App *sub = bench.add_subcommand("hair", "Hair BSDF: white furnace error, pdf normalisation, ns per call");
-    sub->add_option("--configs", o->configs, "Random σ_a = 0 fibres in the furnace set (default 32)")
+    CLI::App *sub = bench.add_subcommand(
+        "hair", "Hair BSDF: white furnace error, pdf normalisation, ns per call");
+    sub->add_option("--configs", o->configs,
+                    "Random σ_a = 0 fibres in the furnace set (default 32)")
         ->check(CLI::Range(1, 10000));
-    sub->add_option("--theta-steps", o->theta_steps, "Quadrature steps in θ_i; φ_i gets twice as many (default 512)")
+    sub->add_option("--theta-steps", o->theta_steps,
+                    "Quadrature steps in θ_i; φ_i gets twice as many (default 512)")
         ->check(CLI::Range(16, 8192));
-    sub->add_option("--seed", o->seed, "Seed of the furnace set and the timing inputs (default 6)");
+    sub->add_option("--seed", o->seed,
+                    "Seed of the furnace set and the timing inputs (default 6)");
     return [o] { return run(*o); };
 }
 

@@ -97,13 +97,15 @@ nlohmann::json measure(const sim::Surface &s, const shader::CellTable &cells,
         float b1, b2;
     };
     std::vector<Step> walk;
-    for (sim::TriId t = 0; t < s.crps.num_triangles() && walk.size() < queries.size(); ++t)
+    for (sim::TriId t = 0; t < s.crps.num_triangles() && walk.size() < queries.size();
+         ++t)
         for (int k = 0; k < 32; ++k) {
             const float u = (k + 0.5f) / 32;
             walk.push_back({t, 0.7f * u, 0.25f * u + 0.2f * u * (1 - u)});
         }
     const CpuTimer walked;
-    for (const Step &w : walk) sink += index.find_three_within(w.t, w.b1, w.b2, band).index[1];
+    for (const Step &w : walk)
+        sink += index.find_three_within(w.t, w.b1, w.b2, band).index[1];
     const double ns_walk = 1e9 * walked.seconds() / walk.size();
     shader::CoherentLookup reuse;
     const CpuTimer reused;

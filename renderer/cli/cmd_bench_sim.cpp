@@ -6,14 +6,14 @@
 #include <sys/resource.h>
 
 #include <filesystem>
-#include <map>
 #include <iostream>
+#include <map>
 
 #include "renderer/cli/bench.h"
 #include "sim/cells_io/cells_file.h"
-#include "sim/mosaic/cm_simulation.h"
 #include "sim/core/input_error.h"
 #include "sim/crps/surface.h"
+#include "sim/mosaic/cm_simulation.h"
 
 namespace pelage::cli {
 namespace {
@@ -44,8 +44,8 @@ struct RunResult {
     double spot_fraction = 0;
 };
 
-RunResult run_once(const sim::Surface &s, const sim::Preset &p, sim::SimParams params, uint64_t cells,
-                   uint64_t seed) {
+RunResult run_once(const sim::Surface &s, const sim::Preset &p, sim::SimParams params,
+                   uint64_t cells, uint64_t seed) {
     sim::CmSimulation simulation(s.crps, p.types, params, seed);
     const Timer timer;
     simulation.initialize(cells);
@@ -56,7 +56,8 @@ RunResult run_once(const sim::Surface &s, const sim::Preset &p, sim::SimParams p
     r.by_type = simulation.count_by_type();
     r.final_cells = simulation.cells().size();
     const int F = p.types.foreground(), B = p.types.background();
-    const double nf = F >= 0 ? double(r.by_type[F]) : 0, nb = B >= 0 ? double(r.by_type[B]) : 0;
+    const double nf = F >= 0 ? double(r.by_type[F]) : 0,
+                 nb = B >= 0 ? double(r.by_type[B]) : 0;
     r.spot_fraction = nf + nb > 0 ? nf / (nf + nb) : 0;
     return r;
 }
@@ -71,7 +72,8 @@ int run(const BenchSimOptions &o) {
     for (uint64_t n : o.cells) {
         for (const char *mode : {"local", "global"}) {
             sim::SimParams params = preset.params;
-            params.relax = std::string(mode) == "local" ? sim::RelaxMode::local : sim::RelaxMode::global;
+            params.relax = std::string(mode) == "local" ? sim::RelaxMode::local
+                                                        : sim::RelaxMode::global;
             RunResult best;
             for (int k = 0; k < o.repeat; ++k) {
                 RunResult r = run_once(sphere, preset, params, n, o.seed);
@@ -81,7 +83,8 @@ int run(const BenchSimOptions &o) {
             const double ns = 1e9 * best.seconds / steps;
             // The same without the one-time unfolding cache build, whose cost grows with
             // (r / triangle size)^2 per triangle, i.e. is largest at few cells.
-            const double ns_relax = 1e9 * (best.seconds - best.stats.seconds_neighbourhoods) / steps;
+            const double ns_relax =
+                1e9 * (best.seconds - best.stats.seconds_neighbourhoods) / steps;
             nlohmann::json j = {
                 {"initial_cells", n},
                 {"relax", mode},
@@ -113,14 +116,18 @@ int run(const BenchSimOptions &o) {
         const auto &l = by_key[{hi, "local"}], &g = by_key[{hi, "global"}];
         // The initial relaxation (same global work in both modes) is excluded from
         // local_speedup; local_speedup_total includes it.
-        out["local_speedup"] = g["seconds_simulation"].get<double>() / l["seconds_simulation"].get<double>();
-        out["local_speedup_total"] = g["seconds"].get<double>() / l["seconds"].get<double>();
-        out["spot_fraction_difference"] = std::abs(g["spot_fraction"].get<double>() - l["spot_fraction"].get<double>());
+        out["local_speedup"] =
+            g["seconds_simulation"].get<double>() / l["seconds_simulation"].get<double>();
+        out["local_speedup_total"] =
+            g["seconds"].get<double>() / l["seconds"].get<double>();
+        out["spot_fraction_difference"] =
+            std::abs(g["spot_fraction"].get<double>() - l["spot_fraction"].get<double>());
     }
     for (const char *mode : {"local", "global"})
         if (by_key.count({lo, mode}) && by_key.count({hi, mode})) {
             out[std::string("cost_per_cell_step_ratio_") + mode] =
-                by_key[{hi, mode}]["ns_per_cell_step"].get<double>() / by_key[{lo, mode}]["ns_per_cell_step"].get<double>();
+                by_key[{hi, mode}]["ns_per_cell_step"].get<double>() /
+                by_key[{lo, mode}]["ns_per_cell_step"].get<double>();
             out[std::string("relax_cost_per_cell_step_ratio_") + mode] =
                 by_key[{hi, mode}]["ns_per_cell_step_relax"].get<double>() /
                 by_key[{lo, mode}]["ns_per_cell_step_relax"].get<double>();
@@ -128,9 +135,12 @@ int run(const BenchSimOptions &o) {
 
     // --- Large case: 1 000 000 final cells on bunny00 ---
     if (!o.skip_large) {
-        const std::string mesh = o.large_mesh.empty() ? data_path("scenes/meshes/bunny00.off") : o.large_mesh;
+        const std::string mesh =
+            o.large_mesh.empty() ? data_path("scenes/meshes/bunny00.off") : o.large_mesh;
         if (!std::filesystem::exists(mesh))
-            throw InputError(mesh, 0, "", "sample mesh missing: run scenes/fetch_meshes.sh (or pass --large-mesh)");
+            throw InputError(
+                mesh, 0, "",
+                "sample mesh missing: run scenes/fetch_meshes.sh (or pass --large-mesh)");
         const sim::Surface bunny = sim::build_surface(mesh);
         sim::SimParams params = preset.params;
         params.relax = sim::RelaxMode::local;
@@ -156,16 +166,23 @@ int run(const BenchSimOptions &o) {
 
 Runner add_bench_sim(CLI::App &bench) {
     auto o = std::make_shared<BenchSimOptions>();
-    CLI::App *sub = bench.add_subcommand("sim", "Teo Table 7.2 set-up, local vs global relaxation, and a 1M-cell run");
-    sub->add_option("--preset", o->preset, "Preset of the small runs (default teo-table-7.2)");
-    sub->add_option("--mesh", o->mesh, "Mesh of the small runs (default the 760-triangle sphere)");
-    sub->add_option("--cells", o->cells, "Initial cell counts, smallest first")->expected(1, -1);
-    sub->add_option("--large-mesh", o->large_mesh, "Mesh of the large run (default bunny00.off)");
-    sub->add_option("--large-initial", o->large_initial, "Initial cells of the large run");
+    CLI::App *sub = bench.add_subcommand(
+        "sim", "Teo Table 7.2 set-up, local vs global relaxation, and a 1M-cell run");
+    sub->add_option("--preset", o->preset,
+                    "Preset of the small runs (default teo-table-7.2)");
+    sub->add_option("--mesh", o->mesh,
+                    "Mesh of the small runs (default the 760-triangle sphere)");
+    sub->add_option("--cells", o->cells, "Initial cell counts, smallest first")
+        ->expected(1, -1);
+    sub->add_option("--large-mesh", o->large_mesh,
+                    "Mesh of the large run (default bunny00.off)");
+    sub->add_option("--large-initial", o->large_initial,
+                    "Initial cells of the large run");
     sub->add_option("--large-target", o->large_target, "Final cells of the large run");
     sub->add_flag("--skip-large", o->skip_large, "Only the small runs");
     sub->add_option("--seed", o->seed, "Seed");
-    sub->add_option("--repeat", o->repeat, "Runs per case; the fastest counts")->check(CLI::Range(1, 20));
+    sub->add_option("--repeat", o->repeat, "Runs per case; the fastest counts")
+        ->check(CLI::Range(1, 20));
     o->threads.add_to(*sub);
     return [o] { return run(*o); };
 }

@@ -1,6 +1,7 @@
 // `pelage compare SCENE.json`: one render per shader on the scene's patterned objects,
 // timings and a labelled contact sheet (renderer/tools/compare.h). --report keys are a
-// contract: shaders {NAME: {seconds, ns_per_lookup}}, ratios, ratio_rounds, lookup_ratios.
+// contract: shaders {NAME: {seconds, ns_per_lookup}}, ratios, ratio_rounds,
+// lookup_ratios.
 #include <fmt/core.h>
 #include <unistd.h>
 
@@ -8,9 +9,9 @@
 #include <sstream>
 
 #include "renderer/cli/common.h"
-#include "renderer/tools/compare.h"
 #include "renderer/image/contact_sheet.h"
 #include "renderer/image/image_output.h"
+#include "renderer/tools/compare.h"
 #include "shader/clonal_mosaic/bake.h"
 #include "sim/core/input_error.h"
 #include "sim/mesh/mesh_write_obj.h"
@@ -121,8 +122,9 @@ int run(const CompareCliOptions &o) {
         fmt::print("  render {:<32} {:.3f}", k, v.get<double>());
         if (report["repeats"].get<size_t>() > 1 && report["ratio_rounds"].contains(k)) {
             const auto &r = report["ratio_rounds"][k];
-            fmt::print("   (rounds {:.3f} … {:.3f}, median {:.3f})", r["min"].get<double>(),
-                       r["max"].get<double>(), r["median"].get<double>());
+            fmt::print("   (rounds {:.3f} … {:.3f}, median {:.3f})",
+                       r["min"].get<double>(), r["max"].get<double>(),
+                       r["median"].get<double>());
         }
         fmt::print("\n");
     }

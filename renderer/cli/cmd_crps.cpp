@@ -1,8 +1,8 @@
 // `pelage crps --mesh FILE`: builds the CRPS of a mesh and prints its summary and
 // self-validation (keys of --stats-json are a contract).
-#include <cstdio>
-
 #include <fmt/core.h>
+
+#include <cstdio>
 
 #include "renderer/cli/common.h"
 #include "sim/crps/crps_validation.h"
@@ -34,22 +34,34 @@ int run_crps(const CrpsOptions &o) {
     const double diag = s.mesh.bounds().diagonal();
 
     fmt::print("pelage crps: {}\n", o.mesh);
-    fmt::print("  triangles          {:>10}   (read {}, degenerate dropped {})\n", s.mesh.num_triangles(),
-               s.load.raw_triangles, s.load.clean.degenerate_dropped);
-    fmt::print("  vertices           {:>10}   (read {}, welded {}, unused {})\n", s.mesh.num_vertices(),
-               s.load.raw_vertices, s.load.clean.vertices_welded, s.load.clean.unused_vertices);
-    fmt::print("  edges              {:>10}   (boundary {}, non-manifold {}, non-orientable {})\n",
-               topo.num_edges(), topo.boundary_edges, topo.nonmanifold_edges, topo.nonorientable_edges);
-    fmt::print("  components         {:>10}   (faces reoriented {}, non-manifold vertices {})\n",
-               topo.num_components, topo.faces_reoriented, topo.nonmanifold_vertices);
-    fmt::print("  neighbour maps     {:>10}   (primary {}, secondary {}; {:.1f} per triangle)\n",
-               topo.nbr.size(), primary, secondary, double(topo.nbr.size()) / s.mesh.num_triangles());
+    fmt::print("  triangles          {:>10}   (read {}, degenerate dropped {})\n",
+               s.mesh.num_triangles(), s.load.raw_triangles,
+               s.load.clean.degenerate_dropped);
+    fmt::print("  vertices           {:>10}   (read {}, welded {}, unused {})\n",
+               s.mesh.num_vertices(), s.load.raw_vertices, s.load.clean.vertices_welded,
+               s.load.clean.unused_vertices);
+    fmt::print(
+        "  edges              {:>10}   (boundary {}, non-manifold {}, non-orientable "
+        "{})\n",
+        topo.num_edges(), topo.boundary_edges, topo.nonmanifold_edges,
+        topo.nonorientable_edges);
+    fmt::print(
+        "  components         {:>10}   (faces reoriented {}, non-manifold vertices {})\n",
+        topo.num_components, topo.faces_reoriented, topo.nonmanifold_vertices);
+    fmt::print(
+        "  neighbour maps     {:>10}   (primary {}, secondary {}; {:.1f} per triangle)\n",
+        topo.nbr.size(), primary, secondary,
+        double(topo.nbr.size()) / s.mesh.num_triangles());
     fmt::print("  surface area       {:>10.6g}\n", area);
-    fmt::print("  mean edge length   {:>10.6g}   (bounding-box diagonal {:.6g})\n", mel, diag);
-    fmt::print("  build time         {:>10.3f} ms (load {:.3f} ms, topology {:.3f} ms, CRPS {:.3f} ms)\n",
-               1e3 * build_seconds, 1e3 * s.seconds_load, 1e3 * s.seconds_topology,
-               1e3 * s.seconds_crps);
-    fmt::print("  validation, max error relative to the diagonal, over {} maps:\n", v.maps_checked);
+    fmt::print("  mean edge length   {:>10.6g}   (bounding-box diagonal {:.6g})\n", mel,
+               diag);
+    fmt::print(
+        "  build time         {:>10.3f} ms (load {:.3f} ms, topology {:.3f} ms, CRPS "
+        "{:.3f} ms)\n",
+        1e3 * build_seconds, 1e3 * s.seconds_load, 1e3 * s.seconds_topology,
+        1e3 * s.seconds_crps);
+    fmt::print("  validation, max error relative to the diagonal, over {} maps:\n",
+               v.maps_checked);
     fmt::print("    2D <-> 3D round trip       {:.3g}\n", v.roundtrip_max_error);
     fmt::print("    barycentric <-> 2D         {:.3g}\n", v.barycentric_max_error);
     fmt::print("    edge maps (shared ends)    {:.3g}\n", v.edge_map_max_error);
@@ -97,10 +109,13 @@ int run_crps(const CrpsOptions &o) {
 Runner add_crps_command(CLI::App &app) {
     auto o = std::make_shared<CrpsOptions>();
     CLI::App *sub = app.add_subcommand(
-        "crps", "Build the Canonical Reference Plane Structure of a mesh and validate it");
-    sub->add_option("--mesh", o->mesh, "Mesh file (.off, .obj) or procedural:sphere:20x20 ...")
+        "crps",
+        "Build the Canonical Reference Plane Structure of a mesh and validate it");
+    sub->add_option("--mesh", o->mesh,
+                    "Mesh file (.off, .obj) or procedural:sphere:20x20 ...")
         ->required();
-    sub->add_option("--stats-json", o->stats_json, "Write the summary as JSON to this file");
+    sub->add_option("--stats-json", o->stats_json,
+                    "Write the summary as JSON to this file");
     sub->add_option("--seed", o->seed, "Seed of the random validation points");
     o->threads.add_to(*sub);
     return [o] { return run_crps(*o); };

@@ -1,6 +1,6 @@
 // `pelage movie out.####.exr -o turntable.mp4`: an EXR sequence through OpenColorIO to
-// display, encoded by ffmpeg (renderer/image/movie.h). Missing frames and a missing ffmpeg are
-// reported before anything is encoded.
+// display, encoded by ffmpeg (renderer/image/movie.h). Missing frames and a missing
+// ffmpeg are reported before anything is encoded.
 #include <cstdio>
 #include <filesystem>
 

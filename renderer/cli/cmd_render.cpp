@@ -8,9 +8,9 @@
 #include <optional>
 
 #include "renderer/cli/common.h"
+#include "renderer/core/progress.h"
 #include "renderer/image/color_management.h"
 #include "renderer/image/image_output.h"
-#include "renderer/core/progress.h"
 #include "renderer/integrator/render.h"
 #include "renderer/scene_file/scene_file.h"
 #include "sim/core/input_error.h"
@@ -42,16 +42,17 @@ std::string lower_extension(const std::string &path) {
 }
 
 // --frames A-B or A: the inclusive range, every `step`-th frame from A.
-std::vector<int> parse_frames(const std::string &spec, int step, const AnimationDesc &anim,
-                              const std::string &scene_path) {
+std::vector<int> parse_frames(const std::string &spec, int step,
+                              const AnimationDesc &anim, const std::string &scene_path) {
     int a = 0, b = 0;
     char extra = 0;
     const int n = std::sscanf(spec.c_str(), "%d-%d%c", &a, &b, &extra);
     if (n == 1 && spec.find('-') == std::string::npos)
         b = a;
     else if (n != 2)
-        throw InputError("", 0, "--frames",
-                         "\"" + spec + "\": expected FIRST-LAST or one frame, e.g. 0-119");
+        throw InputError(
+            "", 0, "--frames",
+            "\"" + spec + "\": expected FIRST-LAST or one frame, e.g. 0-119");
     if (a < 0 || b < a)
         throw InputError("", 0, "--frames",
                          "\"" + spec + "\": frames are >= 0 and FIRST <= LAST");
@@ -83,7 +84,8 @@ int run(const RenderCliOptions &o) {
 
     // --- Command-line overrides ---
     if (o.spp > 0) desc.film.spp = o.spp;
-    if (!o.res.empty()) parse_resolution(o.res, 65536, &desc.film.width, &desc.film.height);
+    if (!o.res.empty())
+        parse_resolution(o.res, 65536, &desc.film.width, &desc.film.height);
     if (!o.view.empty()) desc.film.view = o.view;
     const std::string output = !o.output.empty() ? o.output : desc.film.output;
     if (output.empty())
@@ -183,8 +185,8 @@ int run(const RenderCliOptions &o) {
         if (r.interrupted && animated) {
             // A partial frame never lands under its final name: --resume redoes it.
             std::fprintf(stderr,
-                         "pelage render: interrupted during frame %d; %s not written\n", f,
-                         out_f.c_str());
+                         "pelage render: interrupted during frame %d; %s not written\n",
+                         f, out_f.c_str());
             return exit_interrupted;
         }
 

@@ -1,19 +1,20 @@
 // `pelage sim --mesh FILE --preset NAME|FILE`: grows a Clonal Mosaic on the mesh's CRPS
-// and writes the .cells file (sim/mosaic/cm_simulation.h, sim/cells_io/cells_file.h). The keys of
+// and writes the .cells file (sim/mosaic/cm_simulation.h, sim/cells_io/cells_file.h). The
+// keys of
 // --stats-json are a contract: triangles, area, cells_by_type, spot_fraction,
 // divisions, relax_steps, seconds.
+#include <fmt/core.h>
+
 #include <algorithm>
 #include <cmath>
-
-#include <fmt/core.h>
 
 #include "renderer/cli/common.h"
 #include "renderer/core/progress.h"
 #include "sim/cells_io/cells_file.h"
-#include "sim/mosaic/cm_simulation.h"
-#include "sim/core/input_error.h"
 #include "sim/cells_io/pattern_stats.h"
+#include "sim/core/input_error.h"
 #include "sim/crps/surface.h"
+#include "sim/mosaic/cm_simulation.h"
 
 namespace pelage::cli {
 namespace {
@@ -29,19 +30,24 @@ int run_sim(const SimOptions &o) {
     const auto control = o.threads.apply();
     // --- Inputs first: nothing is written unless every input is good ---
     sim::Preset preset = sim::load_preset(o.preset, data_path("scenes/presets"));
-    if (o.relax == "local") preset.params.relax = sim::RelaxMode::local;
-    else if (o.relax == "global") preset.params.relax = sim::RelaxMode::global;
-    if (o.cells > 0 && preset.params.target_cells > 0 && preset.params.initial_cells > 0) {
+    if (o.relax == "local")
+        preset.params.relax = sim::RelaxMode::local;
+    else if (o.relax == "global")
+        preset.params.relax = sim::RelaxMode::global;
+    if (o.cells > 0 && preset.params.target_cells > 0 &&
+        preset.params.initial_cells > 0) {
         // A target count belongs to the preset's initial count: keep their ratio, so a
         // run with more or fewer cells grows by the same factor (Teo presets stop there).
-        preset.params.target_cells = static_cast<uint64_t>(std::llround(
-            double(preset.params.target_cells) * double(o.cells) / double(preset.params.initial_cells)));
+        preset.params.target_cells = static_cast<uint64_t>(
+            std::llround(double(preset.params.target_cells) * double(o.cells) /
+                         double(preset.params.initial_cells)));
     }
     const sim::Surface surface = sim::build_surface(o.mesh);
 
     sim::CmSimulation simulation(surface.crps, preset.types, preset.params, o.seed);
     {
-        renderer::Progress progress("pelage sim", 1000, renderer::Progress::stderr_is_tty());
+        renderer::Progress progress("pelage sim", 1000,
+                                    renderer::Progress::stderr_is_tty());
         simulation.initialize(o.cells);
         uint64_t shown = 0;
         simulation.run([&](double f) {
@@ -59,51 +65,56 @@ int run_sim(const SimOptions &o) {
         {"initial_cells", st.initial_cells},
         {"relax", preset.params.relax == sim::RelaxMode::local ? "local" : "global"},
     };
-    const sim::CellsData data = sim::make_cells_data(surface.mesh, surface.crps, simulation.types(),
-                                                     simulation.cells(), params.dump(), o.seed);
+    const sim::CellsData data =
+        sim::make_cells_data(surface.mesh, surface.crps, simulation.types(),
+                             simulation.cells(), params.dump(), o.seed);
     if (!o.output.empty()) sim::write_cells_file(o.output, data);
 
     const sim::PatternStats ps = sim::compute_pattern_stats(data);
     nlohmann::json by_type = nlohmann::json::object();
     for (const auto &[name, n] : ps.cells_by_type) by_type[name] = n;
     const double seconds = st.seconds_total;
-    fmt::print("pelage sim: {} on {} ({} triangles, area {:.6g}), seed {}\n", preset.name, o.mesh,
-               surface.mesh.num_triangles(), ps.area, o.seed);
-    fmt::print("  cells         {} -> {}   {}\n", st.initial_cells, data.num_cells(), by_type.dump());
-    fmt::print("  spot fraction {:.4f}   spots {}   mean spot area {:.4g}\n", ps.spot_fraction, ps.spots,
-               ps.mean_spot_area);
-    fmt::print("  divisions     {}   relaxation steps {} (+{} initial, {} mode)   time {:.3g}\n",
-               st.divisions, st.relax_steps, st.initial_relax_steps, params["relax"].get<std::string>(),
-               st.final_time);
+    fmt::print("pelage sim: {} on {} ({} triangles, area {:.6g}), seed {}\n", preset.name,
+               o.mesh, surface.mesh.num_triangles(), ps.area, o.seed);
+    fmt::print("  cells         {} -> {}   {}\n", st.initial_cells, data.num_cells(),
+               by_type.dump());
+    fmt::print("  spot fraction {:.4f}   spots {}   mean spot area {:.4g}\n",
+               ps.spot_fraction, ps.spots, ps.mean_spot_area);
+    fmt::print(
+        "  divisions     {}   relaxation steps {} (+{} initial, {} mode)   time {:.3g}\n",
+        st.divisions, st.relax_steps, st.initial_relax_steps,
+        params["relax"].get<std::string>(), st.final_time);
     fmt::print("  seconds       {:.3f}   ({:.3g} cell-steps/s)\n", seconds,
                seconds > 0 ? double(st.cell_steps) / seconds : 0.0);
     if (!o.output.empty()) fmt::print("  wrote         {}\n", o.output);
 
     if (!o.stats_json.empty()) {
-        write_json_file(o.stats_json, {
-            {"preset", preset.name},
-            {"mesh", o.mesh},
-            {"seed", o.seed},
-            {"relax", params["relax"]},
-            {"triangles", surface.mesh.num_triangles()},
-            {"area", ps.area},
-            {"initial_cells", st.initial_cells},
-            {"final_cells", data.num_cells()},
-            {"cells_by_type", by_type},
-            {"spot_fraction", ps.spot_fraction},
-            {"spots", ps.spots},
-            {"mean_spot_area", ps.mean_spot_area},
-            {"divisions", st.divisions},
-            {"relax_steps", st.relax_steps},
-            {"initial_relax_steps", st.initial_relax_steps},
-            {"end_time", st.final_time},
-            {"final_radius", st.final_radius},
-            {"cell_steps", st.cell_steps},
-            {"seconds", seconds},
-            {"seconds_initial", st.seconds_initial},
-            {"seconds_neighbourhoods", st.seconds_neighbourhoods},
-            {"cells_steps_per_second", seconds > 0 ? double(st.cell_steps) / seconds : 0.0},
-        });
+        write_json_file(o.stats_json,
+                        {
+                            {"preset", preset.name},
+                            {"mesh", o.mesh},
+                            {"seed", o.seed},
+                            {"relax", params["relax"]},
+                            {"triangles", surface.mesh.num_triangles()},
+                            {"area", ps.area},
+                            {"initial_cells", st.initial_cells},
+                            {"final_cells", data.num_cells()},
+                            {"cells_by_type", by_type},
+                            {"spot_fraction", ps.spot_fraction},
+                            {"spots", ps.spots},
+                            {"mean_spot_area", ps.mean_spot_area},
+                            {"divisions", st.divisions},
+                            {"relax_steps", st.relax_steps},
+                            {"initial_relax_steps", st.initial_relax_steps},
+                            {"end_time", st.final_time},
+                            {"final_radius", st.final_radius},
+                            {"cell_steps", st.cell_steps},
+                            {"seconds", seconds},
+                            {"seconds_initial", st.seconds_initial},
+                            {"seconds_neighbourhoods", st.seconds_neighbourhoods},
+                            {"cells_steps_per_second",
+                             seconds > 0 ? double(st.cell_steps) / seconds : 0.0},
+                        });
     }
     return 0;
 }
@@ -112,16 +123,24 @@ int run_sim(const SimOptions &o) {
 
 Runner add_sim_command(CLI::App &app) {
     auto o = std::make_shared<SimOptions>();
-    CLI::App *sub = app.add_subcommand("sim", "Grow a Clonal Mosaic on a mesh and write a .cells file");
-    sub->add_option("--mesh", o->mesh, "Mesh file (.off, .obj) or procedural:sphere:20x20 ...")->required();
-    sub->add_option("--preset", o->preset, "Preset name (scenes/presets/NAME.json) or a preset file")->required();
+    CLI::App *sub = app.add_subcommand(
+        "sim", "Grow a Clonal Mosaic on a mesh and write a .cells file");
+    sub->add_option("--mesh", o->mesh,
+                    "Mesh file (.off, .obj) or procedural:sphere:20x20 ...")
+        ->required();
+    sub->add_option("--preset", o->preset,
+                    "Preset name (scenes/presets/NAME.json) or a preset file")
+        ->required();
     sub->add_option("--cells", o->cells,
-                    "Initial cell count (overrides the preset; a preset's target count is scaled with it)");
-    sub->add_option("--seed", o->seed, "Seed: same mesh, preset and seed give identical .cells");
+                    "Initial cell count (overrides the preset; a preset's target count "
+                    "is scaled with it)");
+    sub->add_option("--seed", o->seed,
+                    "Seed: same mesh, preset and seed give identical .cells");
     sub->add_option("--relax", o->relax, "Relaxation mode (overrides the preset)")
         ->check(CLI::IsMember({"local", "global"}));
     sub->add_option("-o,--output", o->output, "Write the cells to this .cells file");
-    sub->add_option("--stats-json", o->stats_json, "Write the run summary as JSON to this file");
+    sub->add_option("--stats-json", o->stats_json,
+                    "Write the run summary as JSON to this file");
     o->threads.add_to(*sub);
     return [o] { return run_sim(*o); };
 }

@@ -10,21 +10,24 @@
 namespace pelage::cli {
 
 void ThreadOption::add_to(CLI::App &app) {
-    app.add_option("--threads", threads, "Worker threads (0 = all cores); results do not depend on it")
+    app.add_option("--threads", threads,
+                   "Worker threads (0 = all cores); results do not depend on it")
         ->check(CLI::Range(0, 4096));
 }
 
 std::unique_ptr<tbb::global_control> ThreadOption::apply() const {
     if (threads <= 0) return nullptr;
-    return std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism,
-                                                 static_cast<size_t>(threads));
+    return std::make_unique<tbb::global_control>(
+        tbb::global_control::max_allowed_parallelism, static_cast<size_t>(threads));
 }
 
 void parse_resolution(const std::string &text, int max_side, int *width, int *height) {
     int w = 0, h = 0;
     char extra = 0;
-    if (std::sscanf(text.c_str(), "%dx%d%c", &w, &h, &extra) != 2 || w < 1 || h < 1 || w > max_side || h > max_side)
-        throw InputError("", 0, "--res", "\"" + text + "\": expected WIDTHxHEIGHT, e.g. 1280x720");
+    if (std::sscanf(text.c_str(), "%dx%d%c", &w, &h, &extra) != 2 || w < 1 || h < 1 ||
+        w > max_side || h > max_side)
+        throw InputError("", 0, "--res",
+                         "\"" + text + "\": expected WIDTHxHEIGHT, e.g. 1280x720");
     *width = w;
     *height = h;
 }

@@ -2,14 +2,14 @@
 // --stats-json options, locating the project's data, timing.
 #pragma once
 
+#include <tbb/global_control.h>
+
+#include <CLI/CLI.hpp>
 #include <chrono>
 #include <functional>
 #include <memory>
-#include <string>
-
-#include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
-#include <tbb/global_control.h>
+#include <string>
 
 namespace pelage::cli {
 
@@ -53,7 +53,8 @@ class Timer {
   public:
     Timer() : m_start(std::chrono::steady_clock::now()) {}
     double seconds() const {
-        return std::chrono::duration<double>(std::chrono::steady_clock::now() - m_start).count();
+        return std::chrono::duration<double>(std::chrono::steady_clock::now() - m_start)
+            .count();
     }
 
   private:

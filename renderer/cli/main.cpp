@@ -10,9 +10,10 @@
 
 int main(int argc, char **argv) {
     using namespace pelage;
-    CLI::App app{"pelage " PELAGE_VERSION
-                 " - a physically based renderer for animal coats (Clonal Mosaic patterns)",
-                 "pelage"};
+    CLI::App app{
+        "pelage " PELAGE_VERSION
+        " - a physically based renderer for animal coats (Clonal Mosaic patterns)",
+        "pelage"};
     app.require_subcommand(1);
     app.set_version_flag("--version", PELAGE_VERSION);
 

@@ -116,7 +116,9 @@ FurGeometry::FurGeometry(const SceneDesc &desc, EmbreeScene &scene,
         skin.num_triangles = og.mesh->num_triangles;
 
         const fur::PigmentLookup lookup = [&](const fur::SurfacePoint &s, fur::Vec3f p,
-                                              fur::Vec3f n) { return pigment(i, s, p, n); };
+                                              fur::Vec3f n) {
+            return pigment(i, s, p, n);
+        };
 
         FurLayer layer;
         layer.object = uint32_t(i);

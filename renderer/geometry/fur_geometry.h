@@ -18,8 +18,8 @@
 #include <memory>
 #include <vector>
 
-#include "renderer/geometry/embree_scene.h"
 #include "renderer/core/math.h"
+#include "renderer/geometry/embree_scene.h"
 #include "renderer/scene_file/scene_file.h"
 #include "shader/fur/fur_grow.h"
 

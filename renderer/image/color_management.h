@@ -1,6 +1,6 @@
 // Scene-linear to display through OpenColorIO. The config is $OCIO when set, else
-// pelage's own (renderer/image/ocio/config.ocio: sRGB display; Standard, Filmic and Raw views),
-// found next to the executable (share/pelage/ocio) or in the source tree.
+// pelage's own (renderer/image/ocio/config.ocio: sRGB display; Standard, Filmic and Raw
+// views), found next to the executable (share/pelage/ocio) or in the source tree.
 #pragma once
 
 #include <OpenColorIO/OpenColorIO.h>

@@ -11,7 +11,8 @@ namespace pelage::renderer {
 static const char *const label_font = "/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf";
 
 bool write_contact_sheet(const std::string &path, int width, int height,
-                         const std::vector<SheetImage> &images, const DisplayTransform &display) {
+                         const std::vector<SheetImage> &images,
+                         const DisplayTransform &display) {
     const int gap = 8, label = 30, n = int(images.size());
     const int W = n * width + (n + 1) * gap, H = height + label + 2 * gap;
     std::vector<float> sheet(size_t(W) * H * 3, 0.02f);
@@ -26,8 +27,9 @@ bool write_contact_sheet(const std::string &path, int width, int height,
         OIIO::ImageBuf buf(OIIO::ImageSpec(W, H, 3, OIIO::TypeDesc::FLOAT), sheet.data());
         const float white[3] = {1, 1, 1};
         for (int i = 0; i < n; ++i)
-            labelled &= OIIO::ImageBufAlgo::render_text(buf, gap + i * (width + gap) + 4, gap + label - 8,
-                                                        images[i].label, 20, label_font, white);
+            labelled &= OIIO::ImageBufAlgo::render_text(buf, gap + i * (width + gap) + 4,
+                                                        gap + label - 8, images[i].label,
+                                                        20, label_font, white);
     }
     write_preview(path, W, H, sheet, 3, display);
     return labelled;

@@ -16,6 +16,7 @@ struct SheetImage {
 
 // Returns false when the label font could not be used (the sheet is written unlabelled).
 bool write_contact_sheet(const std::string &path, int width, int height,
-                         const std::vector<SheetImage> &images, const DisplayTransform &display);
+                         const std::vector<SheetImage> &images,
+                         const DisplayTransform &display);
 
 }  // namespace pelage::renderer

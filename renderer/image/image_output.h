@@ -1,6 +1,7 @@
 // Writing renders through OpenImageIO, always atomically (a temporary file in the
 // destination folder, renamed into place once complete).
-//   * EXR: one part, channel-prefixed layers (Film::channel_names: R G B A, albedo.*, N.*,
+//   * EXR: one part, channel-prefixed layers (Film::channel_names: R G B A, albedo.*,
+//   N.*,
 //     depth.Z, id.*, shader.*), colour layers half or float, depth/ids/shader always
 //     float, ZIP compression, metadata pelage:scene, pelage:spp, pelage:seed,
 //     pelage:render_seconds, pelage:interrupted, Software = "pelage <version>".

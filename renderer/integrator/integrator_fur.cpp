@@ -3,8 +3,8 @@
 #include <cmath>
 #include <limits>
 
-#include "renderer/geometry/embree_ray.h"
 #include "renderer/core/sampling.h"
+#include "renderer/geometry/embree_ray.h"
 #include "shader/hair/hair_bsdf.h"
 
 namespace pelage::renderer {

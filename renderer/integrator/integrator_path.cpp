@@ -7,10 +7,10 @@
 
 #include "renderer/bsdf/bsdf_coated.h"
 #include "renderer/bsdf/bsdf_lambert.h"
-#include "renderer/geometry/embree_ray.h"
-#include "renderer/integrator/integrator_fur.h"
 #include "renderer/core/ray_cone.h"
 #include "renderer/core/sampling.h"
+#include "renderer/geometry/embree_ray.h"
+#include "renderer/integrator/integrator_fur.h"
 
 namespace pelage::renderer {
 
@@ -156,10 +156,10 @@ Rgb PathIntegrator::radiance(const CameraRay &cam, const RTCRayHit &first,
     Vec3f o = cam.o, d = cam.d;
     float prev_pdf = 0;  // solid-angle density of the BSDF sample that made d
     bool prev_specular = false;
-    Vec3f prev_ng{0, 0, 1};  // geometric normal at the vertex d left
-    float footprint = 0;     // ray cone width at the ray origin (ray_cone.h)
+    Vec3f prev_ng{0, 0, 1};         // geometric normal at the vertex d left
+    float footprint = 0;            // ray cone width at the ray origin (ray_cone.h)
     float spread = m_pixel_spread;  // ... and its full angle, radians
-    unsigned fur_skip = 0;   // the strand the ray leaves, + 1 (fur_geometry.h)
+    unsigned fur_skip = 0;          // the strand the ray leaves, + 1 (fur_geometry.h)
 
     for (int depth = 0;; ++depth) {
         // --- Intersect the scene (the camera ray was traced in a packet) ---
@@ -212,7 +212,8 @@ Rgb PathIntegrator::radiance(const CameraRay &cam, const RTCRayHit &first,
             break;
         }
 
-        // --- Fur: a strand scatters with the hair BSDF (renderer/integrator/integrator_fur.h) ---
+        // --- Fur: a strand scatters with the hair BSDF
+        // (renderer/integrator/integrator_fur.h) ---
         if (const FurLayer *layer =
                 m_scene.fur() ? m_scene.fur()->layer_of(rh.hit.geomID) : nullptr) {
             FurPathState st{L, beta, o, d, prev_pdf, prev_specular, prev_ng, fur_skip};

@@ -12,10 +12,10 @@
 #include <vector>
 
 #include "renderer/camera/camera.h"
+#include "renderer/core/sampler.h"
+#include "renderer/geometry/packet_intersect.h"
 #include "renderer/image/film.h"
 #include "renderer/image/filters.h"
-#include "renderer/geometry/packet_intersect.h"
-#include "renderer/core/sampler.h"
 #include "renderer/scene/scene.h"
 
 namespace pelage::renderer {

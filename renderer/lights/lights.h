@@ -15,8 +15,8 @@
 #include <memory>
 #include <vector>
 
-#include "renderer/lights/light_environment.h"
 #include "renderer/core/math.h"
+#include "renderer/lights/light_environment.h"
 #include "renderer/scene_file/scene_file.h"
 
 namespace pelage::renderer {

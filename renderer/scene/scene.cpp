@@ -1,7 +1,6 @@
 #include "renderer/scene/scene.h"
 
 #include <cmath>
-
 #include <filesystem>
 #include <stdexcept>
 
@@ -83,8 +82,8 @@ void Scene::build(const SceneDesc &desc, const PluginRegistry &plugins) {
     for (const ObjectDesc &o : desc.objects)
         if (o.fur) {
             // Each root's pigment: the skin's own material plugin at that point.
-            const auto pigment = [this](size_t i, const fur::SurfacePoint &s, fur::Vec3f p,
-                                        fur::Vec3f n) {
+            const auto pigment = [this](size_t i, const fur::SurfacePoint &s,
+                                        fur::Vec3f p, fur::Vec3f n) {
                 const Material &mat = m_materials[i];
                 PelageHit hit{};
                 hit.object_id = uint32_t(i);
@@ -93,7 +92,8 @@ void Scene::build(const SceneDesc &desc, const PluginRegistry &plugins) {
                 hit.b2 = s.b2;
                 hit.p[0] = p.x, hit.p[1] = p.y, hit.p[2] = p.z;
                 hit.n[0] = n.x, hit.n[1] = n.y, hit.n[2] = n.z;
-                hit.depth = 1;  // not a camera hit: no antialiasing blend across cell edges
+                hit.depth =
+                    1;  // not a camera hit: no antialiasing blend across cell edges
                 PelageShade sh{};
                 sh.albedo[0] = sh.albedo[1] = sh.albedo[2] = 0.5f;
                 sh.roughness = -1;
@@ -101,8 +101,8 @@ void Scene::build(const SceneDesc &desc, const PluginRegistry &plugins) {
                 fur::RootPigment rp{sh.eumelanin, sh.pheomelanin, -1};
                 // The cell type, when the plugin names an AOV slot "cell_type".
                 if (sh.aov_written && mat.plugin->aov_names)
-                    for (int k = 0; k < PELAGE_SHADER_AOV_SLOTS && mat.plugin->aov_names[k];
-                         ++k)
+                    for (int k = 0;
+                         k < PELAGE_SHADER_AOV_SLOTS && mat.plugin->aov_names[k]; ++k)
                         if (std::string(mat.plugin->aov_names[k]) == "cell_type" &&
                             std::isfinite(sh.aov[k]) && sh.aov[k] >= 0)
                             rp.cell_type = int(sh.aov[k]);

@@ -81,7 +81,8 @@ struct ObjectDesc {
     // parser (the last pose, weight 1) and by scene_at_frame().
     std::string deform_mesh;
     float deform_weight = 0;
-    std::optional<fur::FurParams> fur;  // strands on this object (renderer/scene_file/scene_fur.h)
+    std::optional<fur::FurParams>
+        fur;  // strands on this object (renderer/scene_file/scene_fur.h)
 };
 
 // "animation": {"frames", "fps", "turntable": {...}}. A turntable turns the camera about

@@ -11,13 +11,13 @@
 #include <random>
 
 #include "renderer/image/film.h"
-#include "renderer/plugins/plugin_loader.h"
 #include "renderer/integrator/render.h"
+#include "renderer/plugins/plugin_loader.h"
 #include "renderer/scene/scene.h"
 #include "sim/cells_io/cells_file.h"
+#include "sim/cells_io/pattern_stats.h"
 #include "sim/core/input_error.h"
 #include "sim/mesh/mesh_load.h"
-#include "sim/cells_io/pattern_stats.h"
 
 namespace pelage::renderer {
 namespace {

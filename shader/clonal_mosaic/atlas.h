@@ -19,7 +19,8 @@ struct AtlasTriangle {
 
 struct Atlas {
     int resolution = 0;
-    double texels_per_unit = 0;  // the common scale: every face keeps its shape and size ratio
+    double texels_per_unit =
+        0;  // the common scale: every face keeps its shape and size ratio
     std::vector<AtlasTriangle> triangles;
     // UV of corner c of triangle t, OBJ convention (v = 0 at the bottom of the image).
     sim::Vec2d uv(sim::TriId t, int c) const {
@@ -28,9 +29,9 @@ struct Atlas {
     }
 };
 
-// Shelf-packs the reference triangles (longest edge along x) into a resolution² atlas with
-// `gutter` texels around each, at the largest common scale that fits.
-// Throws std::invalid_argument when even a tiny scale cannot fit (resolution too small).
+// Shelf-packs the reference triangles (longest edge along x) into a resolution² atlas
+// with `gutter` texels around each, at the largest common scale that fits. Throws
+// std::invalid_argument when even a tiny scale cannot fit (resolution too small).
 Atlas pack_atlas(const sim::Crps &crps, int resolution, int gutter = 2);
 
 }  // namespace pelage::shader

@@ -1,7 +1,7 @@
-// Baking a mosaic into a texture: every texel of the CRPS atlas (atlas.h) takes the colour
-// of the nearest cell at its surface point — the same MosaicPattern search the renderer
-// uses. Texels within `gutter` of a triangle take its nearest surface point, so filtered
-// lookups near seams do not bleed the background in.
+// Baking a mosaic into a texture: every texel of the CRPS atlas (atlas.h) takes the
+// colour of the nearest cell at its surface point — the same MosaicPattern search the
+// renderer uses. Texels within `gutter` of a triangle take its nearest surface point, so
+// filtered lookups near seams do not bleed the background in.
 #pragma once
 
 #include "shader/clonal_mosaic/atlas.h"

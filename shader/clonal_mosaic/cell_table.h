@@ -15,7 +15,8 @@ namespace pelage::shader {
 struct CellOnSurface {
     sim::TriId tri;
     double x, z;  // local CRPS coordinates on `tri` (sim/crps/crps.h)
-    uint32_t id;  // stable: survives re-simulation with the same seed, keys per-cell jitter
+    uint32_t
+        id;  // stable: survives re-simulation with the same seed, keys per-cell jitter
     uint8_t type;
 };
 

@@ -64,7 +64,7 @@ struct ClonalMosaic {
     const shader::CellTable *cells_ptr = nullptr;
     const shader::ClosestCellIndex *index = nullptr;
     std::vector<TypeLook> types;
-    std::vector<CellLook> looks;  // per cell, CellTable order
+    std::vector<CellLook> looks;             // per cell, CellTable order
     std::unique_ptr<shader::MosaicLod> lod;  // null: lod = 0
     float jitter = 0, edge_width = 0;
     bool antialias = true, coherence = true;
@@ -173,8 +173,8 @@ void parse_per_type(const char *param, const std::string &spec, float lo, float 
         if (item.empty()) continue;
         const size_t eq = item.find('=');
         if (eq == std::string::npos)
-            throw std::invalid_argument(std::string(param) + ": expected NAME=VALUE, got \"" +
-                                        item + "\"");
+            throw std::invalid_argument(std::string(param) +
+                                        ": expected NAME=VALUE, got \"" + item + "\"");
         const std::string name = item.substr(0, eq);
         auto it = std::find_if(types.begin(), types.end(),
                                [&](const auto &t) { return t.name == name; });

@@ -10,10 +10,10 @@
 // What is precomputed (Teo's method, made fast). Each triangle t is split into n²
 // sub-triangles S (regular subdivision in barycentric coordinates; n grows with the
 // triangle's size, about two per cell spacing across, up to 6). For each S, t's
-// breadth-first unfolding (sim/crps/unfold.h) supplies every cell that can be among the three
-// nearest of some point of S: those within R_S of S, where R_S bounds F3 on S (at most
-// d_3 + b_S, d_3 the distance from S's centroid to its third-nearest cell and b_S S's
-// radius, because F3(q) <= |q - c_3| <= d_3 + b_S). Each such cell is stored *already
+// breadth-first unfolding (sim/crps/unfold.h) supplies every cell that can be among the
+// three nearest of some point of S: those within R_S of S, where R_S bounds F3 on S (at
+// most d_3 + b_S, d_3 the distance from S's centroid to its third-nearest cell and b_S
+// S's radius, because F3(q) <= |q - c_3| <= d_3 + b_S). Each such cell is stored *already
 // carried into t's frame* by its triangle's reverse map F[j→t]: the transform Teo applies
 // per candidate triangle at every lookup is applied once here, so a lookup is a scan of
 // one flat list.

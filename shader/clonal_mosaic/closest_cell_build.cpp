@@ -1,9 +1,5 @@
 // Builds the closest-cell index: per triangle, the cell lists of its regions (Teo 2006
 // §6.2; see closest_cell.h). The searches are in closest_cell.cpp.
-#include "shader/clonal_mosaic/closest_cell.h"
-
-#include "shader/clonal_mosaic/subdivision.h"
-
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 
@@ -12,6 +8,9 @@
 #include <cmath>
 #include <numeric>
 #include <stdexcept>
+
+#include "shader/clonal_mosaic/closest_cell.h"
+#include "shader/clonal_mosaic/subdivision.h"
 
 namespace pelage::shader {
 namespace {
@@ -25,7 +24,8 @@ constexpr float inf_f = std::numeric_limits<float>::infinity();
 struct ClosestCellIndex::Built {
     Frame frame{};
     uint32_t regions = 1;  // sub-triangles per side searched at run time
-    std::array<uint32_t, max_subdivision * max_subdivision> end{};  // each list's, in blocks
+    std::array<uint32_t, max_subdivision * max_subdivision>
+        end{};  // each list's, in blocks
     std::vector<Block> blocks;
     size_t entries = 0, distinct_triangles = 0, longest = 0;
 };
@@ -100,10 +100,9 @@ ClosestCellIndex::ClosestCellIndex(const sim::Crps &crps, const CellTable &cells
     m_region_block.push_back(static_cast<uint32_t>(m_blocks.size()));
     m_stats.mean_candidates = lists ? double(distinct) / lists : 0;
     m_stats.mean_candidate_cells = lists ? double(entries) / lists : 0;
-    m_stats.bytes = m_frames.size() * sizeof(Frame) +
-                    m_first_region.size() * sizeof(uint32_t) +
-                    m_region_block.size() * sizeof(uint32_t) +
-                    m_blocks.size() * sizeof(Block);
+    m_stats.bytes =
+        m_frames.size() * sizeof(Frame) + m_first_region.size() * sizeof(uint32_t) +
+        m_region_block.size() * sizeof(uint32_t) + m_blocks.size() * sizeof(Block);
     m_stats.build_seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
@@ -138,8 +137,15 @@ void ClosestCellIndex::build_triangle(const sim::Crps &crps, sim::TriId t,
     const sim::Vec2d v0 = ft.v[0], e1 = ft.v[1] - ft.v[0], e2 = ft.v[2] - ft.v[0];
     {
         Frame &f = out[0].frame;
-        f = {float(v0.x), float(v0.y), float(e1.x), float(e1.y), float(e2.x), float(e2.y), 0};
-        f.inv_det = 1.0f / (f.e1x * f.e2y - f.e1y * f.e2x);  // in float, like the searches
+        f = {float(v0.x),
+             float(v0.y),
+             float(e1.x),
+             float(e1.y),
+             float(e2.x),
+             float(e2.y),
+             0};
+        f.inv_det =
+            1.0f / (f.e1x * f.e2y - f.e1y * f.e2x);  // in float, like the searches
         out[1].frame = f;
     }
     struct Sub {

@@ -81,9 +81,9 @@ MosaicLod::MosaicLod(const sim::Surface &surface, const ClosestCellIndex &index,
         for (int c = 0; c < 3; ++c) {
             const sim::VertId v = mesh.triangles[t][c];
             for (int k = 0; k < channels; ++k)
-                m_tris[t].corner[c][k] =
-                    weight[v] > 0 ? float(vertex[channels * v + k] / weight[v])
-                                  : m_means[t].v[k];
+                m_tris[t].corner[c][k] = weight[v] > 0
+                                             ? float(vertex[channels * v + k] / weight[v])
+                                             : m_means[t].v[k];
         }
 }
 

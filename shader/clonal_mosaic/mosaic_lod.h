@@ -1,9 +1,9 @@
 // The mosaic's coarse level of detail: what a footprint wider than the mesh's triangles
 // sees is the mean look of the cells under it, not one of them. Indirect hits after a
-// rough bounce have such footprints (renderer/core/ray_cone.h), and so do minified objects.
-// Like the coarse levels of a MIP map, the mean is precomputed: per triangle, the
-// area-weighted mean look over the triangle (the nearest cell at the centres of an
-// n × n sub-triangle grid, all of equal area, through the renderer's own search); per
+// rough bounce have such footprints (renderer/core/ray_cone.h), and so do minified
+// objects. Like the coarse levels of a MIP map, the mean is precomputed: per triangle,
+// the area-weighted mean look over the triangle (the nearest cell at the centres of an n
+// × n sub-triangle grid, all of equal area, through the renderer's own search); per
 // vertex, the area-weighted mean of its triangles'; at a hit, the three vertices' means
 // interpolated by the barycentric coordinates — a filter about two triangles wide,
 // continuous across edges.

@@ -1,7 +1,7 @@
-// A simulated mosaic ready for lookups: the .cells file, the mesh it was grown on (checked
-// against the file's mesh hash) and the closest-cell index. The clonal_mosaic plugin, the
-// fur layer, `pelage lookup` and `pelage bake` all go through this one class, so every
-// tool sees exactly the renderer's pattern.
+// A simulated mosaic ready for lookups: the .cells file, the mesh it was grown on
+// (checked against the file's mesh hash) and the closest-cell index. The clonal_mosaic
+// plugin, the fur layer, `pelage lookup` and `pelage bake` all go through this one class,
+// so every tool sees exactly the renderer's pattern.
 #pragma once
 
 #include <memory>
@@ -16,8 +16,8 @@ namespace pelage::shader {
 
 class MosaicPattern {
   public:
-    // Throws pelage::InputError for an unreadable or corrupt .cells file or a mesh that is
-    // not the one the cells were grown on.
+    // Throws pelage::InputError for an unreadable or corrupt .cells file or a mesh that
+    // is not the one the cells were grown on.
     MosaicPattern(const std::string &cells_path, const std::string &mesh_path,
                   sim::UnfoldPaths paths = sim::UnfoldPaths::edges_only);
 
@@ -38,7 +38,8 @@ class MosaicPattern {
     std::unique_ptr<sim::Surface> m_surface;
     CellTable m_cells;
     std::unique_ptr<ClosestCellIndex> m_index;
-    std::vector<float> m_tri;  // per triangle: v0 (2), e1 (2), e2 (2), local CRPS coordinates
+    std::vector<float>
+        m_tri;  // per triangle: v0 (2), e1 (2), e2 (2), local CRPS coordinates
 };
 
 }  // namespace pelage::shader

@@ -1,7 +1,7 @@
 // The fur layer's parameters, as an object's `"fur": {…}` block in a scene file describes
-// them (renderer/scene_file/scene_fur.cpp parses and validates them; README "Fur" documents each
-// key). Lengths and radii are in world units (after the object's transform), density in
-// strands per world unit of area, angles in degrees.
+// them (renderer/scene_file/scene_fur.cpp parses and validates them; README "Fur"
+// documents each key). Lengths and radii are in world units (after the object's
+// transform), density in strands per world unit of area, angles in degrees.
 #pragma once
 
 #include <cstdint>

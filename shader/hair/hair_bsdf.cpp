@@ -15,12 +15,14 @@ namespace pelage::hair {
 namespace {
 
 constexpr float two_pi = 2 * pi;
-// Below this cos θ_o the modified index η' = sqrt(η² − sin²θ_o)/cos θ_o is clamped finite.
+// Below this cos θ_o the modified index η' = sqrt(η² − sin²θ_o)/cos θ_o is clamped
+// finite.
 constexpr float min_cos_theta = 1e-7f;
 constexpr float ln_2 = 0.693147181f;
 
 [[noreturn]] void bad(const std::string &name, float value, const char *expected) {
-    throw std::invalid_argument("HairBsdf: " + name + " = " + std::to_string(value) + ": " + expected);
+    throw std::invalid_argument("HairBsdf: " + name + " = " + std::to_string(value) +
+                                ": " + expected);
 }
 
 // Modified Bessel function of the first kind, order 0, by its power series
@@ -45,8 +47,8 @@ float bessel_i0(float x) {
 }
 
 // log I0(x); above 12, the asymptotic expansion
-// I0(x) ≈ e^x / sqrt(2πx) · (1 + 1/(8x) + 9/(128x²) + 225/(3072x³)) (relative error < 1e-5)
-// keeps M_p finite for tiny v.
+// I0(x) ≈ e^x / sqrt(2πx) · (1 + 1/(8x) + 9/(128x²) + 225/(3072x³)) (relative error <
+// 1e-5) keeps M_p finite for tiny v.
 float log_bessel_i0(float x) {
     if (x > 12) {
         const float r = 1 / x;
@@ -92,7 +94,8 @@ Refraction refract(float sin_theta_o, float eta, float h) {
     const float sin_theta_t = r.sin_theta_o / eta;
     r.cos_theta_t = safe_sqrt(1 - sqr(sin_theta_t));
     // Modified index for the azimuthal (projected) refraction: η' (Bravais)
-    const float etap = std::sqrt(eta * eta - sqr(r.sin_theta_o)) / std::max(r.cos_theta_o, min_cos_theta);
+    const float etap = std::sqrt(eta * eta - sqr(r.sin_theta_o)) /
+                       std::max(r.cos_theta_o, min_cos_theta);
     const float sin_gamma_t = h / etap;
     r.cos_gamma_t = safe_sqrt(1 - sqr(sin_gamma_t));
     r.gamma_t = safe_asin(sin_gamma_t);
@@ -110,8 +113,10 @@ float fresnel_dielectric(float cos_theta_i, float eta) {
     const float sin2_theta_t = (1 - sqr(cos_theta_i)) / sqr(eta);
     if (sin2_theta_t >= 1) return 1;  // total internal reflection
     const float cos_theta_t = safe_sqrt(1 - sin2_theta_t);
-    const float r_parl = (eta * cos_theta_i - cos_theta_t) / (eta * cos_theta_i + cos_theta_t);
-    const float r_perp = (cos_theta_i - eta * cos_theta_t) / (cos_theta_i + eta * cos_theta_t);
+    const float r_parl =
+        (eta * cos_theta_i - cos_theta_t) / (eta * cos_theta_i + cos_theta_t);
+    const float r_perp =
+        (cos_theta_i - eta * cos_theta_t) / (cos_theta_i + eta * cos_theta_t);
     return (sqr(r_parl) + sqr(r_perp)) / 2;
 }
 
@@ -131,7 +136,8 @@ MpNorm mp_norm(float v) {
     return {false, 1 / (std::sinh(1 / v) * 2 * v)};
 }
 
-float mp_eval(float cos_theta_i, float cos_theta_o, float sin_theta_i, float sin_theta_o, float v, MpNorm n) {
+float mp_eval(float cos_theta_i, float cos_theta_o, float sin_theta_i, float sin_theta_o,
+              float v, MpNorm n) {
     const float a = cos_theta_i * cos_theta_o / v;
     const float b = sin_theta_i * sin_theta_o / v;
     if (n.log_space) return std::exp(log_bessel_i0(a) - b + n.scale);
@@ -141,7 +147,8 @@ float mp_eval(float cos_theta_i, float cos_theta_o, float sin_theta_i, float sin
 // N_p with the trimmed logistic's normalisation 1/(CDF(π) − CDF(−π)) precomputed.
 float np_eval(float phi, int p, float s, float inv_trim, float gamma_o, float gamma_t) {
     // Remap Δφ to [−π, π]
-    const float dphi = std::remainder(phi - azimuthal_deflection(p, gamma_o, gamma_t), two_pi);
+    const float dphi =
+        std::remainder(phi - azimuthal_deflection(p, gamma_o, gamma_t), two_pi);
     return logistic(dphi, s) * inv_trim;
 }
 
@@ -161,14 +168,16 @@ float azimuthal_scattering(float phi, int p, float s, float gamma_o, float gamma
 
 float offset_h(Vec3f x, Vec3f n, Vec3f wo) {
     const auto dot = [](Vec3f a, Vec3f b) { return a.x * b.x + a.y * b.y + a.z * b.z; };
-    const Vec3f n_cross_wo{n.y * wo.z - n.z * wo.y, n.z * wo.x - n.x * wo.z, n.x * wo.y - n.y * wo.x};
+    const Vec3f n_cross_wo{n.y * wo.z - n.z * wo.y, n.z * wo.x - n.x * wo.z,
+                           n.x * wo.y - n.y * wo.x};
     const Vec3f wo_perp = wo - x * dot(wo, x);
     const float len = std::sqrt(dot(wo_perp, wo_perp));
     if (!(len > 0)) return 0;  // wo along the fibre: every h sees the same geometry
     return std::clamp(dot(x, n_cross_wo) / len, -1.0f, 1.0f);
 }
 
-HairParams HairParams::from_melanin(float eumelanin, float pheomelanin, float beta_m, float beta_n) {
+HairParams HairParams::from_melanin(float eumelanin, float pheomelanin, float beta_m,
+                                    float beta_n) {
     HairParams p;
     p.beta_m = beta_m;
     p.beta_n = beta_n;
@@ -187,13 +196,18 @@ HairParams HairParams::from_colour(Rgb colour, float beta_m, float beta_n) {
 HairBsdf::HairBsdf(const HairParams &params, float h) : m_params(params), m_h(h) {
     // --- Validate ---
     if (!(h >= -1 && h <= 1)) bad("h", h, "must be in [-1, 1]");
-    if (!(params.beta_m > 0 && params.beta_m <= 1)) bad("beta_m", params.beta_m, "must be in (0, 1]");
-    if (!(params.beta_n > 0 && params.beta_n <= 1)) bad("beta_n", params.beta_n, "must be in (0, 1]");
-    if (!(std::abs(params.alpha) < pi / 4)) bad("alpha", params.alpha, "must be in (-pi/4, pi/4) radians");
-    if (!(params.eta >= 1 && std::isfinite(params.eta))) bad("eta", params.eta, "must be finite and >= 1");
+    if (!(params.beta_m > 0 && params.beta_m <= 1))
+        bad("beta_m", params.beta_m, "must be in (0, 1]");
+    if (!(params.beta_n > 0 && params.beta_n <= 1))
+        bad("beta_n", params.beta_n, "must be in (0, 1]");
+    if (!(std::abs(params.alpha) < pi / 4))
+        bad("alpha", params.alpha, "must be in (-pi/4, pi/4) radians");
+    if (!(params.eta >= 1 && std::isfinite(params.eta)))
+        bad("eta", params.eta, "must be finite and >= 1");
     for (int c = 0; c < 3; ++c)
         if (!(params.sigma_a[c] >= 0 && std::isfinite(params.sigma_a[c])))
-            bad("sigma_a[" + std::to_string(c) + "]", params.sigma_a[c], "must be finite and >= 0");
+            bad("sigma_a[" + std::to_string(c) + "]", params.sigma_a[c],
+                "must be finite and >= 0");
 
     m_gamma_o = safe_asin(h);
 
@@ -212,7 +226,8 @@ HairBsdf::HairBsdf(const HairParams &params, float h) : m_params(params), m_h(h)
 
     // --- Azimuthal logistic scale s from beta_n (Chiang et al. 2016 fit) ---
     const float bn = params.beta_n;
-    m_s = std::sqrt(pi / 8) * (0.265f * bn + 1.194f * sqr(bn) + 5.372f * std::pow(bn, 22.0f));
+    m_s = std::sqrt(pi / 8) *
+          (0.265f * bn + 1.194f * sqr(bn) + 5.372f * std::pow(bn, 22.0f));
     m_inv_trim = 1 / (logistic_cdf(pi, m_s) - logistic_cdf(-pi, m_s));
 
     // --- Cuticle tilt: sin/cos of α, 2α, 4α ---
@@ -261,7 +276,8 @@ std::array<Rgb, HairBsdf::p_max + 1> HairBsdf::attenuation(float sin_theta_o) co
     a[0] = Rgb{f, f, f};
     a[1] = (sqr(1 - f)) * T;
     for (int p = 2; p < p_max; ++p) a[p] = a[p - 1] * T * f;
-    // Residual: the geometric series of all higher bounces, A_{p_max} = A_{p_max−1}·f·T/(1 − f·T)
+    // Residual: the geometric series of all higher bounces, A_{p_max} =
+    // A_{p_max−1}·f·T/(1 − f·T)
     for (int c = 0; c < 3; ++c) {
         const float tf = T[c] * f, denom = 1 - tf;
         const float v = denom > 0 ? a[p_max - 1][c] * tf / denom : 0.0f;
@@ -301,14 +317,18 @@ void HairBsdf::evaluate(Vec3f wo, Vec3f wi, Rgb *f, float *pdf) const {
             for (float &x : w) x /= sum;
     }
 
-    // --- S = Σ_p M_p A_p N_p and pdf = Σ_p M_p w_p N_p, then the residual with uniform N ---
+    // --- S = Σ_p M_p A_p N_p and pdf = Σ_p M_p w_p N_p, then the residual with uniform N
+    // ---
     Rgb s_sum;
     float pdf_sum = 0;
     for (int p = 0; p <= p_max; ++p) {
-        const Tilted o = tilt(p, r.sin_theta_o, r.cos_theta_o, m_sin_2k_alpha, m_cos_2k_alpha);
-        const float n_p = p < p_max ? np_eval(phi, p, m_s, m_inv_trim, m_gamma_o, r.gamma_t) : 1 / two_pi;
-        const float m_p = mp_eval(cos_theta_i, o.cos_theta, sin_theta_i, o.sin_theta, m_v[p],
-                                  {m_mp_log_space[p], m_mp_scale[p]});
+        const Tilted o =
+            tilt(p, r.sin_theta_o, r.cos_theta_o, m_sin_2k_alpha, m_cos_2k_alpha);
+        const float n_p = p < p_max
+                              ? np_eval(phi, p, m_s, m_inv_trim, m_gamma_o, r.gamma_t)
+                              : 1 / two_pi;
+        const float m_p = mp_eval(cos_theta_i, o.cos_theta, sin_theta_i, o.sin_theta,
+                                  m_v[p], {m_mp_log_space[p], m_mp_scale[p]});
         const float mn = m_p * n_p;
         s_sum += mn * a[p];
         pdf_sum += mn * w[p];
@@ -334,7 +354,8 @@ float HairBsdf::pdf(Vec3f wo, Vec3f wi) const {
     return pdf;
 }
 
-std::optional<HairSample> HairBsdf::sample(Vec3f wo, float u_lobe, float u1, float u2) const {
+std::optional<HairSample> HairBsdf::sample(Vec3f wo, float u_lobe, float u1,
+                                           float u2) const {
     const Refraction r = refract(wo.x, m_params.eta, m_h);
     const auto w = lobe_pdf(wo.x);
 
@@ -348,15 +369,18 @@ std::optional<HairSample> HairBsdf::sample(Vec3f wo, float u_lobe, float u1, flo
     u_lobe = std::min(u_lobe / w[p], 0x1.fffffep-1f);
 
     // --- Sample M_p for θ_i: a cap around −wo' of variance v_p, projected on x ---
-    const Tilted o = tilt(p, r.sin_theta_o, r.cos_theta_o, m_sin_2k_alpha, m_cos_2k_alpha);
+    const Tilted o =
+        tilt(p, r.sin_theta_o, r.cos_theta_o, m_sin_2k_alpha, m_cos_2k_alpha);
     const float v = m_v[p];
-    // Inverse CDF cos θ = 1 + v·ln(u + (1 − u)·e^{−2/v}); the floor only guards log(0) when
-    // e^{−2/v} underflows (pbrt clamps u to 1e-5 instead, which moves that much mass).
-    const float cos_theta =
-        1 + v * std::log(std::max(u1 + (1 - u1) * std::exp(-2 / v), std::numeric_limits<float>::min()));
+    // Inverse CDF cos θ = 1 + v·ln(u + (1 − u)·e^{−2/v}); the floor only guards log(0)
+    // when e^{−2/v} underflows (pbrt clamps u to 1e-5 instead, which moves that much
+    // mass).
+    const float cos_theta = 1 + v * std::log(std::max(u1 + (1 - u1) * std::exp(-2 / v),
+                                                      std::numeric_limits<float>::min()));
     const float sin_theta = safe_sqrt(1 - sqr(cos_theta));
     const float cos_phi = std::cos(two_pi * u2);
-    const float sin_theta_i = std::clamp(-cos_theta * o.sin_theta + sin_theta * cos_phi * o.cos_theta, -1.0f, 1.0f);
+    const float sin_theta_i = std::clamp(
+        -cos_theta * o.sin_theta + sin_theta * cos_phi * o.cos_theta, -1.0f, 1.0f);
     const float cos_theta_i = safe_sqrt(1 - sqr(sin_theta_i));
 
     // --- Sample N_p for Δφ ---
@@ -364,7 +388,8 @@ std::optional<HairSample> HairBsdf::sample(Vec3f wo, float u_lobe, float u1, flo
                                        sample_trimmed_logistic(u_lobe, m_s, -pi, pi)
                                  : two_pi * u_lobe;
     const float phi_i = std::atan2(wo.z, wo.y) + dphi;
-    const Vec3f wi{sin_theta_i, cos_theta_i * std::cos(phi_i), cos_theta_i * std::sin(phi_i)};
+    const Vec3f wi{sin_theta_i, cos_theta_i * std::cos(phi_i),
+                   cos_theta_i * std::sin(phi_i)};
 
     Rgb f;
     float pdf_wi;

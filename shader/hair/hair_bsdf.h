@@ -1,9 +1,9 @@
-// The hair/fur BSDF of Chiang, Bitterli, Tappan, Burley 2016, "A Practical and Controllable
-// Hair and Fur Model for Production Path Tracing", Computer Graphics Forum 35(2):275–283
-// (Eurographics 2016), doi:10.1111/cgf.12830 — the model of pbrt-v3/v4's HairBxDF and
-// Cycles' Principled Hair (Chiang). Lobes R, TT, TRT and a residual (p_max = 3); longitudinal
-// scattering M_p from d'Eon et al. 2011 in its low-roughness-stable (log-space) form;
-// azimuthal scattering N_p a trimmed logistic; cuticle tilt α.
+// The hair/fur BSDF of Chiang, Bitterli, Tappan, Burley 2016, "A Practical and
+// Controllable Hair and Fur Model for Production Path Tracing", Computer Graphics Forum
+// 35(2):275–283 (Eurographics 2016), doi:10.1111/cgf.12830 — the model of pbrt-v3/v4's
+// HairBxDF and Cycles' Principled Hair (Chiang). Lobes R, TT, TRT and a residual (p_max =
+// 3); longitudinal scattering M_p from d'Eon et al. 2011 in its low-roughness-stable
+// (log-space) form; azimuthal scattering N_p a trimmed logistic; cuticle tilt α.
 //
 // Frame (pbrt's convention, stated once here):
 //   * +x runs along the fibre (the curve tangent). sin θ = w.x is the longitudinal angle,
@@ -13,21 +13,22 @@
 //   * h ∈ [-1, 1] is the offset across the fibre where the ray hits it (h = sin γ_o):
 //     h = 0 at the axis, ±1 at the silhouettes. It is constant for one hit.
 // Conventions shared with renderer/bsdf/bsdf.h, so the renderer can wrap this class 1:1:
-//   * eval(wo, wi) returns f WITHOUT the |cos θ_i| factor, where cos θ_i = wi.z. Internally
+//   * eval(wo, wi) returns f WITHOUT the |cos θ_i| factor, where cos θ_i = wi.z.
+//   Internally
 //     f = S(wo, wi) / |wi.z|, S = Σ_p M_p A_p N_p the fibre scattering function, so the
 //     path tracer's |wi.z| cancels and throughput gets S exactly (as in pbrt).
 //   * pdf(wo, wi) is the solid-angle density of sample().
 //   * sample() returns nullopt for "no sample" (never a zero pdf); its weight is
 //     f·|cos θ_i|/pdf. wo and wi point away from the fibre.
-// Unlike the renderer's built-in BSDFs it is two-sided and transmissive: wo and wi may lie
-// on either side of z (TT sends light through the fibre), so an integrator must not reject
-// wi.z < 0 and should offset the next ray along wi, not along the normal.
-// h's sign matters (R reflects towards φ_o − 2γ_o): for a round curve, compute it with
-// offset_h(x, n, wo) below from the cylinder normal n at the hit; z itself may be any unit
-// vector ⊥ x (the model uses only φ_i − φ_o), as long as the integrator's cosine uses it.
-// σ_a is per fibre radius (see hair_pigments.h to build it from melanin or colour).
-// HairBsdf is an immutable value type: all methods are const and thread-safe; build one
-// per hit (the constructor precomputes v_p, s and the tilt terms, ~100 ns).
+// Unlike the renderer's built-in BSDFs it is two-sided and transmissive: wo and wi may
+// lie on either side of z (TT sends light through the fibre), so an integrator must not
+// reject wi.z < 0 and should offset the next ray along wi, not along the normal. h's sign
+// matters (R reflects towards φ_o − 2γ_o): for a round curve, compute it with offset_h(x,
+// n, wo) below from the cylinder normal n at the hit; z itself may be any unit vector ⊥ x
+// (the model uses only φ_i − φ_o), as long as the integrator's cosine uses it. σ_a is per
+// fibre radius (see hair_pigments.h to build it from melanin or colour). HairBsdf is an
+// immutable value type: all methods are const and thread-safe; build one per hit (the
+// constructor precomputes v_p, s and the tilt terms, ~100 ns).
 #pragma once
 
 #include <array>
@@ -40,24 +41,25 @@ namespace pelage::hair {
 
 // The model's parameters; HairBsdf's constructor validates them.
 struct HairParams {
-    float beta_m = 0.3f;          // longitudinal roughness, (0, 1]
-    float beta_n = 0.3f;          // azimuthal roughness, (0, 1]
-    float alpha = 0.0349066f;     // cuticle tilt in radians (default 2°), |alpha| < π/4
-    float eta = 1.55f;            // index of refraction of the fibre (keratin), >= 1
-    Rgb sigma_a{};                // absorption per fibre radius, each channel >= 0
+    float beta_m = 0.3f;       // longitudinal roughness, (0, 1]
+    float beta_n = 0.3f;       // azimuthal roughness, (0, 1]
+    float alpha = 0.0349066f;  // cuticle tilt in radians (default 2°), |alpha| < π/4
+    float eta = 1.55f;         // index of refraction of the fibre (keratin), >= 1
+    Rgb sigma_a{};             // absorption per fibre radius, each channel >= 0
 
     // σ_a from eumelanin/pheomelanin concentrations (d'Eon et al. 2011, hair_pigments.h).
-    static HairParams from_melanin(float eumelanin, float pheomelanin, float beta_m, float beta_n);
+    static HairParams from_melanin(float eumelanin, float pheomelanin, float beta_m,
+                                   float beta_n);
     // σ_a from a target colour (Chiang et al. 2016 §4.2, hair_pigments.h).
     static HairParams from_colour(Rgb colour, float beta_m, float beta_n);
 };
 
 struct HairSample {
     Vec3f wi;
-    Rgb f;        // excludes |cos θ_i|
-    float pdf;    // solid angle
-    Rgb weight;   // f·|cos θ_i|/pdf
-    int lobe;     // p: 0 = R, 1 = TT, 2 = TRT, 3 = residual
+    Rgb f;       // excludes |cos θ_i|
+    float pdf;   // solid angle
+    Rgb weight;  // f·|cos θ_i|/pdf
+    int lobe;    // p: 0 = R, 1 = TT, 2 = TRT, 3 = residual
 };
 
 class HairBsdf {
@@ -72,7 +74,8 @@ class HairBsdf {
     float pdf(Vec3f wo, Vec3f wi) const;
     // u_lobe picks the lobe (then is reused for N_p); u1, u2 sample M_p. All in [0, 1).
     std::optional<HairSample> sample(Vec3f wo, float u_lobe, float u1, float u2) const;
-    // Σ_p A_p at normal incidence (θ_o = 0) and this h: a colour for AOVs / albedo passes.
+    // Σ_p A_p at normal incidence (θ_o = 0) and this h: a colour for AOVs / albedo
+    // passes.
     Rgb albedo() const;
 
     const HairParams &params() const { return m_params; }
@@ -90,8 +93,9 @@ class HairBsdf {
 
     HairParams m_params;
     float m_h, m_gamma_o;
-    std::array<float, p_max + 1> m_v;     // M_p variance per lobe
-    std::array<bool, p_max + 1> m_mp_log_space;  // M_p normalisation per lobe (v <= 0.1: log)
+    std::array<float, p_max + 1> m_v;  // M_p variance per lobe
+    std::array<bool, p_max + 1>
+        m_mp_log_space;  // M_p normalisation per lobe (v <= 0.1: log)
     std::array<float, p_max + 1> m_mp_scale;
     float m_s;                            // N_p logistic scale
     float m_inv_trim;                     // 1/(CDF(π) − CDF(−π)) of that logistic
@@ -99,8 +103,8 @@ class HairBsdf {
     std::array<float, 3> m_cos_2k_alpha;
 };
 
-// The signatures renderer/bsdf/bsdf.h's Bsdf concept expects (with this folder's own types,
-// which shader/ cannot take from the renderer): a wrapper only converts types.
+// The signatures renderer/bsdf/bsdf.h's Bsdf concept expects (with this folder's own
+// types, which shader/ cannot take from the renderer): a wrapper only converts types.
 static_assert(requires(const HairBsdf &b, Vec3f w, float u) {
     { b.eval(w, w) } -> std::same_as<Rgb>;
     { b.pdf(w, w) } -> std::same_as<float>;
@@ -109,8 +113,9 @@ static_assert(requires(const HairBsdf &b, Vec3f w, float u) {
 });
 
 // h = sin(φ_o − φ_n) = x·(n × wo) / |wo projected ⊥ x|, for the fibre tangent x, the
-// cylinder's outward unit normal n at the hit (⊥ x) and wo, all in one frame (e.g. world),
-// clamped to [−1, 1]. With it, R's mirror direction about n lands on Φ(0) = −2γ_o.
+// cylinder's outward unit normal n at the hit (⊥ x) and wo, all in one frame (e.g.
+// world), clamped to [−1, 1]. With it, R's mirror direction about n lands on Φ(0) =
+// −2γ_o.
 float offset_h(Vec3f x, Vec3f n, Vec3f wo);
 
 // M_p, d'Eon et al. 2011 as written by Chiang et al. 2016: normalised so that

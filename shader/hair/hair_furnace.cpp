@@ -15,7 +15,8 @@ FurnaceResult furnace_quadrature(const HairBsdf &bsdf, Vec3f wo, int n_theta, in
         double row[3] = {0, 0, 0}, row_pdf = 0;
         for (int j = 0; j < n_phi; ++j) {
             const double phi = (j + 0.5) * d_phi;
-            const Vec3f wi{float(sin_theta), float(cos_theta * std::cos(phi)), float(cos_theta * std::sin(phi))};
+            const Vec3f wi{float(sin_theta), float(cos_theta * std::cos(phi)),
+                           float(cos_theta * std::sin(phi))};
             const Rgb f = bsdf.eval(wo, wi);
             const double abs_cos = std::abs(wi.z);
             for (int c = 0; c < 3; ++c) row[c] += f[c] * abs_cos;

@@ -18,7 +18,7 @@ struct FurnaceResult {
     double pdf_integral;  // ∫ pdf dω_i (0 unless with_pdf)
 };
 
-FurnaceResult furnace_quadrature(const HairBsdf &bsdf, Vec3f wo, int n_theta = 512, int n_phi = 1024,
-                                 bool with_pdf = false);
+FurnaceResult furnace_quadrature(const HairBsdf &bsdf, Vec3f wo, int n_theta = 512,
+                                 int n_phi = 1024, bool with_pdf = false);
 
 }  // namespace pelage::hair

@@ -1,7 +1,7 @@
 // The few value types shared inside shader/hair. shader/ must not include renderer
 // headers (data flows sim → shader → renderer), so the hair BSDF carries its own minimal
-// vector and colour types; their layout ({x, y, z} floats) matches renderer/core/math.h so the
-// renderer's wrapper converts member by member.
+// vector and colour types; their layout ({x, y, z} floats) matches renderer/core/math.h
+// so the renderer's wrapper converts member by member.
 #pragma once
 
 #include <cmath>
@@ -18,7 +18,12 @@ struct Vec3f {
     constexpr Vec3f operator*(Vec3f o) const { return {x * o.x, y * o.y, z * o.z}; }
     constexpr Vec3f operator*(float s) const { return {x * s, y * s, z * s}; }
     constexpr Vec3f operator/(float s) const { return {x / s, y / s, z / s}; }
-    constexpr Vec3f &operator+=(Vec3f o) { x += o.x; y += o.y; z += o.z; return *this; }
+    constexpr Vec3f &operator+=(Vec3f o) {
+        x += o.x;
+        y += o.y;
+        z += o.z;
+        return *this;
+    }
     constexpr float operator[](int i) const { return i == 0 ? x : (i == 1 ? y : z); }
     constexpr bool operator==(const Vec3f &) const = default;
 };

@@ -7,7 +7,9 @@
 namespace pelage::shader {
 namespace {
 
-float fade(float t) { return t * t * t * (t * (t * 6 - 15) + 10); }  // Perlin 2002 eq. for s(t)
+float fade(float t) {
+    return t * t * t * (t * (t * 6 - 15) + 10);
+}  // Perlin 2002 eq. for s(t)
 float lerp(float t, float a, float b) { return a + t * (b - a); }
 
 // The 12 gradients (±1, ±1, 0) and permutations, picked by the low 4 bits of the hash
@@ -48,14 +50,17 @@ float PerlinNoise::noise(float x, float y, float z) const {
     const auto &P = m_perm;
     const int A = P[X] + Y, AA = P[A] + Z, AB = P[A + 1] + Z;
     const int B = P[X + 1] + Y, BA = P[B] + Z, BB = P[B + 1] + Z;
-    return lerp(w,
-                lerp(v, lerp(u, grad(P[AA], x, y, z), grad(P[BA], x - 1, y, z)),
-                     lerp(u, grad(P[AB], x, y - 1, z), grad(P[BB], x - 1, y - 1, z))),
-                lerp(v, lerp(u, grad(P[AA + 1], x, y, z - 1), grad(P[BA + 1], x - 1, y, z - 1)),
-                     lerp(u, grad(P[AB + 1], x, y - 1, z - 1), grad(P[BB + 1], x - 1, y - 1, z - 1))));
+    return lerp(
+        w,
+        lerp(v, lerp(u, grad(P[AA], x, y, z), grad(P[BA], x - 1, y, z)),
+             lerp(u, grad(P[AB], x, y - 1, z), grad(P[BB], x - 1, y - 1, z))),
+        lerp(v, lerp(u, grad(P[AA + 1], x, y, z - 1), grad(P[BA + 1], x - 1, y, z - 1)),
+             lerp(u, grad(P[AB + 1], x, y - 1, z - 1),
+                  grad(P[BB + 1], x - 1, y - 1, z - 1))));
 }
 
-float PerlinNoise::fbm(float x, float y, float z, int octaves, float lacunarity, float gain) const {
+float PerlinNoise::fbm(float x, float y, float z, int octaves, float lacunarity,
+                       float gain) const {
     float sum = 0, amplitude = 1, norm = 0, f = 1;
     for (int o = 0; o < octaves; ++o) {
         sum += amplitude * noise(x * f, y * f, z * f);

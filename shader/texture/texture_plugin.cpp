@@ -2,11 +2,11 @@
  * TextureSystem (MIP-mapped, filtered by the ray footprint): the texture-mapping baseline
  * of Teo 2006 Table 7.9. With `pelage bake` it renders a mosaic as an ordinary texture.
  *
- * | parameter     | type   | default | meaning                                                   |
- * | file          | string | ""      | image file (relative to the scene file), required          |
- * | texels_per_unit | float | 0      | texels per object-space unit, to filter by the footprint;  |
- * |               |        |         | 0 = bilinear on the finest level                          |
- * AOVs: none. The mesh needs UVs (an OBJ with `vt`, e.g. from `pelage bake --obj`).
+ * | parameter     | type   | default | meaning | | file          | string | ""      |
+ * image file (relative to the scene file), required          | | texels_per_unit | float
+ * | 0      | texels per object-space unit, to filter by the footprint;  | | |        | |
+ * 0 = bilinear on the finest level                          | AOVs: none. The mesh needs
+ * UVs (an OBJ with `vt`, e.g. from `pelage bake --obj`).
  */
 #include <OpenImageIO/texture.h>
 
@@ -28,8 +28,19 @@ struct Texture {
 };
 
 const PelageParamSpec params[] = {
-    {"file", PELAGE_PARAM_STRING, {0, 0, 0}, "", 0, 0, "image file, relative to the scene file"},
-    {"texels_per_unit", PELAGE_PARAM_FLOAT, {0, 0, 0}, nullptr, 0.0f, 1e9f,
+    {"file",
+     PELAGE_PARAM_STRING,
+     {0, 0, 0},
+     "",
+     0,
+     0,
+     "image file, relative to the scene file"},
+    {"texels_per_unit",
+     PELAGE_PARAM_FLOAT,
+     {0, 0, 0},
+     nullptr,
+     0.0f,
+     1e9f,
      "texels per object-space unit (filters by the ray footprint); 0 = bilinear"},
     {nullptr, PelageParamType(0), {0, 0, 0}, nullptr, 0, 0, nullptr},
 };
@@ -42,24 +53,31 @@ void *create(const PelageParamSet *ps, PelageError *err) {
     try {
         std::string file = ps->values[0].s ? ps->values[0].s : "";
         if (file.empty()) return fail(err, "needs \"file\": the image to map"), nullptr;
-        if (!ps->mesh.corner_uvs) return fail(err, "the mesh has no UVs (an OBJ with vt lines is needed)"), nullptr;
+        if (!ps->mesh.corner_uvs)
+            return fail(err, "the mesh has no UVs (an OBJ with vt lines is needed)"),
+                   nullptr;
         std::filesystem::path p(file);
-        if (p.is_relative() && ps->scene_dir && *ps->scene_dir) p = std::filesystem::path(ps->scene_dir) / p;
-        if (!std::filesystem::exists(p)) return fail(err, p.string() + ": no such image"), nullptr;
+        if (p.is_relative() && ps->scene_dir && *ps->scene_dir)
+            p = std::filesystem::path(ps->scene_dir) / p;
+        if (!std::filesystem::exists(p))
+            return fail(err, p.string() + ": no such image"), nullptr;
         auto t = std::make_unique<Texture>();
         // The process-wide shared texture system: thread-safe, one cache for every
         // instance. (A private one would have to go through TextureSystem::destroy, which
         // in OIIO 2.4 frees its object with the wrong sized delete: an ASan report.)
         // A file rewritten since the cache opened it is re-read (force = false leaves
         // unchanged files, and the handles other instances hold, alone).
-        t->system = std::shared_ptr<OIIO::TextureSystem>(OIIO::TextureSystem::create(true),
-                                                         [](OIIO::TextureSystem *) {});
+        t->system = std::shared_ptr<OIIO::TextureSystem>(
+            OIIO::TextureSystem::create(true), [](OIIO::TextureSystem *) {});
         t->system->attribute("automip", 1);
         t->file = OIIO::ustring(p.string());
         t->system->invalidate(t->file, false);
         t->handle = t->system->get_texture_handle(t->file);
-        const OIIO::ImageSpec *spec = t->handle ? t->system->imagespec(t->handle, nullptr) : nullptr;
-        if (!spec) return fail(err, p.string() + ": cannot read: " + t->system->geterror()), nullptr;
+        const OIIO::ImageSpec *spec =
+            t->handle ? t->system->imagespec(t->handle, nullptr) : nullptr;
+        if (!spec)
+            return fail(err, p.string() + ": cannot read: " + t->system->geterror()),
+                   nullptr;
         t->texels_per_unit = ps->values[1].f[0];
         t->inv_res = 1.0f / float(std::max(spec->width, spec->height));
         return t.release();
@@ -75,20 +93,30 @@ void shade(const void *self, const PelageHit *hit, PelageShade *out) {
     OIIO::TextureOpt opt;
     opt.swrap = opt.twrap = OIIO::TextureOpt::WrapClamp;
     // The footprint in uv units: object units × texels per unit / resolution.
-    const float d = t.texels_per_unit > 0 ? hit->footprint * t.texels_per_unit * t.inv_res : 0.0f;
+    const float d =
+        t.texels_per_unit > 0 ? hit->footprint * t.texels_per_unit * t.inv_res : 0.0f;
     float rgb[3] = {0.5f, 0.5f, 0.5f};
     // OBJ's v runs bottom to top, images top to bottom.
-    t.system->texture(t.handle, nullptr, opt, hit->uv[0], 1.0f - hit->uv[1], d, 0, 0, d, 3, rgb);
+    t.system->texture(t.handle, nullptr, opt, hit->uv[0], 1.0f - hit->uv[1], d, 0, 0, d,
+                      3, rgb);
     for (int k = 0; k < 3; ++k) out->albedo[k] = rgb[k];
 }
 
 void destroy(void *self) { delete static_cast<Texture *>(self); }
 
 const PelageShaderPlugin plugin = {
-    PELAGE_SHADER_ABI, "texture", "an image texture by UV through OpenImageIO's TextureSystem (baseline)",
-    params, nullptr, create, shade, destroy,
+    PELAGE_SHADER_ABI,
+    "texture",
+    "an image texture by UV through OpenImageIO's TextureSystem (baseline)",
+    params,
+    nullptr,
+    create,
+    shade,
+    destroy,
 };
 
 }  // namespace
 
-extern "C" PELAGE_EXPORT const PelageShaderPlugin *pelage_shader_plugin(void) { return &plugin; }
+extern "C" PELAGE_EXPORT const PelageShaderPlugin *pelage_shader_plugin(void) {
+    return &plugin;
+}

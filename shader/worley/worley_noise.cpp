@@ -68,7 +68,8 @@ WorleyResult worley(const float p[3], uint32_t seed, float mean_points) {
         for (int32_t dx = -k; dx <= k; ++dx)
             for (int32_t dy = -k; dy <= k; ++dy)
                 for (int32_t dz = -k; dz <= k; ++dz) {
-                    if (std::max({std::abs(dx), std::abs(dy), std::abs(dz)}) != k) continue;
+                    if (std::max({std::abs(dx), std::abs(dy), std::abs(dz)}) != k)
+                        continue;
                     float pts[16][3];
                     uint32_t ids[16];
                     const int n = worley_cube_points(cx + dx, cy + dy, cz + dz, seed,

@@ -18,8 +18,9 @@ struct WorleyResult {
 // mean_points: Poisson mean per cube (Worley uses 1 to 4; we default to 3 in the plugin).
 WorleyResult worley(const float p[3], uint32_t seed, float mean_points);
 
-// The feature points of unit cube (x, y, z): their count (at most 16) in the return value,
-// positions and hashes in `points` / `ids`. worley() is the nearest-two search over these.
+// The feature points of unit cube (x, y, z): their count (at most 16) in the return
+// value, positions and hashes in `points` / `ids`. worley() is the nearest-two search
+// over these.
 int worley_cube_points(int32_t x, int32_t y, int32_t z, uint32_t seed, float mean_points,
                        float points[16][3], uint32_t ids[16]);
 

@@ -19,7 +19,8 @@ constexpr char magic[8] = {'P', 'E', 'L', 'C', 'E', 'L', 'L', 'S'};
 constexpr size_t header_bytes = 80;
 constexpr size_t frame_doubles = 22;
 // Bounds that keep every size computation far from overflow.
-constexpr uint64_t max_triangles = 1ull << 31, max_cells = 1ull << 32, max_maps = 1ull << 32;
+constexpr uint64_t max_triangles = 1ull << 31, max_cells = 1ull << 32,
+                   max_maps = 1ull << 32;
 constexpr uint64_t max_params_bytes = 64ull << 20;
 
 uint64_t fnv1a(const uint8_t *p, size_t n, uint64_t h = 0xcbf29ce484222325ull) {
@@ -39,7 +40,9 @@ class Writer {
         const auto *p = reinterpret_cast<const uint8_t *>(v.data());
         m_bytes.insert(m_bytes.end(), p, p + v.size() * sizeof(T));
     }
-    void put_bytes(const std::string &s) { m_bytes.insert(m_bytes.end(), s.begin(), s.end()); }
+    void put_bytes(const std::string &s) {
+        m_bytes.insert(m_bytes.end(), s.begin(), s.end());
+    }
     std::vector<uint8_t> &bytes() { return m_bytes; }
 
   private:
@@ -103,13 +106,15 @@ bool CellsData::operator==(const CellsData &o) const {
 uint64_t mesh_hash(const TriangleMesh &mesh) {
     const uint64_t nt = mesh.num_triangles();
     uint64_t h = fnv1a(reinterpret_cast<const uint8_t *>(&nt), sizeof nt);
-    h = fnv1a(reinterpret_cast<const uint8_t *>(mesh.positions.data()), mesh.positions.size() * sizeof(Vec3d), h);
+    h = fnv1a(reinterpret_cast<const uint8_t *>(mesh.positions.data()),
+              mesh.positions.size() * sizeof(Vec3d), h);
     return fnv1a(reinterpret_cast<const uint8_t *>(mesh.triangles.data()),
                  mesh.triangles.size() * sizeof(mesh.triangles[0]), h);
 }
 
-CellsData make_cells_data(const TriangleMesh &mesh, const Crps &crps, const CellTypes &types,
-                          const Cells &cells, const std::string &params_json, uint64_t seed) {
+CellsData make_cells_data(const TriangleMesh &mesh, const Crps &crps,
+                          const CellTypes &types, const Cells &cells,
+                          const std::string &params_json, uint64_t seed) {
     CellsData d;
     d.mesh_hash = mesh_hash(mesh);
     d.seed = seed;
@@ -127,7 +132,10 @@ CellsData make_cells_data(const TriangleMesh &mesh, const Crps &crps, const Cell
     // Cells sorted by (triangle, id): buckets hold ids in history order, so sort each.
     d.cell_row.assign(nt + 1, 0);
     const size_t n = cells.size();
-    d.x.reserve(n); d.z.reserve(n); d.type.reserve(n); d.id.reserve(n);
+    d.x.reserve(n);
+    d.z.reserve(n);
+    d.type.reserve(n);
+    d.id.reserve(n);
     std::vector<CellId> ids;
     for (TriId t = 0; t < nt; ++t) {
         ids = cells.on(t);
@@ -171,15 +179,26 @@ std::vector<uint8_t> serialize_cells(const CellsData &d) {
     for (const CrpsFrame &f : d.frames) {
         for (int i = 0; i < 3; ++i)
             for (int j = 0; j < 3; ++j) w.put<double>(f.rotation.m[i][j]);
-        w.put<double>(f.normal.x); w.put<double>(f.normal.y); w.put<double>(f.normal.z);
+        w.put<double>(f.normal.x);
+        w.put<double>(f.normal.y);
+        w.put<double>(f.normal.z);
         w.put<double>(f.y_offset);
-        w.put<double>(f.centre.x); w.put<double>(f.centre.y);
-        for (const Vec2d &v : f.v) { w.put<double>(v.x); w.put<double>(v.y); }
+        w.put<double>(f.centre.x);
+        w.put<double>(f.centre.y);
+        for (const Vec2d &v : f.v) {
+            w.put<double>(v.x);
+            w.put<double>(v.y);
+        }
         w.put<double>(f.area);
     }
     w.put_array(d.nbr_row);
     w.put_array(d.nbr);
-    for (const RigidMap2 &F : d.to_master) { w.put(F.c); w.put(F.s); w.put(F.ax); w.put(F.ay); }
+    for (const RigidMap2 &F : d.to_master) {
+        w.put(F.c);
+        w.put(F.s);
+        w.put(F.ax);
+        w.put(F.ay);
+    }
     w.put_array(d.cell_row);
     w.put_array(d.x);
     w.put_array(d.z);
@@ -193,14 +212,17 @@ std::vector<uint8_t> serialize_cells(const CellsData &d) {
 
 CellsData parse_cells(const std::vector<uint8_t> &b, const std::string &name) {
     // --- Header, and sizes against the file size before anything is allocated ---
-    if (b.size() < header_bytes + 8) throw InputError(name, 0, "header", "truncated: not a .cells file");
-    if (std::memcmp(b.data(), magic, 8) != 0) throw InputError(name, 0, "magic", "not a .cells file");
+    if (b.size() < header_bytes + 8)
+        throw InputError(name, 0, "header", "truncated: not a .cells file");
+    if (std::memcmp(b.data(), magic, 8) != 0)
+        throw InputError(name, 0, "magic", "not a .cells file");
     Reader r(b, b.size(), name);
     r.seek(8);
     const uint32_t version = r.get<uint32_t>("version");
     if (version != cells_file_version)
-        r.fail("version", "unsupported version " + std::to_string(version) + " (this build reads " +
-                              std::to_string(cells_file_version) + ")");
+        r.fail("version", "unsupported version " + std::to_string(version) +
+                              " (this build reads " + std::to_string(cells_file_version) +
+                              ")");
     CellsData d;
     const uint32_t num_types = r.get<uint32_t>("num_types");
     d.mesh_hash = r.get<uint64_t>("mesh_hash");
@@ -211,20 +233,26 @@ CellsData parse_cells(const std::vector<uint8_t> &b, const std::string &name) {
     const uint64_t params_bytes = r.get<uint64_t>("params_bytes");
     const uint64_t payload = r.get<uint64_t>("payload_bytes");
     r.get<uint64_t>("reserved");
-    if (num_types < 1 || num_types > max_cell_types) r.fail("num_types", "must be 1 to 8");
+    if (num_types < 1 || num_types > max_cell_types)
+        r.fail("num_types", "must be 1 to 8");
     if (nt < 1 || nt > max_triangles) r.fail("num_triangles", "out of range");
     if (nc >= max_cells) r.fail("num_cells", "out of range");
     if (nm > max_maps) r.fail("num_maps", "out of range");
     if (params_bytes > max_params_bytes) r.fail("params_bytes", "out of range");
     if (payload != b.size() - header_bytes - 8)
-        r.fail("payload_bytes", "file size " + std::to_string(b.size()) + " does not match the header (truncated or padded file)");
-    const uint64_t fixed = params_bytes + nt * (frame_doubles * 8 + 8) + 8 + nm * (4 + 32) + nc * (8 + 8 + 1 + 4);
-    if (fixed > payload) r.fail("payload_bytes", "counts in the header exceed the file size");
+        r.fail("payload_bytes",
+               "file size " + std::to_string(b.size()) +
+                   " does not match the header (truncated or padded file)");
+    const uint64_t fixed = params_bytes + nt * (frame_doubles * 8 + 8) + 8 +
+                           nm * (4 + 32) + nc * (8 + 8 + 1 + 4);
+    if (fixed > payload)
+        r.fail("payload_bytes", "counts in the header exceed the file size");
 
     // --- Checksum over header and payload ---
     uint64_t stored;
     std::memcpy(&stored, b.data() + b.size() - 8, 8);
-    if (fnv1a(b.data(), b.size() - 8) != stored) r.fail("checksum", "mismatch: the file is corrupted");
+    if (fnv1a(b.data(), b.size() - 8) != stored)
+        r.fail("checksum", "mismatch: the file is corrupted");
 
     Reader p(b, b.size() - 8, name);
     p.seek(header_bytes);
@@ -232,7 +260,8 @@ CellsData parse_cells(const std::vector<uint8_t> &b, const std::string &name) {
     for (uint32_t i = 0; i < num_types; ++i) {
         CellType t;
         const uint32_t len = p.get<uint32_t>("types.name");
-        if (len < 1 || len > 64) p.fail("types[" + std::to_string(i) + "].name", "bad length");
+        if (len < 1 || len > 64)
+            p.fail("types[" + std::to_string(i) + "].name", "bad length");
         t.name = p.get_string(len, "types.name");
         for (float &c : t.colour) c = p.get<float>("types.colour");
         t.eumelanin = p.get<float>("types.eumelanin");
@@ -249,10 +278,15 @@ CellsData parse_cells(const std::vector<uint8_t> &b, const std::string &name) {
         CrpsFrame &f = d.frames[t];
         for (int i = 0; i < 3; ++i)
             for (int j = 0; j < 3; ++j) f.rotation.m[i][j] = *q++;
-        f.normal = {q[0], q[1], q[2]}; q += 3;
+        f.normal = {q[0], q[1], q[2]};
+        q += 3;
         f.y_offset = *q++;
-        f.centre = {q[0], q[1]}; q += 2;
-        for (auto &v : f.v) { v = {q[0], q[1]}; q += 2; }
+        f.centre = {q[0], q[1]};
+        q += 2;
+        for (auto &v : f.v) {
+            v = {q[0], q[1]};
+            q += 2;
+        }
         f.area = *q;
     }
     p.get_array(d.nbr_row, nt + 1, "nbr_row");
@@ -260,7 +294,8 @@ CellsData parse_cells(const std::vector<uint8_t> &b, const std::string &name) {
     std::vector<double> maps;
     p.get_array(maps, nm * 4, "maps");
     d.to_master.resize(nm);
-    for (uint64_t k = 0; k < nm; ++k) d.to_master[k] = {maps[4 * k], maps[4 * k + 1], maps[4 * k + 2], maps[4 * k + 3]};
+    for (uint64_t k = 0; k < nm; ++k)
+        d.to_master[k] = {maps[4 * k], maps[4 * k + 1], maps[4 * k + 2], maps[4 * k + 3]};
     p.get_array(d.cell_row, nt + 1, "cell_row");
     p.get_array(d.x, nc, "x");
     p.get_array(d.z, nc, "z");
@@ -269,17 +304,26 @@ CellsData parse_cells(const std::vector<uint8_t> &b, const std::string &name) {
     if (p.pos() != b.size() - 8) p.fail("payload", "trailing bytes after the cells");
 
     // --- Structure ---
-    if (d.nbr_row[0] != 0 || d.nbr_row[nt] != nm) p.fail("nbr_row", "does not span the maps");
-    if (d.cell_row[0] != 0 || d.cell_row[nt] != nc) p.fail("cell_row", "does not span the cells");
+    if (d.nbr_row[0] != 0 || d.nbr_row[nt] != nm)
+        p.fail("nbr_row", "does not span the maps");
+    if (d.cell_row[0] != 0 || d.cell_row[nt] != nc)
+        p.fail("cell_row", "does not span the cells");
     for (uint64_t t = 0; t < nt; ++t) {
-        if (d.nbr_row[t] > d.nbr_row[t + 1]) p.fail("nbr_row", "not monotone at triangle " + std::to_string(t));
-        if (d.cell_row[t] > d.cell_row[t + 1]) p.fail("cell_row", "not monotone at triangle " + std::to_string(t));
+        if (d.nbr_row[t] > d.nbr_row[t + 1])
+            p.fail("nbr_row", "not monotone at triangle " + std::to_string(t));
+        if (d.cell_row[t] > d.cell_row[t + 1])
+            p.fail("cell_row", "not monotone at triangle " + std::to_string(t));
     }
     for (TriId j : d.nbr)
-        if (j >= nt) p.fail("nbr", "triangle index " + std::to_string(j) + " out of range");
+        if (j >= nt)
+            p.fail("nbr", "triangle index " + std::to_string(j) + " out of range");
     for (uint64_t c = 0; c < nc; ++c) {
-        if (d.type[c] >= num_types) p.fail("type", "cell " + std::to_string(c) + " has type " + std::to_string(d.type[c]) + " of " + std::to_string(num_types));
-        if (!std::isfinite(d.x[c]) || !std::isfinite(d.z[c])) p.fail("x", "non-finite cell position");
+        if (d.type[c] >= num_types)
+            p.fail("type", "cell " + std::to_string(c) + " has type " +
+                               std::to_string(d.type[c]) + " of " +
+                               std::to_string(num_types));
+        if (!std::isfinite(d.x[c]) || !std::isfinite(d.z[c]))
+            p.fail("x", "non-finite cell position");
     }
     return d;
 }
@@ -287,7 +331,8 @@ CellsData parse_cells(const std::vector<uint8_t> &b, const std::string &name) {
 void write_cells_file(const std::string &path, const CellsData &data) {
     const std::vector<uint8_t> bytes = serialize_cells(data);
     write_file_atomically(path, [&](std::ostream &out) {
-        out.write(reinterpret_cast<const char *>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
+        out.write(reinterpret_cast<const char *>(bytes.data()),
+                  static_cast<std::streamsize>(bytes.size()));
     });
 }
 
@@ -298,15 +343,18 @@ CellsData read_cells_file(const std::string &path) {
     if (size < 0) throw InputError(path, 0, "", "cannot read .cells file");
     std::vector<uint8_t> bytes(static_cast<size_t>(size));
     in.seekg(0);
-    if (!in.read(reinterpret_cast<char *>(bytes.data()), size)) throw InputError(path, 0, "", "read failed");
+    if (!in.read(reinterpret_cast<char *>(bytes.data()), size))
+        throw InputError(path, 0, "", "read failed");
     return parse_cells(bytes, path);
 }
 
-void check_cells_match_mesh(const CellsData &data, const TriangleMesh &mesh, const std::string &path) {
+void check_cells_match_mesh(const CellsData &data, const TriangleMesh &mesh,
+                            const std::string &path) {
     if (data.num_triangles() != mesh.num_triangles() || data.mesh_hash != mesh_hash(mesh))
         throw InputError(path, 0, "mesh_hash",
-                         "made for a different mesh (" + std::to_string(data.num_triangles()) +
-                             " triangles, hash " + std::to_string(data.mesh_hash) + "; this mesh has " +
+                         "made for a different mesh (" +
+                             std::to_string(data.num_triangles()) + " triangles, hash " +
+                             std::to_string(data.mesh_hash) + "; this mesh has " +
                              std::to_string(mesh.num_triangles()) + " triangles, hash " +
                              std::to_string(mesh_hash(mesh)) + ")");
 }

@@ -29,9 +29,9 @@
 #include <string>
 #include <vector>
 
+#include "sim/crps/crps.h"
 #include "sim/mosaic/cell_types.h"
 #include "sim/mosaic/cells.h"
-#include "sim/crps/crps.h"
 
 namespace pelage::sim {
 
@@ -60,8 +60,9 @@ struct CellsData {
 // Identity of a mesh: FNV-1a 64 over the triangle count, positions and indices.
 uint64_t mesh_hash(const TriangleMesh &mesh);
 
-CellsData make_cells_data(const TriangleMesh &mesh, const Crps &crps, const CellTypes &types,
-                          const Cells &cells, const std::string &params_json, uint64_t seed);
+CellsData make_cells_data(const TriangleMesh &mesh, const Crps &crps,
+                          const CellTypes &types, const Cells &cells,
+                          const std::string &params_json, uint64_t seed);
 
 std::vector<uint8_t> serialize_cells(const CellsData &data);
 // `name` is used in error messages.
@@ -70,6 +71,7 @@ CellsData parse_cells(const std::vector<uint8_t> &bytes, const std::string &name
 void write_cells_file(const std::string &path, const CellsData &data);  // atomic
 CellsData read_cells_file(const std::string &path);                     // one bulk read
 // InputError when the file was made for another mesh.
-void check_cells_match_mesh(const CellsData &data, const TriangleMesh &mesh, const std::string &path);
+void check_cells_match_mesh(const CellsData &data, const TriangleMesh &mesh,
+                            const std::string &path);
 
 }  // namespace pelage::sim

@@ -13,7 +13,8 @@ Vec3d to_world(const CrpsFrame &f, Vec2d p) {
 
 uint8_t to_srgb8(double linear) {
     linear = std::clamp(linear, 0.0, 1.0);
-    const double s = linear <= 0.0031308 ? 12.92 * linear : 1.055 * std::pow(linear, 1 / 2.4) - 0.055;
+    const double s =
+        linear <= 0.0031308 ? 12.92 * linear : 1.055 * std::pow(linear, 1 / 2.4) - 0.055;
     return static_cast<uint8_t>(std::lround(s * 255));
 }
 
@@ -31,7 +32,8 @@ PreviewImage render_cells_preview(const CellsData &d, const PreviewOptions &o) {
             const Vec3d q = to_world(f, p);
             b.extend({dot(q, u), dot(q, v), dot(q, w)});
         }
-    const double ex = std::max(b.hi.x - b.lo.x, 1e-12), ey = std::max(b.hi.y - b.lo.y, 1e-12);
+    const double ex = std::max(b.hi.x - b.lo.x, 1e-12),
+                 ey = std::max(b.hi.y - b.lo.y, 1e-12);
     const double scale = (o.size - 8) / std::max(ex, ey);
     PreviewImage img;
     img.width = std::max(8, int(std::ceil(ex * scale)) + 8);
@@ -39,23 +41,31 @@ PreviewImage render_cells_preview(const CellsData &d, const PreviewOptions &o) {
     img.rgb.assign(size_t(img.width) * img.height * 3, 40);
     std::vector<double> depth(size_t(img.width) * img.height, 1e300);
     auto project = [&](Vec3d q) {
-        return Vec3d{(dot(q, u) - b.lo.x) * scale + 4, img.height - 1 - ((dot(q, v) - b.lo.y) * scale + 4), dot(q, w)};
+        return Vec3d{(dot(q, u) - b.lo.x) * scale + 4,
+                     img.height - 1 - ((dot(q, v) - b.lo.y) * scale + 4), dot(q, w)};
     };
 
     // --- Flat-shaded triangles with a z-buffer (headlight: shade by |n·w|) ---
     for (const auto &f : d.frames) {
-        const Vec3d a = project(to_world(f, f.v[0])), bb = project(to_world(f, f.v[1])), c = project(to_world(f, f.v[2]));
+        const Vec3d a = project(to_world(f, f.v[0])), bb = project(to_world(f, f.v[1])),
+                    c = project(to_world(f, f.v[2]));
         const double shade = 0.25 + 0.6 * std::abs(dot(f.normal, w));
         const uint8_t g = to_srgb8(shade * 0.5);
-        const int x0 = std::max(0, int(std::floor(std::min({a.x, bb.x, c.x})))), x1 = std::min(img.width - 1, int(std::ceil(std::max({a.x, bb.x, c.x}))));
-        const int y0 = std::max(0, int(std::floor(std::min({a.y, bb.y, c.y})))), y1 = std::min(img.height - 1, int(std::ceil(std::max({a.y, bb.y, c.y}))));
+        const int x0 = std::max(0, int(std::floor(std::min({a.x, bb.x, c.x})))),
+                  x1 =
+                      std::min(img.width - 1, int(std::ceil(std::max({a.x, bb.x, c.x}))));
+        const int y0 = std::max(0, int(std::floor(std::min({a.y, bb.y, c.y})))),
+                  y1 = std::min(img.height - 1,
+                                int(std::ceil(std::max({a.y, bb.y, c.y}))));
         const double area = (bb.x - a.x) * (c.y - a.y) - (c.x - a.x) * (bb.y - a.y);
         if (std::abs(area) < 1e-12) continue;
         for (int y = y0; y <= y1; ++y)
             for (int x = x0; x <= x1; ++x) {
                 const double px = x + 0.5, py = y + 0.5;
-                const double w0 = ((bb.x - px) * (c.y - py) - (c.x - px) * (bb.y - py)) / area;
-                const double w1 = ((c.x - px) * (a.y - py) - (a.x - px) * (c.y - py)) / area;
+                const double w0 =
+                    ((bb.x - px) * (c.y - py) - (c.x - px) * (bb.y - py)) / area;
+                const double w1 =
+                    ((c.x - px) * (a.y - py) - (a.x - px) * (c.y - py)) / area;
                 const double w2 = 1 - w0 - w1;
                 if (w0 < 0 || w1 < 0 || w2 < 0) continue;
                 const double z = w0 * a.z + w1 * bb.z + w2 * c.z;

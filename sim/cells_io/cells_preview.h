@@ -15,9 +15,9 @@ struct PreviewImage {
 };
 
 struct PreviewOptions {
-    int size = 800;                      // longer side in pixels
+    int size = 800;                        // longer side in pixels
     std::array<double, 3> view{0, 0, -1};  // viewing direction (world)
-    int dot_radius = 1;                  // pixels
+    int dot_radius = 1;                    // pixels
 };
 
 PreviewImage render_cells_preview(const CellsData &data, const PreviewOptions &options);

@@ -15,14 +15,18 @@ int find_type(const CellsData &d, const std::string &name, int fallback) {
 
 struct DisjointSets {
     std::vector<uint32_t> parent;
-    explicit DisjointSets(size_t n) : parent(n) { std::iota(parent.begin(), parent.end(), 0u); }
+    explicit DisjointSets(size_t n) : parent(n) {
+        std::iota(parent.begin(), parent.end(), 0u);
+    }
     uint32_t find(uint32_t a) {
         while (parent[a] != a) a = parent[a] = parent[parent[a]];
         return a;
     }
     void unite(uint32_t a, uint32_t b) {
-        a = find(a); b = find(b);
-        if (a != b) parent[std::max(a, b)] = std::min(a, b);  // lower root wins: deterministic
+        a = find(a);
+        b = find(b);
+        if (a != b)
+            parent[std::max(a, b)] = std::min(a, b);  // lower root wins: deterministic
     }
 };
 
@@ -35,7 +39,8 @@ PatternStats compute_pattern_stats(const CellsData &d) {
     s.area = d.area();
     std::vector<size_t> count(d.types.size(), 0);
     for (uint8_t t : d.type) ++count[t];
-    for (size_t i = 0; i < d.types.size(); ++i) s.cells_by_type.emplace_back(d.types[i].name, count[i]);
+    for (size_t i = 0; i < d.types.size(); ++i)
+        s.cells_by_type.emplace_back(d.types[i].name, count[i]);
     const int F = find_type(d, "F", 0), B = find_type(d, "B", 1);
     const size_t nf = F >= 0 ? count[F] : 0, nb = B >= 0 && B != F ? count[B] : 0;
     s.spot_fraction = nf + nb > 0 ? double(nf) / double(nf + nb) : 0.0;
@@ -50,13 +55,15 @@ PatternStats compute_pattern_stats(const CellsData &d) {
             if (d.type[a] != F) continue;
             const Vec2d pa{d.x[a], d.z[a]};
             for (uint32_t b = a + 1; b < d.cell_row[t + 1]; ++b)
-                if (d.type[b] == F && length_squared(Vec2d{d.x[b], d.z[b]} - pa) < delta2) sets.unite(a, b);
+                if (d.type[b] == F && length_squared(Vec2d{d.x[b], d.z[b]} - pa) < delta2)
+                    sets.unite(a, b);
             for (uint32_t k = d.nbr_row[t]; k < d.nbr_row[t + 1]; ++k) {
                 const TriId j = d.nbr[k];
                 if (j < t) continue;  // each pair of triangles once
                 const RigidMap2 &Fjt = d.to_master[k];
                 for (uint32_t b = d.cell_row[j]; b < d.cell_row[j + 1]; ++b)
-                    if (d.type[b] == F && length_squared(Fjt.apply({d.x[b], d.z[b]}) - pa) < delta2)
+                    if (d.type[b] == F &&
+                        length_squared(Fjt.apply({d.x[b], d.z[b]}) - pa) < delta2)
                         sets.unite(a, b);
             }
         }

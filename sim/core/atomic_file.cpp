@@ -25,7 +25,8 @@ void write_file_atomically(const std::string &path,
         }
         std::error_code ec;
         fs::rename(tmp, final_path, ec);
-        if (ec) throw std::runtime_error(path + ": cannot move into place: " + ec.message());
+        if (ec)
+            throw std::runtime_error(path + ": cannot move into place: " + ec.message());
     } catch (...) {
         std::error_code ignore;
         fs::remove(tmp, ignore);

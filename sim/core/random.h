@@ -52,7 +52,8 @@ class CounterRng {
         if (mean <= 0) return 0;
         if (mean > 500) {
             const double u1 = uniform_open0(), u2 = uniform();
-            const double n = std::sqrt(-2 * std::log(u1)) * std::cos(6.283185307179586 * u2);
+            const double n =
+                std::sqrt(-2 * std::log(u1)) * std::cos(6.283185307179586 * u2);
             const double v = std::floor(mean + std::sqrt(mean) * n + 0.5);
             return v < 0 ? 0 : static_cast<uint64_t>(v);
         }

@@ -29,7 +29,8 @@ enum class LineRead { ok, end_of_file, too_long };
 
 // std::getline with a cap: reads up to '\n' (dropping a trailing '\r'); stops with
 // too_long once the line exceeds max_bytes.
-inline LineRead read_line(std::istream &in, std::string &line, size_t max_bytes = max_line_bytes) {
+inline LineRead read_line(std::istream &in, std::string &line,
+                          size_t max_bytes = max_line_bytes) {
     line.clear();
     std::streambuf *buf = in.rdbuf();
     bool any = false;

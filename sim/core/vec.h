@@ -13,7 +13,11 @@ struct Vec2d {
     constexpr Vec2d operator-(Vec2d o) const { return {x - o.x, y - o.y}; }
     constexpr Vec2d operator*(double s) const { return {x * s, y * s}; }
     constexpr Vec2d operator/(double s) const { return {x / s, y / s}; }
-    constexpr Vec2d &operator+=(Vec2d o) { x += o.x; y += o.y; return *this; }
+    constexpr Vec2d &operator+=(Vec2d o) {
+        x += o.x;
+        y += o.y;
+        return *this;
+    }
     constexpr bool operator==(const Vec2d &) const = default;
 };
 
@@ -31,7 +35,12 @@ struct Vec3d {
     constexpr Vec3d operator-() const { return {-x, -y, -z}; }
     constexpr Vec3d operator*(double s) const { return {x * s, y * s, z * s}; }
     constexpr Vec3d operator/(double s) const { return {x / s, y / s, z / s}; }
-    constexpr Vec3d &operator+=(Vec3d o) { x += o.x; y += o.y; z += o.z; return *this; }
+    constexpr Vec3d &operator+=(Vec3d o) {
+        x += o.x;
+        y += o.y;
+        z += o.z;
+        return *this;
+    }
     constexpr double operator[](int i) const { return i == 0 ? x : (i == 1 ? y : z); }
     constexpr bool operator==(const Vec3d &) const = default;
 };

@@ -41,7 +41,10 @@ Vec2d clamp_into_triangle(const CrpsFrame &f, Vec2d p) {
         const double s = len2 > 0 ? std::clamp(dot(p - a, e) / len2, 0.0, 1.0) : 0.0;
         const Vec2d c = a + e * s;
         const double d2 = length_squared(p - c);
-        if (d2 < best_d2) { best_d2 = d2; best = c; }
+        if (d2 < best_d2) {
+            best_d2 = d2;
+            best = c;
+        }
     }
     return best;
 }
@@ -53,16 +56,21 @@ SurfacePoint walk(const Crps &crps, SurfacePoint cur, Vec2d d) {
         const CrpsFrame &f = crps.frame(cur.tri);
         // Orientation sign: inside means sigma·cross(edge, p − v_k) ≥ 0 for all edges.
         const double sigma = cross(f.v[1] - f.v[0], f.v[2] - f.v[0]) > 0 ? 1.0 : -1.0;
-        // --- Find where the segment cur.p + s·d (s in [0, 1]) first leaves the triangle ---
+        // --- Find where the segment cur.p + s·d (s in [0, 1]) first leaves the triangle
+        // ---
         double s_exit = 1.0;
         int k_exit = -1;
         for (int k = 0; k < 3; ++k) {
             const Vec2d e = f.v[(k + 1) % 3] - f.v[k];
-            const double g = sigma * cross(e, d);  // rate of change of the inside function
-            if (g >= 0) continue;                  // moving away from (or along) edge k
+            const double g =
+                sigma * cross(e, d);  // rate of change of the inside function
+            if (g >= 0) continue;     // moving away from (or along) edge k
             const double h = sigma * cross(e, cur.p - f.v[k]);
             const double s = std::max(0.0, -h / g);
-            if (s < s_exit) { s_exit = s; k_exit = k; }
+            if (s < s_exit) {
+                s_exit = s;
+                k_exit = k;
+            }
         }
         if (k_exit < 0) {  // ends inside
             cur.p = clamp_into_triangle(f, cur.p + d);
@@ -71,7 +79,8 @@ SurfacePoint walk(const Crps &crps, SurfacePoint cur, Vec2d d) {
         const Vec2d exit = cur.p + d * s_exit;
         const TriId n = topo.across(cur.tri, k_exit);
         RigidMap2 F;  // F[t→n]
-        if (n == invalid_id || (n == came_from && s_exit == 0.0) || !crps.find_map(n, cur.tri, &F)) {
+        if (n == invalid_id || (n == came_from && s_exit == 0.0) ||
+            !crps.find_map(n, cur.tri, &F)) {
             // Boundary edge (or a rounding ping-pong): the cell stops on the edge.
             cur.p = clamp_into_triangle(f, exit);
             return cur;

@@ -1,16 +1,16 @@
 // Implements the CRPS of H. J. Teo, M.Eng thesis, NTU 2006, ch. 4 (see crps.h).
 #include "sim/crps/crps.h"
 
-#include <algorithm>
-
 #include <tbb/parallel_for.h>
+
+#include <algorithm>
 
 namespace pelage::sim {
 namespace {
 
-// The minimal rotation taking unit vector n to +Y (Rodrigues: R = I + [v]x + [v]x^2/(1+c),
-// v = n x Y, c = n.Y). For normals in the lower hemisphere we first turn by π about X,
-// so 1 + c never approaches 0.
+// The minimal rotation taking unit vector n to +Y (Rodrigues: R = I + [v]x +
+// [v]x^2/(1+c), v = n x Y, c = n.Y). For normals in the lower hemisphere we first turn by
+// π about X, so 1 + c never approaches 0.
 Mat3d rotation_to_y(Vec3d n) {
     Mat3d flip;  // identity
     if (n.y < 0) {
@@ -106,7 +106,8 @@ Vec2d Crps::vertex_2d(TriId t, VertId v) const {
 RigidMap2 Crps::edge_map(TriId i, TriId j, VertId a, VertId b) const {
     const Vec2d a_i = vertex_2d(i, a), b_i = vertex_2d(i, b);
     const Vec2d a_j = vertex_2d(j, a), b_j = vertex_2d(j, b);
-    return RigidMap2::aligning(b_j - a_j, b_i - a_i, (a_j + b_j) * 0.5, (a_i + b_i) * 0.5);
+    return RigidMap2::aligning(b_j - a_j, b_i - a_i, (a_j + b_j) * 0.5,
+                               (a_i + b_i) * 0.5);
 }
 
 // Teo §4.1: a vertex neighbour rotates into i's plane about the intersection line L_ij of
@@ -153,7 +154,9 @@ Vec2d Crps::barycentric_to_2d(TriId t, Vec3d b) const {
     return f.v[0] * b.x + f.v[1] * b.y + f.v[2] * b.z;
 }
 
-Vec3d Crps::to_barycentric(TriId t, Vec2d p) const { return barycentric_in(m_frames[t], p); }
+Vec3d Crps::to_barycentric(TriId t, Vec2d p) const {
+    return barycentric_in(m_frames[t], p);
+}
 
 Vec3d barycentric_in(const CrpsFrame &f, Vec2d p) {
     const Vec2d e1 = f.v[1] - f.v[0], e2 = f.v[2] - f.v[0], r = p - f.v[0];

@@ -5,13 +5,16 @@
 // dropping Y gives its *reference triangle* in 2D (Teo §4.2, Fig. 4.4). pelage keeps each
 // reference triangle's coordinates relative to its own centroid, so 2D values stay the
 // size of a triangle (precise even in float) and:
-//     p_2d = (R_t p).xz - centre_t,     p = R_t^T (p_2d.x + centre.x, y_offset, p_2d.y + centre.y).
-// A point on the surface is (t, p_2d). Note: with normal +Y, (x, z) is a left-handed pair,
-// so counter-clockwise faces have negative signed area in 2D; nothing here depends on it.
+//     p_2d = (R_t p).xz - centre_t,     p = R_t^T (p_2d.x + centre.x, y_offset, p_2d.y +
+//     centre.y).
+// A point on the surface is (t, p_2d). Note: with normal +Y, (x, z) is a left-handed
+// pair, so counter-clockwise faces have negative signed area in 2D; nothing here depends
+// on it.
 //
-// For every (triangle i, neighbour j) pair of the topology, the rigid map F[j→i] takes j's
-// reference plane into i's (Teo §4.3, Fig. 4.7), stored with its inverse F[i→j]:
-//   * edge neighbours unfold about the shared edge (its endpoints coincide after mapping);
+// For every (triangle i, neighbour j) pair of the topology, the rigid map F[j→i] takes
+// j's reference plane into i's (Teo §4.3, Fig. 4.7), stored with its inverse F[i→j]:
+//   * edge neighbours unfold about the shared edge (its endpoints coincide after
+//   mapping);
 //   * vertex neighbours rotate about the line where the two planes meet, through the
 //     shared vertex (Teo §4.1, Fig. 4.2); coplanar or folded-flat planes align in-plane.
 // Thread-safety: immutable after build; all queries are const.
@@ -21,20 +24,21 @@
 #include <span>
 #include <vector>
 
-#include "sim/mesh/mesh.h"
 #include "sim/crps/rigid_map.h"
+#include "sim/mesh/mesh.h"
 #include "sim/mesh/topology.h"
 
 namespace pelage::sim {
 
-struct CrpsFrame {  // Teo §4.2, Table 1 (Normal, Yoffset, Center, vertices)
-    Mat3d rotation;              // R_t: world -> canonical, normal -> +Y
-    Vec3d normal;                // unit normal, consistently oriented (Topology::flipped)
-    double y_offset = 0;         // (R_t p).y for every p on the triangle's plane
-    Vec2d centre;                // (R_t centroid).xz: where local 2D coordinates start
-    std::array<Vec2d, 3> v;      // the reference triangle, local 2D coordinates
+struct CrpsFrame {           // Teo §4.2, Table 1 (Normal, Yoffset, Center, vertices)
+    Mat3d rotation;          // R_t: world -> canonical, normal -> +Y
+    Vec3d normal;            // unit normal, consistently oriented (Topology::flipped)
+    double y_offset = 0;     // (R_t p).y for every p on the triangle's plane
+    Vec2d centre;            // (R_t centroid).xz: where local 2D coordinates start
+    std::array<Vec2d, 3> v;  // the reference triangle, local 2D coordinates
     double area = 0;
-    double bound_radius = 0;     // max |v[c]|: a circle about the centroid holding the triangle
+    double bound_radius =
+        0;  // max |v[c]|: a circle about the centroid holding the triangle
 };
 
 // Barycentric coordinates (of corners 0, 1, 2) of local point p in a reference triangle.
@@ -58,10 +62,12 @@ class Crps {
     // --- Neighbour maps, parallel to topology().neighbours(i) ---
     // to_master(i)[k] = F[j→i] and to_neighbour(i)[k] = F[i→j] for j = neighbours(i)[k].
     std::span<const RigidMap2> to_master(TriId i) const {
-        return {m_to_master.data() + m_topo.nbr_row[i], m_topo.nbr_row[i + 1] - m_topo.nbr_row[i]};
+        return {m_to_master.data() + m_topo.nbr_row[i],
+                m_topo.nbr_row[i + 1] - m_topo.nbr_row[i]};
     }
     std::span<const RigidMap2> to_neighbour(TriId i) const {
-        return {m_to_nbr.data() + m_topo.nbr_row[i], m_topo.nbr_row[i + 1] - m_topo.nbr_row[i]};
+        return {m_to_nbr.data() + m_topo.nbr_row[i],
+                m_topo.nbr_row[i + 1] - m_topo.nbr_row[i]};
     }
     // F[j→i] for any neighbour j of i; false when j is not a neighbour.
     bool find_map(TriId i, TriId j, RigidMap2 *j_to_i) const;

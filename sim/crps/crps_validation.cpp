@@ -11,15 +11,22 @@ CrpsValidation validate_crps(const TriangleMesh &mesh, const Crps &crps, uint64_
     const double inv_diag = diag > 0 ? 1.0 / diag : 1.0;
     std::mt19937_64 rng(seed);
     std::uniform_real_distribution<double> u01(0.0, 1.0);
-    auto grow = [&](double &worst, double err) { worst = std::max(worst, err * inv_diag); };
+    auto grow = [&](double &worst, double err) {
+        worst = std::max(worst, err * inv_diag);
+    };
 
     for (TriId t = 0; t < mesh.num_triangles(); ++t) {
         // --- 2D <-> 3D round trip on the corners and on random interior points ---
         const Vec3d P[3] = {mesh.vertex(t, 0), mesh.vertex(t, 1), mesh.vertex(t, 2)};
-        for (int c = 0; c < 3; ++c) grow(v.roundtrip_max_error, length(crps.to_3d(t, crps.to_2d(t, P[c])) - P[c]));
+        for (int c = 0; c < 3; ++c)
+            grow(v.roundtrip_max_error,
+                 length(crps.to_3d(t, crps.to_2d(t, P[c])) - P[c]));
         for (int s = 0; s < 4; ++s) {
             double b1 = u01(rng), b2 = u01(rng);
-            if (b1 + b2 > 1) { b1 = 1 - b1; b2 = 1 - b2; }
+            if (b1 + b2 > 1) {
+                b1 = 1 - b1;
+                b2 = 1 - b2;
+            }
             const Vec3d b{1 - b1 - b2, b1, b2};
             const Vec3d p = P[0] * b.x + P[1] * b.y + P[2] * b.z;
             const Vec2d q = crps.barycentric_to_2d(t, b);

@@ -14,7 +14,9 @@ struct RigidMap2 {
     constexpr Vec2d apply(Vec2d p) const {
         return {c * p.x - s * p.y + ax, s * p.x + c * p.y + ay};
     }
-    constexpr Vec2d apply_direction(Vec2d d) const { return {c * d.x - s * d.y, s * d.x + c * d.y}; }
+    constexpr Vec2d apply_direction(Vec2d d) const {
+        return {c * d.x - s * d.y, s * d.x + c * d.y};
+    }
 
     // Teo §4.3, F_ij = T(M_j) R(-θ) T(-M_i): the reverse map.
     constexpr RigidMap2 inverse() const {

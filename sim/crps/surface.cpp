@@ -16,8 +16,8 @@ Surface assemble(TriangleMesh mesh, MeshLoadReport load, double seconds_load) {
     t0 = std::chrono::steady_clock::now();
     Crps crps(mesh, std::move(topo));
     const double seconds_crps = since(t0);
-    return Surface{std::move(mesh), std::move(crps), load, seconds_load, seconds_topology,
-                   seconds_crps};
+    return Surface{std::move(mesh), std::move(crps),  load,
+                   seconds_load,    seconds_topology, seconds_crps};
 }
 
 }  // namespace

@@ -6,7 +6,8 @@
 
 namespace pelage::sim {
 
-std::vector<SurfacePointSample> sample_surface_uniform(const Crps &crps, size_t n, uint64_t seed) {
+std::vector<SurfacePointSample> sample_surface_uniform(const Crps &crps, size_t n,
+                                                       uint64_t seed) {
     const size_t nt = crps.num_triangles();
     std::vector<double> cdf(nt);
     double sum = 0;
@@ -17,8 +18,8 @@ std::vector<SurfacePointSample> sample_surface_uniform(const Crps &crps, size_t 
     out.reserve(n);
     for (size_t i = 0; i < n; ++i) {
         const double pick = u01(rng) * sum;
-        const TriId t = static_cast<TriId>(
-            std::min<size_t>(std::upper_bound(cdf.begin(), cdf.end(), pick) - cdf.begin(), nt - 1));
+        const TriId t = static_cast<TriId>(std::min<size_t>(
+            std::upper_bound(cdf.begin(), cdf.end(), pick) - cdf.begin(), nt - 1));
         const double s = std::sqrt(u01(rng)), r = u01(rng);
         out.push_back({t, crps.barycentric_to_2d(t, {1 - s, s * (1 - r), s * r})});
     }

@@ -17,6 +17,7 @@ struct SurfacePointSample {
 // n points, deterministic for a given seed: the triangle is chosen with probability
 // proportional to its area, then (s, t) -> barycentric (1 - sqrt(s), sqrt(s)(1 - t),
 // sqrt(s) t), which is uniform on the triangle.
-std::vector<SurfacePointSample> sample_surface_uniform(const Crps &crps, size_t n, uint64_t seed);
+std::vector<SurfacePointSample> sample_surface_uniform(const Crps &crps, size_t n,
+                                                       uint64_t seed);
 
 }  // namespace pelage::sim

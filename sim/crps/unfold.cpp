@@ -18,14 +18,15 @@ bool inside_triangle(Vec2d p, const Vec2d t[3]) {
     const double d0 = cross(t[1] - t[0], p - t[0]);
     const double d1 = cross(t[2] - t[1], p - t[1]);
     const double d2 = cross(t[0] - t[2], p - t[2]);
-    const bool has_neg = d0 < 0 || d1 < 0 || d2 < 0, has_pos = d0 > 0 || d1 > 0 || d2 > 0;
+    const bool has_neg = d0 < 0 || d1 < 0 || d2<0, has_pos = d0> 0 || d1 > 0 || d2 > 0;
     return !(has_neg && has_pos);
 }
 
 bool segments_cross(Vec2d a, Vec2d b, Vec2d c, Vec2d d) {
     const double d1 = cross(b - a, c - a), d2 = cross(b - a, d - a);
     const double d3 = cross(d - c, a - c), d4 = cross(d - c, b - c);
-    return ((d1 > 0 && d2 < 0) || (d1 < 0 && d2 > 0)) && ((d3 > 0 && d4 < 0) || (d3 < 0 && d4 > 0));
+    return ((d1 > 0 && d2 < 0) || (d1 < 0 && d2 > 0)) &&
+           ((d3 > 0 && d4 < 0) || (d3 < 0 && d4 > 0));
 }
 
 // The query region (the master triangle or a point) sits inside the circle
@@ -34,7 +35,8 @@ bool segments_cross(Vec2d a, Vec2d b, Vec2d c, Vec2d d) {
 template <typename DistanceToRegion>
 void unfold(const Crps &crps, TriId master, double radius, Vec2d region_centre,
             double region_bound, DistanceToRegion &&distance,
-            std::vector<UnfoldedTriangle> &out, UnfoldScratch &scratch, UnfoldPaths paths) {
+            std::vector<UnfoldedTriangle> &out, UnfoldScratch &scratch,
+            UnfoldPaths paths) {
     out.clear();
     scratch.prepare(crps.num_triangles());
     scratch.begin();
@@ -46,7 +48,8 @@ void unfold(const Crps &crps, TriId master, double radius, Vec2d region_centre,
         const UnfoldedTriangle parent = out[head];
         const auto nbrs = topo.neighbours(parent.tri);
         const auto maps = crps.to_master(parent.tri);
-        const size_t n = paths == UnfoldPaths::edges_only ? topo.num_primary[parent.tri] : nbrs.size();
+        const size_t n =
+            paths == UnfoldPaths::edges_only ? topo.num_primary[parent.tri] : nbrs.size();
         for (size_t k = 0; k < n; ++k) {
             const TriId j = nbrs[k];
             // Cheap rejection first: already accepted in this unfolding.
@@ -54,9 +57,9 @@ void unfold(const Crps &crps, TriId master, double radius, Vec2d region_centre,
             const RigidMap2 F = compose(parent.to_master, maps[k]);
             const CrpsFrame &fj = crps.frame(j);
             // Bounds before the exact test. F maps j's centroid (its local origin) to
-            // (ax, ay); both the region's centre and j's centroid lie inside their shapes, so
-            // the centres' distance bounds the shapes' distance from above, and minus both
-            // bounding radii from below.
+            // (ax, ay); both the region's centre and j's centroid lie inside their
+            // shapes, so the centres' distance bounds the shapes' distance from above,
+            // and minus both bounding radii from below.
             const double centre_gap = length(Vec2d{F.ax, F.ay} - region_centre);
             const double lower = centre_gap - region_bound - fj.bound_radius;
             if (lower > radius) {
@@ -67,7 +70,8 @@ void unfold(const Crps &crps, TriId master, double radius, Vec2d region_centre,
                 out.push_back({j, parent.depth + 1, F, std::max(lower, 0.0)});
                 continue;
             }
-            const Vec2d mapped[3] = {F.apply(fj.v[0]), F.apply(fj.v[1]), F.apply(fj.v[2])};
+            const Vec2d mapped[3] = {F.apply(fj.v[0]), F.apply(fj.v[1]),
+                                     F.apply(fj.v[2])};
             const double d = distance(mapped);
             if (d <= radius) {
                 out.push_back({j, parent.depth + 1, F, d});
@@ -119,17 +123,19 @@ void unfold_around_triangle(const Crps &crps, TriId master, double radius,
                             std::vector<UnfoldedTriangle> &out, UnfoldScratch &scratch,
                             UnfoldPaths paths) {
     const Vec2d *m = crps.frame(master).v.data();
-    unfold(crps, master, radius, Vec2d{0, 0}, crps.frame(master).bound_radius,
-           [m](const Vec2d *mapped) { return triangle_triangle_distance(m, mapped); }, out,
-           scratch, paths);
+    unfold(
+        crps, master, radius, Vec2d{0, 0}, crps.frame(master).bound_radius,
+        [m](const Vec2d *mapped) { return triangle_triangle_distance(m, mapped); }, out,
+        scratch, paths);
 }
 
 void unfold_around_point(const Crps &crps, TriId master, Vec2d q, double radius,
                          std::vector<UnfoldedTriangle> &out, UnfoldScratch &scratch,
                          UnfoldPaths paths) {
-    unfold(crps, master, radius, q, 0.0,
-           [q](const Vec2d *mapped) { return point_triangle_distance(q, mapped); }, out,
-           scratch, paths);
+    unfold(
+        crps, master, radius, q, 0.0,
+        [q](const Vec2d *mapped) { return point_triangle_distance(q, mapped); }, out,
+        scratch, paths);
 }
 
 }  // namespace pelage::sim

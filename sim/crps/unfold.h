@@ -17,10 +17,11 @@ namespace pelage::sim {
 
 struct UnfoldedTriangle {
     TriId tri;
-    uint32_t depth;        // hops from the master (0 for the master itself)
-    RigidMap2 to_master;   // F[tri→master]
+    uint32_t depth;       // hops from the master (0 for the master itself)
+    RigidMap2 to_master;  // F[tri→master]
     // A lower bound on the 2D distance from the query region to the mapped triangle:
-    // exact when the triangle is near the radius, possibly less for triangles well inside.
+    // exact when the triangle is near the radius, possibly less for triangles well
+    // inside.
     double distance;
 };
 

@@ -45,7 +45,8 @@ std::vector<VertId> weld_vertices(const std::vector<Vec3d> &p, Vec3d origin, dou
                     auto it = grid.find(key_of(c[0] + dx, c[1] + dy, c[2] + dz));
                     if (it == grid.end()) continue;
                     for (VertId u : it->second)
-                        if (u < best && length_squared(p[u] - p[v]) <= eps * eps) best = u;
+                        if (u < best && length_squared(p[u] - p[v]) <= eps * eps)
+                            best = u;
                 }
         rep[v] = best;
         if (best == v) {
@@ -68,8 +69,8 @@ TriangleMesh clean_mesh(const TriangleMesh &in, const std::string &source_path,
     const Bounds3 box = in.bounds();
     const double diag = box.diagonal();
 
-    const std::vector<VertId> rep = weld_vertices(in.positions, box.lo, opt.weld_relative * diag,
-                                                  &st.vertices_welded);
+    const std::vector<VertId> rep = weld_vertices(
+        in.positions, box.lo, opt.weld_relative * diag, &st.vertices_welded);
     // Compact the surviving vertices, keeping their file order.
     std::vector<VertId> new_index(in.positions.size(), invalid_id);
     TriangleMesh out;
@@ -102,7 +103,8 @@ TriangleMesh clean_mesh(const TriangleMesh &in, const std::string &source_path,
     if (out.triangles.empty())
         throw InputError(source_path, 0, "",
                          "empty mesh: no triangle with non-zero area (" +
-                             std::to_string(st.degenerate_dropped) + " degenerate dropped)");
+                             std::to_string(st.degenerate_dropped) +
+                             " degenerate dropped)");
 
     std::vector<char> used(out.positions.size(), 0);
     for (const auto &tri : out.triangles)

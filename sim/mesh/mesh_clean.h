@@ -21,6 +21,7 @@ struct MeshCleanStats {
 
 // Throws InputError(source_path, ...) when nothing is left (an empty mesh).
 TriangleMesh clean_mesh(const TriangleMesh &in, const std::string &source_path,
-                        const MeshCleanOptions &opt = {}, MeshCleanStats *stats = nullptr);
+                        const MeshCleanOptions &opt = {},
+                        MeshCleanStats *stats = nullptr);
 
 }  // namespace pelage::sim

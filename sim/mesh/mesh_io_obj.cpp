@@ -14,8 +14,8 @@
 #include <tiny_obj_loader.h>
 
 #include "sim/core/input_error.h"
-#include "sim/mesh/mesh_io.h"
 #include "sim/core/text_lines.h"
+#include "sim/mesh/mesh_io.h"
 
 namespace pelage::sim {
 namespace {

@@ -9,8 +9,8 @@
 #include <vector>
 
 #include "sim/core/input_error.h"
-#include "sim/mesh/mesh_io.h"
 #include "sim/core/text_lines.h"
+#include "sim/mesh/mesh_io.h"
 
 namespace pelage::sim {
 namespace {
@@ -27,7 +27,8 @@ class LineTokens {
             ++m_line_no;
             if (r == LineRead::too_long)
                 fail("line longer than " + std::to_string(max_line_bytes) + " bytes");
-            if (auto hash = m_line.find('#'); hash != std::string::npos) m_line.resize(hash);
+            if (auto hash = m_line.find('#'); hash != std::string::npos)
+                m_line.resize(hash);
             split_whitespace(m_line, m_tokens);
             if (!m_tokens.empty()) return true;
         }
@@ -82,11 +83,13 @@ TriangleMesh read_off(const std::string &path, MeshReadStats *stats) {
     std::ifstream in(path, std::ios::binary);
     if (!in) throw InputError(path, 0, "", "cannot open file");
     in.seekg(0, std::ios::end);
-    const auto file_bytes = static_cast<uint64_t>(std::max<std::streamoff>(in.tellg(), 0));
+    const auto file_bytes =
+        static_cast<uint64_t>(std::max<std::streamoff>(in.tellg(), 0));
     in.seekg(0);
 
     LineTokens lines(path, in);
-    if (!lines.next_line()) throw InputError(path, 0, "", "empty file (expected an OFF header)");
+    if (!lines.next_line())
+        throw InputError(path, 0, "", "empty file (expected an OFF header)");
 
     // --- Header: keyword, then "nv nf ne" on the same or the next line ---
     size_t first = 0;  // index of the vertex count among this line's tokens
@@ -107,7 +110,8 @@ TriangleMesh read_off(const std::string &path, MeshReadStats *stats) {
         lines.fail("malformed header: expected vertex, face and edge counts");
     const uint64_t nv = lines.count(first, "vertex count");
     const uint64_t nf = lines.count(first + 1, "face count");
-    if (nv == 0 || nf == 0) lines.fail("empty mesh: the header declares no vertices or faces");
+    if (nv == 0 || nf == 0)
+        lines.fail("empty mesh: the header declares no vertices or faces");
     // Every vertex and face needs at least a few bytes: a header that claims more than
     // the file can hold is corrupt, and must not make us allocate for it.
     if (nv > file_bytes / 2 || nf > file_bytes / 2)
@@ -123,22 +127,25 @@ TriangleMesh read_off(const std::string &path, MeshReadStats *stats) {
     // --- Vertices: x y z [extras] ---
     for (uint64_t v = 0; v < nv; ++v) {
         if (!lines.next_line())
-            lines.fail("truncated file: expected " + std::to_string(nv) + " vertices, found " +
-                       std::to_string(v));
+            lines.fail("truncated file: expected " + std::to_string(nv) +
+                       " vertices, found " + std::to_string(v));
         if (lines.tokens().size() < 3)
-            lines.fail("malformed vertex " + std::to_string(v) + ": expected 3 coordinates");
-        mesh.positions.push_back({lines.number(0, "coordinate"), lines.number(1, "coordinate"),
+            lines.fail("malformed vertex " + std::to_string(v) +
+                       ": expected 3 coordinates");
+        mesh.positions.push_back({lines.number(0, "coordinate"),
+                                  lines.number(1, "coordinate"),
                                   lines.number(2, "coordinate")});
     }
 
     // --- Faces: n i0 .. i(n-1) [colour], polygons fanned from corner 0 ---
     for (uint64_t f = 0; f < nf; ++f) {
         if (!lines.next_line())
-            lines.fail("truncated file: expected " + std::to_string(nf) + " faces, found " +
-                       std::to_string(f));
+            lines.fail("truncated file: expected " + std::to_string(nf) +
+                       " faces, found " + std::to_string(f));
         const uint64_t n = lines.count(0, "face corner count");
-        if (n < 3) lines.fail("face " + std::to_string(f) + " has " + std::to_string(n) +
-                              " corners (a face needs at least 3)");
+        if (n < 3)
+            lines.fail("face " + std::to_string(f) + " has " + std::to_string(n) +
+                       " corners (a face needs at least 3)");
         if (n > lines.tokens().size() - 1)  // not `size < n + 1`: n + 1 wraps at 2^64 - 1
             lines.fail("malformed face " + std::to_string(f) + ": declares " +
                        std::to_string(n) + " corners, lists " +

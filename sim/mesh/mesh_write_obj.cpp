@@ -6,8 +6,8 @@
 
 namespace pelage::sim {
 
-void write_obj(const std::string &path, const TriangleMesh &mesh, const std::vector<Vec2d> &corner_uvs,
-               const std::string &comment) {
+void write_obj(const std::string &path, const TriangleMesh &mesh,
+               const std::vector<Vec2d> &corner_uvs, const std::string &comment) {
     write_file_atomically(path, [&](std::ostream &out) {
         char line[256];
         if (!comment.empty()) out << "# " << comment << "\n";
@@ -22,10 +22,11 @@ void write_obj(const std::string &path, const TriangleMesh &mesh, const std::vec
         for (size_t t = 0; t < mesh.num_triangles(); ++t) {
             const auto &tri = mesh.triangles[t];
             if (corner_uvs.empty())
-                std::snprintf(line, sizeof(line), "f %u %u %u\n", tri[0] + 1, tri[1] + 1, tri[2] + 1);
+                std::snprintf(line, sizeof(line), "f %u %u %u\n", tri[0] + 1, tri[1] + 1,
+                              tri[2] + 1);
             else
-                std::snprintf(line, sizeof(line), "f %u/%zu %u/%zu %u/%zu\n", tri[0] + 1, 3 * t + 1, tri[1] + 1,
-                              3 * t + 2, tri[2] + 1, 3 * t + 3);
+                std::snprintf(line, sizeof(line), "f %u/%zu %u/%zu %u/%zu\n", tri[0] + 1,
+                              3 * t + 1, tri[1] + 1, 3 * t + 2, tri[2] + 1, 3 * t + 3);
             out << line;
         }
     });

@@ -31,14 +31,18 @@ TriangleMesh make_uv_sphere(int stacks, int slices, double radius) {
         const double theta = pi * i / stacks;
         for (int j = 0; j < slices; ++j) {
             const double phi = 2 * pi * j / slices;
-            m.positions.push_back({radius * std::sin(theta) * std::cos(phi), radius * std::cos(theta),
+            m.positions.push_back({radius * std::sin(theta) * std::cos(phi),
+                                   radius * std::cos(theta),
                                    -radius * std::sin(theta) * std::sin(phi)});
         }
     }
     m.positions.push_back({0, -radius, 0});  // south pole
     const VertId south = static_cast<VertId>(m.positions.size() - 1);
-    auto ring = [&](int i, int j) { return static_cast<VertId>(1 + (i - 1) * slices + (j % slices)); };
-    for (int j = 0; j < slices; ++j) m.triangles.push_back({0, ring(1, j), ring(1, j + 1)});
+    auto ring = [&](int i, int j) {
+        return static_cast<VertId>(1 + (i - 1) * slices + (j % slices));
+    };
+    for (int j = 0; j < slices; ++j)
+        m.triangles.push_back({0, ring(1, j), ring(1, j + 1)});
     for (int i = 1; i + 1 < stacks; ++i)
         for (int j = 0; j < slices; ++j)
             add_quad(m, ring(i, j), ring(i + 1, j), ring(i + 1, j + 1), ring(i, j + 1));
@@ -51,8 +55,9 @@ TriangleMesh make_uv_sphere(int stacks, int slices, double radius) {
 TriangleMesh make_icosphere(int level, double radius) {
     TriangleMesh m;
     const double t = (1.0 + std::sqrt(5.0)) / 2.0;
-    const Vec3d v[12] = {{-1, t, 0}, {1, t, 0}, {-1, -t, 0}, {1, -t, 0}, {0, -1, t}, {0, 1, t},
-                         {0, -1, -t}, {0, 1, -t}, {t, 0, -1}, {t, 0, 1}, {-t, 0, -1}, {-t, 0, 1}};
+    const Vec3d v[12] = {{-1, t, 0}, {1, t, 0}, {-1, -t, 0}, {1, -t, 0},
+                         {0, -1, t}, {0, 1, t}, {0, -1, -t}, {0, 1, -t},
+                         {t, 0, -1}, {t, 0, 1}, {-t, 0, -1}, {-t, 0, 1}};
     for (const Vec3d &p : v) m.positions.push_back(normalize(p) * radius);
     m.triangles = {{0, 11, 5}, {0, 5, 1},  {0, 1, 7},   {0, 7, 10}, {0, 10, 11},
                    {1, 5, 9},  {5, 11, 4}, {11, 10, 2}, {10, 7, 6}, {7, 1, 8},
@@ -71,7 +76,8 @@ TriangleMesh make_icosphere(int level, double radius) {
         };
         std::vector<std::array<VertId, 3>> next;
         for (const auto &f : m.triangles) {
-            const VertId a = midpoint(f[0], f[1]), b = midpoint(f[1], f[2]), c = midpoint(f[2], f[0]);
+            const VertId a = midpoint(f[0], f[1]), b = midpoint(f[1], f[2]),
+                         c = midpoint(f[2], f[0]);
             next.push_back({f[0], a, c});
             next.push_back({f[1], b, a});
             next.push_back({f[2], c, b});
@@ -93,7 +99,8 @@ TriangleMesh make_torus(int nu, int nv, double R, double r) {
         }
     auto id = [&](int i, int j) { return static_cast<VertId>((i % nu) * nv + (j % nv)); };
     for (int i = 0; i < nu; ++i)
-        for (int j = 0; j < nv; ++j) add_quad(m, id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1));
+        for (int j = 0; j < nv; ++j)
+            add_quad(m, id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1));
     finish(m);
     return m;
 }
@@ -102,11 +109,13 @@ TriangleMesh make_plane(int nx, int nz, double sx, double sz) {
     TriangleMesh m;
     for (int i = 0; i <= nz; ++i)
         for (int j = 0; j <= nx; ++j)
-            m.positions.push_back({sx * (double(j) / nx - 0.5), 0, sz * (double(i) / nz - 0.5)});
+            m.positions.push_back(
+                {sx * (double(j) / nx - 0.5), 0, sz * (double(i) / nz - 0.5)});
     auto id = [&](int i, int j) { return static_cast<VertId>(i * (nx + 1) + j); };
     // Counter-clockwise seen from +Y: x then -z.
     for (int i = 0; i < nz; ++i)
-        for (int j = 0; j < nx; ++j) add_quad(m, id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1));
+        for (int j = 0; j < nx; ++j)
+            add_quad(m, id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1));
     finish(m);
     return m;
 }
@@ -116,12 +125,16 @@ TriangleMesh make_cylinder(int around, int along, double radius, double height) 
     for (int i = 0; i <= along; ++i)
         for (int j = 0; j < around; ++j) {
             const double phi = 2 * pi * j / around;
-            m.positions.push_back({radius * std::cos(phi), height * (double(i) / along - 0.5),
+            m.positions.push_back({radius * std::cos(phi),
+                                   height * (double(i) / along - 0.5),
                                    -radius * std::sin(phi)});
         }
-    auto id = [&](int i, int j) { return static_cast<VertId>(i * around + (j % around)); };
+    auto id = [&](int i, int j) {
+        return static_cast<VertId>(i * around + (j % around));
+    };
     for (int i = 0; i < along; ++i)
-        for (int j = 0; j < around; ++j) add_quad(m, id(i, j), id(i, j + 1), id(i + 1, j + 1), id(i + 1, j));
+        for (int j = 0; j < around; ++j)
+            add_quad(m, id(i, j), id(i, j + 1), id(i + 1, j + 1), id(i + 1, j));
     finish(m);
     return m;
 }
@@ -129,8 +142,9 @@ TriangleMesh make_cylinder(int around, int along, double radius, double height) 
 TriangleMesh make_procedural(const std::string &spec) {
     // kind:A or kind:AxB, with A and B decimal numbers of at most four digits.
     const auto fail_syntax = [&] {
-        throw InputError(spec, 0, "", "malformed procedural mesh (expected sphere:SxS, "
-                                      "icosphere:L, torus:UxV, plane:NxN or cylinder:AxL)");
+        throw InputError(spec, 0, "",
+                         "malformed procedural mesh (expected sphere:SxS, "
+                         "icosphere:L, torus:UxV, plane:NxN or cylinder:AxL)");
     };
     const size_t colon = spec.find(':');
     if (colon == std::string::npos) fail_syntax();

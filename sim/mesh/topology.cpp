@@ -16,7 +16,11 @@ bool walks(const std::array<VertId, 3> &tri, VertId a, VertId b) {
 
 void build_edges(const TriangleMesh &mesh, Topology &topo) {
     const size_t nt = mesh.num_triangles();
-    struct HalfEdge { VertId lo, hi; TriId t; uint8_t k; };
+    struct HalfEdge {
+        VertId lo, hi;
+        TriId t;
+        uint8_t k;
+    };
     // Counting sort by the lower vertex, then a tiny sort inside each vertex's bucket:
     // linear in the mesh size (a global sort would be the build's only n log n step).
     const size_t nv = mesh.num_vertices();
@@ -43,9 +47,11 @@ void build_edges(const TriangleMesh &mesh, Topology &topo) {
         size_t j = i;
         const EdgeId e = static_cast<EdgeId>(topo.edge_vertices.size());
         topo.edge_vertices.push_back({half[i].lo, half[i].hi});
-        for (; j < half.size() && half[j].lo == half[i].lo && half[j].hi == half[i].hi; ++j) {
+        for (; j < half.size() && half[j].lo == half[i].lo && half[j].hi == half[i].hi;
+             ++j) {
             topo.tri_edges[half[j].t][half[j].k] = e;
-            // A duplicated face lists the same triangle once per copy; keep each face once.
+            // A duplicated face lists the same triangle once per copy; keep each face
+            // once.
             if (topo.edge_faces.size() == topo.edge_face_row.back() ||
                 topo.edge_faces.back() != half[j].t)
                 topo.edge_faces.push_back(half[j].t);
@@ -88,7 +94,8 @@ void build_fans(const TriangleMesh &mesh, Topology &topo) {
             }
             return es;
         };
-        // Start on a boundary edge when there is one, so an open fan is walked end to end.
+        // Start on a boundary edge when there is one, so an open fan is walked end to
+        // end.
         TriId start = f[0];
         EdgeId came_from = invalid_id;
         bool manifold = true;
@@ -117,7 +124,8 @@ void build_fans(const TriangleMesh &mesh, Topology &topo) {
         }
         std::vector<TriId> check(ordered);
         std::sort(check.begin(), check.end());
-        if (manifold && check.size() == f.size() && std::equal(check.begin(), check.end(), f.begin())) {
+        if (manifold && check.size() == f.size() &&
+            std::equal(check.begin(), check.end(), f.begin())) {
             std::copy(ordered.begin(), ordered.end(), f.begin());
             topo.fan_ordered[v] = 1;
         } else {
@@ -181,7 +189,8 @@ void orient(const TriangleMesh &mesh, Topology &topo) {
                 const TriId u = topo.across(t, k);
                 if (topo.component[u] != invalid_id) continue;
                 const VertId a = mesh.triangles[t][k], b = mesh.triangles[t][(k + 1) % 3];
-                // t walks a->b in its own winding; after its flip, the oriented direction.
+                // t walks a->b in its own winding; after its flip, the oriented
+                // direction.
                 const bool t_ab = !topo.flipped[t];
                 const bool u_ab = walks(mesh.triangles[u], a, b);
                 topo.flipped[u] = (u_ab == t_ab) ? 1 : 0;
@@ -225,7 +234,8 @@ Topology build_topology(const TriangleMesh &mesh) {
 
 double mean_edge_length(const TriangleMesh &mesh, const Topology &topo) {
     double sum = 0;
-    for (const auto &e : topo.edge_vertices) sum += length(mesh.positions[e[1]] - mesh.positions[e[0]]);
+    for (const auto &e : topo.edge_vertices)
+        sum += length(mesh.positions[e[1]] - mesh.positions[e[0]]);
     return topo.num_edges() ? sum / topo.num_edges() : 0.0;
 }
 

@@ -40,16 +40,17 @@ struct Topology {
     std::vector<uint32_t> component;  // connected component (through manifold edges)
 
     // --- Counts for reports ---
-    size_t boundary_edges = 0;      // one face
-    size_t nonmanifold_edges = 0;   // three or more faces
-    size_t nonorientable_edges = 0; // two faces that disagree even after reorientation
+    size_t boundary_edges = 0;       // one face
+    size_t nonmanifold_edges = 0;    // three or more faces
+    size_t nonorientable_edges = 0;  // two faces that disagree even after reorientation
     size_t nonmanifold_vertices = 0;
     size_t faces_reoriented = 0;
     size_t num_components = 0;
 
     size_t num_edges() const { return edge_vertices.size(); }
     std::span<const TriId> faces_of_edge(EdgeId e) const {
-        return {edge_faces.data() + edge_face_row[e], edge_face_row[e + 1] - edge_face_row[e]};
+        return {edge_faces.data() + edge_face_row[e],
+                edge_face_row[e + 1] - edge_face_row[e]};
     }
     std::span<const TriId> fan_of(VertId v) const {
         return {fan.data() + fan_row[v], fan_row[v + 1] - fan_row[v]};
@@ -60,8 +61,12 @@ struct Topology {
     std::span<const TriId> primary_neighbours(TriId t) const {
         return {nbr.data() + nbr_row[t], num_primary[t]};
     }
-    bool is_boundary(EdgeId e) const { return edge_face_row[e + 1] - edge_face_row[e] == 1; }
-    bool is_manifold(EdgeId e) const { return edge_face_row[e + 1] - edge_face_row[e] == 2; }
+    bool is_boundary(EdgeId e) const {
+        return edge_face_row[e + 1] - edge_face_row[e] == 1;
+    }
+    bool is_manifold(EdgeId e) const {
+        return edge_face_row[e + 1] - edge_face_row[e] == 2;
+    }
     // The face across edge k of t, or invalid_id on a boundary or non-manifold edge.
     TriId across(TriId t, int k) const;
 };

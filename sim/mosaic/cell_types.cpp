@@ -4,10 +4,9 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <nlohmann/json.hpp>
 #include <set>
 #include <sstream>
-
-#include <nlohmann/json.hpp>
 
 #include "sim/core/input_error.h"
 
@@ -15,7 +14,8 @@ namespace pelage::sim {
 
 using nlohmann::json;
 
-CellTypes::CellTypes(std::vector<CellType> types, std::vector<std::vector<double>> mutation,
+CellTypes::CellTypes(std::vector<CellType> types,
+                     std::vector<std::vector<double>> mutation,
                      std::vector<std::vector<double>> alpha)
     : m_types(std::move(types)) {
     const size_t n = m_types.size();
@@ -70,10 +70,10 @@ class Reader {
 
     void check_keys(const json &obj, const std::string &path,
                     const std::set<std::string> &allowed) const {
-        if (!obj.is_object()) fail(path.empty() ? "(top level)" : path, "expected an object");
+        if (!obj.is_object())
+            fail(path.empty() ? "(top level)" : path, "expected an object");
         for (const auto &[key, value] : obj.items())
-            if (!allowed.count(key))
-                fail(join(path, key), "unknown key");
+            if (!allowed.count(key)) fail(join(path, key), "unknown key");
     }
 
     static std::string join(const std::string &path, const std::string &key) {
@@ -109,17 +109,20 @@ class Reader {
             fail(path, "expected " + std::to_string(n) + " numbers");
         std::vector<double> out;
         for (size_t i = 0; i < n; ++i) {
-            if (!v[i].is_number()) fail(path, "expected " + std::to_string(n) + " numbers");
+            if (!v[i].is_number())
+                fail(path, "expected " + std::to_string(n) + " numbers");
             out.push_back(v[i].get<double>());
-            if (!std::isfinite(out.back())) fail(path + "[" + std::to_string(i) + "]", "not finite");
+            if (!std::isfinite(out.back()))
+                fail(path + "[" + std::to_string(i) + "]", "not finite");
         }
         return out;
     }
 
-    std::vector<std::vector<double>> matrix(const json &v, const std::string &path, size_t n,
-                                            double lo, double hi) const {
+    std::vector<std::vector<double>> matrix(const json &v, const std::string &path,
+                                            size_t n, double lo, double hi) const {
         if (!v.is_array() || v.size() != n)
-            fail(path, "expected a " + std::to_string(n) + "x" + std::to_string(n) + " matrix");
+            fail(path,
+                 "expected a " + std::to_string(n) + "x" + std::to_string(n) + " matrix");
         std::vector<std::vector<double>> m;
         for (size_t i = 0; i < n; ++i) {
             const std::string row = path + "[" + std::to_string(i) + "]";
@@ -127,7 +130,8 @@ class Reader {
             for (size_t j = 0; j < n; ++j)
                 if (m[i][j] < lo || m[i][j] > hi)
                     fail(row + "[" + std::to_string(j) + "]",
-                         fmt_value(m[i][j]) + ": must be in [" + fmt_value(lo) + ", " + fmt_value(hi) + "]");
+                         fmt_value(m[i][j]) + ": must be in [" + fmt_value(lo) + ", " +
+                             fmt_value(hi) + "]");
         }
         return m;
     }
@@ -145,11 +149,13 @@ class Reader {
 constexpr double probability_tolerance = 1e-6;  // rows and initial probabilities sum to 1
 
 CellType parse_type(const Reader &r, const json &t, const std::string &path) {
-    r.check_keys(t, path, {"name", "colour", "eumelanin", "pheomelanin", "division_time",
-                           "initial_probability", "notes"});
+    r.check_keys(t, path,
+                 {"name", "colour", "eumelanin", "pheomelanin", "division_time",
+                  "initial_probability", "notes"});
     CellType c;
     c.name = r.string(t, path, "name", "", true);
-    if (c.name.empty() || c.name.size() > 64) r.fail(path + ".name", "must have 1 to 64 characters");
+    if (c.name.empty() || c.name.size() > 64)
+        r.fail(path + ".name", "must have 1 to 64 characters");
     if (!t.contains("colour")) r.fail(path + ".colour", "missing");
     const auto rgb = r.numbers(t["colour"], path + ".colour", 3);
     for (int k = 0; k < 3; ++k) {
@@ -158,28 +164,34 @@ CellType parse_type(const Reader &r, const json &t, const std::string &path) {
     }
     c.eumelanin = static_cast<float>(r.number(t, path, "eumelanin", 0));
     c.pheomelanin = static_cast<float>(r.number(t, path, "pheomelanin", 0));
-    if (c.eumelanin < 0 || c.pheomelanin < 0) r.fail(path, "melanin concentrations must be >= 0");
-    if (!t.contains("division_time")) r.fail(path + ".division_time", "missing (a number or \"never\")");
+    if (c.eumelanin < 0 || c.pheomelanin < 0)
+        r.fail(path, "melanin concentrations must be >= 0");
+    if (!t.contains("division_time"))
+        r.fail(path + ".division_time", "missing (a number or \"never\")");
     const json &dt = t["division_time"];
     if (dt.is_string()) {
         if (dt.get<std::string>() != "never")
             r.fail(path + ".division_time", "expected a number > 0 or \"never\"");
     } else {
         c.division_time = r.number(t, path, "division_time", 0);
-        if (c.division_time <= 0) r.fail(path + ".division_time", Reader::fmt_value(c.division_time) + ": must be > 0 (or \"never\")");
+        if (c.division_time <= 0)
+            r.fail(path + ".division_time",
+                   Reader::fmt_value(c.division_time) + ": must be > 0 (or \"never\")");
     }
     c.initial_probability = r.number(t, path, "initial_probability", 0, true);
     if (c.initial_probability < 0 || c.initial_probability > 1)
-        r.fail(path + ".initial_probability", Reader::fmt_value(c.initial_probability) + ": must be in [0, 1]");
+        r.fail(path + ".initial_probability",
+               Reader::fmt_value(c.initial_probability) + ": must be in [0, 1]");
     return c;
 }
 
 SimParams parse_sim(const Reader &r, const json &s) {
     const std::string p = "simulation";
-    r.check_keys(s, p, {"initial_cells", "initial_density", "initial_relax_steps",
-                        "initial_relax_alpha", "initial_relax_tolerance", "w_r", "w_d", "w_a",
-                        "anisotropy", "relax", "local_steps", "rho", "end_time", "target_cells",
-                        "division_distribution", "child_radius_factor", "notes"});
+    r.check_keys(s, p,
+                 {"initial_cells", "initial_density", "initial_relax_steps",
+                  "initial_relax_alpha", "initial_relax_tolerance", "w_r", "w_d", "w_a",
+                  "anisotropy", "relax", "local_steps", "rho", "end_time", "target_cells",
+                  "division_distribution", "child_radius_factor", "notes"});
     SimParams o;
     auto positive = [&](const std::string &key, double v) {
         if (!(v > 0)) r.fail(p + "." + key, Reader::fmt_value(v) + ": must be > 0");
@@ -191,24 +203,30 @@ SimParams parse_sim(const Reader &r, const json &s) {
     };
     auto integer = [&](const std::string &key, double v, double hi) {
         if (v != std::floor(v) || v < 0 || v > hi)
-            r.fail(p + "." + key, Reader::fmt_value(v) + ": must be an integer in [0, " + Reader::fmt_value(hi) + "]");
+            r.fail(p + "." + key, Reader::fmt_value(v) + ": must be an integer in [0, " +
+                                      Reader::fmt_value(hi) + "]");
         return v;
     };
-    o.initial_cells = static_cast<uint64_t>(integer("initial_cells", r.number(s, p, "initial_cells", 0), 1e9));
-    o.initial_density = non_negative("initial_density", r.number(s, p, "initial_density", 0));
+    o.initial_cells = static_cast<uint64_t>(
+        integer("initial_cells", r.number(s, p, "initial_cells", 0), 1e9));
+    o.initial_density =
+        non_negative("initial_density", r.number(s, p, "initial_density", 0));
     if (o.initial_cells == 0 && o.initial_density == 0)
         r.fail(p, "needs initial_cells or initial_density");
     if (o.initial_cells > 0 && o.initial_density > 0)
         r.fail(p, "initial_cells and initial_density conflict: give one");
-    o.initial_relax_steps = static_cast<int>(integer("initial_relax_steps", r.number(s, p, "initial_relax_steps", 50), 100000));
+    o.initial_relax_steps = static_cast<int>(integer(
+        "initial_relax_steps", r.number(s, p, "initial_relax_steps", 50), 100000));
     o.initial_relax_alpha = r.number(s, p, "initial_relax_alpha", 0);
     if (o.initial_relax_alpha < 0 || o.initial_relax_alpha >= 1)
         r.fail(p + ".initial_relax_alpha", "must be in [0, 1)");
-    o.initial_relax_tolerance = non_negative("initial_relax_tolerance", r.number(s, p, "initial_relax_tolerance", 0.01));
+    o.initial_relax_tolerance = non_negative(
+        "initial_relax_tolerance", r.number(s, p, "initial_relax_tolerance", 0.01));
     o.w_r = positive("w_r", r.number(s, p, "w_r", 0, true));
     o.w_d = positive("w_d", r.number(s, p, "w_d", 0, true));
     o.w_a = r.number(s, p, "w_a", 0);
-    if (o.w_a < 0 || o.w_a > 1) r.fail(p + ".w_a", Reader::fmt_value(o.w_a) + ": must be in [0, 1]");
+    if (o.w_a < 0 || o.w_a > 1)
+        r.fail(p + ".w_a", Reader::fmt_value(o.w_a) + ": must be in [0, 1]");
     if (s.contains("anisotropy")) {
         const json &a = s["anisotropy"];
         r.check_keys(a, p + ".anisotropy", {"direction", "magnitude"});
@@ -217,25 +235,37 @@ SimParams parse_sim(const Reader &r, const json &s) {
         const double len = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
         if (len == 0) r.fail(p + ".anisotropy.direction", "must not be the zero vector");
         o.anisotropy_direction = {d[0] / len, d[1] / len, d[2] / len};
-        o.anisotropy_magnitude = non_negative("anisotropy.magnitude", r.number(a, p + ".anisotropy", "magnitude", 1));
+        o.anisotropy_magnitude = non_negative(
+            "anisotropy.magnitude", r.number(a, p + ".anisotropy", "magnitude", 1));
     }
     if (o.w_a > 0 && o.anisotropy_magnitude == 0)
         r.fail(p + ".w_a", "w_a > 0 needs an anisotropy {direction, magnitude}");
     const std::string relax = r.string(s, p, "relax", "local");
-    if (relax == "local") o.relax = RelaxMode::local;
-    else if (relax == "global") o.relax = RelaxMode::global;
-    else r.fail(p + ".relax", "'" + relax + "': expected \"local\" or \"global\"");
-    o.local_steps = static_cast<int>(integer("local_steps", r.number(s, p, "local_steps", 4), 100000));
+    if (relax == "local")
+        o.relax = RelaxMode::local;
+    else if (relax == "global")
+        o.relax = RelaxMode::global;
+    else
+        r.fail(p + ".relax", "'" + relax + "': expected \"local\" or \"global\"");
+    o.local_steps = static_cast<int>(
+        integer("local_steps", r.number(s, p, "local_steps", 4), 100000));
     if (o.local_steps < 1) r.fail(p + ".local_steps", "must be >= 1");
     o.rho = positive("rho", r.number(s, p, "rho", 0, true));
     o.end_time = non_negative("end_time", r.number(s, p, "end_time", 0, true));
-    o.target_cells = static_cast<uint64_t>(integer("target_cells", r.number(s, p, "target_cells", 0), 1e9));
-    if (o.end_time * o.rho > 1e7) r.fail(p, "end_time · rho exceeds 10^7 relaxation steps");
+    o.target_cells = static_cast<uint64_t>(
+        integer("target_cells", r.number(s, p, "target_cells", 0), 1e9));
+    if (o.end_time * o.rho > 1e7)
+        r.fail(p, "end_time · rho exceeds 10^7 relaxation steps");
     const std::string dist = r.string(s, p, "division_distribution", "poisson");
-    if (dist == "poisson") o.division_distribution = DivisionDistribution::poisson;
-    else if (dist == "exponential") o.division_distribution = DivisionDistribution::exponential;
-    else r.fail(p + ".division_distribution", "'" + dist + "': expected \"poisson\" or \"exponential\"");
-    o.child_radius_factor = positive("child_radius_factor", r.number(s, p, "child_radius_factor", 0.005));
+    if (dist == "poisson")
+        o.division_distribution = DivisionDistribution::poisson;
+    else if (dist == "exponential")
+        o.division_distribution = DivisionDistribution::exponential;
+    else
+        r.fail(p + ".division_distribution",
+               "'" + dist + "': expected \"poisson\" or \"exponential\"");
+    o.child_radius_factor =
+        positive("child_radius_factor", r.number(s, p, "child_radius_factor", 0.005));
     if (o.child_radius_factor > 1) r.fail(p + ".child_radius_factor", "must be <= 1");
     return o;
 }
@@ -248,11 +278,13 @@ Preset parse_preset(const std::string &text, const std::string &file) {
     try {
         j = json::parse(text);
     } catch (const json::exception &e) {
-        // parse_error, and out_of_range for a number such as 1e400 that overflows a double.
+        // parse_error, and out_of_range for a number such as 1e400 that overflows a
+        // double.
         throw InputError(file, 0, "", std::string("not valid JSON: ") + e.what());
     }
-    r.check_keys(j, "", {"name", "description", "source", "types", "mutation", "adhesion",
-                         "repulsiveness", "simulation", "published", "notes"});
+    r.check_keys(j, "",
+                 {"name", "description", "source", "types", "mutation", "adhesion",
+                  "repulsiveness", "simulation", "published", "notes"});
     Preset preset;
     preset.name = r.string(j, "", "name", "", true);
     preset.description = r.string(j, "", "description", "");
@@ -261,7 +293,8 @@ Preset parse_preset(const std::string &text, const std::string &file) {
     if (!j.contains("types")) r.fail("types", "missing");
     const json &jt = j["types"];
     if (!jt.is_array() || jt.size() < 1 || jt.size() > max_cell_types)
-        r.fail("types", "expected an array of 1 to " + std::to_string(max_cell_types) + " cell types");
+        r.fail("types", "expected an array of 1 to " + std::to_string(max_cell_types) +
+                            " cell types");
     std::vector<CellType> types;
     std::set<std::string> names;
     double sum = 0;
@@ -273,7 +306,8 @@ Preset parse_preset(const std::string &text, const std::string &file) {
         sum += types.back().initial_probability;
     }
     if (std::abs(sum - 1) > probability_tolerance)
-        r.fail("types[*].initial_probability", "sum to " + Reader::fmt_value(sum) + ", expected 1");
+        r.fail("types[*].initial_probability",
+               "sum to " + Reader::fmt_value(sum) + ", expected 1");
     const size_t n = types.size();
 
     // --- Mutation (row = parent), identity by default ---
@@ -285,23 +319,27 @@ Preset parse_preset(const std::string &text, const std::string &file) {
             double row = 0;
             for (double v : mutation[i]) row += v;
             if (std::abs(row - 1) > probability_tolerance)
-                r.fail("mutation[" + std::to_string(i) + "]", "sums to " + Reader::fmt_value(row) + ", expected 1");
+                r.fail("mutation[" + std::to_string(i) + "]",
+                       "sums to " + Reader::fmt_value(row) + ", expected 1");
         }
     }
 
     // --- Adhesion α, or Teo's repulsiveness 1 − α (exactly one) ---
     const bool has_a = j.contains("adhesion"), has_r = j.contains("repulsiveness");
-    if (has_a == has_r) r.fail("adhesion", has_a ? "adhesion and repulsiveness conflict: give one"
-                                                 : "missing (or give repulsiveness = 1 - adhesion)");
+    if (has_a == has_r)
+        r.fail("adhesion", has_a ? "adhesion and repulsiveness conflict: give one"
+                                 : "missing (or give repulsiveness = 1 - adhesion)");
     std::vector<std::vector<double>> alpha =
-        has_a ? r.matrix(j["adhesion"], "adhesion", n, 0, 1) : r.matrix(j["repulsiveness"], "repulsiveness", n, 0, 1);
+        has_a ? r.matrix(j["adhesion"], "adhesion", n, 0, 1)
+              : r.matrix(j["repulsiveness"], "repulsiveness", n, 0, 1);
     if (has_r)
         for (auto &row : alpha)
             for (double &v : row) v = 1 - v;
 
     if (!j.contains("simulation")) r.fail("simulation", "missing");
     preset.params = parse_sim(r, j["simulation"]);
-    if (j.contains("published") && !j["published"].is_object()) r.fail("published", "expected an object");
+    if (j.contains("published") && !j["published"].is_object())
+        r.fail("published", "expected an object");
     preset.types = CellTypes(std::move(types), std::move(mutation), std::move(alpha));
     preset.json_text = j.dump();
     return preset;
@@ -323,17 +361,21 @@ Preset load_preset(const std::string &name_or_path, const std::string &presets_d
     const bool is_path = name_or_path.find('/') != std::string::npos ||
                          (name_or_path.size() > 5 && name_or_path.ends_with(".json"));
     if (is_path) return load_preset_file(name_or_path);
-    const std::filesystem::path file = std::filesystem::path(presets_dir) / (name_or_path + ".json");
+    const std::filesystem::path file =
+        std::filesystem::path(presets_dir) / (name_or_path + ".json");
     if (!std::filesystem::exists(file)) {
         std::vector<std::string> names;
         std::error_code ec;
         for (const auto &e : std::filesystem::directory_iterator(presets_dir, ec))
-            if (e.path().extension() == ".json") names.push_back(e.path().stem().string());
+            if (e.path().extension() == ".json")
+                names.push_back(e.path().stem().string());
         std::sort(names.begin(), names.end());
         std::string list;
         for (const auto &n : names) list += (list.empty() ? "" : ", ") + n;
-        throw InputError("", 0, "--preset", "unknown preset '" + name_or_path + "' (available: " +
-                                                (list.empty() ? "none found in " + presets_dir : list) + ")");
+        throw InputError("", 0, "--preset",
+                         "unknown preset '" + name_or_path + "' (available: " +
+                             (list.empty() ? "none found in " + presets_dir : list) +
+                             ")");
     }
     return load_preset_file(file.string());
 }

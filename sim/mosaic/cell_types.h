@@ -1,6 +1,6 @@
 // Cell types of the Clonal Mosaic model and the presets that configure a simulation.
-// Walter, Fournier, Reimers, GI 1998, Table 1 ("Attributes of a cell") and Walter's thesis
-// (UBC 1998) §3.3; Teo (NTU 2006) Table 3.1, whose "repulsiveness" is 1 − α.
+// Walter, Fournier, Reimers, GI 1998, Table 1 ("Attributes of a cell") and Walter's
+// thesis (UBC 1998) §3.3; Teo (NTU 2006) Table 3.1, whose "repulsiveness" is 1 − α.
 //
 // Conventions used throughout the simulation:
 //   * division_time is the *mean time between divisions* (Walter's "division rate",
@@ -27,7 +27,9 @@ struct CellType {
     float eumelanin = 0, pheomelanin = 0;           // for the fur shader
     double division_time = std::numeric_limits<double>::infinity();
     double initial_probability = 0;
-    bool divides() const { return division_time < std::numeric_limits<double>::infinity(); }
+    bool divides() const {
+        return division_time < std::numeric_limits<double>::infinity();
+    }
 };
 
 class CellTypes {
@@ -72,9 +74,9 @@ struct SimParams {
     double initial_relax_tolerance = 0.01;  // stop when max displacement < tol · r
 
     // --- Relaxation (Walter 1998 Fig. 1; SG01 §3.2.1 anisotropy) ---
-    double w_r = 2.0;   // r = w_r · sqrt(A / m)
-    double w_d = 0.1;   // displacement weight
-    double w_a = 0.0;   // anisotropy weight in [0, 1]
+    double w_r = 2.0;                                     // r = w_r · sqrt(A / m)
+    double w_d = 0.1;                                     // displacement weight
+    double w_a = 0.0;                                     // anisotropy weight in [0, 1]
     std::array<double, 3> anisotropy_direction{0, 1, 0};  // world direction of A
     double anisotropy_magnitude = 0;                      // |A|
     RelaxMode relax = RelaxMode::local;

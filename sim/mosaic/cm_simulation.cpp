@@ -10,12 +10,15 @@ namespace pelage::sim {
 namespace {
 
 double now_seconds() {
-    return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+    return std::chrono::duration<double>(
+               std::chrono::steady_clock::now().time_since_epoch())
+        .count();
 }
 
 }  // namespace
 
-CmSimulation::CmSimulation(const Crps &crps, CellTypes types, SimParams params, uint64_t seed)
+CmSimulation::CmSimulation(const Crps &crps, CellTypes types, SimParams params,
+                           uint64_t seed)
     : m_crps(crps),
       m_types(std::move(types)),
       m_params(params),
@@ -24,7 +27,8 @@ CmSimulation::CmSimulation(const Crps &crps, CellTypes types, SimParams params, 
       m_steps_left(crps.num_triangles(), 0) {
     for (TriId t = 0; t < crps.num_triangles(); ++t) m_area += crps.frame(t).area;
     if (m_params.w_a > 0)
-        m_field = constant_world_field(crps, m_params.anisotropy_direction, m_params.anisotropy_magnitude);
+        m_field = constant_world_field(crps, m_params.anisotropy_direction,
+                                       m_params.anisotropy_magnitude);
 }
 
 double CmSimulation::radius() const {
@@ -60,7 +64,8 @@ std::vector<TriId> CmSimulation::all_triangles_with_cells() const {
     return out;
 }
 
-RelaxStepResult CmSimulation::relax(const std::vector<TriId> &active, bool uniform_alpha) {
+RelaxStepResult CmSimulation::relax(const std::vector<TriId> &active,
+                                    bool uniform_alpha) {
     RelaxContext ctx;
     ctx.crps = &m_crps;
     ctx.types = &m_types;
@@ -80,7 +85,8 @@ void CmSimulation::initialize(uint64_t override_cells) {
     const double t0 = now_seconds();
     const size_t nt = m_crps.num_triangles();
     uint64_t n = override_cells > 0 ? override_cells : m_params.initial_cells;
-    if (n == 0) n = static_cast<uint64_t>(std::llround(m_params.initial_density * m_area));
+    if (n == 0)
+        n = static_cast<uint64_t>(std::llround(m_params.initial_density * m_area));
     n = std::max<uint64_t>(n, 1);
     m_cells.reserve(std::max<uint64_t>(n, m_params.target_cells));
 
@@ -102,18 +108,24 @@ void CmSimulation::initialize(uint64_t override_cells) {
             const double exact = m_types[k].initial_probability * double(n);
             count[k] = static_cast<uint64_t>(std::floor(exact));
             assigned += count[k];
-            remainder.push_back({-(exact - std::floor(exact)), k});  // largest first, then lower k
+            remainder.push_back(
+                {-(exact - std::floor(exact)), k});  // largest first, then lower k
         }
         std::sort(remainder.begin(), remainder.end());
-        for (size_t i = 0; assigned < n; ++i, ++assigned) ++count[remainder[i % remainder.size()].second];
-        for (int k = 0; k < m_types.size(); ++k) initial_type.insert(initial_type.end(), count[k], uint8_t(k));
+        for (size_t i = 0; assigned < n; ++i, ++assigned)
+            ++count[remainder[i % remainder.size()].second];
+        for (int k = 0; k < m_types.size(); ++k)
+            initial_type.insert(initial_type.end(), count[k], uint8_t(k));
         CounterRng shuffle(m_seed, RandomStream::initial_type, 0);
-        for (uint64_t i = n; i > 1; --i) std::swap(initial_type[i - 1], initial_type[shuffle.next_u64() % i]);
+        for (uint64_t i = n; i > 1; --i)
+            std::swap(initial_type[i - 1], initial_type[shuffle.next_u64() % i]);
     }
     for (uint64_t i = 0; i < n; ++i) {
         CounterRng rng(m_seed, RandomStream::initial_position, i);
         const double u = rng.uniform() * sum;
-        TriId t = static_cast<TriId>(std::upper_bound(cumulative.begin(), cumulative.end(), u) - cumulative.begin());
+        TriId t =
+            static_cast<TriId>(std::upper_bound(cumulative.begin(), cumulative.end(), u) -
+                               cumulative.begin());
         t = std::min<TriId>(t, static_cast<TriId>(nt - 1));
         const double s = std::sqrt(rng.uniform()), v = rng.uniform();
         const auto &f = m_crps.frame(t);
@@ -197,7 +209,8 @@ void CmSimulation::divide(const Event &e) {
 void CmSimulation::run(const std::function<void(double)> &progress) {
     const double t0 = now_seconds();
     const double dt = 1.0 / m_params.rho;
-    const uint64_t n_steps = static_cast<uint64_t>(std::ceil(m_params.end_time * m_params.rho - 1e-9));
+    const uint64_t n_steps =
+        static_cast<uint64_t>(std::ceil(m_params.end_time * m_params.rho - 1e-9));
     const uint64_t target = m_params.target_cells;
     const bool open_ended = n_steps == 0 && target > 0;
     constexpr uint64_t max_open_steps = 10'000'000;  // same cap as the preset checker
@@ -206,13 +219,17 @@ void CmSimulation::run(const std::function<void(double)> &progress) {
         bool reached = false;
         // --- Divisions due in this step, in heap order ---
         while (!m_heap.empty() && m_heap.front().time <= t_next) {
-            if (target > 0 && m_cells.size() >= target) { reached = true; break; }
+            if (target > 0 && m_cells.size() >= target) {
+                reached = true;
+                break;
+            }
             divide(m_heap.front());
         }
         if (target > 0 && m_cells.size() >= target) reached = true;
         // --- One relaxation event ---
-        const std::vector<TriId> active =
-            m_params.relax == RelaxMode::global ? all_triangles_with_cells() : take_local_active();
+        const std::vector<TriId> active = m_params.relax == RelaxMode::global
+                                              ? all_triangles_with_cells()
+                                              : take_local_active();
         if (!active.empty()) relax(active, false);
         ++m_stats.relax_steps;
         m_stats.final_time = t_next;

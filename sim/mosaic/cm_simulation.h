@@ -23,24 +23,25 @@
 #include <functional>
 #include <vector>
 
+#include "sim/core/random.h"
+#include "sim/crps/unfold.h"
 #include "sim/mosaic/cell_types.h"
 #include "sim/mosaic/cells.h"
-#include "sim/core/random.h"
 #include "sim/mosaic/relaxation.h"
-#include "sim/crps/unfold.h"
 
 namespace pelage::sim {
 
 struct SimStats {
     size_t initial_cells = 0;
     size_t initial_relax_steps = 0;
-    size_t relax_steps = 0;   // relaxation events after initialisation
+    size_t relax_steps = 0;  // relaxation events after initialisation
     size_t divisions = 0;
     uint64_t cell_steps = 0;  // Σ cells relaxed per step (initial phase included)
     double final_time = 0;
     double final_radius = 0;
     double seconds_initial = 0, seconds_total = 0;
-    double seconds_neighbourhoods = 0;  // building the unfolding cache (once per ~2× cells)
+    double seconds_neighbourhoods =
+        0;  // building the unfolding cache (once per ~2× cells)
     size_t neighbourhood_builds = 0;
 };
 
@@ -71,7 +72,9 @@ class CmSimulation {
     struct Event {
         double time;
         CellId cell;
-        bool operator>(const Event &o) const { return time > o.time || (time == o.time && cell > o.cell); }
+        bool operator>(const Event &o) const {
+            return time > o.time || (time == o.time && cell > o.cell);
+        }
     };
     double division_delay(int type, CounterRng &rng) const;
     void divide(const Event &e);
@@ -87,9 +90,9 @@ class CmSimulation {
     TangentField m_field;
     Cells m_cells;
     Relaxer m_relaxer;
-    std::vector<Event> m_heap;  // min-heap via std::push_heap with greater<>
-    std::vector<int> m_steps_left;   // local relaxation: S countdown per triangle
-    std::vector<TriId> m_marked;     // triangles with m_steps_left > 0
+    std::vector<Event> m_heap;      // min-heap via std::push_heap with greater<>
+    std::vector<int> m_steps_left;  // local relaxation: S countdown per triangle
+    std::vector<TriId> m_marked;    // triangles with m_steps_left > 0
     SimStats m_stats;
 };
 

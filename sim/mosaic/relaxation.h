@@ -1,5 +1,5 @@
-// One Jacobi relaxation step of the Clonal Mosaic on the CRPS (Walter 1998 Fig. 1 / thesis
-// Fig. 3.2; Teo 2006 Fig. 5.3 for global, Fig. 5.6 for local relaxation):
+// One Jacobi relaxation step of the Clonal Mosaic on the CRPS (Walter 1998 Fig. 1 /
+// thesis Fig. 3.2; Teo 2006 Fig. 5.3 for global, Fig. 5.6 for local relaxation):
 //   D = unit(C − P)·(1 − d/r)·(1 − α[C][P])·r           for every neighbour P within r
 //   C' = C + Σ (w_a·O + (1 − w_a)·w_d·D),   O = (D·Â)·A   (SG01 §3.2.1, A per triangle)
 // All displacements are computed from the old positions, then every cell moves (Jacobi).
@@ -16,9 +16,9 @@
 
 #include <vector>
 
+#include "sim/crps/tangent_field.h"
 #include "sim/mosaic/cell_types.h"
 #include "sim/mosaic/cells.h"
-#include "sim/crps/tangent_field.h"
 
 namespace pelage::sim {
 
@@ -61,15 +61,16 @@ struct RelaxContext {
 };
 
 struct RelaxStepResult {
-    double max_move = 0;    // largest displacement length, for convergence
-    size_t cells_moved = 0; // cells relaxed in this step (the cost measure)
+    double max_move = 0;     // largest displacement length, for convergence
+    size_t cells_moved = 0;  // cells relaxed in this step (the cost measure)
 };
 
 class Relaxer {
   public:
     // One Jacobi step over the cells of `active` (sorted triangle ids). Cells of other
     // triangles push but do not move (Teo §5.1.3, Fig. 5.5(b)).
-    RelaxStepResult step(const RelaxContext &ctx, Cells &cells, const std::vector<TriId> &active);
+    RelaxStepResult step(const RelaxContext &ctx, Cells &cells,
+                         const std::vector<TriId> &active);
     Neighbourhoods &neighbourhoods() { return m_nbhd; }
 
   private:
@@ -80,8 +81,8 @@ class Relaxer {
     std::vector<double> m_sx, m_sz;
     std::vector<uint8_t> m_st;
     std::vector<CellId> m_sid;
-    std::vector<Vec2d> m_move;          // per active cell, in active order
-    std::vector<uint32_t> m_active_row; // offsets of each active triangle's cells
+    std::vector<Vec2d> m_move;           // per active cell, in active order
+    std::vector<uint32_t> m_active_row;  // offsets of each active triangle's cells
     std::vector<SurfacePoint> m_dest;
 };
 

@@ -12,9 +12,10 @@ namespace {
 
 TEST(BenchLookupCli, PrintsTheContractKeysAndExactSearches) {
     std::string out, err;
-    ASSERT_EQ(run_pelage("bench lookup --mesh procedural:icosphere:2 --cells 800 --queries 4000 "
-                         "--threads 1",
-                         &out, &err),
+    ASSERT_EQ(run_pelage(
+                  "bench lookup --mesh procedural:icosphere:2 --cells 800 --queries 4000 "
+                  "--threads 1",
+                  &out, &err),
               0)
         << err;
     const nlohmann::json j = nlohmann::json::parse(out);
@@ -42,7 +43,9 @@ TEST(BenchLookupCli, PrintsTheContractKeysAndExactSearches) {
 
 TEST(BenchLookupCli, AMissingMeshIsExit2NamingIt) {
     std::string out, err;
-    EXPECT_EQ(run_pelage("bench lookup --mesh /nonexistent/cow.off --queries 10", &out, &err), 2);
+    EXPECT_EQ(
+        run_pelage("bench lookup --mesh /nonexistent/cow.off --queries 10", &out, &err),
+        2);
     EXPECT_NE(err.find("/nonexistent/cow.off"), std::string::npos) << err;
 }
 

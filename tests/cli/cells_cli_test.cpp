@@ -1,6 +1,6 @@
 // `pelage cells --export` and `pelage lookup`: looking up every exported cell position
-// finds that very cell at distance ~0 — the export's barycentrics and the renderer's search
-// agree. Bad point files are exit 2 with the line.
+// finds that very cell at distance ~0 — the export's barycentrics and the renderer's
+// search agree. Bad point files are exit 2 with the line.
 #include <gtest/gtest.h>
 
 #include <fstream>
@@ -34,7 +34,11 @@ TEST(CellsCli, ExportedCellsLookUpToThemselves) {
     pts.close();
     ASSERT_EQ(expected.size(), 400u);
     std::string out, err;
-    ASSERT_EQ(run_pelage("lookup " + cells + " --mesh " + mesh + " --points " + tmp.file("pts.txt"), &out, &err), 0) << err;
+    ASSERT_EQ(run_pelage("lookup " + cells + " --mesh " + mesh + " --points " +
+                             tmp.file("pts.txt"),
+                         &out, &err),
+              0)
+        << err;
     std::istringstream ss(out);
     for (const auto &[id, type] : expected) {
         unsigned got_id, got_type;
@@ -50,13 +54,23 @@ TEST(CellsCli, BadPointLinesAreExit2WithTheLine) {
     TempDir tmp;
     const std::string cells = simulate_two_type_cells(tmp, "procedural:icosphere:1", 50);
     std::string err;
-    const std::string pts = tmp.write("pts.txt", "0 0.2 0.3 0.5\n# comment\n99 0.2 0.3 0.5\n");
-    EXPECT_EQ(run_pelage("lookup " + cells + " --mesh procedural:icosphere:1 --points " + pts, nullptr, &err), 2);
+    const std::string pts =
+        tmp.write("pts.txt", "0 0.2 0.3 0.5\n# comment\n99 0.2 0.3 0.5\n");
+    EXPECT_EQ(
+        run_pelage("lookup " + cells + " --mesh procedural:icosphere:1 --points " + pts,
+                   nullptr, &err),
+        2);
     EXPECT_NE(err.find("pts.txt:3"), std::string::npos) << err;
     const std::string bad = tmp.write("bad.txt", "0 0.2 0.3\n");
-    EXPECT_EQ(run_pelage("lookup " + cells + " --mesh procedural:icosphere:1 --points " + bad, nullptr, &err), 2);
+    EXPECT_EQ(
+        run_pelage("lookup " + cells + " --mesh procedural:icosphere:1 --points " + bad,
+                   nullptr, &err),
+        2);
     EXPECT_NE(err.find("bad.txt:1"), std::string::npos) << err;
-    EXPECT_EQ(run_pelage("lookup " + cells + " --mesh procedural:icosphere:2 --points " + pts, nullptr, &err), 2);
+    EXPECT_EQ(
+        run_pelage("lookup " + cells + " --mesh procedural:icosphere:2 --points " + pts,
+                   nullptr, &err),
+        2);
 }
 
 }  // namespace

@@ -124,7 +124,8 @@ TEST(CompareCli, RepeatReportsTheMinimumOfEveryRender) {
     const auto &cm = r["shaders"]["clonal_mosaic"]["cpu_seconds_each"];
     const auto &df = r["shaders"]["diffuse"]["cpu_seconds_each"];
     std::vector<double> paired;
-    for (size_t k = 0; k < 3; ++k) paired.push_back(cm[k].get<double>() / df[k].get<double>());
+    for (size_t k = 0; k < 3; ++k)
+        paired.push_back(cm[k].get<double>() / df[k].get<double>());
     std::sort(paired.begin(), paired.end());
     EXPECT_EQ(rounds["min"].get<double>(), paired[0]);
     EXPECT_EQ(rounds["median"].get<double>(), paired[1]);

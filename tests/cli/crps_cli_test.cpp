@@ -10,11 +10,13 @@ namespace pelage::test {
 
 TEST(CrpsCli, StatsJsonHasTheContractKeysForTheSphere) {
     TempDir tmp;
-    ASSERT_EQ(run_pelage("crps --mesh procedural:sphere:20x20 --stats-json " + tmp.file("s.json")), 0);
+    ASSERT_EQ(run_pelage("crps --mesh procedural:sphere:20x20 --stats-json " +
+                         tmp.file("s.json")),
+              0);
     const auto s = nlohmann::json::parse(std::ifstream(tmp.file("s.json")));
-    for (const char *k : {"triangles", "vertices", "edges", "boundary_edges", "nonmanifold_edges",
-                          "degenerate_dropped", "area", "roundtrip_max_error",
-                          "edge_map_max_error", "seconds"})
+    for (const char *k : {"triangles", "vertices", "edges", "boundary_edges",
+                          "nonmanifold_edges", "degenerate_dropped", "area",
+                          "roundtrip_max_error", "edge_map_max_error", "seconds"})
         EXPECT_TRUE(s.contains(k)) << k;
     EXPECT_EQ(s["triangles"], 760);
     EXPECT_EQ(s["vertices"], 382);
@@ -30,7 +32,9 @@ TEST(CrpsCli, StatsJsonHasTheContractKeysForTheSphere) {
 
 TEST(CrpsCli, OpenMeshIsAcceptedAndItsBoundaryCounted) {
     TempDir tmp;
-    ASSERT_EQ(run_pelage("crps --mesh procedural:plane:4x3 --stats-json " + tmp.file("s.json")), 0);
+    ASSERT_EQ(
+        run_pelage("crps --mesh procedural:plane:4x3 --stats-json " + tmp.file("s.json")),
+        0);
     const auto s = nlohmann::json::parse(std::ifstream(tmp.file("s.json")));
     EXPECT_EQ(s["boundary_edges"], 2 * (4 + 3));
     EXPECT_EQ(s["triangles"], 24);

@@ -92,9 +92,9 @@ TEST(RenderCli, InterruptWritesTheCompletedPassesAtomically) {
     const std::string scene =
         tmp.write("s.json", R"({"camera": {}, "film": {"width": 32, "height": 32,
         "spp": 1000000}, "lights": [{"type": "environment"}], "objects": [{"mesh": "procedural:icosphere:2"}]})");
-    const std::string cmd = interrupt_after() + std::string(PELAGE_BINARY) + " render " + scene + " -q -o " +
-                            tmp.file("o.exr") + " --stats-json " + tmp.file("s.json") +
-                            " 2>" + tmp.file("err");
+    const std::string cmd = interrupt_after() + std::string(PELAGE_BINARY) + " render " +
+                            scene + " -q -o " + tmp.file("o.exr") + " --stats-json " +
+                            tmp.file("s.json") + " 2>" + tmp.file("err");
     const int rc = std::system(cmd.c_str());
     EXPECT_EQ(WEXITSTATUS(rc), 130);  // 128 + SIGINT, the shell convention
     auto in = OIIO::ImageInput::open(tmp.file("o.exr"));

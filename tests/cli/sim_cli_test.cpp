@@ -1,12 +1,12 @@
 // `pelage sim`, `stats`, `preview` end to end: output contracts, determinism across
 // thread counts, and bad input → exit 2 with nothing written.
+#include <OpenImageIO/imagebuf.h>
+#include <OpenImageIO/imagebufalgo.h>
 #include <gtest/gtest.h>
 
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
-#include <OpenImageIO/imagebuf.h>
-#include <OpenImageIO/imagebufalgo.h>
 #include <sstream>
 
 #include "tests/test_paths.h"
@@ -19,9 +19,12 @@ const std::string small_run =
 
 TEST(SimCli, StatsJsonHasTheContractKeys) {
     TempDir tmp;
-    ASSERT_EQ(run_pelage(small_run + "-o " + tmp.file("a.cells") + " --stats-json " + tmp.file("s.json")), 0);
+    ASSERT_EQ(run_pelage(small_run + "-o " + tmp.file("a.cells") + " --stats-json " +
+                         tmp.file("s.json")),
+              0);
     const auto s = nlohmann::json::parse(std::ifstream(tmp.file("s.json")));
-    for (const char *k : {"triangles", "area", "cells_by_type", "spot_fraction", "divisions", "relax_steps", "seconds"})
+    for (const char *k : {"triangles", "area", "cells_by_type", "spot_fraction",
+                          "divisions", "relax_steps", "seconds"})
         EXPECT_TRUE(s.contains(k)) << k;
     EXPECT_EQ(s["triangles"], 760);
     EXPECT_EQ(s["relax_steps"], 50);
@@ -38,7 +41,9 @@ TEST(SimCli, StatsJsonHasTheContractKeys) {
     EXPECT_GT(st["spots"].get<size_t>(), 0u);
     EXPECT_LE(st["spots"].get<size_t>(), f);
 
-    ASSERT_EQ(run_pelage("preview " + tmp.file("a.cells") + " --size 64 -o " + tmp.file("p.png")), 0);
+    ASSERT_EQ(run_pelage("preview " + tmp.file("a.cells") + " --size 64 -o " +
+                         tmp.file("p.png")),
+              0);
     EXPECT_EQ(slurp(tmp.file("p.png")).substr(1, 3), "PNG");
     // The preview decodes (OpenImageIO writes it) and shows more than one colour.
     OIIO::ImageBuf png(tmp.file("p.png"));
@@ -53,8 +58,12 @@ TEST(SimCli, SameSeedGivesIdenticalCellsAtOneAndTwoThreads) {
     TempDir tmp;
     ASSERT_EQ(run_pelage(small_run + "--threads 1 -o " + tmp.file("1.cells")), 0);
     ASSERT_EQ(run_pelage(small_run + "--threads 2 -o " + tmp.file("2.cells")), 0);
-    ASSERT_EQ(run_pelage(small_run + "--threads 2 --relax global -o " + tmp.file("g2.cells")), 0);
-    ASSERT_EQ(run_pelage(small_run + "--threads 1 --relax global -o " + tmp.file("g1.cells")), 0);
+    ASSERT_EQ(
+        run_pelage(small_run + "--threads 2 --relax global -o " + tmp.file("g2.cells")),
+        0);
+    ASSERT_EQ(
+        run_pelage(small_run + "--threads 1 --relax global -o " + tmp.file("g1.cells")),
+        0);
     EXPECT_EQ(slurp(tmp.file("1.cells")), slurp(tmp.file("2.cells")));
     EXPECT_EQ(slurp(tmp.file("g1.cells")), slurp(tmp.file("g2.cells")));
     EXPECT_NE(slurp(tmp.file("1.cells")), slurp(tmp.file("g1.cells")));
@@ -62,12 +71,19 @@ TEST(SimCli, SameSeedGivesIdenticalCellsAtOneAndTwoThreads) {
 
 TEST(SimCli, BadPresetIsExit2AndWritesNothing) {
     TempDir tmp;
-    const std::string outs = " -o " + tmp.file("x.cells") + " --stats-json " + tmp.file("x.json");
+    const std::string outs =
+        " -o " + tmp.file("x.cells") + " --stats-json " + tmp.file("x.json");
     std::string err;
-    EXPECT_EQ(run_pelage("sim --mesh procedural:sphere:8x8 --preset no-such-thing" + outs, nullptr, &err), 2);
+    EXPECT_EQ(run_pelage("sim --mesh procedural:sphere:8x8 --preset no-such-thing" + outs,
+                         nullptr, &err),
+              2);
     EXPECT_NE(err.find("no-such-thing"), std::string::npos) << err;
-    const std::string bad = tmp.write("bad.json", R"({"name": "b", "types": [{"name": "F", "colour": [1, 0], "division_time": 1, "initial_probability": 1}], "adhesion": [[0]], "simulation": {"initial_cells": 5, "w_r": 2, "w_d": 0.1, "rho": 1, "end_time": 1}})");
-    EXPECT_EQ(run_pelage("sim --mesh procedural:sphere:8x8 --preset " + bad + outs, nullptr, &err), 2);
+    const std::string bad = tmp.write(
+        "bad.json",
+        R"({"name": "b", "types": [{"name": "F", "colour": [1, 0], "division_time": 1, "initial_probability": 1}], "adhesion": [[0]], "simulation": {"initial_cells": 5, "w_r": 2, "w_d": 0.1, "rho": 1, "end_time": 1}})");
+    EXPECT_EQ(run_pelage("sim --mesh procedural:sphere:8x8 --preset " + bad + outs,
+                         nullptr, &err),
+              2);
     EXPECT_NE(err.find("types[0].colour: expected 3 numbers"), std::string::npos) << err;
     EXPECT_FALSE(std::filesystem::exists(tmp.file("x.cells")));
     EXPECT_FALSE(std::filesystem::exists(tmp.file("x.json")));
@@ -81,11 +97,15 @@ TEST(SimCli, CorruptedCellsFileIsExit2) {
     bytes[bytes.size() / 2] ^= 1;
     tmp.write("flip.cells", bytes);
     std::string err;
-    EXPECT_EQ(run_pelage("stats " + tmp.file("trunc.cells") + " --json", nullptr, &err), 2);
+    EXPECT_EQ(run_pelage("stats " + tmp.file("trunc.cells") + " --json", nullptr, &err),
+              2);
     EXPECT_NE(err.find("trunc.cells"), std::string::npos) << err;
-    EXPECT_EQ(run_pelage("stats " + tmp.file("flip.cells") + " --json", nullptr, &err), 2);
+    EXPECT_EQ(run_pelage("stats " + tmp.file("flip.cells") + " --json", nullptr, &err),
+              2);
     EXPECT_NE(err.find("checksum"), std::string::npos) << err;
-    EXPECT_EQ(run_pelage("preview " + tmp.file("flip.cells") + " -o " + tmp.file("p.png"), nullptr, &err), 2);
+    EXPECT_EQ(run_pelage("preview " + tmp.file("flip.cells") + " -o " + tmp.file("p.png"),
+                         nullptr, &err),
+              2);
     EXPECT_FALSE(std::filesystem::exists(tmp.file("p.png")));
 }
 

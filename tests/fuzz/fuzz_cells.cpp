@@ -1,8 +1,8 @@
-// libFuzzer target: the .cells reader (sim/cells_io/cells_file.cpp). The FNV-1a checksum would
-// reject almost every mutation before the structural checks, so each input is parsed
-// twice: as given, and with its last 8 bytes replaced by the checksum of the rest. A file
-// that parses must survive a write/read round trip unchanged; bad input must end in
-// pelage::InputError; any other exception, crash or sanitizer report is a bug.
+// libFuzzer target: the .cells reader (sim/cells_io/cells_file.cpp). The FNV-1a checksum
+// would reject almost every mutation before the structural checks, so each input is
+// parsed twice: as given, and with its last 8 bytes replaced by the checksum of the rest.
+// A file that parses must survive a write/read round trip unchanged; bad input must end
+// in pelage::InputError; any other exception, crash or sanitizer report is a bug.
 #include <cstddef>
 #include <cstdint>
 #include <cstring>
@@ -13,7 +13,8 @@
 
 namespace {
 
-// FNV-1a 64 (Fowler, Noll, Vo), as the .cells format specifies (sim/cells_io/cells_file.h).
+// FNV-1a 64 (Fowler, Noll, Vo), as the .cells format specifies
+// (sim/cells_io/cells_file.h).
 uint64_t fnv1a(const uint8_t *p, size_t n) {
     uint64_t h = 0xcbf29ce484222325ull;
     for (size_t i = 0; i < n; ++i) h = (h ^ p[i]) * 0x100000001b3ull;

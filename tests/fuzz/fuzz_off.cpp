@@ -1,6 +1,6 @@
 // libFuzzer target: the OFF reader and the clean-up every subcommand applies after it
-// (sim/mesh/mesh_io_off.cpp, sim/mesh/mesh_clean.cpp). Bad input must end in pelage::InputError;
-// any other exception, crash, leak or sanitizer report is a bug.
+// (sim/mesh/mesh_io_off.cpp, sim/mesh/mesh_clean.cpp). Bad input must end in
+// pelage::InputError; any other exception, crash, leak or sanitizer report is a bug.
 #include <cstddef>
 #include <cstdint>
 

@@ -1,5 +1,5 @@
-// libFuzzer target: the scene JSON loader (renderer/scene_file/scene_file.cpp), including the
-// per-frame views a turntable render derives from it. Bad input must end in
+// libFuzzer target: the scene JSON loader (renderer/scene_file/scene_file.cpp), including
+// the per-frame views a turntable render derives from it. Bad input must end in
 // pelage::InputError; any other exception, crash or sanitizer report is a bug.
 #include <cstddef>
 #include <cstdint>

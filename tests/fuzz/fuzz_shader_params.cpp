@@ -1,6 +1,6 @@
 // libFuzzer target: the shader parameter parser (validate_plugin_params in
-// renderer/plugins/plugin_loader.cpp), which checks a material's "params" object against a
-// plugin's PelageParamSpec table. The table below has one entry of every type, with and
+// renderer/plugins/plugin_loader.cpp), which checks a material's "params" object against
+// a plugin's PelageParamSpec table. The table below has one entry of every type, with and
 // without a range, as the shipped plugins declare them. Bad input must end in
 // pelage::InputError; any other exception, crash or sanitizer report is a bug.
 #include <cmath>

@@ -7,7 +7,8 @@ namespace pelage::test {
 
 double nearest_neighbour_cv(const sim::Crps &crps, const sim::Cells &cells) {
     std::vector<sim::Vec3d> p;
-    for (sim::CellId c = 0; c < cells.size(); ++c) p.push_back(crps.to_3d(cells.tri(c), cells.pos(c)));
+    for (sim::CellId c = 0; c < cells.size(); ++c)
+        p.push_back(crps.to_3d(cells.tri(c), cells.pos(c)));
     double sum = 0, sum2 = 0;
     for (size_t i = 0; i < p.size(); ++i) {
         double best = 1e300;

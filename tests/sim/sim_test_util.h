@@ -4,20 +4,22 @@
 
 #include <string>
 
+#include "sim/crps/crps.h"
 #include "sim/mosaic/cell_types.h"
 #include "sim/mosaic/cells.h"
-#include "sim/crps/crps.h"
 
 namespace pelage::test {
 
 // A one- or two-type preset in JSON, with the simulation block given verbatim.
 inline std::string preset_json(const std::string &simulation, bool two_types = false,
                                const std::string &division_time = "\"never\"") {
-    std::string types = R"({"name": "F", "colour": [0.1, 0.1, 0.1], "division_time": )" + division_time +
-                        R"(, "initial_probability": )" + (two_types ? "0.5" : "1.0") + "}";
+    std::string types = R"({"name": "F", "colour": [0.1, 0.1, 0.1], "division_time": )" +
+                        division_time + R"(, "initial_probability": )" +
+                        (two_types ? "0.5" : "1.0") + "}";
     std::string adhesion = "[[0.0]]";
     if (two_types) {
-        types += R"(, {"name": "B", "colour": [0.9, 0.7, 0.3], "division_time": "never", "initial_probability": 0.5})";
+        types +=
+            R"(, {"name": "B", "colour": [0.9, 0.7, 0.3], "division_time": "never", "initial_probability": 0.5})";
         adhesion = "[[0.8, 0.0], [0.0, 0.4]]";
     }
     return R"({"name": "test", "types": [)" + types + R"(], "adhesion": )" + adhesion +

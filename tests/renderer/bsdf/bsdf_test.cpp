@@ -4,9 +4,9 @@
 
 #include "renderer/bsdf/bsdf_coated.h"
 #include "renderer/bsdf/bsdf_lambert.h"
-#include "renderer/image/filters.h"
 #include "renderer/core/sampler.h"
 #include "renderer/core/sampling.h"
+#include "renderer/image/filters.h"
 
 namespace pelage::test {
 namespace {
@@ -62,8 +62,8 @@ TEST(BsdfCoated, SamplingAgreesWithEvalAndPdf) {
 
 TEST(BsdfCoated, WhiteFurnaceNeverGainsEnergyAndBoundsItsLoss) {
     // Directional albedo of a white base (ρ = 1) under a non-absorbing coat. Never above
-    // 1 (+1 % Monte Carlo margin). The layering term keeps the base's share exact, so what
-    // is lost is the coat's: single-scattering GGX (no inter-reflection between
+    // 1 (+1 % Monte Carlo margin). The layering term keeps the base's share exact, so
+    // what is lost is the coat's: single-scattering GGX (no inter-reflection between
     // microfacets) with the smooth transmittance 1 − F(cos θ), while a rough coat
     // reflects less than F(cos θ) at grazing angles. Measured albedos (2·10^5 samples),
     // bounded below with a 0.01 margin:

@@ -1,10 +1,11 @@
-// Ray cone widening at rough bounces (renderer/core/ray_cone.h): the angle one of spp sampled
-// directions stands for; and what it is for, a plugin filtering indirect hits.
+// Ray cone widening at rough bounces (renderer/core/ray_cone.h): the angle one of spp
+// sampled directions stands for; and what it is for, a plugin filtering indirect hits.
+#include "renderer/core/ray_cone.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
 
-#include "renderer/core/ray_cone.h"
 #include "tests/renderer/render_helpers.h"
 
 namespace pelage::test {
@@ -39,19 +40,20 @@ TEST(RayCone, BounceSpreadIsTheConeOfOneSampledDirection) {
 }
 
 // A white ground lit by a uniform sky and by the light a clonal-mosaic sphere above it
-// bounces down; the camera, under the sphere, sees only the ground. The sphere's indirect hits come after a
-// diffuse bounce, so their cones are much wider than its triangles, and the material's
-// level of detail (lod, on by default) shades them with the cells' mean look. That
-// keeps the ground's brightness (the mean look has the pattern's mean albedo) and
-// removes the pattern's share of the noise: two renders with different seeds differ less
-// (by 25 % in variance here). A small ground under a large sphere: the sphere's underside
-// is lit evenly from below, so the pattern is a large part of the noise.
+// bounces down; the camera, under the sphere, sees only the ground. The sphere's indirect
+// hits come after a diffuse bounce, so their cones are much wider than its triangles, and
+// the material's level of detail (lod, on by default) shades them with the cells' mean
+// look. That keeps the ground's brightness (the mean look has the pattern's mean albedo)
+// and removes the pattern's share of the noise: two renders with different seeds differ
+// less (by 25 % in variance here). A small ground under a large sphere: the sphere's
+// underside is lit evenly from below, so the pattern is a large part of the noise.
 std::string bounce_scene(const std::string &cells, int lod) {
     return R"({
       "camera": {"position": [0, -0.8, 0], "look_at": [0, -1, 0], "up": [0, 0, 1], "fov": 60},
       "film": {"width": 64, "height": 64, "spp": 4, "filter": {"type": "box"}},
       "lights": [{"type": "environment", "color": 0.5}],
-      "objects": [{"mesh": "procedural:icosphere:3", "cells": ")" + cells + R"(",
+      "objects": [{"mesh": "procedural:icosphere:3", "cells": ")" +
+           cells + R"(",
                    "transform": {"scale": 3, "translate": [0, 2.3, 0]},
                    "material": {"shader": "clonal_mosaic", "params": {"lod": )" +
            std::to_string(lod) + R"(}}},
@@ -79,7 +81,9 @@ TEST(RayCone, IndirectHitsOfAPatternAreFilteredWithoutChangingTheMean) {
     ASSERT_GT(mean[0], 0.05);
     // The filter is local (about two triangles): the few dozen cells this ground sees
     // are averaged with their neighbours', which moves the mean by about 2 % here.
-    EXPECT_NEAR(mean[1], mean[0], 0.05 * mean[0]) << "lod changed the brightness " << mean[1] << " " << noise[1] << " vs " << noise[0];
+    EXPECT_NEAR(mean[1], mean[0], 0.05 * mean[0])
+        << "lod changed the brightness " << mean[1] << " " << noise[1] << " vs "
+        << noise[0];
     EXPECT_LT(noise[1], 0.9 * noise[0]) << "lod " << noise[1] << " exact " << noise[0];
 }
 

@@ -7,8 +7,8 @@
 #include <cmath>
 #include <vector>
 
-#include "renderer/lights/lights.h"
 #include "renderer/core/sin_cos.h"
+#include "renderer/lights/lights.h"
 
 namespace pelage::test {
 namespace {

@@ -10,7 +10,8 @@
 namespace pelage::test {
 namespace {
 
-std::string coated_sphere(const std::string &cells, float ior, const std::string &specular) {
+std::string coated_sphere(const std::string &cells, float ior,
+                          const std::string &specular) {
     return R"({
       "camera": {"position": [0, 0, 3.2], "look_at": [0, 0, 0], "fov": 40},
       "film": {"width": 32, "height": 32, "spp": 16, "filter": {"type": "box"}},

@@ -99,7 +99,8 @@ TEST(SceneFile, TurntableOrbitsTheCameraOrTurnsTheObjects) {
     EXPECT_FLOAT_EQ(cam.animation.turntable->axis.y, 1.0f);  // normalized
     // Frame 0 is the scene's own camera; frame 2 of 8 is a quarter turn about +y through
     // the centre: +z goes to +x, the distance to the centre and the height stay.
-    const CameraDesc c0 = scene_at_frame(cam, 0).camera, c2 = scene_at_frame(cam, 2).camera;
+    const CameraDesc c0 = scene_at_frame(cam, 0).camera,
+                     c2 = scene_at_frame(cam, 2).camera;
     EXPECT_NEAR(c0.position.z, 4, 1e-6);
     EXPECT_NEAR(c2.position.x, 4, 1e-5);
     EXPECT_NEAR(c2.position.y, 1, 1e-5);
@@ -115,7 +116,8 @@ TEST(SceneFile, TurntableOrbitsTheCameraOrTurnsTheObjects) {
     EXPECT_NEAR(p.y, 0, 1e-5);
     EXPECT_NEAR(p.z, -1, 1e-5);
     // Bad fields name their JSON path.
-    EXPECT_EQ(field_of(base + R"(camera", "degrees": "a lot"}}})"), "animation.turntable.degrees");
+    EXPECT_EQ(field_of(base + R"(camera", "degrees": "a lot"}}})"),
+              "animation.turntable.degrees");
     EXPECT_EQ(field_of(base + R"(object", "objects": ["cow"]}}})"),
               "animation.turntable.objects[0]");
     EXPECT_EQ(field_of(base + R"(camera", "objects": ["object0"]}}})"),
@@ -128,8 +130,10 @@ TEST(SceneFile, TurntableOrbitsTheCameraOrTurnsTheObjects) {
         "/s.json");
     EXPECT_TRUE(scene_at_frame(named, 1).objects[1].transform.m[0][3] == 1.0f);
     EXPECT_FALSE(scene_at_frame(named, 1).objects[0].transform.is_identity());
-    EXPECT_EQ(field_of(R"({"camera": {}, "objects": [], "lights": [{"type": "environment"}], "animation": {"fps": -1}})"),
-              "animation.fps");
+    EXPECT_EQ(
+        field_of(
+            R"({"camera": {}, "objects": [], "lights": [{"type": "environment"}], "animation": {"fps": -1}})"),
+        "animation.fps");
 }
 
 TEST(SceneFile, DeformOnePoseBlendsFromRestToThePose) {
@@ -147,8 +151,9 @@ TEST(SceneFile, DeformOnePoseBlendsFromRestToThePose) {
             "animation": {"frames": 2}})",
         "/d/s.json");
     EXPECT_EQ(scene_at_frame(l, 1).objects[0].deform_mesh, "/d/b.obj");
-    EXPECT_EQ(field_of(R"({"camera": {}, "objects": [{"mesh": "r.obj", "deform": [3]}]})"),
-              "objects[0].deform[0]");
+    EXPECT_EQ(
+        field_of(R"({"camera": {}, "objects": [{"mesh": "r.obj", "deform": [3]}]})"),
+        "objects[0].deform[0]");
 }
 
 }  // namespace

@@ -21,7 +21,8 @@ namespace {
 const std::string mesh_spec = "procedural:icosphere:3";
 
 std::string plugin_file() {
-    return (std::filesystem::path(PELAGE_BINARY).parent_path().parent_path() / "lib/pelage/shaders/clonal_mosaic.so")
+    return (std::filesystem::path(PELAGE_BINARY).parent_path().parent_path() /
+            "lib/pelage/shaders/clonal_mosaic.so")
         .string();
 }
 
@@ -34,17 +35,26 @@ struct Instance {
     void *self = nullptr;
     std::string error;
 
-    Instance(const nlohmann::json &p, const char *cells, const std::string &mesh_path = mesh_spec)
+    Instance(const nlohmann::json &p, const char *cells,
+             const std::string &mesh_path = mesh_spec)
         : plugin(renderer::open_plugin(plugin_file())),
-          params(renderer::validate_plugin_params(*plugin.desc, p, "test.json", "params")),
+          params(
+              renderer::validate_plugin_params(*plugin.desc, p, "test.json", "params")),
           mesh(sim::load_mesh(mesh_path)) {
-        for (const auto &v : mesh.positions) positions.insert(positions.end(), {float(v.x), float(v.y), float(v.z)});
-        for (const auto &t : mesh.triangles) triangles.insert(triangles.end(), t.begin(), t.end());
+        for (const auto &v : mesh.positions)
+            positions.insert(positions.end(), {float(v.x), float(v.y), float(v.z)});
+        for (const auto &t : mesh.triangles)
+            triangles.insert(triangles.end(), t.begin(), t.end());
         PelageParamSet ps{};
         ps.count = uint32_t(params.values.size());
         ps.values = params.values.data();
-        ps.mesh = {uint32_t(mesh.num_vertices()), uint32_t(mesh.num_triangles()), positions.data(),
-                   triangles.data(), nullptr, cells, mesh_path.c_str()};
+        ps.mesh = {uint32_t(mesh.num_vertices()),
+                   uint32_t(mesh.num_triangles()),
+                   positions.data(),
+                   triangles.data(),
+                   nullptr,
+                   cells,
+                   mesh_path.c_str()};
         PelageError err{};
         self = plugin.desc->create(&ps, &err);
         error = err.message;
@@ -94,7 +104,10 @@ TEST(ClonalMosaicPlugin, ColourAndAovsAreTheNearestCellsType) {
     for (int n = 0; n < 5000; ++n) {
         const uint32_t prim = rng() % s.mesh.num_triangles();
         float b1 = u(rng), b2 = u(rng);
-        if (b1 + b2 > 1) { b1 = 1 - b1; b2 = 1 - b2; }
+        if (b1 + b2 > 1) {
+            b1 = 1 - b1;
+            b2 = 1 - b2;
+        }
         const PelageShade sh = inst.shade(prim, b1, b2);
         const sim::Vec2d q = s.crps.barycentric_to_2d(prim, {1 - b1 - b2, b1, b2});
         const shader::ClosestCell c = index.find_nearest(prim, {float(q.x), float(q.y)});
@@ -116,7 +129,8 @@ TEST(ClonalMosaicPlugin, SoftEdgeColourIsTheBlendOfTheCellsWithinTheBand) {
     TempDir tmp;
     const std::string cells = simulate_two_type_cells(tmp, mesh_spec, 600);
     const float w = 0.01f;
-    const Instance inst({{"antialias", 0}, {"edge_width", w}, {"jitter", 0.3}}, cells.c_str());
+    const Instance inst({{"antialias", 0}, {"edge_width", w}, {"jitter", 0.3}},
+                        cells.c_str());
     const Instance hard({{"antialias", 0}, {"jitter", 0.3}}, cells.c_str());
     ASSERT_NE(inst.self, nullptr) << inst.error;
 
@@ -131,7 +145,10 @@ TEST(ClonalMosaicPlugin, SoftEdgeColourIsTheBlendOfTheCellsWithinTheBand) {
     for (int n = 0; n < 5000; ++n) {
         const uint32_t prim = rng() % s.mesh.num_triangles();
         float b1 = u(rng), b2 = u(rng);
-        if (b1 + b2 > 1) { b1 = 1 - b1; b2 = 1 - b2; }
+        if (b1 + b2 > 1) {
+            b1 = 1 - b1;
+            b2 = 1 - b2;
+        }
         const PelageShade soft = inst.shade(prim, b1, b2);
         const auto near = index.find_three_within(prim, b1, b2, 2 * w);
         ASSERT_NE(near.index[0], shader::ClosestCell::none);
@@ -180,12 +197,16 @@ TEST(ClonalMosaicPlugin, SoftBoundariesAreContinuous) {
     ASSERT_NE(soft.self, nullptr) << soft.error;
     float max_jump_hard = 0, max_jump_soft = 0;
     for (uint32_t prim = 0; prim < 1280; prim += 7) {
-        PelageShade prev_h = hard.shade(prim, 0.0f, 0.0f), prev_s = soft.shade(prim, 0.0f, 0.0f);
+        PelageShade prev_h = hard.shade(prim, 0.0f, 0.0f),
+                    prev_s = soft.shade(prim, 0.0f, 0.0f);
         for (int k = 1; k <= 400; ++k) {  // corner 0 to the middle of edge 1-2
             const float t = k / 400.0f;
-            const PelageShade h = hard.shade(prim, 0.5f * t, 0.5f * t), s = soft.shade(prim, 0.5f * t, 0.5f * t);
-            max_jump_hard = std::max(max_jump_hard, std::abs(h.albedo[0] - prev_h.albedo[0]));
-            max_jump_soft = std::max(max_jump_soft, std::abs(s.albedo[0] - prev_s.albedo[0]));
+            const PelageShade h = hard.shade(prim, 0.5f * t, 0.5f * t),
+                              s = soft.shade(prim, 0.5f * t, 0.5f * t);
+            max_jump_hard =
+                std::max(max_jump_hard, std::abs(h.albedo[0] - prev_h.albedo[0]));
+            max_jump_soft =
+                std::max(max_jump_soft, std::abs(s.albedo[0] - prev_s.albedo[0]));
             prev_h = h;
             prev_s = s;
         }
@@ -203,7 +224,8 @@ TEST(ClonalMosaicPlugin, ReusingThePreviousCellGivesTheSameResultsAsSearching) {
     TempDir tmp;
     const std::string cells = simulate_two_type_cells(tmp, mesh_spec, 600);
     auto walk = [&](int coherence) {
-        const Instance inst({{"edge_width", 0.002}, {"coherence", coherence}}, cells.c_str());
+        const Instance inst({{"edge_width", 0.002}, {"coherence", coherence}},
+                            cells.c_str());
         EXPECT_NE(inst.self, nullptr) << inst.error;
         std::vector<PelageShade> out;
         for (uint32_t prim = 0; prim < 1280; prim += 3)
@@ -213,7 +235,8 @@ TEST(ClonalMosaicPlugin, ReusingThePreviousCellGivesTheSameResultsAsSearching) {
                 // level of detail's ramp takes over (the plugin's fast path must not).
                 const float footprints[] = {0, 0.001f, 0.002f, 0.15f};
                 const float footprint = footprints[(k / 50) % 4];
-                out.push_back(inst.shade(prim, 0.5f * t, 0.5f * t + 0.1f * t * (1 - t), footprint));
+                out.push_back(
+                    inst.shade(prim, 0.5f * t, 0.5f * t + 0.1f * t * (1 - t), footprint));
             }
         return out;
     };
@@ -223,10 +246,13 @@ TEST(ClonalMosaicPlugin, ReusingThePreviousCellGivesTheSameResultsAsSearching) {
     for (size_t i = 0; i < reused.size(); ++i) {
         ASSERT_EQ(std::memcmp(&reused[i], &searched[i], sizeof(PelageShade)), 0) << i;
         if (i == 0) continue;
-        if (searched[i].aov[0] == searched[i - 1].aov[0]) ++same_cell_as_before;
-        else ++boundaries;
+        if (searched[i].aov[0] == searched[i - 1].aov[0])
+            ++same_cell_as_before;
+        else
+            ++boundaries;
     }
-    // The walks exercise both: long runs inside cells (where reuse applies) and crossings.
+    // The walks exercise both: long runs inside cells (where reuse applies) and
+    // crossings.
     EXPECT_GT(same_cell_as_before, reused.size() / 2);
     EXPECT_GT(boundaries, 500u);
 }
@@ -245,7 +271,8 @@ TEST(ClonalMosaicPlugin, RefusesMissingCellsWrongMeshAndBadParameters) {
     EXPECT_NE(bad_rough.error.find("\"Q\""), std::string::npos) << bad_rough.error;
     const Instance missing_file({}, tmp.file("nope.cells").c_str());
     EXPECT_EQ(missing_file.self, nullptr);
-    EXPECT_NE(missing_file.error.find("nope.cells"), std::string::npos) << missing_file.error;
+    EXPECT_NE(missing_file.error.find("nope.cells"), std::string::npos)
+        << missing_file.error;
 }
 
 TEST(ClonalMosaicPlugin, PerTypeRoughnessOverridesTheMaterial) {
@@ -256,8 +283,13 @@ TEST(ClonalMosaicPlugin, PerTypeRoughnessOverridesTheMaterial) {
     int f = 0, b = 0;
     for (uint32_t prim = 0; prim < 1280; ++prim) {
         const PelageShade sh = inst.shade(prim, 0.3f, 0.3f);
-        if (sh.aov[1] == 0.0f) { EXPECT_FLOAT_EQ(sh.roughness, 0.25f); ++f; }
-        else { EXPECT_FLOAT_EQ(sh.roughness, -1.0f); ++b; }
+        if (sh.aov[1] == 0.0f) {
+            EXPECT_FLOAT_EQ(sh.roughness, 0.25f);
+            ++f;
+        } else {
+            EXPECT_FLOAT_EQ(sh.roughness, -1.0f);
+            ++b;
+        }
     }
     EXPECT_GT(f, 50);
     EXPECT_GT(b, 50);
@@ -272,8 +304,13 @@ TEST(ClonalMosaicPlugin, PerTypeSpecularSetsTheCoatIor) {
     int f = 0, b = 0;
     for (uint32_t prim = 0; prim < 1280; ++prim) {
         const PelageShade sh = inst.shade(prim, 0.3f, 0.3f);
-        if (sh.aov[1] == 0.0f) { EXPECT_NEAR(sh.ior, 1.5f, 1e-5f); ++f; }
-        else { EXPECT_EQ(sh.ior, 0.0f); ++b; }
+        if (sh.aov[1] == 0.0f) {
+            EXPECT_NEAR(sh.ior, 1.5f, 1e-5f);
+            ++f;
+        } else {
+            EXPECT_EQ(sh.ior, 0.0f);
+            ++b;
+        }
     }
     EXPECT_GT(f, 50);
     EXPECT_GT(b, 50);
@@ -323,7 +360,10 @@ TEST(ClonalMosaicPlugin, WideFootprintsSeeTheFilteredLook) {
     for (int n = 0; n < 2000; ++n) {
         const uint32_t prim = rng() % 1280;
         float b1 = u(rng), b2 = u(rng);
-        if (b1 + b2 > 1) { b1 = 1 - b1; b2 = 1 - b2; }
+        if (b1 + b2 > 1) {
+            b1 = 1 - b1;
+            b2 = 1 - b2;
+        }
         const uint32_t depth = n % 2;
         // Footprints well below the size (weight 0) and beyond twice it (weight 1).
         const float small = 1e-4f, large = 1e3f;

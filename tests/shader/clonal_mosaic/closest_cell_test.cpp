@@ -12,9 +12,9 @@
 #include <random>
 
 #include "shader/clonal_mosaic/edge_consistency.h"
-#include "sim/mesh/procedural_mesh.h"
 #include "sim/crps/surface.h"
 #include "sim/crps/surface_sampling.h"
+#include "sim/mesh/procedural_mesh.h"
 #include "tests/test_paths.h"
 
 namespace pelage::shader {

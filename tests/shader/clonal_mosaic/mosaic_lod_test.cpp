@@ -2,12 +2,13 @@
 // triangle's mean look is the area mean of the exact pattern over it; vertices carry the
 // area-weighted mean of their triangles', interpolated continuously across edges; the
 // blend weight ramps from 0 at one triangle size to 1 at two.
+#include "shader/clonal_mosaic/mosaic_lod.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <random>
 
-#include "shader/clonal_mosaic/mosaic_lod.h"
 #include "tests/test_paths.h"
 
 namespace pelage::test {
@@ -24,7 +25,8 @@ struct Fixture {
     TempDir tmp;
     std::string cells = simulate_two_type_cells(tmp, mesh_spec, 1500);
     shader::MosaicPattern pattern{cells, mesh_spec};
-    shader::MosaicLod lod{pattern, [this](uint32_t c) { return type_look(pattern, c); }, 2};
+    shader::MosaicLod lod{pattern, [this](uint32_t c) { return type_look(pattern, c); },
+                          2};
 };
 
 // The mean over a triangle, against 4000 random area-uniform points of the exact pattern:
@@ -42,7 +44,10 @@ TEST(MosaicLod, TriangleMeansAreTheAreaMeansOfThePattern) {
         const int n = 4000;
         for (int k = 0; k < n; ++k) {
             float b1 = u(rng), b2 = u(rng);
-            if (b1 + b2 > 1) { b1 = 1 - b1; b2 = 1 - b2; }
+            if (b1 + b2 > 1) {
+                b1 = 1 - b1;
+                b2 = 1 - b2;
+            }
             const shader::ClosestCell c = f.pattern.index().find_nearest(t, b1, b2);
             ASSERT_NE(c.index, shader::ClosestCell::none);
             const shader::FilteredLook l = type_look(f.pattern, c.index);
@@ -56,7 +61,8 @@ TEST(MosaicLod, TriangleMeansAreTheAreaMeansOfThePattern) {
             max_error = std::max(max_error, e);
         }
     }
-    EXPECT_GT(mixed, int(nt / 5));  // the test sees boundaries, not only uniform triangles
+    EXPECT_GT(mixed,
+              int(nt / 5));  // the test sees boundaries, not only uniform triangles
     EXPECT_LT(sum_error / double(nt), 0.01);
     EXPECT_LT(max_error, 0.1);
 }
@@ -69,7 +75,8 @@ TEST(MosaicLod, VertexMeansAreContinuousAcrossEdges) {
     const sim::TriangleMesh &mesh = f.pattern.surface().mesh;
     const sim::Crps &crps = f.pattern.surface().crps;
     // Reference corner values from the triangle means.
-    std::vector<double> corner(5 * mesh.num_vertices(), 0.0), area(mesh.num_vertices(), 0.0);
+    std::vector<double> corner(5 * mesh.num_vertices(), 0.0),
+        area(mesh.num_vertices(), 0.0);
     for (sim::TriId t = 0; t < mesh.num_triangles(); ++t)
         for (sim::VertId v : mesh.triangles[t]) {
             area[v] += crps.frame(t).area;
@@ -82,7 +89,8 @@ TEST(MosaicLod, VertexMeansAreContinuousAcrossEdges) {
             const sim::VertId v = mesh.triangles[t][c];
             const shader::FilteredLook at = f.lod.at(t, corners_b[c][0], corners_b[c][1]);
             for (int ch = 0; ch < 5; ++ch)
-                ASSERT_NEAR(at.v[ch], corner[5 * v + ch] / area[v], 1e-5) << t << " " << c;
+                ASSERT_NEAR(at.v[ch], corner[5 * v + ch] / area[v], 1e-5)
+                    << t << " " << c;
         }
     // The middle of every edge, seen from both of its triangles.
     const sim::Topology &topo = crps.topology();
@@ -100,7 +108,8 @@ TEST(MosaicLod, VertexMeansAreContinuousAcrossEdges) {
                         if (b > 0) bn[b - 1] += 0.5f;
                     }
             ASSERT_EQ(shared, 2);
-            const shader::FilteredLook x = f.lod.at(t, bt[0], bt[1]), y = f.lod.at(n, bn[0], bn[1]);
+            const shader::FilteredLook x = f.lod.at(t, bt[0], bt[1]),
+                                       y = f.lod.at(n, bn[0], bn[1]);
             for (int ch = 0; ch < 5; ++ch) ASSERT_NEAR(x.v[ch], y.v[ch], 1e-5);
             ++edges;
         }

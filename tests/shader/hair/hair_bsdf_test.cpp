@@ -1,6 +1,8 @@
 // Property tests of the Chiang et al. 2016 hair BSDF (shader/hair): white furnace,
 // eval/pdf/sample agreement, a chi-square test of sample() against pdf(), reciprocity,
 // pigments, parameter validation. Every RNG is seeded; tolerances say why.
+#include "shader/hair/hair_bsdf.h"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -11,7 +13,6 @@
 #include <string>
 #include <vector>
 
-#include "shader/hair/hair_bsdf.h"
 #include "shader/hair/hair_furnace.h"
 #include "shader/hair/hair_pigments.h"
 
@@ -26,13 +27,16 @@ struct Rng {
     float in(float a, float b) { return a + (b - a) * (*this)(); }
     // Uniform on the sphere.
     Vec3f direction() {
-        const float z = 1 - 2 * (*this)(), r = std::sqrt(std::max(0.0f, 1 - z * z)), phi = 2 * pi * (*this)();
+        const float z = 1 - 2 * (*this)(), r = std::sqrt(std::max(0.0f, 1 - z * z)),
+                    phi = 2 * pi * (*this)();
         return {r * std::cos(phi), r * std::sin(phi), z};
     }
     std::mt19937 gen;
 };
 
-float rel_diff(float a, float b) { return std::abs(a - b) / std::max({std::abs(a), std::abs(b), 1e-6f}); }
+float rel_diff(float a, float b) {
+    return std::abs(a - b) / std::max({std::abs(a), std::abs(b), 1e-6f});
+}
 
 // --- White furnace ---
 
@@ -54,12 +58,13 @@ TEST(HairBsdf, WhiteFurnaceConservesEnergy) {
         for (int c = 0; c < 3; ++c) {
             worst = std::max(worst, std::abs(r.f_cos_integral[c] - 1));
             EXPECT_NEAR(r.f_cos_integral[c], 1.0f, 1e-3f)
-                << "beta_m " << p.beta_m << " beta_n " << p.beta_n << " alpha " << p.alpha << " h " << bsdf.h()
-                << " wo.x " << wo.x;
+                << "beta_m " << p.beta_m << " beta_n " << p.beta_n << " alpha " << p.alpha
+                << " h " << bsdf.h() << " wo.x " << wo.x;
         }
     }
     RecordProperty("furnace_max_error", std::to_string(worst));
-    std::cout << "white furnace: worst |integral - 1| = " << worst << " over 40 configurations\n";
+    std::cout << "white furnace: worst |integral - 1| = " << worst
+              << " over 40 configurations\n";
 }
 
 // The same integral by importance sampling: with σ_a = 0 the lobe weights are exactly A_p
@@ -74,7 +79,8 @@ TEST(HairBsdf, WhiteFurnaceSampleWeightsAreOne) {
         const HairBsdf bsdf(p, rng.in(-1, 1));
         const auto s = bsdf.sample(rng.direction(), rng(), rng(), rng());
         if (!s) continue;
-        for (int c = 0; c < 3; ++c) ASSERT_NEAR(s->weight[c], 1.0f, 1e-3f) << "sample " << k;
+        for (int c = 0; c < 3; ++c)
+            ASSERT_NEAR(s->weight[c], 1.0f, 1e-3f) << "sample " << k;
     }
 }
 
@@ -84,7 +90,8 @@ TEST(HairBsdf, SampleWeightEqualsEvalCosOverPdf) {
     Rng rng(11);
     int produced = 0;
     for (int k = 0; k < 20000; ++k) {
-        HairParams p = HairParams::from_melanin(rng.in(0, 4), rng.in(0, 4), rng.in(0.1f, 1), rng.in(0.1f, 1));
+        HairParams p = HairParams::from_melanin(rng.in(0, 4), rng.in(0, 4),
+                                                rng.in(0.1f, 1), rng.in(0.1f, 1));
         p.alpha = rng.in(-5 * deg, 5 * deg);
         const HairBsdf bsdf(p, rng.in(-1, 1));
         const Vec3f wo = rng.direction();
@@ -99,7 +106,8 @@ TEST(HairBsdf, SampleWeightEqualsEvalCosOverPdf) {
             EXPECT_LT(rel_diff(s->f[c], f[c]), 1e-5f);
             EXPECT_LT(rel_diff(s->weight[c], f[c] * std::abs(s->wi.z) / pdf), 1e-4f);
         }
-        EXPECT_NEAR(s->wi.x * s->wi.x + s->wi.y * s->wi.y + s->wi.z * s->wi.z, 1.0f, 1e-4f);
+        EXPECT_NEAR(s->wi.x * s->wi.x + s->wi.y * s->wi.y + s->wi.z * s->wi.z, 1.0f,
+                    1e-4f);
     }
     EXPECT_GT(produced, 19900);  // nullopt only at measure-zero wi.z == 0
 }
@@ -109,10 +117,13 @@ TEST(HairBsdf, SampleWeightEqualsEvalCosOverPdf) {
 TEST(HairBsdf, PdfIntegratesToOne) {
     Rng rng(3);
     for (int k = 0; k < 12; ++k) {
-        HairParams p = HairParams::from_melanin(rng.in(0, 3), rng.in(0, 3), rng.in(0.1f, 1), rng.in(0.1f, 1));
+        HairParams p = HairParams::from_melanin(rng.in(0, 3), rng.in(0, 3),
+                                                rng.in(0.1f, 1), rng.in(0.1f, 1));
         p.alpha = rng.in(-5 * deg, 5 * deg);
         const HairBsdf bsdf(p, rng.in(-1, 1));
-        EXPECT_NEAR(furnace_quadrature(bsdf, rng.direction(), 512, 1024, true).pdf_integral, 1.0, 1e-3)
+        EXPECT_NEAR(
+            furnace_quadrature(bsdf, rng.direction(), 512, 1024, true).pdf_integral, 1.0,
+            1e-3)
             << "beta_m " << p.beta_m << " beta_n " << p.beta_n;
     }
 }
@@ -130,7 +141,10 @@ TEST(HairBsdf, MeanSampleWeightMatchesQuadratureAlbedo) {
     for (int k = 0; k < n; ++k) {
         const auto s = bsdf.sample(wo, rng(), rng(), rng());
         if (!s) continue;
-        for (int c = 0; c < 3; ++c) { sum[c] += s->weight[c]; sum2[c] += sqr(s->weight[c]); }
+        for (int c = 0; c < 3; ++c) {
+            sum[c] += s->weight[c];
+            sum2[c] += sqr(s->weight[c]);
+        }
     }
     for (int c = 0; c < 3; ++c) {
         const double mean = sum[c] / n, se = std::sqrt((sum2[c] / n - mean * mean) / n);
@@ -153,7 +167,10 @@ double chi2_p_value(double x, int k) {
 // 8 × 8 midpoint rule per bin (dω = du dφ); bins expecting < 5 are pooled. 10^6 samples
 // per case; reject at p < 0.01 / cases (Bonferroni, as Mitsuba's chi2 tests).
 TEST(HairBsdf, ChiSquareSampleMatchesPdf) {
-    struct Case { float beta_m, beta_n, alpha, h, eu; Vec3f wo; };
+    struct Case {
+        float beta_m, beta_n, alpha, h, eu;
+        Vec3f wo;
+    };
     const std::vector<Case> cases = {
         {0.3f, 0.3f, 2 * deg, 0.2f, 0.5f, {0.3f, 0.6f, 0.7416f}},
         {0.5f, 0.6f, -3 * deg, -0.7f, 2.0f, {-0.6f, -0.48f, 0.64f}},
@@ -176,7 +193,8 @@ TEST(HairBsdf, ChiSquareSampleMatchesPdf) {
                         const double u = -1 + (i + (a + 0.5) / sub) * du;
                         const double phi = -M_PI + (j + (b + 0.5) / sub) * dphi;
                         const double r = std::sqrt(std::max(0.0, 1 - u * u));
-                        acc += bsdf.pdf(cs.wo, Vec3f{float(u), float(r * std::cos(phi)), float(r * std::sin(phi))});
+                        acc += bsdf.pdf(cs.wo, Vec3f{float(u), float(r * std::cos(phi)),
+                                                     float(r * std::sin(phi))});
                     }
                 expected[i * nphi + j] = acc * du * dphi / (sub * sub) * n_samples;
             }
@@ -184,23 +202,33 @@ TEST(HairBsdf, ChiSquareSampleMatchesPdf) {
             const auto s = bsdf.sample(cs.wo, rng(), rng(), rng());
             if (!s) continue;
             const int i = std::clamp(int((s->wi.x + 1) / du), 0, nu - 1);
-            const int j = std::clamp(int((std::atan2(s->wi.z, s->wi.y) + M_PI) / dphi), 0, nphi - 1);
+            const int j = std::clamp(int((std::atan2(s->wi.z, s->wi.y) + M_PI) / dphi), 0,
+                                     nphi - 1);
             observed[i * nphi + j] += 1;
         }
         double chi2 = 0, pooled_e = 0, pooled_o = 0;
         int dof = 0;
         for (size_t b = 0; b < expected.size(); ++b) {
-            if (expected[b] < 5) { pooled_e += expected[b]; pooled_o += observed[b]; continue; }
+            if (expected[b] < 5) {
+                pooled_e += expected[b];
+                pooled_o += observed[b];
+                continue;
+            }
             chi2 += sqr(float(observed[b] - expected[b])) / expected[b];
             ++dof;
         }
-        if (pooled_e > 0) { chi2 += (pooled_o - pooled_e) * (pooled_o - pooled_e) / std::max(pooled_e, 5.0); ++dof; }
+        if (pooled_e > 0) {
+            chi2 +=
+                (pooled_o - pooled_e) * (pooled_o - pooled_e) / std::max(pooled_e, 5.0);
+            ++dof;
+        }
         dof -= 1;
         const double pval = chi2_p_value(chi2, dof);
-        std::cout << "chi2: beta_m " << cs.beta_m << " beta_n " << cs.beta_n << ": " << chi2 << " on " << dof
-                  << " dof, p = " << pval << "\n";
+        std::cout << "chi2: beta_m " << cs.beta_m << " beta_n " << cs.beta_n << ": "
+                  << chi2 << " on " << dof << " dof, p = " << pval << "\n";
         EXPECT_GT(pval, 0.01 / cases.size())
-            << "beta_m " << cs.beta_m << " beta_n " << cs.beta_n << " chi2 " << chi2 << " dof " << dof;
+            << "beta_m " << cs.beta_m << " beta_n " << cs.beta_n << " chi2 " << chi2
+            << " dof " << dof;
     }
 }
 
@@ -212,8 +240,10 @@ TEST(HairBsdf, LongitudinalScatteringIsSymmetric) {
     for (int k = 0; k < 10000; ++k) {
         const float ti = rng.in(-pi / 2, pi / 2), to = rng.in(-pi / 2, pi / 2);
         const float v = sqr(rng.in(0.05f, 1.0f));
-        const float a = longitudinal_scattering(std::cos(ti), std::cos(to), std::sin(ti), std::sin(to), v);
-        const float b = longitudinal_scattering(std::cos(to), std::cos(ti), std::sin(to), std::sin(ti), v);
+        const float a = longitudinal_scattering(std::cos(ti), std::cos(to), std::sin(ti),
+                                                std::sin(to), v);
+        const float b = longitudinal_scattering(std::cos(to), std::cos(ti), std::sin(to),
+                                                std::sin(ti), v);
         ASSERT_LT(rel_diff(a, b), 1e-5f) << "v " << v;
     }
 }
@@ -227,17 +257,22 @@ TEST(HairBsdf, LongitudinalScatteringIsSymmetric) {
 TEST(HairBsdf, SwappingDirectionsEqualsMirroringHWithoutTilt) {
     Rng rng(23);
     for (int k = 0; k < 20000; ++k) {
-        HairParams p = HairParams::from_melanin(rng.in(0, 3), rng.in(0, 3), rng.in(0.1f, 1), rng.in(0.1f, 1));
+        HairParams p = HairParams::from_melanin(rng.in(0, 3), rng.in(0, 3),
+                                                rng.in(0.1f, 1), rng.in(0.1f, 1));
         p.alpha = 0;
         const float h = rng.in(-1, 1);
         const HairBsdf fwd(p, h), mirrored(p, -h);
         const Vec3f wo = rng.direction();
-        const float sin_i = rng() < 0.5f ? wo.x : -wo.x, cos_i = std::sqrt(std::max(0.0f, 1 - sin_i * sin_i));
+        const float sin_i = rng() < 0.5f ? wo.x : -wo.x,
+                    cos_i = std::sqrt(std::max(0.0f, 1 - sin_i * sin_i));
         const float phi = rng.in(-pi, pi);
         const Vec3f wi{sin_i, cos_i * std::cos(phi), cos_i * std::sin(phi)};
-        const Rgb s_fwd = fwd.eval(wo, wi) * std::abs(wi.z), s_back = mirrored.eval(wi, wo) * std::abs(wo.z);
+        const Rgb s_fwd = fwd.eval(wo, wi) * std::abs(wi.z),
+                  s_back = mirrored.eval(wi, wo) * std::abs(wo.z);
         for (int c = 0; c < 3; ++c)
-            ASSERT_NEAR(s_fwd[c], s_back[c], 1e-3f * std::max(s_fwd[c], s_back[c]) + 1e-6f) << "pair " << k;
+            ASSERT_NEAR(s_fwd[c], s_back[c],
+                        1e-3f * std::max(s_fwd[c], s_back[c]) + 1e-6f)
+                << "pair " << k;
     }
 }
 
@@ -263,7 +298,8 @@ TEST(HairBsdf, OffsetHPutsTheMirrorDirectionOnTheRLobe) {
         const Vec3f lo = local(wo), li = local(mirror);
         if (lo.y * lo.y + lo.z * lo.z < 1e-4f) continue;  // wo nearly along the fibre
         const float dphi = std::atan2(li.z, li.y) - std::atan2(lo.z, lo.y);
-        EXPECT_NEAR(std::remainder(dphi + 2 * std::asin(h), 2 * pi), 0.0f, 1e-3f) << "case " << k;
+        EXPECT_NEAR(std::remainder(dphi + 2 * std::asin(h), 2 * pi), 0.0f, 1e-3f)
+            << "case " << k;
         EXPECT_NEAR(li.x, -lo.x, 1e-5f);  // and θ_i = −θ_o, where M_0 peaks (α = 0)
     }
 }
@@ -280,7 +316,9 @@ TEST(HairBsdf, LowRoughnessIsFinite) {
         const Rgb f = bsdf.eval(wo, rng.direction());
         ASSERT_TRUE(std::isfinite(f.x) && f.x >= 0);
         const auto s = bsdf.sample(wo, rng(), rng(), rng());
-        if (s) { ASSERT_TRUE(std::isfinite(s->weight.x) && std::isfinite(s->pdf)); }
+        if (s) {
+            ASSERT_TRUE(std::isfinite(s->weight.x) && std::isfinite(s->pdf));
+        }
     }
 }
 
@@ -298,7 +336,8 @@ TEST(HairPigments, MoreEumelaninIsDarkerAndBluesAbsorbMost) {
         const Rgb s = sigma_a_from_melanin(eu, 0);
         EXPECT_LT(s.x, s.y);  // red absorbed least: brown-black hair
         EXPECT_LT(s.y, s.z);
-        const float a = luminance(HairBsdf(HairParams::from_melanin(eu, 0, 0.3f, 0.3f), 0.0f).albedo());
+        const float a = luminance(
+            HairBsdf(HairParams::from_melanin(eu, 0, 0.3f, 0.3f), 0.0f).albedo());
         EXPECT_LT(a, previous) << "eumelanin " << eu;
         previous = a;
     }
@@ -318,7 +357,8 @@ TEST(HairPigments, ColourRoundTripIsMonotone) {
     const Rgb red = sigma_a_from_colour({0.6f, 0.3f, 0.1f}, 0.3f);
     EXPECT_LT(red.x, red.y);
     EXPECT_LT(red.y, red.z);
-    const Rgb a = HairBsdf(HairParams::from_colour({0.6f, 0.3f, 0.1f}, 0.3f, 0.3f), 0.0f).albedo();
+    const Rgb a =
+        HairBsdf(HairParams::from_colour({0.6f, 0.3f, 0.1f}, 0.3f, 0.3f), 0.0f).albedo();
     EXPECT_GT(a.x, a.y);
     EXPECT_GT(a.y, a.z);
 }
@@ -337,19 +377,36 @@ void expect_invalid(F &&make, const std::string &name) {
 
 TEST(HairBsdf, BadParametersThrow) {
     const HairParams ok;
-    auto with = [&](auto change) { HairParams p = ok; change(p); return p; };
+    auto with = [&](auto change) {
+        HairParams p = ok;
+        change(p);
+        return p;
+    };
     expect_invalid([&] { HairBsdf(ok, 1.5f); }, "h = 1.5");
     expect_invalid([&] { HairBsdf(ok, NAN); }, "h = ");
-    expect_invalid([&] { HairBsdf(with([](HairParams &p) { p.beta_m = 0; }), 0); }, "beta_m = 0");
-    expect_invalid([&] { HairBsdf(with([](HairParams &p) { p.beta_m = 1.2f; }), 0); }, "beta_m = 1.2");
-    expect_invalid([&] { HairBsdf(with([](HairParams &p) { p.beta_n = -0.1f; }), 0); }, "beta_n = -0.1");
-    expect_invalid([&] { HairBsdf(with([](HairParams &p) { p.sigma_a = {0.1f, -1, 0}; }), 0); }, "sigma_a[1] = -1");
-    expect_invalid([&] { HairBsdf(with([](HairParams &p) { p.eta = 0.5f; }), 0); }, "eta = 0.5");
-    expect_invalid([&] { HairBsdf(with([](HairParams &p) { p.alpha = 1; }), 0); }, "alpha = 1");
+    expect_invalid([&] { HairBsdf(with([](HairParams &p) { p.beta_m = 0; }), 0); },
+                   "beta_m = 0");
+    expect_invalid([&] { HairBsdf(with([](HairParams &p) { p.beta_m = 1.2f; }), 0); },
+                   "beta_m = 1.2");
+    expect_invalid([&] { HairBsdf(with([](HairParams &p) { p.beta_n = -0.1f; }), 0); },
+                   "beta_n = -0.1");
+    expect_invalid(
+        [&] {
+            HairBsdf(with([](HairParams &p) { p.sigma_a = {0.1f, -1, 0}; }), 0);
+        },
+        "sigma_a[1] = -1");
+    expect_invalid([&] { HairBsdf(with([](HairParams &p) { p.eta = 0.5f; }), 0); },
+                   "eta = 0.5");
+    expect_invalid([&] { HairBsdf(with([](HairParams &p) { p.alpha = 1; }), 0); },
+                   "alpha = 1");
     expect_invalid([] { sigma_a_from_melanin(-1, 0); }, "eumelanin = -1");
     expect_invalid([] { sigma_a_from_melanin(0, INFINITY); }, "pheomelanin = inf");
     expect_invalid([] { sigma_a_from_colour({0.5f, 0, 0.5f}, 0.3f); }, "colour[1] = 0");
-    expect_invalid([] { sigma_a_from_colour({0.5f, 1.5f, 0.5f}, 0.3f); }, "colour[1] = 1.5");
+    expect_invalid(
+        [] {
+            sigma_a_from_colour({0.5f, 1.5f, 0.5f}, 0.3f);
+        },
+        "colour[1] = 1.5");
     expect_invalid([] { sigma_a_from_colour({0.5f, 0.5f, 0.5f}, 0); }, "beta_n = 0");
 }
 
@@ -370,7 +427,8 @@ TEST(HairBsdf, BenchHairPrintsFurnaceMaxError) {
     const auto j = nlohmann::json::parse(out);
     ASSERT_TRUE(j.contains("furnace_max_error"));
     EXPECT_LT(j["furnace_max_error"].get<double>(), 0.01);
-    for (const char *k : {"eval_ns", "sample_ns", "pdf_ns", "pdf_integral_max_error"}) EXPECT_TRUE(j.contains(k)) << k;
+    for (const char *k : {"eval_ns", "sample_ns", "pdf_ns", "pdf_integral_max_error"})
+        EXPECT_TRUE(j.contains(k)) << k;
 }
 
 }  // namespace pelage::test

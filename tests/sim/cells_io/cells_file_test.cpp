@@ -1,13 +1,14 @@
 // The .cells file: bit-exact round trip, and every kind of corruption is an InputError.
+#include "sim/cells_io/cells_file.h"
+
 #include <gtest/gtest.h>
 
 #include <cstring>
 #include <fstream>
 
-#include "sim/cells_io/cells_file.h"
-#include "sim/mosaic/cm_simulation.h"
 #include "sim/core/input_error.h"
 #include "sim/crps/surface.h"
+#include "sim/mosaic/cm_simulation.h"
 #include "tests/sim/sim_test_util.h"
 #include "tests/test_paths.h"
 
@@ -15,9 +16,11 @@ namespace pelage::sim {
 namespace {
 
 CellsData small_cells(const Surface &s) {
-    const Preset p = parse_preset(test::preset_json(
-        R"({"initial_cells": 300, "initial_relax_steps": 3, "w_r": 2.0, "w_d": 0.1, "rho": 4, "end_time": 1})",
-        true, "0.5"), "t");
+    const Preset p = parse_preset(
+        test::preset_json(
+            R"({"initial_cells": 300, "initial_relax_steps": 3, "w_r": 2.0, "w_d": 0.1, "rho": 4, "end_time": 1})",
+            true, "0.5"),
+        "t");
     CmSimulation sim(s.crps, p.types, p.params, 1);
     sim.initialize();
     sim.run();
@@ -45,7 +48,9 @@ TEST(CellsFile, RoundTripIsBitExact) {
     std::vector<bool> seen(d.num_cells(), false);
     for (size_t t = 0; t < d.num_triangles(); ++t)
         for (uint32_t c = d.cell_row[t]; c < d.cell_row[t + 1]; ++c) {
-            if (c > d.cell_row[t]) { EXPECT_LT(d.id[c - 1], d.id[c]); }
+            if (c > d.cell_row[t]) {
+                EXPECT_LT(d.id[c - 1], d.id[c]);
+            }
             ASSERT_FALSE(seen[d.id[c]]);
             seen[d.id[c]] = true;
         }
@@ -60,14 +65,17 @@ TEST(CellsFile, CorruptedFilesAreRejected) {
     const std::vector<uint8_t> good = serialize_cells(small_cells(s));
     ASSERT_NO_THROW(parse_cells(good, "good.cells"));
     // Truncated anywhere: header, payload, checksum.
-    for (size_t n : {size_t(0), size_t(7), size_t(40), size_t(79), size_t(80), good.size() / 2, good.size() - 1})
-        expect_rejected(std::vector<uint8_t>(good.begin(), good.begin() + n), "truncated to " + std::to_string(n));
+    for (size_t n : {size_t(0), size_t(7), size_t(40), size_t(79), size_t(80),
+                     good.size() / 2, good.size() - 1})
+        expect_rejected(std::vector<uint8_t>(good.begin(), good.begin() + n),
+                        "truncated to " + std::to_string(n));
     // Trailing garbage.
     auto longer = good;
     longer.push_back(0);
     expect_rejected(longer, "one extra byte");
     // A flipped bit anywhere is caught by the checksum (or a header check before it).
-    for (size_t at : {size_t(3), size_t(12), size_t(30), size_t(100), good.size() / 3, good.size() - 20, good.size() - 3}) {
+    for (size_t at : {size_t(3), size_t(12), size_t(30), size_t(100), good.size() / 3,
+                      good.size() - 20, good.size() - 3}) {
         auto bad = good;
         bad[at] ^= 0x10;
         expect_rejected(bad, "bit flip at " + std::to_string(at));

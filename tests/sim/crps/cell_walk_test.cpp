@@ -1,10 +1,11 @@
 // The cell-in-triangle walk (Teo §5.2): cells never leave the surface, and on a flat
 // mesh the walk is an exact translation.
+#include "sim/crps/cell_walk.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
 
-#include "sim/crps/cell_walk.h"
 #include "sim/core/random.h"
 #include "sim/crps/surface.h"
 #include "tests/test_paths.h"
@@ -22,7 +23,8 @@ void random_walks(const Surface &s, double step_scale, int walkers, int steps) {
         CounterRng rng(7, RandomStream::division, w);
         SurfacePoint p{static_cast<TriId>(rng.next_u64() % crps.num_triangles()), {}};
         for (int k = 0; k < steps; ++k) {
-            const double len = step_scale * rng.uniform() * 4, angle = 6.283185307179586 * rng.uniform();
+            const double len = step_scale * rng.uniform() * 4,
+                         angle = 6.283185307179586 * rng.uniform();
             p = walk(crps, p, {len * std::cos(angle), len * std::sin(angle)});
             ASSERT_LT(p.tri, crps.num_triangles());
             ASSERT_GE(min_barycentric(crps.frame(p.tri), p.p), -inside_tolerance)
@@ -64,12 +66,17 @@ TEST(CellWalk, FlatMeshWalkIsAnExactTranslation) {
     double best = 1e300;
     for (TriId t = 0; t < s.mesh.num_triangles(); ++t) {
         const Vec3d c = s.crps.to_3d(t, {0, 0});
-        if (length_squared(c) < best) { best = length_squared(c); centre = t; }
+        if (length_squared(c) < best) {
+            best = length_squared(c);
+            centre = t;
+        }
     }
     const Vec3d start = s.crps.to_3d(centre, {0, 0});
     for (int k = 0; k < 16; ++k) {
-        const double angle = 0.39 * k, len = 0.3;  // the plane spans [-1, 1]^2: stays inside
-        const SurfacePoint p = walk(s.crps, {centre, {0, 0}}, {len * std::cos(angle), len * std::sin(angle)});
+        const double angle = 0.39 * k,
+                     len = 0.3;  // the plane spans [-1, 1]^2: stays inside
+        const SurfacePoint p = walk(s.crps, {centre, {0, 0}},
+                                    {len * std::cos(angle), len * std::sin(angle)});
         const Vec3d end = s.crps.to_3d(p.tri, p.p);
         EXPECT_NEAR(length(end - start), len, 1e-9) << "direction " << k;
     }

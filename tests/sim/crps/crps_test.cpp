@@ -4,9 +4,9 @@
 #include <random>
 
 #include "sim/crps/crps_validation.h"
+#include "sim/crps/surface.h"
 #include "sim/mesh/mesh_load.h"
 #include "sim/mesh/procedural_mesh.h"
-#include "sim/crps/surface.h"
 #include "tests/test_paths.h"
 
 namespace pelage::sim {

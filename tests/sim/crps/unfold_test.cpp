@@ -1,13 +1,14 @@
 // Breadth-first unfolding: exact on a plane, isometric on a developable cylinder.
+#include "sim/crps/unfold.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <numbers>
 #include <random>
 
-#include "sim/mesh/procedural_mesh.h"
 #include "sim/crps/surface.h"
-#include "sim/crps/unfold.h"
+#include "sim/mesh/procedural_mesh.h"
 
 namespace pelage::sim {
 namespace {
@@ -23,7 +24,8 @@ TEST(Unfold, PlaneReproducesTheTrue2DLayout) {
             for (int c = 0; c < 3; ++c) {
                 // Coplanar: the true layout is the master frame's own projection.
                 const Vec2d truth = s.crps.to_2d(master, s.mesh.vertex(u.tri, c));
-                ASSERT_LT(length(u.to_master.apply(s.crps.frame(u.tri).v[c]) - truth), 1e-12);
+                ASSERT_LT(length(u.to_master.apply(s.crps.frame(u.tri).v[c]) - truth),
+                          1e-12);
             }
     }
 }
@@ -65,7 +67,10 @@ TEST(Unfold, CylinderPreservesGeodesicDistances) {
     std::uniform_real_distribution<double> u01(0, 1);
     auto random_bary = [&] {
         double a = u01(rng), b = u01(rng);
-        if (a + b > 1) { a = 1 - a; b = 1 - b; }
+        if (a + b > 1) {
+            a = 1 - a;
+            b = 1 - b;
+        }
         return Vec3d{1 - a - b, a, b};
     };
     UnfoldScratch scratch;
@@ -110,7 +115,8 @@ TEST(Unfold, DistanceHelpersAreExact) {
     const Vec2d a[3] = {{0, 0}, {1, 0}, {0, 1}};
     const Vec2d b[3] = {{2, 0}, {3, 0}, {2, 1}};
     EXPECT_DOUBLE_EQ(triangle_triangle_distance(a, b), 1.0);
-    const Vec2d star[3] = {{0.2, -0.2}, {0.6, 0.8}, {-0.2, 0.4}};  // edges cross, no corner inside
+    const Vec2d star[3] = {
+        {0.2, -0.2}, {0.6, 0.8}, {-0.2, 0.4}};  // edges cross, no corner inside
     EXPECT_EQ(triangle_triangle_distance(a, star), 0.0);
     EXPECT_DOUBLE_EQ(point_triangle_distance({0.25, 0.25}, a), 0.0);
     EXPECT_DOUBLE_EQ(point_triangle_distance({-3, 0.5}, a), 3.0);

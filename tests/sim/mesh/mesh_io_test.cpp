@@ -23,10 +23,11 @@ size_t error_line(const std::string &path) {
 
 TEST(MeshIo, OffWithCommentsCountsOnHeaderAndAQuad) {
     TempDir tmp;
-    const auto p = tmp.write("q.off",
-                             "OFF 4 1 0  # header and counts on one line\n"
-                             "\n0 0 0\n1 0 0 # extras are fine\n1 1 0 0.5 0.5 0.5\n0 1 0\n"
-                             "4 0 1 2 3  255 0 0\n");
+    const auto p =
+        tmp.write("q.off",
+                  "OFF 4 1 0  # header and counts on one line\n"
+                  "\n0 0 0\n1 0 0 # extras are fine\n1 1 0 0.5 0.5 0.5\n0 1 0\n"
+                  "4 0 1 2 3  255 0 0\n");
     MeshLoadReport r;
     const TriangleMesh m = load_mesh(p, &r);
     EXPECT_EQ(m.num_vertices(), 4u);
@@ -83,10 +84,15 @@ TEST(MeshIo, DegenerateTrianglesAreDroppedAndCounted) {
 
 TEST(MeshIo, ErrorsNameTheLine) {
     TempDir tmp;
-    EXPECT_EQ(error_line(tmp.write("a.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 x\n3 0 1 2\n")), 5u);
-    EXPECT_EQ(error_line(tmp.write("b.off", "OFF\n# c\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 3\n")), 7u);
-    EXPECT_EQ(error_line(tmp.write("c.obj", "v 0 0 0\nv 1 0 0\n\nv 0 1 0\nf 1 2 9\n")), 5u);
-    EXPECT_EQ(error_line(tmp.write("d.obj", "v 0 0 0\nv 1 0 0\nv nan 1 0\nf 1 2 3\n")), 3u);
+    EXPECT_EQ(
+        error_line(tmp.write("a.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 x\n3 0 1 2\n")), 5u);
+    EXPECT_EQ(
+        error_line(tmp.write("b.off", "OFF\n# c\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 3\n")),
+        7u);
+    EXPECT_EQ(error_line(tmp.write("c.obj", "v 0 0 0\nv 1 0 0\n\nv 0 1 0\nf 1 2 9\n")),
+              5u);
+    EXPECT_EQ(error_line(tmp.write("d.obj", "v 0 0 0\nv 1 0 0\nv nan 1 0\nf 1 2 3\n")),
+              3u);
 }
 
 TEST(MeshIo, HugeLinesAreRejectedWithoutReadingThemWhole) {
@@ -98,7 +104,8 @@ TEST(MeshIo, HugeLinesAreRejectedWithoutReadingThemWhole) {
 
 TEST(MeshIo, WindowsLineEndingsAreAccepted) {
     TempDir tmp;
-    const auto p = tmp.write("crlf.off", "OFF\r\n3 1 0\r\n0 0 0\r\n1 0 0\r\n0 1 0\r\n3 0 1 2\r\n");
+    const auto p =
+        tmp.write("crlf.off", "OFF\r\n3 1 0\r\n0 0 0\r\n1 0 0\r\n0 1 0\r\n3 0 1 2\r\n");
     EXPECT_EQ(load_mesh(p).num_triangles(), 1u);
 }
 

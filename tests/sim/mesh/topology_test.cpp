@@ -1,4 +1,6 @@
 // Topology: edges, fans, neighbours and orientation against brute-force definitions.
+#include "sim/mesh/topology.h"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -6,7 +8,6 @@
 
 #include "sim/mesh/mesh_clean.h"
 #include "sim/mesh/procedural_mesh.h"
-#include "sim/mesh/topology.h"
 
 namespace pelage::sim {
 namespace {
@@ -23,7 +24,9 @@ TEST(Topology, ClosedSphereIsManifoldWithEulerCharacteristic2) {
     const Topology t = build_topology(m);
     EXPECT_EQ(m.num_triangles(), 760u);
     EXPECT_EQ(t.num_edges() * 2, m.num_triangles() * 3);
-    EXPECT_EQ(int64_t(m.num_vertices()) - int64_t(t.num_edges()) + int64_t(m.num_triangles()), 2);
+    EXPECT_EQ(
+        int64_t(m.num_vertices()) - int64_t(t.num_edges()) + int64_t(m.num_triangles()),
+        2);
     EXPECT_EQ(t.boundary_edges, 0u);
     EXPECT_EQ(t.nonmanifold_edges, 0u);
     EXPECT_EQ(t.nonmanifold_vertices, 0u);
@@ -96,7 +99,8 @@ TEST(Topology, DisconnectedPiecesAreSeparateComponents) {
     TriangleMesh a = make_icosphere(0), b = make_icosphere(0);
     const VertId off = static_cast<VertId>(a.positions.size());
     for (Vec3d p : b.positions) a.positions.push_back(p + Vec3d{5, 0, 0});
-    for (auto tri : b.triangles) a.triangles.push_back({tri[0] + off, tri[1] + off, tri[2] + off});
+    for (auto tri : b.triangles)
+        a.triangles.push_back({tri[0] + off, tri[1] + off, tri[2] + off});
     EXPECT_EQ(build_topology(a).num_components, 2u);
 }
 

@@ -1,13 +1,13 @@
 // The Clonal Mosaic simulation: relaxation spaces cells evenly, cells stay on the
 // surface, divisions follow the Poisson mean, results do not depend on thread count.
-#include <gtest/gtest.h>
+#include "sim/mosaic/cm_simulation.h"
 
+#include <gtest/gtest.h>
 #include <tbb/global_control.h>
 
 #include <cmath>
 
 #include "sim/cells_io/cells_file.h"
-#include "sim/mosaic/cm_simulation.h"
 #include "sim/core/random.h"
 #include "sim/crps/surface.h"
 #include "tests/sim/sim_test_util.h"
@@ -18,7 +18,8 @@ namespace {
 
 void expect_all_inside(const Crps &crps, const Cells &cells) {
     for (CellId c = 0; c < cells.size(); ++c) {
-        ASSERT_GE(min_barycentric(crps.frame(cells.tri(c)), cells.pos(c)), -1e-9) << "cell " << c;
+        ASSERT_GE(min_barycentric(crps.frame(cells.tri(c)), cells.pos(c)), -1e-9)
+            << "cell " << c;
         // The bucket of its triangle lists it.
         const auto &b = cells.on(cells.tri(c));
         ASSERT_NE(std::find(b.begin(), b.end(), c), b.end());
@@ -27,8 +28,10 @@ void expect_all_inside(const Crps &crps, const Cells &cells) {
 
 TEST(Relaxation, SingleTypeConvergesTowardUniformSpacing) {
     const Surface s = build_surface("procedural:sphere:20x20");
-    const Preset p = parse_preset(test::preset_json(
-        R"({"initial_cells": 600, "initial_relax_steps": 0, "w_r": 2.0, "w_d": 0.1, "rho": 1, "end_time": 0})"), "t");
+    const Preset p = parse_preset(
+        test::preset_json(
+            R"({"initial_cells": 600, "initial_relax_steps": 0, "w_r": 2.0, "w_d": 0.1, "rho": 1, "end_time": 0})"),
+        "t");
     CmSimulation sim(s.crps, p.types, p.params, 3);
     sim.initialize();
     const double cv_random = test::nearest_neighbour_cv(s.crps, sim.cells());
@@ -44,11 +47,14 @@ TEST(Relaxation, SingleTypeConvergesTowardUniformSpacing) {
 }
 
 TEST(CmSimulation, CellsStayOnTheCowAndOnAnOpenMesh) {
-    for (const std::string &mesh : {test::sample_mesh("cow.off"), std::string("procedural:plane:10x10")}) {
+    for (const std::string &mesh :
+         {test::sample_mesh("cow.off"), std::string("procedural:plane:10x10")}) {
         const Surface s = build_surface(mesh);
-        const Preset p = parse_preset(test::preset_json(
-            R"({"initial_cells": 1500, "initial_relax_steps": 10, "w_r": 2.4, "w_d": 0.2, "rho": 4, "end_time": 6})",
-            true, "3"), "t");
+        const Preset p = parse_preset(
+            test::preset_json(
+                R"({"initial_cells": 1500, "initial_relax_steps": 10, "w_r": 2.4, "w_d": 0.2, "rho": 4, "end_time": 6})",
+                true, "3"),
+            "t");
         for (RelaxMode mode : {RelaxMode::local, RelaxMode::global}) {
             SimParams params = p.params;
             params.relax = mode;
@@ -67,7 +73,10 @@ TEST(CmSimulation, CellsStayOnTheCowAndOnAnOpenMesh) {
 double expected_cells(double mu, int T) {
     std::vector<double> pk(T + 1);
     double p = std::exp(-mu);
-    for (int k = 0; k <= T; ++k) { pk[k] = p; p *= mu / (k + 1); }
+    for (int k = 0; k <= T; ++k) {
+        pk[k] = p;
+        p *= mu / (k + 1);
+    }
     std::vector<double> m(T + 1);
     for (int t = 0; t <= T; ++t) {
         double tail = 1, sum = 0;
@@ -84,9 +93,11 @@ TEST(CmSimulation, DivisionCountsFollowThePoissonMean) {
     const Surface s = build_surface("procedural:sphere:8x8");
     const int T = 15;
     const double mu = 10;
-    const Preset p = parse_preset(test::preset_json(
-        R"({"initial_cells": 400, "initial_relax_steps": 0, "w_r": 1.0, "w_d": 0.05, "rho": 1, "end_time": 15, "relax": "local", "local_steps": 1})",
-        false, "10"), "t");
+    const Preset p = parse_preset(
+        test::preset_json(
+            R"({"initial_cells": 400, "initial_relax_steps": 0, "w_r": 1.0, "w_d": 0.05, "rho": 1, "end_time": 15, "relax": "local", "local_steps": 1})",
+            false, "10"),
+        "t");
     CmSimulation sim(s.crps, p.types, p.params, 5);
     sim.initialize();
     sim.run();
@@ -108,7 +119,8 @@ TEST(Random, PoissonDeviatesHaveTheRightMeanAndVariance) {
         }
         const double mean = sum / n, var = sum2 / n - mean * mean;
         EXPECT_NEAR(mean, mu, 5 * std::sqrt(mu / n)) << mu;
-        EXPECT_NEAR(var, mu, 0.06 * mu) << mu;  // sd of the variance estimate ≈ mu·sqrt(2/n)
+        EXPECT_NEAR(var, mu, 0.06 * mu)
+            << mu;  // sd of the variance estimate ≈ mu·sqrt(2/n)
     }
 }
 
@@ -118,7 +130,8 @@ TEST(CmSimulation, MutationFollowsTheParentRow) {
         {"name": "F", "colour": [0,0,0], "division_time": 1, "initial_probability": 1},
         {"name": "M", "colour": [1,1,1], "division_time": "never", "initial_probability": 0}],
         "mutation": [[0.3, 0.7], [0, 1]], "adhesion": [[0.5, 0.5], [0.5, 0.5]],
-        "simulation": {"initial_cells": 2000, "initial_relax_steps": 0, "w_r": 1, "w_d": 0.05, "rho": 1, "end_time": 1, "local_steps": 1}})", "t");
+        "simulation": {"initial_cells": 2000, "initial_relax_steps": 0, "w_r": 1, "w_d": 0.05, "rho": 1, "end_time": 1, "local_steps": 1}})",
+                                  "t");
     CmSimulation sim(s.crps, p.types, p.params, 9);
     sim.initialize();
     sim.run();
@@ -132,15 +145,18 @@ TEST(CmSimulation, MutationFollowsTheParentRow) {
 std::vector<uint8_t> run_with_threads(int threads, RelaxMode mode) {
     tbb::global_control control(tbb::global_control::max_allowed_parallelism, threads);
     const Surface s = build_surface("procedural:sphere:20x20");
-    const Preset p = parse_preset(test::preset_json(
-        R"({"initial_cells": 1200, "initial_relax_steps": 5, "w_r": 2.0, "w_d": 0.1, "rho": 10, "end_time": 1.5})",
-        true, "0.8"), "t");
+    const Preset p = parse_preset(
+        test::preset_json(
+            R"({"initial_cells": 1200, "initial_relax_steps": 5, "w_r": 2.0, "w_d": 0.1, "rho": 10, "end_time": 1.5})",
+            true, "0.8"),
+        "t");
     SimParams params = p.params;
     params.relax = mode;
     CmSimulation sim(s.crps, p.types, params, 42);
     sim.initialize();
     sim.run();
-    return serialize_cells(make_cells_data(s.mesh, s.crps, sim.types(), sim.cells(), "{}", 42));
+    return serialize_cells(
+        make_cells_data(s.mesh, s.crps, sim.types(), sim.cells(), "{}", 42));
 }
 
 TEST(CmSimulation, IdenticalCellsAtOneAndTwoThreads) {
@@ -156,7 +172,8 @@ TEST(CmSimulation, LocalAndGlobalAgreeOnCounts) {
     const auto l = parse_cells(run_with_threads(2, RelaxMode::local), "l");
     const auto g = parse_cells(run_with_threads(2, RelaxMode::global), "g");
     EXPECT_EQ(l.num_cells(), g.num_cells());
-    EXPECT_EQ(std::count(l.type.begin(), l.type.end(), 0), std::count(g.type.begin(), g.type.end(), 0));
+    EXPECT_EQ(std::count(l.type.begin(), l.type.end(), 0),
+              std::count(g.type.begin(), g.type.end(), 0));
 }
 
 }  // namespace
@@ -169,13 +186,16 @@ TEST(Relaxation, FullAnisotropyMovesCellsOnlyAlongTheField) {
     // w_a = 1: C' = C + O with O the projection of D on A (SG01 §3.2.1). On a flat plane
     // with A along world X, no cell may move in Z.
     const Surface s = build_surface("procedural:plane:6x6");
-    const Preset p = parse_preset(test::preset_json(
-        R"({"initial_cells": 200, "initial_relax_steps": 0, "w_r": 2.0, "w_d": 0.1, "w_a": 1.0,
-            "anisotropy": {"direction": [1, 0, 0], "magnitude": 0.1}, "rho": 1, "end_time": 0})"), "t");
+    const Preset p = parse_preset(
+        test::preset_json(
+            R"({"initial_cells": 200, "initial_relax_steps": 0, "w_r": 2.0, "w_d": 0.1, "w_a": 1.0,
+            "anisotropy": {"direction": [1, 0, 0], "magnitude": 0.1}, "rho": 1, "end_time": 0})"),
+        "t");
     CmSimulation sim(s.crps, p.types, p.params, 2);
     sim.initialize();
     std::vector<Vec3d> before;
-    for (CellId c = 0; c < sim.cells().size(); ++c) before.push_back(s.crps.to_3d(sim.cells().tri(c), sim.cells().pos(c)));
+    for (CellId c = 0; c < sim.cells().size(); ++c)
+        before.push_back(s.crps.to_3d(sim.cells().tri(c), sim.cells().pos(c)));
     std::vector<TriId> all(s.mesh.num_triangles());
     for (TriId t = 0; t < all.size(); ++t) all[t] = t;
     for (int k = 0; k < 10; ++k) sim.relax(all, false);
@@ -198,8 +218,10 @@ TEST(LocalRelaxation, OnlyTrianglesNearDivisionsAreRelaxed) {
     // Teo §5.1.4: without divisions nothing is marked, so local steps move no cell;
     // global steps do.
     const Surface s = build_surface("procedural:sphere:12x12");
-    const Preset p = parse_preset(test::preset_json(
-        R"({"initial_cells": 300, "initial_relax_steps": 0, "w_r": 2.0, "w_d": 0.1, "rho": 1, "end_time": 5})"), "t");
+    const Preset p = parse_preset(
+        test::preset_json(
+            R"({"initial_cells": 300, "initial_relax_steps": 0, "w_r": 2.0, "w_d": 0.1, "rho": 1, "end_time": 5})"),
+        "t");
     for (RelaxMode mode : {RelaxMode::local, RelaxMode::global}) {
         SimParams params = p.params;
         params.relax = mode;
@@ -209,8 +231,10 @@ TEST(LocalRelaxation, OnlyTrianglesNearDivisionsAreRelaxed) {
         sim.run();
         EXPECT_EQ(sim.stats().relax_steps, 5u);
         EXPECT_EQ(sim.stats().divisions, 0u);
-        if (mode == RelaxMode::local) EXPECT_EQ(sim.cells().x(), x0);
-        else EXPECT_NE(sim.cells().x(), x0);
+        if (mode == RelaxMode::local)
+            EXPECT_EQ(sim.cells().x(), x0);
+        else
+            EXPECT_NE(sim.cells().x(), x0);
     }
 }
 
@@ -223,7 +247,8 @@ TEST(LocalRelaxation, ADivisionRelaxesItsNeighbourhoodForSSteps) {
         {"name": "B", "colour": [1,1,1], "division_time": "never", "initial_probability": 0.99}],
         "adhesion": [[0.5, 0.0], [0.0, 0.5]],
         "simulation": {"initial_cells": 2000, "initial_relax_steps": 0, "w_r": 2, "w_d": 0.1, "rho": 4, "end_time": 4,
-                       "division_distribution": "exponential", "local_steps": 3}})", "t");
+                       "division_distribution": "exponential", "local_steps": 3}})",
+                                  "t");
     uint64_t steps[2];
     for (RelaxMode mode : {RelaxMode::local, RelaxMode::global}) {
         SimParams params = p.params;
@@ -247,7 +272,8 @@ namespace {
 SurfacePoint locate(const Crps &crps, Vec3d p) {
     for (TriId t = 0; t < crps.num_triangles(); ++t) {
         const Vec2d q = crps.to_2d(t, p);
-        if (min_barycentric(crps.frame(t), q) >= 0 && length(crps.to_3d(t, q) - p) < 1e-9) return {t, q};
+        if (min_barycentric(crps.frame(t), q) >= 0 && length(crps.to_3d(t, q) - p) < 1e-9)
+            return {t, q};
     }
     ADD_FAILURE() << "point not on the mesh";
     return {};
@@ -275,7 +301,8 @@ TEST(Relaxation, TwoCellsOnDifferentTrianglesRepelExactlyAsInWalter) {
     const double d = length(b - a);
     const double step = ctx.w_d * (1 - d / ctx.r) * (1 - 0.25) * ctx.r;
     const Vec3d u = (b - a) / d;
-    const Vec3d a1 = s.crps.to_3d(cells.tri(0), cells.pos(0)), b1 = s.crps.to_3d(cells.tri(1), cells.pos(1));
+    const Vec3d a1 = s.crps.to_3d(cells.tri(0), cells.pos(0)),
+                b1 = s.crps.to_3d(cells.tri(1), cells.pos(1));
     EXPECT_NEAR(length(a1 - (a - u * step)), 0, 1e-9);
     EXPECT_NEAR(length(b1 - (b + u * step)), 0, 1e-9);
 }

@@ -2,13 +2,12 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
-
 #include <nlohmann/json.hpp>
 
+#include "sim/core/input_error.h"
+#include "sim/crps/surface.h"
 #include "sim/mosaic/cell_types.h"
 #include "sim/mosaic/cm_simulation.h"
-#include "sim/crps/surface.h"
-#include "sim/core/input_error.h"
 #include "tests/sim/sim_test_util.h"
 #include "tests/test_paths.h"
 
@@ -17,7 +16,8 @@ namespace {
 
 TEST(Preset, EveryShippedPresetParses) {
     size_t n = 0;
-    for (const auto &e : std::filesystem::directory_iterator(test::source_path("scenes/presets"))) {
+    for (const auto &e :
+         std::filesystem::directory_iterator(test::source_path("scenes/presets"))) {
         if (e.path().extension() != ".json") continue;
         ++n;
         EXPECT_NO_THROW(load_preset_file(e.path().string())) << e.path();
@@ -30,7 +30,8 @@ TEST(Preset, RepulsivenessIsOneMinusAdhesion) {
         {"name": "F", "colour": [0,0,0], "division_time": 2, "initial_probability": 0.1},
         {"name": "B", "colour": [1,1,1], "division_time": "never", "initial_probability": 0.9}],
         "repulsiveness": [[0.1, 1.0], [1.0, 0.5]],
-        "simulation": {"initial_cells": 10, "w_r": 2, "w_d": 0.1, "rho": 1, "end_time": 1}})", "r.json");
+        "simulation": {"initial_cells": 10, "w_r": 2, "w_d": 0.1, "rho": 1, "end_time": 1}})",
+                                  "r.json");
     EXPECT_DOUBLE_EQ(p.types.alpha(0, 0), 0.9);
     EXPECT_DOUBLE_EQ(p.types.alpha(0, 1), 0.0);
     EXPECT_DOUBLE_EQ(p.types.alpha(1, 1), 0.5);
@@ -45,20 +46,23 @@ struct BadCase {
 
 TEST(Preset, BadValuesNameTheFileAndJsonPath) {
     const std::string good = test::preset_json(
-        R"({"initial_cells": 10, "w_r": 2.0, "w_d": 0.1, "rho": 1, "end_time": 1})", true, "2");
+        R"({"initial_cells": 10, "w_r": 2.0, "w_d": 0.1, "rho": 1, "end_time": 1})", true,
+        "2");
     ASSERT_NO_THROW(parse_preset(good, "p.json"));
     const std::vector<BadCase> cases = {
         {"\"colour\": [0.1, 0.1, 0.1]", "\"colour\": [0.1, 0.1]", "types[0].colour"},
         {"\"colour\": [0.1, 0.1, 0.1]", "\"colour\": \"red\"", "types[0].colour"},
         {"\"division_time\": 2", "\"division_time\": -2", "types[0].division_time"},
-        {"\"initial_probability\": 0.5}", "\"initial_probability\": 0.6}", "initial_probability"},
+        {"\"initial_probability\": 0.5}", "\"initial_probability\": 0.6}",
+         "initial_probability"},
         {"\"w_r\": 2.0", "\"w_r\": 0", "simulation.w_r"},
         {"\"w_r\": 2.0", "\"w_r\": \"big\"", "simulation.w_r"},
         {"\"rho\": 1", "\"rho\": -1", "simulation.rho"},
         {"[[0.8, 0.0], [0.0, 0.4]]", "[[0.8, 0.0], [0.0, 1.4]]", "adhesion[1][1]"},
         {"[[0.8, 0.0], [0.0, 0.4]]", "[[0.8, 0.0]]", "adhesion"},
         {"\"w_d\": 0.1", "\"w_d\": 0.1, \"w_x\": 1", "simulation.w_x"},
-        {"\"end_time\": 1", "\"end_time\": 1, \"relax\": \"sideways\"", "simulation.relax"},
+        {"\"end_time\": 1", "\"end_time\": 1, \"relax\": \"sideways\"",
+         "simulation.relax"},
     };
     for (const BadCase &c : cases) {
         std::string bad = good;
@@ -81,10 +85,12 @@ TEST(Preset, BadValuesNameTheFileAndJsonPath) {
         parse_preset(bad, "p.json");
         ADD_FAILURE();
     } catch (const InputError &e) {
-        EXPECT_NE(std::string(e.what()).find("mutation[0]"), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find("mutation[0]"), std::string::npos)
+            << e.what();
     }
     EXPECT_THROW(parse_preset("{not json", "p.json"), InputError);
-    EXPECT_THROW(load_preset("no-such-preset", test::source_path("scenes/presets")), InputError);
+    EXPECT_THROW(load_preset("no-such-preset", test::source_path("scenes/presets")),
+                 InputError);
 }
 
 }  // namespace
@@ -98,11 +104,13 @@ TEST(Preset, PublishedCountsAreReproducedWithin10Percent) {
     // 760-triangle sphere with the default seed (see README for the spread over seeds).
     const Surface s = build_surface("procedural:sphere:20x20");
     size_t checked = 0;
-    for (const auto &e : std::filesystem::directory_iterator(test::source_path("scenes/presets"))) {
+    for (const auto &e :
+         std::filesystem::directory_iterator(test::source_path("scenes/presets"))) {
         if (e.path().extension() != ".json") continue;
         const Preset p = load_preset_file(e.path().string());
         const auto j = nlohmann::json::parse(p.json_text);
-        if (!j.contains("published") || !j["published"].contains("cells_by_type")) continue;
+        if (!j.contains("published") || !j["published"].contains("cells_by_type"))
+            continue;
         CmSimulation sim(s.crps, p.types, p.params, 1);
         sim.initialize();
         sim.run();
@@ -110,7 +118,8 @@ TEST(Preset, PublishedCountsAreReproducedWithin10Percent) {
         for (const auto &[name, want] : j["published"]["cells_by_type"].items()) {
             const int k = p.types.find(name);
             ASSERT_GE(k, 0) << p.name << ": " << name;
-            EXPECT_NEAR(double(n[k]), want.get<double>(), 0.1 * want.get<double>()) << p.name << ": " << name;
+            EXPECT_NEAR(double(n[k]), want.get<double>(), 0.1 * want.get<double>())
+                << p.name << ": " << name;
         }
         ++checked;
     }
