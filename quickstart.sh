@@ -47,7 +47,7 @@ if [ "$mode" = run ]; then
     echo "quickstart: wrote images/cow_giraffe.exr and images/cow_giraffe_preview.png"
 else
     (cd build && ctest --output-on-failure -j2)
-    # --- The input-handling tests again under ASan + UBSan (README "Hardening"): fuzz
+    # --- The input-handling tests again under ASan + UBSan (docs/guide/development.md): fuzz
     # corpus replays and the hostile/malformed CLI tables. The whole suite under ASan and
     # TSan is tests/nightly.sh (too long for CI on two cores).
     cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DPELAGE_SANITIZE=ON

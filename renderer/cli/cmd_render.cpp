@@ -257,7 +257,7 @@ int run(const RenderCliOptions &o) {
                             {"interrupted", interrupted},
                             {"output", frame_path(output, frames.front())}};
         if (shared_scene) j["triangles"] = shared_scene->geometry().num_triangles();
-        if (shared_scene && shared_scene->fur()) {  // fur (README "Fur")
+        if (shared_scene && shared_scene->fur()) {  // fur (docs/guide/fur.md)
             j["fur_strands"] = shared_scene->fur()->num_strands();
             j["fur_grow_seconds"] = shared_scene->fur()->grow_seconds();
             j["fur_embree_seconds"] = shared_scene->fur()->embree_seconds();
@@ -281,7 +281,7 @@ Runner add_render_command(CLI::App &app) {
     auto o = std::make_shared<RenderCliOptions>();
     CLI::App *sub =
         app.add_subcommand("render", "Render a scene file to a multi-layer EXR");
-    sub->add_option("scene", o->scene, "Scene file (JSON; see README, \"Scene files\")")
+    sub->add_option("scene", o->scene, "Scene file (JSON; docs/guide/scene-format.md)")
         ->required();
     sub->add_option("-o,--output", o->output,
                     "Output EXR (default: the scene's film.output)");

@@ -1,7 +1,7 @@
 // Coherent rays traced together as Embree packets (rtcIntersect4/8/16, the widest the
 // device runs natively; Embree tutorials' "coherent" mode). Camera rays
 // through neighbouring pixels share most of their BVH traversal: on the cow a 16-ray
-// packet costs about a third of tracing its rays one by one (README "Performance").
+// packet costs about a third of tracing its rays one by one (docs/performance.md).
 // The hits are handed back one RTCRayHit per ray, exactly what rtcIntersect1 fills, so
 // the path loop does not care how its first segment was traced. The grouping depends
 // only on pixel positions, never on threads, so images stay bit-identical at any thread

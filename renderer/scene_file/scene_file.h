@@ -2,8 +2,8 @@
 // validated before any work starts. Every field is checked (type, range); unknown keys
 // are errors; errors are pelage::InputError naming the scene file and the JSON path, e.g.
 // `objects[2].material.shader: unknown shader "wroley"`. Paths inside a scene are
-// resolved relative to the scene file. The format is documented in README.md
-// ("Scene files").
+// resolved relative to the scene file. The format is documented in
+// docs/guide/scene-format.md.
 #pragma once
 
 #include <array>

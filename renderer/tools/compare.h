@@ -43,8 +43,9 @@ struct CompareResult {
     int width = 0, height = 0;
     std::vector<CompareRun> runs;
     nlohmann::json params =
-        nlohmann::json::object();   // per shader, the params it ran with
-    nlohmann::json report() const;  // the `--report` contract (README)
+        nlohmann::json::object();  // per shader, the params it ran with
+    nlohmann::json report()
+        const;  // the `--report` contract (docs/guide/compositing-outputs.md)
 };
 
 // Pattern drift under deformation: for each shader, the mean (and max) over `points`

@@ -101,7 +101,8 @@ namespace {
 
 TEST(Preset, PublishedCountsAreReproducedWithin10Percent) {
     // Each preset with published final counts ends within ±10 % of them on the
-    // 760-triangle sphere with the default seed (see README for the spread over seeds).
+    // 760-triangle sphere with the default seed (docs/validation.md gives the spread over
+    // seeds).
     const Surface s = build_surface("procedural:sphere:20x20");
     size_t checked = 0;
     for (const auto &e :
