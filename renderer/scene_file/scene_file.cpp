@@ -292,16 +292,10 @@ ObjectDesc read_object(Reader r, size_t index) {
     return o;
 }
 
-}  // namespace
-
-SceneDesc parse_scene(const std::string &text, const std::string &path) {
-    SceneDesc scene;
-    scene.path = path;
-    scene.dir = path.empty() ? fs::current_path().string()
-                             : fs::absolute(fs::path(path)).parent_path().string();
-    json root;
+// The JSON document, or an InputError with the line of a syntax error.
+json parse_json(const std::string &text, const std::string &path) {
     try {
-        root = json::parse(text);
+        return json::parse(text);
     } catch (const json::parse_error &e) {
         // nlohmann reports a byte offset; turn it into a line number.
         const size_t at = std::min<size_t>(e.byte, text.size());
@@ -315,72 +309,73 @@ SceneDesc parse_scene(const std::string &text, const std::string &path) {
         // out_of_range: a number such as 1e400 that overflows a double.
         throw InputError(path, 0, "", std::string("invalid JSON: ") + e.what());
     }
-    Reader r(root, "", scene);
-    if (const json *v = r.take("camera"))
-        scene.camera = read_camera(Reader(*v, "camera", scene));
-    else
-        r.fail("camera", "missing required field");
+}
 
-    if (const json *v = r.take("film")) {
-        Reader fr(*v, "film", scene);
-        FilmDesc &f = scene.film;
-        f.width = fr.integer("width", f.width, 1, 65536);
-        f.height = fr.integer("height", f.height, 1, 65536);
-        f.spp = fr.integer("spp", f.spp, 1, 1 << 20);
-        if (const json *fv = fr.take("filter")) {
-            Reader flt(*fv, "film.filter", scene);
-            f.filter = flt.choice<FilterType>(
-                "type", f.filter,
-                {{"box", FilterType::box},
-                 {"gaussian", FilterType::gaussian},
-                 {"blackman_harris", FilterType::blackman_harris}});
-            const float def = f.filter == FilterType::box
-                                  ? 0.5f
-                                  : (f.filter == FilterType::gaussian ? 1.5f : 2.0f);
-            f.filter_radius = float(flt.number("radius", def, 0.5, 8));
-            flt.finish();
-        }
-        f.output = fr.path("output");
-        f.preview = fr.path("preview");
-        f.half = fr.choice<bool>("pixel_type", true, {{"half", true}, {"float", false}});
-        f.view = fr.string("view", f.view);
-        fr.finish();
+FilmDesc read_film(Reader fr, const SceneDesc &scene) {
+    FilmDesc f;
+    f.width = fr.integer("width", f.width, 1, 65536);
+    f.height = fr.integer("height", f.height, 1, 65536);
+    f.spp = fr.integer("spp", f.spp, 1, 1 << 20);
+    if (const json *fv = fr.take("filter")) {
+        Reader flt(*fv, "film.filter", scene);
+        f.filter =
+            flt.choice<FilterType>("type", f.filter,
+                                   {{"box", FilterType::box},
+                                    {"gaussian", FilterType::gaussian},
+                                    {"blackman_harris", FilterType::blackman_harris}});
+        const float def = f.filter == FilterType::box
+                              ? 0.5f
+                              : (f.filter == FilterType::gaussian ? 1.5f : 2.0f);
+        f.filter_radius = float(flt.number("radius", def, 0.5, 8));
+        flt.finish();
     }
+    f.output = fr.path("output");
+    f.preview = fr.path("preview");
+    f.half = fr.choice<bool>("pixel_type", true, {{"half", true}, {"float", false}});
+    f.view = fr.string("view", f.view);
+    fr.finish();
+    return f;
+}
 
-    if (const json *v = r.take("lights")) {
-        if (!v->is_array())
-            r.fail("lights", std::string("expected an array, got ") + json_type_name(*v));
-        for (size_t i = 0; i < v->size(); ++i)
-            scene.lights.push_back(
-                read_light(Reader((*v)[i], "lights[" + std::to_string(i) + "]", scene)));
-    }
+// The "lights" array; at most one environment.
+void read_lights(Reader &r, const json &v, SceneDesc *scene) {
+    if (!v.is_array())
+        r.fail("lights", std::string("expected an array, got ") + json_type_name(v));
+    for (size_t i = 0; i < v.size(); ++i)
+        scene->lights.push_back(
+            read_light(Reader(v[i], "lights[" + std::to_string(i) + "]", *scene)));
     size_t environments = 0;
-    for (const auto &l : scene.lights)
+    for (const auto &l : scene->lights)
         environments += l.type == LightDesc::Type::environment;
     if (environments > 1) r.fail("lights", "more than one environment light");
+}
 
+// The "objects" array. The transform and material are read first, so that their errors
+// come before those of the remaining keys (name, mesh, cells, normals).
+void read_objects(Reader &r, SceneDesc *scene) {
     const json &objs = r.require("objects");
     if (!objs.is_array())
         r.fail("objects", std::string("expected an array, got ") + json_type_name(objs));
     for (size_t i = 0; i < objs.size(); ++i) {
         const std::string p = "objects[" + std::to_string(i) + "]";
-        Reader orr(objs[i], p, scene);
+        Reader orr(objs[i], p, *scene);
         ObjectDesc o;
         if (const json *t = orr.take("transform"))
-            o.transform = read_transform(Reader(*t, p + ".transform", scene));
+            o.transform = read_transform(Reader(*t, p + ".transform", *scene));
         if (const json *m = orr.take("material"))
-            o.material = read_material(Reader(*m, p + ".material", scene));
+            o.material = read_material(Reader(*m, p + ".material", *scene));
         const Affine t = o.transform;
         const MaterialDesc mat = o.material;
-        // The remaining keys: name, mesh, cells, normals.
         o = read_object(std::move(orr), i);
         o.transform = t;
         o.material = mat;
-        scene.objects.push_back(std::move(o));
+        scene->objects.push_back(std::move(o));
     }
+}
 
-    if (const json *v = r.take("animation"))
-        scene.animation = read_animation(Reader(*v, "animation", scene));
+// What the animation names must exist: turntable objects, per-frame deform lists whose
+// length is the frame count.
+void check_animation(Reader &r, const SceneDesc &scene) {
     if (const auto &tt = scene.animation.turntable)
         for (size_t i = 0; i < tt->objects.size(); ++i)
             if (std::none_of(
@@ -396,19 +391,42 @@ SceneDesc parse_scene(const std::string &text, const std::string &path) {
                        " meshes needs animation.frames = " + std::to_string(d.size()) +
                        " (it is " + std::to_string(scene.animation.frames) + ")");
     }
+}
 
-    if (const json *v = r.take("integrator")) {
-        Reader ir(*v, "integrator", scene);
-        scene.integrator.max_depth =
-            ir.integer("max_depth", scene.integrator.max_depth, 1, 1024);
-        scene.integrator.rr_depth =
-            ir.integer("rr_depth", scene.integrator.rr_depth, 1, 1024);
-        scene.integrator.light_selection = ir.choice<IntegratorDesc::LightSelection>(
-            "light_selection", scene.integrator.light_selection,
-            {{"power", IntegratorDesc::LightSelection::power},
-             {"uniform", IntegratorDesc::LightSelection::uniform}});
-        ir.finish();
-    }
+IntegratorDesc read_integrator(Reader ir) {
+    IntegratorDesc d;
+    d.max_depth = ir.integer("max_depth", d.max_depth, 1, 1024);
+    d.rr_depth = ir.integer("rr_depth", d.rr_depth, 1, 1024);
+    d.light_selection = ir.choice<IntegratorDesc::LightSelection>(
+        "light_selection", d.light_selection,
+        {{"power", IntegratorDesc::LightSelection::power},
+         {"uniform", IntegratorDesc::LightSelection::uniform}});
+    ir.finish();
+    return d;
+}
+
+}  // namespace
+
+SceneDesc parse_scene(const std::string &text, const std::string &path) {
+    SceneDesc scene;
+    scene.path = path;
+    scene.dir = path.empty() ? fs::current_path().string()
+                             : fs::absolute(fs::path(path)).parent_path().string();
+    const json root = parse_json(text, path);
+    Reader r(root, "", scene);
+    if (const json *v = r.take("camera"))
+        scene.camera = read_camera(Reader(*v, "camera", scene));
+    else
+        r.fail("camera", "missing required field");
+    if (const json *v = r.take("film"))
+        scene.film = read_film(Reader(*v, "film", scene), scene);
+    if (const json *v = r.take("lights")) read_lights(r, *v, &scene);
+    read_objects(r, &scene);
+    if (const json *v = r.take("animation"))
+        scene.animation = read_animation(Reader(*v, "animation", scene));
+    check_animation(r, scene);
+    if (const json *v = r.take("integrator"))
+        scene.integrator = read_integrator(Reader(*v, "integrator", scene));
     r.finish();
     if (scene.objects.empty() && scene.lights.empty())
         r.fail("objects", "the scene is empty (no objects, no lights)");
