@@ -96,11 +96,16 @@ Vec2d tie_break_direction(uint64_t seed, CellId c, CellId p) {
 
 RelaxStepResult Relaxer::step(const RelaxContext &ctx, Cells &cells,
                               const std::vector<TriId> &active) {
-    const Crps &crps = *ctx.crps;
-    m_nbhd.update(crps, ctx.r);
+    m_nbhd.update(*ctx.crps, ctx.r);
+    gather_by_triangle(cells, ctx.crps->num_triangles());
+    size_moves(active);
+    accumulate_forces(ctx, active);
+    walk_moves(*ctx.crps, active);
+    return apply_moves(cells, active);
+}
 
-    // --- Gather cells into triangle order (parallel: each triangle fills its range) ---
-    const size_t nt = crps.num_triangles();
+// Cells into triangle order (parallel: each triangle fills its own range).
+void Relaxer::gather_by_triangle(const Cells &cells, size_t nt) {
     m_row.resize(nt + 1);
     m_row[0] = 0;
     for (TriId t = 0; t < nt; ++t)
@@ -127,8 +132,10 @@ RelaxStepResult Relaxer::step(const RelaxContext &ctx, Cells &cells,
                               }
                           });
     }
+}
 
-    // --- Offsets of each active triangle's cells in the move buffer ---
+// Offsets of each active triangle's cells in the move buffer.
+void Relaxer::size_moves(const std::vector<TriId> &active) {
     m_active_row.resize(active.size() + 1);
     m_active_row[0] = 0;
     for (size_t i = 0; i < active.size(); ++i)
@@ -136,7 +143,12 @@ RelaxStepResult Relaxer::step(const RelaxContext &ctx, Cells &cells,
     const size_t n_active_cells = m_active_row.back();
     m_move.assign(n_active_cells, Vec2d{});
     m_dest.resize(n_active_cells);
+}
 
+// The displacement of every active cell (parallel over active triangles; each writes
+// only its own cells).
+void Relaxer::accumulate_forces(const RelaxContext &ctx,
+                                const std::vector<TriId> &active) {
     const double r = ctx.r, r2 = r * r, inv_r = 1.0 / r;
     const double *xs = m_sx.data(), *zs = m_sz.data();
     const uint8_t *ts = m_st.data();
@@ -214,8 +226,10 @@ RelaxStepResult Relaxer::step(const RelaxContext &ctx, Cells &cells,
                 }
             }
         });
+}
 
-    // --- Walk every moving cell across the surface (parallel, independent) ---
+// Every moving cell walks across the surface (parallel, independent).
+void Relaxer::walk_moves(const Crps &crps, const std::vector<TriId> &active) {
     tbb::parallel_for(
         tbb::blocked_range<size_t>(0, active.size(), 8), [&](const auto &range) {
             for (size_t ai = range.begin(); ai != range.end(); ++ai) {
@@ -223,21 +237,25 @@ RelaxStepResult Relaxer::step(const RelaxContext &ctx, Cells &cells,
                                count = m_row[active[ai] + 1] - begin;
                 for (uint32_t k = 0; k < count; ++k) {
                     const size_t i = m_active_row[ai] + k;
-                    m_dest[i] = walk(crps, {active[ai], {xs[begin + k], zs[begin + k]}},
-                                     m_move[i]);
+                    m_dest[i] =
+                        walk(crps, {active[ai], {m_sx[begin + k], m_sz[begin + k]}},
+                             m_move[i]);
                 }
             }
         });
+}
 
-    // --- Apply serially in triangle order: bucket edits stay deterministic ---
+// Moves applied serially in triangle order, so bucket edits stay deterministic.
+RelaxStepResult Relaxer::apply_moves(Cells &cells,
+                                     const std::vector<TriId> &active) const {
     RelaxStepResult result;
-    result.cells_moved = n_active_cells;
+    result.cells_moved = m_active_row.back();
     for (size_t ai = 0; ai < active.size(); ++ai) {
         const uint32_t begin = m_row[active[ai]], count = m_row[active[ai] + 1] - begin;
         for (uint32_t k = 0; k < count; ++k) {
             const size_t i = m_active_row[ai] + k;
             result.max_move = std::max(result.max_move, length(m_move[i]));
-            cells.move(ids[begin + k], m_dest[i]);
+            cells.move(m_sid[begin + k], m_dest[i]);
         }
     }
     return result;

@@ -74,6 +74,12 @@ class Relaxer {
     Neighbourhoods &neighbourhoods() { return m_nbhd; }
 
   private:
+    void gather_by_triangle(const Cells &cells, size_t nt);
+    void size_moves(const std::vector<TriId> &active);
+    void accumulate_forces(const RelaxContext &ctx, const std::vector<TriId> &active);
+    void walk_moves(const Crps &crps, const std::vector<TriId> &active);
+    RelaxStepResult apply_moves(Cells &cells, const std::vector<TriId> &active) const;
+
     Neighbourhoods m_nbhd;
     // Cells copied into triangle order at the start of each step: the force loop then
     // reads contiguous memory instead of cells scattered by creation order.
