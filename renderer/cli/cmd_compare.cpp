@@ -5,12 +5,14 @@
 #include <fmt/core.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <sstream>
 
 #include "renderer/cli/common.h"
 #include "renderer/image/contact_sheet.h"
 #include "renderer/image/image_output.h"
+#include "renderer/plugins/plugin_loader.h"
 #include "renderer/tools/compare.h"
 #include "shader/clonal_mosaic/bake.h"
 #include "sim/core/input_error.h"
@@ -40,10 +42,17 @@ struct TempDir {
     }
 };
 
+// Whether the installed plugin `name` maps an image by UV (renderer::maps_image_by_uv).
+bool maps_image(const renderer::PluginRegistry &plugins, const std::string &name) {
+    const auto it = plugins.plugins().find(name);
+    return it != plugins.plugins().end() && renderer::maps_image_by_uv(*it->second.desc);
+}
+
 // The texture baseline without a texture of its own: the mosaic baked into the CRPS atlas
-// (`pelage bake`) with the mesh's atlas UVs, so `texture` shows the same pattern as the
-// clonal_mosaic. Bake time is not part of the texture render's time.
+// (`pelage bake`) with the mesh's atlas UVs, so a shader that maps an image by UV shows
+// the same pattern as the mosaic. Bake time is not part of the texture render's time.
 void bake_atlas_for_texture(const renderer::SceneDesc &desc, int res, TempDir &dir,
+                            const renderer::PluginRegistry &plugins,
                             renderer::CompareOptions &co) {
     const renderer::ObjectDesc *subject = nullptr;
     for (const auto &obj : desc.objects)
@@ -51,7 +60,7 @@ void bake_atlas_for_texture(const renderer::SceneDesc &desc, int res, TempDir &d
             subject = &obj;
             break;
         }
-    if (!subject || subject->material.shader == "texture") return;
+    if (!subject || maps_image(plugins, subject->material.shader)) return;
     dir.path = std::filesystem::temp_directory_path() /
                fmt::format("pelage_compare_{}", getpid());
     std::filesystem::create_directories(dir.path);
@@ -111,8 +120,10 @@ int run(const CompareCliOptions &o) {
     if (!o.sheet.empty()) display.emplace(o.view.empty() ? desc.film.view : o.view, "");
 
     TempDir atlas_dir;
-    if (std::find(co.shaders.begin(), co.shaders.end(), "texture") != co.shaders.end())
-        bake_atlas_for_texture(desc, o.atlas_res, atlas_dir, co);
+    const renderer::PluginRegistry plugins;
+    if (std::any_of(co.shaders.begin(), co.shaders.end(),
+                    [&](const std::string &s) { return maps_image(plugins, s); }))
+        bake_atlas_for_texture(desc, o.atlas_res, atlas_dir, plugins, co);
     const renderer::CompareResult r = renderer::compare_shaders(desc, co);
     const nlohmann::json report = r.report();
     for (const auto &run : r.runs)

@@ -1,8 +1,12 @@
-// `pelage shaders [NAME]`: the installed shader plugins and their parameters (the
-// plugins' own tables are their documentation).
+// `pelage shaders [NAME]`: the installed shader plugins and their parameters. A
+// plugin's parameter table (shader/pelage_shader.h) is its documentation: this prints
+// it as it is, so no copy of it exists to drift.
+#include <algorithm>
 #include <cstdio>
 #include <iostream>
 #include <memory>
+#include <string>
+#include <vector>
 
 #include "renderer/cli/common.h"
 #include "renderer/plugins/plugin_loader.h"
@@ -39,6 +43,66 @@ std::string default_text(const PelageParamSpec &s) {
     return buf;
 }
 
+// The inclusive range as the table holds it; "" when it has none (strings).
+std::string range_text(const PelageParamSpec &s) {
+    if (!(s.min_value < s.max_value)) return "";
+    char buf[96];
+    if (s.type == PELAGE_PARAM_INT)
+        std::snprintf(buf, sizeof buf, "[%.0f, %.0f]", double(s.min_value),
+                      double(s.max_value));
+    else
+        std::snprintf(buf, sizeof buf, "[%g, %g]", double(s.min_value),
+                      double(s.max_value));
+    return buf;
+}
+
+// One plugin: its summary, file, parameter table (a row per entry, columns aligned) and
+// AOV names.
+void print_plugin(const LoadedPlugin &p) {
+    std::printf("%s - %s\n  file: %s\n", p.desc->name,
+                p.desc->summary ? p.desc->summary : "", p.file.c_str());
+    std::vector<std::vector<std::string>> rows = {
+        {"parameter", "type", "default", "range", "description"}};
+    for (const PelageParamSpec *s = p.desc->params; s && s->name; ++s)
+        rows.push_back({s->name, param_type_name(s->type), default_text(*s),
+                        range_text(*s), s->doc ? s->doc : ""});
+    if (rows.size() == 1) {
+        std::printf("  no parameters\n");
+    } else {
+        size_t width[4] = {0, 0, 0, 0};
+        for (const auto &r : rows)
+            for (size_t c = 0; c < 4; ++c) width[c] = std::max(width[c], r[c].size());
+        for (const auto &r : rows) {
+            std::printf(" ");
+            for (size_t c = 0; c < 4; ++c)
+                std::printf(" %-*s ", int(width[c]), r[c].c_str());
+            std::printf(" %s\n", r[4].c_str());
+        }
+    }
+    std::string aovs;
+    if (p.desc->aov_names)
+        for (int k = 0; k < PELAGE_SHADER_AOV_SLOTS && p.desc->aov_names[k]; ++k)
+            aovs +=
+                std::string(aovs.empty() ? "" : ", ") + "shader." + p.desc->aov_names[k];
+    std::printf("  AOVs: %s\n", aovs.empty() ? "none" : aovs.c_str());
+}
+
+// The plugin called `name`: an unknown name is bad input (exit 2), naming what is
+// installed and where it was looked for.
+const LoadedPlugin &find_plugin(const PluginRegistry &registry, const std::string &name) {
+    if (registry.plugins().count(name) || registry.refused().count(name))
+        return registry.get(name, "", "shader");  // throws for a refused one
+    std::string installed, dirs;
+    for (const auto &[n, p] : registry.plugins())
+        installed += (installed.empty() ? "" : ", ") + n;
+    for (const auto &d : registry.dirs()) dirs += (dirs.empty() ? "" : ":") + d;
+    throw InputError("", 0, "NAME",
+                     "no shader plugin \"" + name + "\" (installed: " +
+                         (installed.empty() ? std::string("none") : installed) +
+                         "; searched " + (dirs.empty() ? std::string("nothing") : dirs) +
+                         ", $PELAGE_SHADER_PATH first)");
+}
+
 nlohmann::json plugin_json(const LoadedPlugin &p) {
     nlohmann::json params = nlohmann::json::array();
     for (const PelageParamSpec *s = p.desc->params; s->name; ++s) {
@@ -70,7 +134,7 @@ int run(const ShadersOptions &o) {
     const PluginRegistry registry;
     std::vector<const LoadedPlugin *> list;
     if (!o.name.empty())
-        list.push_back(&registry.get(o.name, "", "shader"));
+        list.push_back(&find_plugin(registry, o.name));
     else
         for (const auto &[name, p] : registry.plugins()) list.push_back(&p);
     if (o.json) {
@@ -83,23 +147,17 @@ int run(const ShadersOptions &o) {
         std::cout << j.dump(2) << std::endl;
         return 0;
     }
+    if (!o.name.empty()) {
+        print_plugin(*list[0]);
+        return 0;
+    }
     std::printf("search path:");
     for (const auto &d : registry.dirs()) std::printf(" %s", d.c_str());
     std::printf("\n");
     if (list.empty()) std::printf("no shader plugins found\n");
     for (const LoadedPlugin *p : list) {
-        std::printf("\n%s - %s\n  file: %s\n", p->desc->name,
-                    p->desc->summary ? p->desc->summary : "", p->file.c_str());
-        for (const PelageParamSpec *s = p->desc->params; s->name; ++s) {
-            std::printf("  %-16s %-6s default %-18s", s->name, param_type_name(s->type),
-                        default_text(*s).c_str());
-            if (s->min_value < s->max_value)
-                std::printf(" in [%g, %g]", s->min_value, s->max_value);
-            std::printf("  %s\n", s->doc ? s->doc : "");
-        }
-        if (p->desc->aov_names)
-            for (int k = 0; k < PELAGE_SHADER_AOV_SLOTS && p->desc->aov_names[k]; ++k)
-                std::printf("  AOV shader.%s\n", p->desc->aov_names[k]);
+        std::printf("\n");
+        print_plugin(*p);
     }
     if (o.name.empty())
         for (const auto &[name, why] : registry.refused())

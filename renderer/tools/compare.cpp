@@ -36,13 +36,28 @@ double thread_cpu_seconds() {
     return double(ts.tv_sec) + 1e-9 * double(ts.tv_nsec);
 }
 
+// The objects with a "cells" file. (A pattern plugin that reads cells refuses an object
+// without them, so every object a scene can render with one is among these.)
 std::vector<size_t> patterned_objects(const SceneDesc &desc) {
     std::vector<size_t> out;
     for (size_t i = 0; i < desc.objects.size(); ++i)
-        if (!desc.objects[i].cells.empty() ||
-            desc.objects[i].material.shader == "clonal_mosaic")
-            out.push_back(i);
+        if (!desc.objects[i].cells.empty()) out.push_back(i);
     return out;
+}
+
+// The installed plugin called `name`, or null (the scene then fails to load, with the
+// loader's message).
+const PelageShaderPlugin *find_plugin(const PluginRegistry &plugins,
+                                      const std::string &name) {
+    const auto it = plugins.plugins().find(name);
+    return it == plugins.plugins().end() ? nullptr : it->second.desc;
+}
+
+bool has_param(const PelageShaderPlugin *plugin, const char *name, PelageParamType type) {
+    if (!plugin) return false;
+    for (const PelageParamSpec *s = plugin->params; s && s->name; ++s)
+        if (std::string(s->name) == name) return s->type == type;
+    return false;
 }
 
 // Area-uniform points on the first patterned object: the hits every shader is timed on.
@@ -79,7 +94,7 @@ std::vector<PelageHit> sample_hits(const SceneDesc &desc, size_t object, size_t 
     return hits;
 }
 
-// The mesh's corner UVs interpolated at each hit (for the texture baseline).
+// The mesh's corner UVs interpolated at each hit (for a shader that maps an image by UV).
 void add_uvs(const sim::TriangleMesh &mesh, std::vector<PelageHit> &hits) {
     if (mesh.corner_uvs.size() != 3 * mesh.num_triangles()) return;
     for (PelageHit &h : hits) {
@@ -95,17 +110,17 @@ float luminance(const std::array<float, 3> &c) {
     return 0.2126f * c[0] + 0.7152f * c[1] + 0.0722f * c[2];
 }
 
-// The noise value exceeded on `fraction` of the hits: the perlin threshold that makes
-// that fraction of the (area-uniform) surface spots.
+// The noise value exceeded on `fraction` of the hits: the threshold that makes that
+// fraction of the (area-uniform) surface spots. `slot`: the plugin's "noise" AOV.
 float noise_quantile(const Scene &scene, size_t object,
-                     const std::vector<PelageHit> &hits, double fraction) {
+                     const std::vector<PelageHit> &hits, double fraction, int slot) {
     const Material &mat = scene.materials()[object];
     std::vector<float> values;
     values.reserve(hits.size());
     for (const PelageHit &h : hits) {
         PelageShade sh{};
         mat.plugin->shade(mat.instance, &h, &sh);
-        values.push_back(sh.aov[0]);  // perlin's AOV 0: the fBm value
+        values.push_back(sh.aov[slot]);
     }
     if (values.empty()) return 0;
     const size_t k =
@@ -116,9 +131,36 @@ float noise_quantile(const Scene &scene, size_t object,
 
 }  // namespace
 
-nlohmann::json matched_baseline_params(const std::string &shader,
+int aov_slot(const PelageShaderPlugin &plugin, const std::string &name) {
+    if (plugin.aov_names)
+        for (int k = 0; k < PELAGE_SHADER_AOV_SLOTS && plugin.aov_names[k]; ++k)
+            if (plugin.aov_names[k] == name) return k;
+    return -1;
+}
+
+BaselineModel baseline_model(const PelageShaderPlugin &plugin) {
+    const auto is_float = [&](const char *n) {
+        return has_param(&plugin, n, PELAGE_PARAM_FLOAT);
+    };
+    if (!has_param(&plugin, "spot_colour", PELAGE_PARAM_RGB) ||
+        !has_param(&plugin, "base_colour", PELAGE_PARAM_RGB) || !is_float("frequency"))
+        return BaselineModel::none;
+    if (is_float("mean_points") && is_float("spot_fraction"))
+        return BaselineModel::cellular;
+    if (is_float("threshold") && aov_slot(plugin, "noise") >= 0)
+        return BaselineModel::thresholded_noise;
+    return BaselineModel::none;
+}
+
+bool maps_image_by_uv(const PelageShaderPlugin &plugin) {
+    return has_param(&plugin, "file", PELAGE_PARAM_STRING) &&
+           has_param(&plugin, "texels_per_unit", PELAGE_PARAM_FLOAT);
+}
+
+nlohmann::json matched_baseline_params(const PelageShaderPlugin &plugin,
                                        const std::string &cells_path) {
-    if (shader != "worley" && shader != "perlin") return nlohmann::json::object();
+    const BaselineModel model = baseline_model(plugin);
+    if (model == BaselineModel::none) return nlohmann::json::object();
     const sim::CellsData data = sim::read_cells_file(cells_path);
     const sim::PatternStats stats = sim::compute_pattern_stats(data);
     // Spot type: F when present, else the darkest; base: B when present, else the most
@@ -149,7 +191,7 @@ nlohmann::json matched_baseline_params(const std::string &shader,
     const double spots_per_area = double(std::max<size_t>(stats.spots, 1)) / area;
     nlohmann::json p = {{"spot_colour", {sc[0], sc[1], sc[2]}},
                         {"base_colour", {bc[0], bc[1], bc[2]}}};
-    if (shader == "worley") {
+    if (model == BaselineModel::cellular) {
         // Section cells per unit area λ_A from the spots per unit area: a plane cuts a
         // Poisson–Voronoi tessellation of intensity λ into λ_A ≈ 1.4558 λ^(2/3) cells
         // per unit area (Okabe, Boots, Sugihara, Chiu 2000, Spatial Tessellations, §5.5),
@@ -176,12 +218,13 @@ CompareResult compare_shaders(const SceneDesc &desc, const CompareOptions &optio
     if (subjects.empty())
         throw InputError(desc.path, 0, "objects",
                          "no patterned object to compare: give an object a \"cells\" "
-                         "file or the clonal_mosaic shader");
+                         "file");
     const PluginRegistry plugins;
     const std::vector<PelageHit> hits =
         sample_hits(desc, subjects[0], options.lookups, options.seed);
 
     CompareResult result;
+    result.reference = options.reference;
     result.width = desc.film.width;
     result.height = desc.film.height;
     // --- Every shader's scene first, so the renders below can alternate ---
@@ -192,17 +235,22 @@ CompareResult compare_shaders(const SceneDesc &desc, const CompareOptions &optio
     std::vector<Prepared> prepared;
     const int repeats = std::max(options.repeats, 1);
     for (const std::string &shader : options.shaders) {
+        const PelageShaderPlugin *plugin = find_plugin(plugins, shader);
         auto d = std::make_unique<SceneDesc>(desc);
         nlohmann::json params = nlohmann::json::object();  // the plugin's defaults
-        if (options.match_baselines && !desc.objects[subjects[0]].cells.empty())
-            params = matched_baseline_params(shader, desc.objects[subjects[0]].cells);
-        const bool atlas = shader == "texture" && !options.texture_file.empty();
+        if (plugin && options.match_baselines)
+            params = matched_baseline_params(*plugin, desc.objects[subjects[0]].cells);
+        const bool atlas =
+            plugin && maps_image_by_uv(*plugin) && !options.texture_file.empty();
         if (atlas)
             params = {{"file", options.texture_file},
                       {"texels_per_unit", options.texels_per_unit}};
-        double perlin_fraction = -1;
-        if (params.contains("spot_fraction") && shader == "perlin") {
-            perlin_fraction = params["spot_fraction"].get<double>();
+        // A spot fraction for a plugin without that parameter becomes the threshold
+        // exceeded on that fraction of the surface by its "noise" AOV.
+        double noise_fraction = -1;
+        if (params.contains("spot_fraction") &&
+            !has_param(plugin, "spot_fraction", PELAGE_PARAM_FLOAT)) {
+            noise_fraction = params["spot_fraction"].get<double>();
             params.erase("spot_fraction");
         }
         for (size_t i : subjects) {
@@ -213,10 +261,11 @@ CompareResult compare_shaders(const SceneDesc &desc, const CompareOptions &optio
             }
             m.shader = shader;
         }
-        if (perlin_fraction >= 0 && desc.objects[subjects[0]].material.shader != shader) {
+        if (noise_fraction >= 0 && desc.objects[subjects[0]].material.shader != shader) {
             // The threshold that makes the mosaic's spot fraction of the surface spots.
             const float threshold =
-                noise_quantile(Scene(*d, plugins), subjects[0], hits, perlin_fraction);
+                noise_quantile(Scene(*d, plugins), subjects[0], hits, noise_fraction,
+                               aov_slot(*plugin, "noise"));
             for (size_t i : subjects)
                 if (desc.objects[i].material.shader != shader)
                     d->objects[i].material.params["threshold"] = threshold;
@@ -355,13 +404,13 @@ nlohmann::json DriftResult::report() const {
 
 nlohmann::json CompareResult::report() const {
     nlohmann::json shaders = nlohmann::json::object();
-    const CompareRun *cm = nullptr;
+    const CompareRun *cm = nullptr;  // the reference's run
     for (const CompareRun &r : runs) {
         shaders[r.shader] = {{"seconds", r.seconds},
                              {"cpu_seconds", r.cpu_seconds},
                              {"cpu_seconds_each", r.cpu_seconds_each},
                              {"ns_per_lookup", r.ns_per_lookup}};
-        if (r.shader == "clonal_mosaic") cm = &r;
+        if (r.shader == reference) cm = &r;
     }
     nlohmann::json ratios = nlohmann::json::object(),
                    lookup_ratios = nlohmann::json::object(),
@@ -371,9 +420,9 @@ nlohmann::json CompareResult::report() const {
             if (&r == cm) continue;
             // CPU time: on a shared machine it is what the render cost us (wall:
             // seconds).
-            ratios["clonal_mosaic_vs_" + r.shader] =
+            ratios[reference + "_vs_" + r.shader] =
                 r.cpu_seconds > 0 ? cm->cpu_seconds / r.cpu_seconds : 0.0;
-            lookup_ratios["clonal_mosaic_vs_" + r.shader] =
+            lookup_ratios[reference + "_vs_" + r.shader] =
                 r.ns_per_lookup > 0 ? cm->ns_per_lookup / r.ns_per_lookup : 0.0;
             // Round by round (the two renders of a round ran back to back): how far a
             // ratio moves between rounds is the machine's noise, which a single figure
@@ -389,7 +438,7 @@ nlohmann::json CompareResult::report() const {
                 const size_t n = paired.size();
                 const double median =
                     n % 2 ? paired[n / 2] : 0.5 * (paired[n / 2 - 1] + paired[n / 2]);
-                ratio_rounds["clonal_mosaic_vs_" + r.shader] = {
+                ratio_rounds[reference + "_vs_" + r.shader] = {
                     {"min", paired.front()}, {"median", median}, {"max", paired.back()}};
             }
         }

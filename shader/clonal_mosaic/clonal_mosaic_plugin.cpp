@@ -1,25 +1,10 @@
 // clonal_mosaic: the pattern of a `pelage sim` run, looked up at every hit by the
 // closest-cell search of Teo 2006 ch. 6 (closest_cell.h).
 //
-// Parameters (name, type, default: meaning):
-// - jitter, float, 0: per-cell brightness variation in [0, 1], keyed by the stable id.
-// - edge_width, float, 0: soft boundary between cells, in object-space units.
-// - antialias, int, 1: also blend boundaries over the ray footprint (no jaggies).
-// - roughness, string, "": per-type coat roughness, "F=0.35,B=0.5"; "" keeps the
-//   material's.
-// - specular, string, "": per-type coat reflectance at normal incidence F0, in
-//   [0, 0.25], "F=0.02,B=0.05" (0.04 is a coat of ior 1.5, 0 no coat highlight at all);
-//   "" keeps the material's ior. Sets the coat's ior, (1 + sqrt F0) / (1 - sqrt F0).
-// - unfolding, string, "edges": "edges" (fewer cracks) or "teo" (edge and vertex maps).
-// - lod, int, 1: footprints wider than the triangles (indirect hits after rough
-//   bounces, minified objects) see the cells' mean look instead of one cell
-//   (mosaic_lod.h); 0 point-samples the cells at every depth (reference renders).
-// - coherence, int, 1: reuse the previous hit's cell when it is provably the same
-//   (identical images either way; 0 to time the search alone).
-//
-// The object needs "cells": a .cells file made by `pelage sim` for the same mesh (checked
-// against the mesh's hash). AOVs: cell_id, cell_type, f1 (distance to the cell centre).
-// Albedo is the cell type's colour; eumelanin/pheomelanin are passed on for the fur.
+// The parameters and AOVs are the tables below (`pelage shaders clonal_mosaic` prints
+// them). The object needs "cells": a .cells file made by `pelage sim` for the same mesh
+// (checked against the mesh's hash). Albedo is the cell type's colour; eumelanin and
+// pheomelanin are passed on for the fur.
 #include <algorithm>
 #include <atomic>
 #include <cmath>
@@ -35,6 +20,8 @@
 #include "shader/clonal_mosaic/mosaic_lod.h"
 #include "shader/clonal_mosaic/pattern.h"
 #include "shader/pelage_shader.h"
+#include "shader/sdk/create_guard.h"
+#include "shader/sdk/params.h"
 
 namespace {
 
@@ -151,17 +138,6 @@ const PelageParamSpec params[] = {
 
 const char *const aov_names[] = {"cell_id", "cell_type", "f1", nullptr};
 
-void set_error(PelageError *err, const std::string &message) {
-    if (!err) return;
-    std::snprintf(err->message, sizeof(err->message), "%s", message.c_str());
-}
-
-const PelageParamValue *find_param(const PelageParamSet *ps, const char *name) {
-    for (uint32_t i = 0; i < ps->count; ++i)
-        if (std::string(ps->values[i].name) == name) return &ps->values[i];
-    return nullptr;
-}
-
 // "F=0.35,B=0.5" -> one value per named type, each in [lo, hi], handed to `set`; throws
 // std::invalid_argument naming the parameter and the problem.
 template <typename Set>
@@ -230,74 +206,69 @@ void cell_look(const ClonalMosaic &cm, uint32_t cell, CellLook &look) {
     look.aov_id = float(cm.cells_ptr->id[cell]);  // exact below 2^24 cells
 }
 
-void *create(const PelageParamSet *ps, PelageError *err) {
-    try {
-        if (!ps->mesh.cells_path)
-            throw std::invalid_argument(
-                "needs the object's \"cells\": a .cells file made by pelage sim");
-        if (!ps->mesh.mesh_path)
-            throw std::invalid_argument("the renderer gave no mesh path");
-        auto cm = std::make_unique<ClonalMosaic>();
-        cm->jitter = find_param(ps, "jitter")->f[0];
-        cm->edge_width = find_param(ps, "edge_width")->f[0];
-        cm->antialias = find_param(ps, "antialias")->i != 0;
-        cm->coherence = find_param(ps, "coherence")->i != 0;
-        cm->serial = ++instances_created;
-        const std::string unfolding = find_param(ps, "unfolding")->s;
-        if (unfolding != "edges" && unfolding != "teo")
-            throw std::invalid_argument("unfolding: \"" + unfolding +
-                                        "\" is neither \"edges\" nor \"teo\"");
+std::unique_ptr<ClonalMosaic> make(const PelageParamSet &ps) {
+    if (!ps.mesh.cells_path)
+        throw std::invalid_argument(
+            "needs the object's \"cells\": a .cells file made by pelage sim");
+    if (!ps.mesh.mesh_path) throw std::invalid_argument("the renderer gave no mesh path");
+    const shader::sdk::Params p(params, ps);
+    auto cm = std::make_unique<ClonalMosaic>();
+    cm->jitter = p.get_float("jitter");
+    cm->edge_width = p.get_float("edge_width");
+    cm->antialias = p.get_bool("antialias");
+    cm->coherence = p.get_bool("coherence");
+    cm->serial = ++instances_created;
+    const std::string unfolding = p.get_string("unfolding");
+    if (unfolding != "edges" && unfolding != "teo")
+        throw std::invalid_argument("unfolding: \"" + unfolding +
+                                    "\" is neither \"edges\" nor \"teo\"");
 
-        cm->pattern = std::make_unique<shader::MosaicPattern>(
-            ps->mesh.cells_path, ps->mesh.mesh_path,
-            unfolding == "teo" ? sim::UnfoldPaths::edges_and_vertices
-                               : sim::UnfoldPaths::edges_only);
-        if (cm->pattern->num_triangles() != ps->mesh.num_triangles)
-            throw std::invalid_argument("the renderer's mesh has " +
-                                        std::to_string(ps->mesh.num_triangles) +
-                                        " triangles, the .cells file " +
-                                        std::to_string(cm->pattern->num_triangles()));
-        cm->cells_ptr = &cm->pattern->cells();
-        cm->index = &cm->pattern->index();
-        const std::vector<sim::CellType> &types = cm->pattern->types();
-        for (size_t k = 0; k < types.size(); ++k) {
-            const sim::CellType &t = types[k];
-            cm->types.push_back({{t.colour[0], t.colour[1], t.colour[2]},
-                                 t.eumelanin,
-                                 t.pheomelanin,
-                                 -1.0f,
-                                 0.0f,
-                                 float(k)});
-        }
-        parse_per_type("roughness", find_param(ps, "roughness")->s, 0, 1, types,
-                       [&](size_t k, float r) { cm->types[k].roughness = r; });
-        // F0 = ((η - 1) / (η + 1))², so η = (1 + √F0) / (1 - √F0): F0 0.25 is η = 3.
-        parse_per_type("specular", find_param(ps, "specular")->s, 0, 0.25f, types,
-                       [&](size_t k, float f0) {
-                           const float r = std::sqrt(f0);
-                           cm->types[k].ior = std::min((1 + r) / (1 - r), 3.0f);
-                       });
-        cm->looks.resize(cm->cells_ptr->size());
-        for (uint32_t k = 0; k < cm->looks.size(); ++k) cell_look(*cm, k, cm->looks[k]);
-        if (find_param(ps, "lod")->i != 0)
-            cm->lod = std::make_unique<shader::MosaicLod>(
-                *cm->pattern,
-                [&](uint32_t cell) {
-                    const CellLook &look = cm->looks[cell];
-                    const TypeLook &type = cm->types[look.type];
-                    return shader::FilteredLook{{look.rgb[0], look.rgb[1], look.rgb[2],
-                                                 type.eumelanin, type.pheomelanin}};
-                },
-                cm->types.size());
-        cm->num_triangles = uint32_t(cm->cells_ptr->num_triangles());
-        if (cm->coherence && cm->antialias)
-            cm->camera_reuse_up_to =
-                cm->lod ? cm->lod->exact_up_to() : std::numeric_limits<float>::infinity();
-        return cm.release();
-    } catch (const std::exception &e) {
-        set_error(err, e.what());
-        return nullptr;
+    cm->pattern = std::make_unique<shader::MosaicPattern>(
+        ps.mesh.cells_path, ps.mesh.mesh_path,
+        unfolding == "teo" ? sim::UnfoldPaths::edges_and_vertices
+                           : sim::UnfoldPaths::edges_only);
+    if (cm->pattern->num_triangles() != ps.mesh.num_triangles)
+        throw std::invalid_argument("the renderer's mesh has " +
+                                    std::to_string(ps.mesh.num_triangles) +
+                                    " triangles, the .cells file " +
+                                    std::to_string(cm->pattern->num_triangles()));
+    cm->cells_ptr = &cm->pattern->cells();
+    cm->index = &cm->pattern->index();
+    const std::vector<sim::CellType> &types = cm->pattern->types();
+    for (size_t k = 0; k < types.size(); ++k) {
+        const sim::CellType &t = types[k];
+        cm->types.push_back({{t.colour[0], t.colour[1], t.colour[2]},
+                             t.eumelanin,
+                             t.pheomelanin,
+                             -1.0f,
+                             0.0f,
+                             float(k)});
     }
+    parse_per_type("roughness", p.get_string("roughness"), 0, 1, types,
+                   [&](size_t k, float r) { cm->types[k].roughness = r; });
+    // F0 = ((η - 1) / (η + 1))², so η = (1 + √F0) / (1 - √F0): F0 0.25 is η = 3.
+    parse_per_type("specular", p.get_string("specular"), 0, 0.25f, types,
+                   [&](size_t k, float f0) {
+                       const float r = std::sqrt(f0);
+                       cm->types[k].ior = std::min((1 + r) / (1 - r), 3.0f);
+                   });
+    cm->looks.resize(cm->cells_ptr->size());
+    for (uint32_t k = 0; k < cm->looks.size(); ++k) cell_look(*cm, k, cm->looks[k]);
+    if (p.get_bool("lod"))
+        cm->lod = std::make_unique<shader::MosaicLod>(
+            *cm->pattern,
+            [&](uint32_t cell) {
+                const CellLook &look = cm->looks[cell];
+                const TypeLook &type = cm->types[look.type];
+                return shader::FilteredLook{{look.rgb[0], look.rgb[1], look.rgb[2],
+                                             type.eumelanin, type.pheomelanin}};
+            },
+            cm->types.size());
+    cm->num_triangles = uint32_t(cm->cells_ptr->num_triangles());
+    if (cm->coherence && cm->antialias)
+        cm->camera_reuse_up_to =
+            cm->lod ? cm->lod->exact_up_to() : std::numeric_limits<float>::infinity();
+    return cm;
 }
 
 // The hit takes the look of one cell.
@@ -446,8 +417,6 @@ void shade(const void *self, const PelageHit *hit, PelageShade *out) {
     shade_any(cm, hit, out, nullptr);
 }
 
-void destroy(void *self) { delete static_cast<ClonalMosaic *>(self); }
-
 const PelageShaderPlugin plugin = {
     PELAGE_SHADER_ABI,
     "clonal_mosaic",
@@ -455,9 +424,9 @@ const PelageShaderPlugin plugin = {
     "(Teo 2006 ch. 6)",
     params,
     aov_names,
-    create,
+    shader::sdk::guarded_create<make>,
     shade,
-    destroy,
+    shader::sdk::destroy_instance<ClonalMosaic>,
 };
 
 }  // namespace

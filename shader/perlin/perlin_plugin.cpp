@@ -1,26 +1,20 @@
 /* perlin: the gradient-noise baseline (Perlin 2002): fBm of improved noise on
  * object-space position, thresholded into two colours with a smooth step.
  *
- * | parameter   | type  | default            | meaning | | frequency   | float | 8 | base
- * frequency per object-space unit        | | octaves     | int   | 4                  |
- * fBm octaves                                 | | lacunarity  | float | 2 | frequency
- * factor per octave                 | | gain        | float | 0.5                |
- * amplitude factor per octave                 | | threshold   | float | 0.15 | noise
- * value above which a point is a spot   | | softness    | float | 0.03               |
- * half-width of the smooth step, noise units  | | spot_colour | rgb   | (0.08, 0.04,
- * 0.02) | albedo of spots                             | | base_colour | rgb   | (0.8,
- * 0.55, 0.3)   | albedo elsewhere                            | | seed        | int   | 1
- * | permutation seed                            | AOVs: noise (the fBm value).
+ * The parameters and AOVs are the tables below (`pelage shaders perlin` prints them).
  */
 #include <algorithm>
 #include <memory>
 
-#include "shader/object_space.h"
 #include "shader/perlin/perlin_noise.h"
+#include "shader/sdk/create_guard.h"
+#include "shader/sdk/object_space.h"
+#include "shader/sdk/params.h"
 
 namespace {
 
 using namespace pelage::shader;
+using namespace pelage::shader::sdk;
 
 struct Perlin {
     Perlin(uint32_t seed) : noise(seed) {}
@@ -92,20 +86,20 @@ const PelageParamSpec params[] = {
 };
 const char *const aov_names[] = {"noise", nullptr};
 
-void *create(const PelageParamSet *ps, PelageError *err) {
-    const PelageParamValue *v = ps->values;  // table order, validated by the renderer
-    auto p = std::make_unique<Perlin>(uint32_t(v[8].i));
-    p->mesh.copy_from(ps->mesh);
-    p->frequency = v[0].f[0];
-    p->octaves = v[1].i;
-    p->lacunarity = v[2].f[0];
-    p->gain = v[3].f[0];
-    p->threshold = v[4].f[0];
-    p->softness = v[5].f[0];
-    std::copy(v[6].f, v[6].f + 3, p->spot);
-    std::copy(v[7].f, v[7].f + 3, p->base);
-    (void)err;
-    return p.release();
+std::unique_ptr<Perlin> make(const PelageParamSet &ps) {
+    const Params p(params, ps);
+    auto n = std::make_unique<Perlin>(uint32_t(p.get_int("seed")));
+    n->mesh.copy_from(ps.mesh);
+    n->frequency = p.get_float("frequency");
+    n->octaves = p.get_int("octaves");
+    n->lacunarity = p.get_float("lacunarity");
+    n->gain = p.get_float("gain");
+    n->threshold = p.get_float("threshold");
+    n->softness = p.get_float("softness");
+    const auto spot = p.get_rgb("spot_colour"), base = p.get_rgb("base_colour");
+    std::copy(spot.begin(), spot.end(), n->spot);
+    std::copy(base.begin(), base.end(), n->base);
+    return n;
 }
 
 void shade(const void *self, const PelageHit *hit, PelageShade *out) {
@@ -120,17 +114,15 @@ void shade(const void *self, const PelageHit *hit, PelageShade *out) {
     out->aov_written = 1;
 }
 
-void destroy(void *self) { delete static_cast<Perlin *>(self); }
-
 const PelageShaderPlugin plugin = {
     PELAGE_SHADER_ABI,
     "perlin",
     "Perlin 2002 improved noise fBm, thresholded into spots (baseline)",
     params,
     aov_names,
-    create,
+    guarded_create<make>,
     shade,
-    destroy,
+    destroy_instance<Perlin>,
 };
 
 }  // namespace

@@ -2,23 +2,24 @@
  * TextureSystem (MIP-mapped, filtered by the ray footprint): the texture-mapping baseline
  * of Teo 2006 Table 7.9. With `pelage bake` it renders a mosaic as an ordinary texture.
  *
- * | parameter     | type   | default | meaning | | file          | string | ""      |
- * image file (relative to the scene file), required          | | texels_per_unit | float
- * | 0      | texels per object-space unit, to filter by the footprint;  | | |        | |
- * 0 = bilinear on the finest level                          | AOVs: none. The mesh needs
- * UVs (an OBJ with `vt`, e.g. from `pelage bake --obj`).
+ * The parameters are the table below (`pelage shaders texture` prints it); no AOVs. The
+ * mesh needs UVs (an OBJ with `vt`, e.g. from `pelage bake --obj`).
  */
 #include <OpenImageIO/texture.h>
 
 #include <algorithm>
-#include <cstdio>
 #include <filesystem>
 #include <memory>
+#include <stdexcept>
 #include <string>
 
 #include "shader/pelage_shader.h"
+#include "shader/sdk/create_guard.h"
+#include "shader/sdk/params.h"
 
 namespace {
+
+using namespace pelage::shader::sdk;
 
 struct Texture {
     std::shared_ptr<OIIO::TextureSystem> system;
@@ -45,46 +46,37 @@ const PelageParamSpec params[] = {
     {nullptr, PelageParamType(0), {0, 0, 0}, nullptr, 0, 0, nullptr},
 };
 
-void fail(PelageError *err, const std::string &m) {
-    if (err) std::snprintf(err->message, sizeof(err->message), "%s", m.c_str());
-}
-
-void *create(const PelageParamSet *ps, PelageError *err) {
-    try {
-        std::string file = ps->values[0].s ? ps->values[0].s : "";
-        if (file.empty()) return fail(err, "needs \"file\": the image to map"), nullptr;
-        if (!ps->mesh.corner_uvs)
-            return fail(err, "the mesh has no UVs (an OBJ with vt lines is needed)"),
-                   nullptr;
-        std::filesystem::path p(file);
-        if (p.is_relative() && ps->scene_dir && *ps->scene_dir)
-            p = std::filesystem::path(ps->scene_dir) / p;
-        if (!std::filesystem::exists(p))
-            return fail(err, p.string() + ": no such image"), nullptr;
-        auto t = std::make_unique<Texture>();
-        // The process-wide shared texture system: thread-safe, one cache for every
-        // instance. (A private one would have to go through TextureSystem::destroy, which
-        // in OIIO 2.4 frees its object with the wrong sized delete: an ASan report.)
-        // A file rewritten since the cache opened it is re-read (force = false leaves
-        // unchanged files, and the handles other instances hold, alone).
-        t->system = std::shared_ptr<OIIO::TextureSystem>(
-            OIIO::TextureSystem::create(true), [](OIIO::TextureSystem *) {});
-        t->system->attribute("automip", 1);
-        t->file = OIIO::ustring(p.string());
-        t->system->invalidate(t->file, false);
-        t->handle = t->system->get_texture_handle(t->file);
-        const OIIO::ImageSpec *spec =
-            t->handle ? t->system->imagespec(t->handle, nullptr) : nullptr;
-        if (!spec)
-            return fail(err, p.string() + ": cannot read: " + t->system->geterror()),
-                   nullptr;
-        t->texels_per_unit = ps->values[1].f[0];
-        t->inv_res = 1.0f / float(std::max(spec->width, spec->height));
-        return t.release();
-    } catch (const std::exception &e) {
-        fail(err, e.what());
-        return nullptr;
-    }
+std::unique_ptr<Texture> make(const PelageParamSet &ps) {
+    const Params params_by_name(params, ps);
+    const std::string file = params_by_name.get_string("file");
+    if (file.empty()) throw std::invalid_argument("needs \"file\": the image to map");
+    if (!ps.mesh.corner_uvs)
+        throw std::invalid_argument(
+            "the mesh has no UVs (an OBJ with vt lines is needed)");
+    std::filesystem::path p(file);
+    if (p.is_relative() && ps.scene_dir && *ps.scene_dir)
+        p = std::filesystem::path(ps.scene_dir) / p;
+    if (!std::filesystem::exists(p))
+        throw std::invalid_argument(p.string() + ": no such image");
+    auto t = std::make_unique<Texture>();
+    // The process-wide shared texture system: thread-safe, one cache for every
+    // instance. (A private one would have to go through TextureSystem::destroy, which
+    // in OIIO 2.4 frees its object with the wrong sized delete: an ASan report.)
+    // A file rewritten since the cache opened it is re-read (force = false leaves
+    // unchanged files, and the handles other instances hold, alone).
+    t->system = std::shared_ptr<OIIO::TextureSystem>(OIIO::TextureSystem::create(true),
+                                                     [](OIIO::TextureSystem *) {});
+    t->system->attribute("automip", 1);
+    t->file = OIIO::ustring(p.string());
+    t->system->invalidate(t->file, false);
+    t->handle = t->system->get_texture_handle(t->file);
+    const OIIO::ImageSpec *spec =
+        t->handle ? t->system->imagespec(t->handle, nullptr) : nullptr;
+    if (!spec)
+        throw std::runtime_error(p.string() + ": cannot read: " + t->system->geterror());
+    t->texels_per_unit = params_by_name.get_float("texels_per_unit");
+    t->inv_res = 1.0f / float(std::max(spec->width, spec->height));
+    return t;
 }
 
 void shade(const void *self, const PelageHit *hit, PelageShade *out) {
@@ -102,17 +94,15 @@ void shade(const void *self, const PelageHit *hit, PelageShade *out) {
     for (int k = 0; k < 3; ++k) out->albedo[k] = rgb[k];
 }
 
-void destroy(void *self) { delete static_cast<Texture *>(self); }
-
 const PelageShaderPlugin plugin = {
     PELAGE_SHADER_ABI,
     "texture",
     "an image texture by UV through OpenImageIO's TextureSystem (baseline)",
     params,
     nullptr,
-    create,
+    guarded_create<make>,
     shade,
-    destroy,
+    destroy_instance<Texture>,
 };
 
 }  // namespace

@@ -3,15 +3,7 @@
  * surface point gets the type of its nearest feature point: a two-colour Voronoi mosaic
  * of 3D cells cut by the surface, to compare with the Clonal Mosaic grown on it.
  *
- * | parameter     | type  | default           | meaning | | frequency     | float | 20 |
- * feature cubes per object-space unit            | | mean_points   | float | 3 | Poisson
- * mean of feature points per cube        | | spot_fraction | float | 0.3               |
- * probability that a feature point is a spot     | | spot_colour   | rgb   | (0.08, 0.04,
- * 0.02)| albedo of spot cells                           | | base_colour   | rgb   | (0.8,
- * 0.55, 0.3)  | albedo of the other cells                      | | edge_width    | float
- * | 0                 | soft boundary, object units (also antialiases) | | seed | int   |
- * 1                 | pattern seed                                   | AOVs: f1, f2
- * (object units), feature (hash of the nearest feature point, low 24 bits).
+ * The parameters and AOVs are the tables below (`pelage shaders worley` prints them).
  */
 #include <algorithm>
 #include <cmath>
@@ -19,12 +11,15 @@
 #include <memory>
 #include <string>
 
-#include "shader/object_space.h"
+#include "shader/sdk/create_guard.h"
+#include "shader/sdk/object_space.h"
+#include "shader/sdk/params.h"
 #include "shader/worley/worley_noise.h"
 
 namespace {
 
 using namespace pelage::shader;
+using namespace pelage::shader::sdk;
 
 struct Worley {
     ObjectSpacePositions mesh;
@@ -84,19 +79,19 @@ bool is_spot(uint32_t feature, float fraction) {
     return (feature >> 8) * 0x1p-24f < fraction;
 }
 
-void *create(const PelageParamSet *ps, PelageError *err) {
+std::unique_ptr<Worley> make(const PelageParamSet &ps) {
+    const Params p(params, ps);
     auto w = std::make_unique<Worley>();
-    w->mesh.copy_from(ps->mesh);
-    const PelageParamValue *v = ps->values;  // table order, validated by the renderer
-    w->frequency = v[0].f[0];
-    w->mean_points = v[1].f[0];
-    w->spot_fraction = v[2].f[0];
-    std::copy(v[3].f, v[3].f + 3, w->spot);
-    std::copy(v[4].f, v[4].f + 3, w->base);
-    w->edge_width = v[5].f[0];
-    w->seed = uint32_t(v[6].i);
-    (void)err;
-    return w.release();
+    w->mesh.copy_from(ps.mesh);
+    w->frequency = p.get_float("frequency");
+    w->mean_points = p.get_float("mean_points");
+    w->spot_fraction = p.get_float("spot_fraction");
+    const auto spot = p.get_rgb("spot_colour"), base = p.get_rgb("base_colour");
+    std::copy(spot.begin(), spot.end(), w->spot);
+    std::copy(base.begin(), base.end(), w->base);
+    w->edge_width = p.get_float("edge_width");
+    w->seed = uint32_t(p.get_int("seed"));
+    return w;
 }
 
 void shade(const void *self, const PelageHit *hit, PelageShade *out) {
@@ -123,17 +118,15 @@ void shade(const void *self, const PelageHit *hit, PelageShade *out) {
     out->aov_written = 1;
 }
 
-void destroy(void *self) { delete static_cast<Worley *>(self); }
-
 const PelageShaderPlugin plugin = {
     PELAGE_SHADER_ABI,
     "worley",
     "Worley 1996 cellular noise, two-colour spots (baseline)",
     params,
     aov_names,
-    create,
+    guarded_create<make>,
     shade,
-    destroy,
+    destroy_instance<Worley>,
 };
 
 }  // namespace

@@ -9,7 +9,7 @@
 
 #include "shader/pelage_shader.h"
 
-namespace pelage::shader {
+namespace pelage::shader::sdk {
 
 class ObjectSpacePositions {
   public:
@@ -43,4 +43,4 @@ inline float smoothstep(float e0, float e1, float x) {
     return t * t * (3 - 2 * t);
 }
 
-}  // namespace pelage::shader
+}  // namespace pelage::shader::sdk
