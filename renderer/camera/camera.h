@@ -26,4 +26,16 @@ class Camera {
     float m_scale_x, m_scale_y;  // raster → image plane
 };
 
+// Camera motion blur over a camera turntable's shutter: the camera at shutter position
+// u in [0, 1) is the scene's camera at frame time open + span·u (camera_at). A plain
+// value, so each sample's camera is a direct call.
+struct CameraMotion {
+    const SceneDesc *scene = nullptr;
+    double open = 0, span = 0;  // in frames
+
+    Camera at(float u, int width, int height) const {
+        return Camera(camera_at(*scene, open + span * double(u)), width, height);
+    }
+};
+
 }  // namespace pelage::renderer

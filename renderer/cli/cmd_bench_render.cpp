@@ -116,7 +116,9 @@ int run(const BenchRenderOptions &o) {
         double best_cpu = 0;
         for (int i = 0; i < o.repeat; ++i) {
             const double c0 = process_cpu_seconds();
-            RenderResult r = render(scene, RenderOptions{});
+            RenderOptions instrumented;
+            instrumented.instrument = true;
+            RenderResult r = render(scene, instrumented);
             const double cpu = process_cpu_seconds() - c0;
             if (i == 0 || r.seconds < best.seconds) best = std::move(r);
             if (i == 0 || cpu < best_cpu) best_cpu = cpu;
@@ -129,6 +131,7 @@ int run(const BenchRenderOptions &o) {
 
     // --- plugin_seconds: the 1-in-16 extrapolation against timing every call ---
     RenderOptions every_call;
+    every_call.instrument = true;
     every_call.plugin_timing_stride = 1;
     const RenderResult timed_all = render(scene, every_call);
 
@@ -137,6 +140,7 @@ int run(const BenchRenderOptions &o) {
     one.film.spp = 1;
     const Scene scene1(one, plugins);
     RenderOptions rec;
+    rec.instrument = true;
     rec.record_rays = true;
     tbb::global_control c(tbb::global_control::max_allowed_parallelism, size_t(cores));
     const RenderResult recorded = render(scene1, rec);

@@ -174,12 +174,11 @@ int run(const RenderCliOptions &o) {
         ro.cancel = &InterruptGuard::flag();
         ro.progress = !o.quiet && Progress::stderr_is_tty();
         ro.camera = fd.camera;
+        ro.instrument = !o.stats_json.empty();  // plugin_seconds
         if (tt && tt->motion_blur()) {
             const double open = f + double(tt->shutter_open),
                          span = double(tt->shutter_close - tt->shutter_open);
-            ro.camera_motion = [&desc, open, span](float u) {
-                return camera_at(desc, open + span * double(u));
-            };
+            ro.camera_motion = CameraMotion{&desc, open, span};
         }
         const RenderResult r = render(scene, ro);
         if (r.interrupted && animated) {

@@ -26,10 +26,11 @@ struct FibreFrame {
 
 }  // namespace
 
+template <typename Instr>
 bool scatter_at_strand(const Scene &scene, const FurLayer &layer, const RTCRayHit &rh,
                        int depth, bool last, Sampler &sampler, FurPathState &st,
                        FilmSample &fs, FilmPointAovs *aovs, const CameraRay &cam,
-                       RenderStats &stats, std::vector<RecordedRay> *log) {
+                       RenderStats &stats, const Instr &instr) {
     const Lights &lights = scene.lights();
     const RTCScene rtc = scene.geometry().scene();
     const Vec3f wo = -st.d;
@@ -109,9 +110,7 @@ bool scatter_at_strand(const Scene &scene, const FurLayer &layer, const RTCRayHi
             RTCRay sr;
             set_ray(sr, so, ls.wi, tfar, own_id);
             rtcOccluded1(rtc, &sctx, &sr);
-            if (log)
-                log->push_back(
-                    {{so.x, so.y, so.z}, tfar, {ls.wi.x, ls.wi.y, ls.wi.z}, 2});
+            instr.ray(so, ls.wi, tfar, shadow_ray);
             ++stats.shadow_rays;
             if (sr.tfar >= 0) {
                 const float light_pdf = select_pdf * ls.pdf;
@@ -137,5 +136,14 @@ bool scatter_at_strand(const Scene &scene, const FurLayer &layer, const RTCRayHi
     st.skip_id = own_id;
     return true;
 }
+
+template bool scatter_at_strand(const Scene &, const FurLayer &, const RTCRayHit &, int,
+                                bool, Sampler &, FurPathState &, FilmSample &,
+                                FilmPointAovs *, const CameraRay &, RenderStats &,
+                                const NoInstrumentation &);
+template bool scatter_at_strand(const Scene &, const FurLayer &, const RTCRayHit &, int,
+                                bool, Sampler &, FurPathState &, FilmSample &,
+                                FilmPointAovs *, const CameraRay &, RenderStats &,
+                                const Instrumented &);
 
 }  // namespace pelage::renderer

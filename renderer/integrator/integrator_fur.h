@@ -27,10 +27,11 @@ struct FurPathState {
 
 // Shades the hit `rh` on `layer` at path vertex `depth`: sets the film's first-hit values
 // at depth 0, adds direct light and samples the continuation (unless `last`). Returns
-// false when the path ends here.
+// false when the path ends here. `instr`: NoInstrumentation or Instrumented.
+template <typename Instr>
 bool scatter_at_strand(const Scene &scene, const FurLayer &layer, const RTCRayHit &rh,
                        int depth, bool last, Sampler &sampler, FurPathState &st,
                        FilmSample &fs, FilmPointAovs *aovs, const CameraRay &cam,
-                       RenderStats &stats, std::vector<RecordedRay> *log);
+                       RenderStats &stats, const Instr &instr);
 
 }  // namespace pelage::renderer

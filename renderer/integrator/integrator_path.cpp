@@ -1,6 +1,5 @@
 #include "renderer/integrator/integrator_path.h"
 
-#include <chrono>
 #include <cmath>
 #include <limits>
 #include <utility>
@@ -18,33 +17,8 @@ namespace {
 
 constexpr float inf = std::numeric_limits<float>::infinity();
 constexpr int max_infinite_lights = 8;
-constexpr double max_plugin_call_seconds = 100e-6;  // see the plugin timing below
 constexpr float shadow_ray_shortening =
     1e-4f;  // keep shadow rays off the light's surface
-
-struct Vertex {
-    Vec3f p, ng, ns, wo;
-};
-
-void record(std::vector<RecordedRay> *log, Vec3f o, Vec3f d, float tfar, uint32_t kind) {
-    if (log) log->push_back({{o.x, o.y, o.z}, tfar, {d.x, d.y, d.z}, kind});
-}
-
-// The cost of the two clock reads around a timed plugin call (the fastest of many
-// back-to-back pairs), subtracted from each timing: in a VM a clock read can cost more
-// than a simple plugin.
-double timer_overhead_seconds() {
-    static const double overhead = [] {
-        double best = 1e9;
-        for (int i = 0; i < 2000; ++i) {
-            const auto a = std::chrono::steady_clock::now();
-            const auto b = std::chrono::steady_clock::now();
-            best = std::min(best, std::chrono::duration<double>(b - a).count());
-        }
-        return best;
-    }();
-    return overhead;
-}
 
 // f and the BSDF's pdf for one direction pair, fused when the BSDF offers it.
 template <typename B>
@@ -59,35 +33,26 @@ Rgb eval_with_pdf(const B &bsdf, Vec3f wo, Vec3f wi, float *pdf) {
 
 }  // namespace
 
-void RenderStats::add(const RenderStats &o) {
-    camera_rays += o.camera_rays;
-    secondary_rays += o.secondary_rays;
-    shadow_rays += o.shadow_rays;
-    samples += o.samples;
-    nonfinite_samples += o.nonfinite_samples;
-    plugin_calls += o.plugin_calls;
-    plugin_timed_calls += o.plugin_timed_calls;
-    plugin_timed_seconds += o.plugin_timed_seconds;
-}
-
 PathIntegrator::PathIntegrator(const Scene &scene, const Camera &camera,
-                               const PixelFilter &filter, int /*width*/, int height)
+                               const PixelFilter &filter, int width, int height)
     : m_scene(scene),
       m_camera(camera),
       m_filter(filter),
       m_rtc(scene.geometry().scene()),
       m_packets(scene.geometry().device(), scene.geometry().scene()),
+      m_width(width),
+      m_height(height),
       m_max_depth(scene.desc().integrator.max_depth),
       m_rr_depth(scene.desc().integrator.rr_depth),
       m_spp(scene.desc().film.spp) {
-    m_timer_overhead = timer_overhead_seconds();
     m_pixel_spread = 2 * std::tan(0.5f * scene.desc().camera.fov_deg * pi / 180) /
                      float(height) * camera_spread_scale(m_spp);
 }
 
+template <typename Instr>
 void PathIntegrator::render_tile(Film &film, Sampler &sampler, int x0, int y0, int x1,
                                  int y1, int s0, int s1, RenderStats &stats,
-                                 std::vector<RecordedRay> *log) const {
+                                 const Instr &instr) const {
     constexpr int K = PacketIntersector::max_rays;
     Sampler lane[K];
     CameraRay cam[K];
@@ -117,21 +82,22 @@ void PathIntegrator::render_tile(Film &film, Sampler &sampler, int x0, int y0, i
                     const float dx = m_filter.sample_1d(fu), dy = m_filter.sample_1d(fv);
                     const auto [lu, lv] = sp.get_2d();
                     const float px = float(xs + i) + 0.5f + dx, py = float(y) + 0.5f + dy;
-                    cam[i] = m_motion ? m_motion(sp.get_1d()).generate(px, py, lu, lv)
+                    cam[i] = m_motion ? m_motion->at(sp.get_1d(), m_width, m_height)
+                                            .generate(px, py, lu, lv)
                                       : m_camera.generate(px, py, lu, lv);
                     org[i] = cam[i].o;
                     dir[i] = cam[i].d;
                 }
                 m_packets.intersect(org, dir, n, first);
                 stats.camera_rays += uint64_t(n);
-                for (int i = 0; i < n; ++i) record(log, org[i], dir[i], inf, 0);
+                for (int i = 0; i < n; ++i) instr.ray(org[i], dir[i], inf, camera_ray);
                 // --- The paths, one pixel at a time ---
                 for (int j = 0; j < n; ++j) {
                     const int i = backwards ? n - 1 - j : j, x = xs + i;
                     FilmSample fs;
                     FilmPointAovs aovs;
                     fs.L = radiance(cam[i], first[i], lane[i], fs,
-                                    s == 0 ? &aovs : nullptr, stats, log);
+                                    s == 0 ? &aovs : nullptr, stats, instr);
                     ++stats.samples;
                     if (s == 0) film.set_point_aovs(x, y, aovs);
                     // No NaN or Inf reaches the film: drop the sample and count it.
@@ -145,273 +111,328 @@ void PathIntegrator::render_tile(Film &film, Sampler &sampler, int x0, int y0, i
             }
 }
 
-Rgb PathIntegrator::radiance(const CameraRay &cam, const RTCRayHit &first,
-                             Sampler &sampler, FilmSample &fs, FilmPointAovs *aovs,
-                             RenderStats &stats, std::vector<RecordedRay> *log) const {
-    const Lights &lights = m_scene.lights();
-    const EmbreeScene &geometry = m_scene.geometry();
-    const int num_lights = lights.count();
+// --- The path ---
 
+struct PathIntegrator::PathState {
     Rgb L{}, beta{1, 1, 1};
-    Vec3f o = cam.o, d = cam.d;
+    Vec3f o, d;
     float prev_pdf = 0;  // solid-angle density of the BSDF sample that made d
     bool prev_specular = false;
-    Vec3f prev_ng{0, 0, 1};         // geometric normal at the vertex d left
-    float footprint = 0;            // ray cone width at the ray origin (ray_cone.h)
-    float spread = m_pixel_spread;  // ... and its full angle, radians
-    unsigned fur_skip = 0;          // the strand the ray leaves, + 1 (fur_geometry.h)
+    Vec3f prev_ng{0, 0, 1};  // geometric normal at the vertex d left
+    float footprint = 0;     // ray cone width at the ray origin (ray_cone.h)
+    float spread;            // ... and its full angle, radians
+    unsigned fur_skip = 0;   // the strand the ray leaves, + 1 (fur_geometry.h)
+};
 
+struct PathIntegrator::SurfaceVertex {
+    uint32_t object, prim;
+    float b0, b1, b2;  // barycentrics
+    float t_hit;
+    Vec3f p, ng, ns, wo;  // ng faces wo; ns faces wo and ng
+    float footprint;      // the ray cone's width at the hit
+};
+
+// One 2D sample each, drawn in this order: the light and the BSDF lobe, the point on the
+// light, the BSDF direction.
+struct PathIntegrator::VertexSamples {
+    Sampler::Pair pick, light, bsdf;
+};
+
+// pbrt-v4 §13.4 (PathIntegrator::Li): at each vertex, emission reached by the ray, then
+// next-event estimation and BSDF sampling at a fur strand or a surface, then Russian
+// roulette.
+template <typename Instr>
+Rgb PathIntegrator::radiance(const CameraRay &cam, const RTCRayHit &first,
+                             Sampler &sampler, FilmSample &fs, FilmPointAovs *aovs,
+                             RenderStats &stats, const Instr &instr) const {
+    PathState path{.o = cam.o, .d = cam.d, .spread = m_pixel_spread};
     for (int depth = 0;; ++depth) {
-        // --- Intersect the scene (the camera ray was traced in a packet) ---
-        RTCRayHit rh;
-        if (depth == 0) {
-            rh = first;
-        } else {
-            RTCIntersectContext ctx;
-            rtcInitIntersectContext(&ctx);
-            ctx.flags = RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT;
-            set_ray(rh.ray, o, d, inf);
-            rh.ray.id = std::exchange(fur_skip, 0u);
-            rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-            rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-            rtcIntersect1(m_rtc, &ctx, &rh);
-        }
-        if (depth > 0) {  // camera rays were counted and recorded with their packet
-            record(log, o, d, inf, 1);
-            ++stats.secondary_rays;
-        }
-        const bool hit_geometry = rh.hit.geomID != RTC_INVALID_GEOMETRY_ID;
-        const float t_hit = hit_geometry ? rh.ray.tfar : inf;
-        const bool unweighted = depth == 0 || prev_specular;
-
-        // --- An area light's own geometry: emits (front side), never reflects ---
-        if (const int li =
-                hit_geometry ? geometry.light_of(rh.hit.geomID, rh.hit.instID[0]) : -1;
-            li >= 0) {
-            float pdf_light;
-            const Rgb Le = lights.area_radiance(li, o, d, t_hit, &pdf_light);
-            const float w =
-                unweighted ? 1.0f
-                           : power_heuristic(prev_pdf, lights.select_pdf(li) * pdf_light);
-            L += beta * Le * w;
-            if (depth == 0) {
-                fs.alpha = 1;
-                if (aovs) aovs->depth = t_hit * dot(d, cam.forward);
-            }
-            break;
-        }
-        // --- Escaped: the environment and distant discs ---
-        if (!hit_geometry) {
-            Lights::InfiniteHit hits[max_infinite_lights];
-            const int n = lights.eval_infinite(d, prev_ng, hits, max_infinite_lights);
-            for (int k = 0; k < n; ++k) {
-                const float w =
-                    unweighted ? 1.0f : power_heuristic(prev_pdf, hits[k].pdf);
-                L += beta * hits[k].L * w;
-            }
-            break;
-        }
-
-        // --- Fur: a strand scatters with the hair BSDF
-        // (renderer/integrator/integrator_fur.h) ---
+        const RTCRayHit rh = depth == 0 ? first : trace(path, stats, instr);
+        if (add_emission(rh, depth, cam, path, fs, aovs)) break;
+        bool scattered;
         if (const FurLayer *layer =
                 m_scene.fur() ? m_scene.fur()->layer_of(rh.hit.geomID) : nullptr) {
-            FurPathState st{L, beta, o, d, prev_pdf, prev_specular, prev_ng, fur_skip};
-            if (!scatter_at_strand(m_scene, *layer, rh, depth, depth >= m_max_depth,
-                                   sampler, st, fs, aovs, cam, stats, log) ||
-                is_black(beta))
-                break;
-            if (!prev_specular) spread += bounce_spread(prev_pdf, m_spp);
-            if (depth + 1 >= m_rr_depth) {
-                const float p_continue = std::min(0.95f, max_component(beta));
-                if (sampler.get_1d() >= p_continue) break;
-                beta = beta / p_continue;
-            }
-            continue;
-        }
-
-        // --- Surface geometry at the hit ---
-        const uint32_t object = geometry.object_of(rh.hit.geomID, rh.hit.instID[0]);
-        const ObjectGeometry &og = geometry.objects()[object];
-        const MeshData &mesh = *og.mesh;
-        const uint32_t prim = rh.hit.primID;
-        const float b1 = rh.hit.u, b2 = rh.hit.v, b0 = 1 - b1 - b2;
-        // Normals are built in locals and stored into the vertex once: field-wise writes
-        // followed by a whole-Vec3f copy cause store-forwarding stalls.
-        Vec3f ng;
-        // The hit point from the ray (its float error is far below the origin offset);
-        // Embree's Ng for baked meshes, so the vertices are not fetched again.
-        if (og.baked) {
-            ng = {rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z};
+            FurPathState st{path.L,       path.beta,     path.o,
+                            path.d,       path.prev_pdf, path.prev_specular,
+                            path.prev_ng, path.fur_skip};
+            scattered =
+                scatter_at_strand(m_scene, *layer, rh, depth, depth >= m_max_depth,
+                                  sampler, st, fs, aovs, cam, stats, instr);
         } else {
-            // Embree reports Ng of instanced geometry in object space: rebuild and move
-            // it.
-            const uint32_t *tri = &mesh.triangles[3 * size_t(prim)];
-            const float *P = mesh.positions.data();
-            const Vec3f p0{P[3 * tri[0]], P[3 * tri[0] + 1], P[3 * tri[0] + 2]};
-            const Vec3f p1{P[3 * tri[1]], P[3 * tri[1] + 1], P[3 * tri[1] + 2]};
-            const Vec3f p2{P[3 * tri[2]], P[3 * tri[2] + 1], P[3 * tri[2] + 2]};
-            ng = og.normal_to_world.vector(cross(p1 - p0, p2 - p0));
+            const SurfaceVertex sv = surface_vertex(rh, path);
+            Rgb albedo;
+            const PelageShade sh = shade(sv, depth, &albedo, stats, instr);
+            if (depth == 0) set_first_hit(sv, sh, albedo, cam, fs, aovs);
+            scattered = depth < m_max_depth &&
+                        scatter_at_surface(sv, sh, albedo, sampler, path, stats, instr);
         }
-        const Vec3f wo = -d;
-        // Two-sided: the geometric normal faces the incoming ray.
-        ng = ng * ((dot(ng, wo) < 0 ? -1.0f : 1.0f) / length(ng));
-        Vec3f ns_shade = ng;
-        if (!mesh.corner_normals.empty()) {
-            const float *N = &mesh.corner_normals[9 * size_t(prim)];
-            Vec3f ns = Vec3f{N[0], N[1], N[2]} * b0 + Vec3f{N[3], N[4], N[5]} * b1 +
-                       Vec3f{N[6], N[7], N[8]} * b2;
-            if (!og.baked) ns = og.normal_to_world.vector(ns);
-            const float len = length(ns);
-            if (len > 0) {
-                ns = ns / len;
-                if (dot(ns, ng) < 0) ns = -ns;
-                // A shading normal facing away from the viewer would make the BSDF black.
-                if (dot(ns, wo) > 0) ns_shade = ns;
-            }
-        }
-        const Vertex v{o + d * t_hit, ng, ns_shade, wo};
-        footprint += t_hit * spread;
+        if (!scattered || !continue_path(depth, sampler, path)) break;
+    }
+    return path.L;
+}
 
-        // --- Shade: the material plugin fills the BSDF inputs ---
-        const Material &mat = m_scene.materials()[object];
-        PelageHit ph{};
-        ph.object_id = object;
-        ph.primitive_id = prim;
-        ph.b1 = b1;
-        ph.b2 = b2;
-        ph.p[0] = v.p.x;
-        ph.p[1] = v.p.y;
-        ph.p[2] = v.p.z;
-        ph.n[0] = v.ns.x;
-        ph.n[1] = v.ns.y;
-        ph.n[2] = v.ns.z;
-        if (!mesh.corner_uvs.empty()) {
-            const float *U = &mesh.corner_uvs[6 * size_t(prim)];
-            ph.uv[0] = U[0] * b0 + U[2] * b1 + U[4] * b2;
-            ph.uv[1] = U[1] * b0 + U[3] * b1 + U[5] * b2;
-            ph.has_uv = 1;
-        }
-        ph.footprint = footprint * og.to_object_length;
-        ph.depth = uint32_t(depth);
-        PelageShade sh{};
-        sh.albedo[0] = sh.albedo[1] = sh.albedo[2] = 0.5f;
-        sh.roughness = -1;
-        if (stats.plugin_calls++ % m_plugin_timing_stride == 0) {
-            const auto t0 = std::chrono::steady_clock::now();
-            mat.plugin->shade(mat.instance, &ph, &sh);
-            const double dt =
-                std::chrono::duration<double>(std::chrono::steady_clock::now() - t0)
-                    .count();
-            // A call that took longer than this was preempted (the thread lost its core);
-            // one such sample, extrapolated 16×, would dominate the estimate on a
-            // shared machine. It is left out of the mean, not counted as shading.
-            if (dt < max_plugin_call_seconds) {
-                stats.plugin_timed_seconds += std::max(0.0, dt - m_timer_overhead);
-                ++stats.plugin_timed_calls;
-            }
-        } else {
-            mat.plugin->shade(mat.instance, &ph, &sh);
-        }
-        Rgb albedo{sh.albedo[0], sh.albedo[1], sh.albedo[2]};
-        albedo = {std::isfinite(albedo.x) ? std::clamp(albedo.x, 0.0f, 1.0f) : 0.0f,
-                  std::isfinite(albedo.y) ? std::clamp(albedo.y, 0.0f, 1.0f) : 0.0f,
-                  std::isfinite(albedo.z) ? std::clamp(albedo.z, 0.0f, 1.0f) : 0.0f};
+// The next vertex along a BSDF-sampled ray (the camera ray was traced in a packet). The
+// ray skips the fur strand it leaves.
+template <typename Instr>
+RTCRayHit PathIntegrator::trace(PathState &path, RenderStats &stats,
+                                const Instr &instr) const {
+    RTCRayHit rh;
+    RTCIntersectContext ctx;
+    rtcInitIntersectContext(&ctx);
+    ctx.flags = RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT;
+    set_ray(rh.ray, path.o, path.d, inf);
+    rh.ray.id = std::exchange(path.fur_skip, 0u);
+    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+    rtcIntersect1(m_rtc, &ctx, &rh);
+    instr.ray(path.o, path.d, inf, secondary_ray);
+    ++stats.secondary_rays;
+    return rh;
+}
 
+// Adds what the ray sees of the lights, MIS-weighted against light sampling (Veach 1997
+// §9.2) unless the ray came from the camera or a specular bounce. True when the path
+// ends: at an area light's own geometry, which emits (front side) and never reflects, or
+// when the ray escaped to the environment and distant discs.
+bool PathIntegrator::add_emission(const RTCRayHit &rh, int depth, const CameraRay &cam,
+                                  PathState &path, FilmSample &fs,
+                                  FilmPointAovs *aovs) const {
+    const Lights &lights = m_scene.lights();
+    const bool hit_geometry = rh.hit.geomID != RTC_INVALID_GEOMETRY_ID;
+    const float t_hit = hit_geometry ? rh.ray.tfar : inf;
+    const bool unweighted = depth == 0 || path.prev_specular;
+    if (const int li = hit_geometry
+                           ? m_scene.geometry().light_of(rh.hit.geomID, rh.hit.instID[0])
+                           : -1;
+        li >= 0) {
+        float pdf_light;
+        const Rgb Le = lights.area_radiance(li, path.o, path.d, t_hit, &pdf_light);
+        const float w = unweighted ? 1.0f
+                                   : power_heuristic(path.prev_pdf,
+                                                     lights.select_pdf(li) * pdf_light);
+        path.L += path.beta * Le * w;
         if (depth == 0) {
             fs.alpha = 1;
-            fs.albedo = albedo;
-            fs.normal = v.ns;
-            if (aovs) {
-                aovs->depth =
-                    t_hit * dot(d, cam.forward);  // motion blur: this sample's camera
-                aovs->object_id = float(object);
-                aovs->primitive_id = float(prim);
-                if (sh.aov_written)
-                    for (int k = 0; k < PELAGE_SHADER_AOV_SLOTS; ++k)
-                        aovs->shader[k] = std::isfinite(sh.aov[k]) ? sh.aov[k] : 0.0f;
-            }
+            if (aovs) aovs->depth = t_hit * dot(path.d, cam.forward);
         }
-        if (depth >= m_max_depth) break;
-
-        // --- Direct lighting and BSDF sampling, for the material's BSDF ---
-        const Frame frame = Frame::from_z(v.ns);
-        const Vec3f wo_local = frame.to_local(v.wo);
-        // Named floats, not structured bindings: the lambda below captures them, which
-        // C++17 (and clang before 16) does not allow for bindings.
-        const Sampler::Pair u_pick = sampler.get_2d(), u_light_pos = sampler.get_2d(),
-                            u_bsdf = sampler.get_2d();
-        const float u_light = u_pick.u1, u_lobe = u_pick.u2;
-        const float ul1 = u_light_pos.u1, ul2 = u_light_pos.u2;
-        const float ub1 = u_bsdf.u1, ub2 = u_bsdf.u2;
-        auto scatter = [&](const auto &bsdf) -> bool {
-            // --- Next-event estimation: one light, chosen by its power ---
-            LightSample ls;
-            float select_pdf = 0;
-            const int li = num_lights > 0 ? lights.select(u_light, &select_pdf) : -1;
-            if (li >= 0 && lights.sample(li, v.p, v.ng, ul1, ul2, &ls) &&
-                dot(ls.wi, v.ng) > 0) {
-                const Vec3f wi_local = frame.to_local(ls.wi);
-                float bsdf_pdf;
-                const Rgb f = eval_with_pdf(bsdf, wo_local, wi_local, &bsdf_pdf);
-                if (!is_black(f)) {
-                    const Vec3f so = offset_ray_origin(v.p, v.ng, ls.wi);
-                    const float tfar = std::isinf(ls.distance)
-                                           ? inf
-                                           : ls.distance * (1 - shadow_ray_shortening);
-                    RTCIntersectContext sctx;
-                    rtcInitIntersectContext(&sctx);
-                    sctx.flags = RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT;
-                    RTCRay sr;
-                    set_ray(sr, so, ls.wi, tfar);
-                    rtcOccluded1(m_rtc, &sctx, &sr);
-                    record(log, so, ls.wi, tfar, 2);
-                    ++stats.shadow_rays;
-                    if (sr.tfar >= 0) {  // Embree sets tfar = -inf when occluded
-                        const float light_pdf = select_pdf * ls.pdf;
-                        const float w =
-                            ls.delta ? 1.0f : power_heuristic(light_pdf, bsdf_pdf);
-                        L += beta * f * ls.Li * (std::abs(wi_local.z) * w / light_pdf);
-                    }
-                }
-            }
-            // --- Continue the path by sampling the BSDF ---
-            const std::optional<BsdfSample> bs = bsdf.sample(wo_local, u_lobe, ub1, ub2);
-            if (!bs) return false;
-            const Vec3f wi = frame.to_world(bs->wi);
-            if (dot(wi, v.ng) <= 0) return false;  // below the geometric surface
-            beta *= bs->weight;
-            prev_pdf = bs->pdf;
-            prev_specular = bs->specular;
-            prev_ng = v.ng;
-            o = offset_ray_origin(v.p, v.ng, wi);
-            d = wi;
-            return true;
-        };
-        bool go_on;
-        if (mat.bsdf == MaterialDesc::Bsdf::coated) {
-            // The plugin may override the coat's roughness and ior (per cell type, say).
-            const float roughness =
-                sh.roughness >= 0 ? std::min(sh.roughness, 1.0f) : mat.roughness;
-            const bool own_ior = sh.ior >= 1 && sh.ior <= 3;
-            go_on = scatter(BsdfCoated(
-                albedo, roughness, own_ior ? sh.ior : mat.ior,
-                own_ior ? BsdfCoated::internal_diffuse_reflectance_table(sh.ior)
-                        : mat.coat_F_int));
-        } else {
-            go_on = scatter(BsdfLambert(albedo));
+        return true;
+    }
+    if (!hit_geometry) {
+        Lights::InfiniteHit hits[max_infinite_lights];
+        const int n =
+            lights.eval_infinite(path.d, path.prev_ng, hits, max_infinite_lights);
+        for (int k = 0; k < n; ++k) {
+            const float w =
+                unweighted ? 1.0f : power_heuristic(path.prev_pdf, hits[k].pdf);
+            path.L += path.beta * hits[k].L * w;
         }
-        if (!go_on || is_black(beta)) break;
-        if (!prev_specular) spread += bounce_spread(prev_pdf, m_spp);
+        return true;
+    }
+    return false;
+}
 
-        // --- Russian roulette ---
-        if (depth + 1 >= m_rr_depth) {
-            const float p_continue = std::min(0.95f, max_component(beta));
-            if (sampler.get_1d() >= p_continue) break;
-            beta = beta / p_continue;
+// The mesh point the ray hit: position, two-sided geometric and shading normals, and
+// the ray cone's footprint there (which this adds to the path's).
+PathIntegrator::SurfaceVertex PathIntegrator::surface_vertex(const RTCRayHit &rh,
+                                                             PathState &path) const {
+    const EmbreeScene &geometry = m_scene.geometry();
+    const uint32_t object = geometry.object_of(rh.hit.geomID, rh.hit.instID[0]);
+    const ObjectGeometry &og = geometry.objects()[object];
+    const MeshData &mesh = *og.mesh;
+    const uint32_t prim = rh.hit.primID;
+    const float b1 = rh.hit.u, b2 = rh.hit.v, b0 = 1 - b1 - b2;
+    const float t_hit = rh.ray.tfar;
+    // Normals are built in locals and stored into the vertex once: field-wise writes
+    // followed by a whole-Vec3f copy cause store-forwarding stalls.
+    Vec3f ng;
+    // The hit point from the ray (its float error is far below the origin offset);
+    // Embree's Ng for baked meshes, so the vertices are not fetched again.
+    if (og.baked) {
+        ng = {rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z};
+    } else {
+        // Embree reports Ng of instanced geometry in object space: rebuild and move it.
+        const uint32_t *tri = &mesh.triangles[3 * size_t(prim)];
+        const float *P = mesh.positions.data();
+        const Vec3f p0{P[3 * tri[0]], P[3 * tri[0] + 1], P[3 * tri[0] + 2]};
+        const Vec3f p1{P[3 * tri[1]], P[3 * tri[1] + 1], P[3 * tri[1] + 2]};
+        const Vec3f p2{P[3 * tri[2]], P[3 * tri[2] + 1], P[3 * tri[2] + 2]};
+        ng = og.normal_to_world.vector(cross(p1 - p0, p2 - p0));
+    }
+    const Vec3f wo = -path.d;
+    // Two-sided: the geometric normal faces the incoming ray.
+    ng = ng * ((dot(ng, wo) < 0 ? -1.0f : 1.0f) / length(ng));
+    Vec3f ns_shade = ng;
+    if (!mesh.corner_normals.empty()) {
+        const float *N = &mesh.corner_normals[9 * size_t(prim)];
+        Vec3f ns = Vec3f{N[0], N[1], N[2]} * b0 + Vec3f{N[3], N[4], N[5]} * b1 +
+                   Vec3f{N[6], N[7], N[8]} * b2;
+        if (!og.baked) ns = og.normal_to_world.vector(ns);
+        const float len = length(ns);
+        if (len > 0) {
+            ns = ns / len;
+            if (dot(ns, ng) < 0) ns = -ns;
+            // A shading normal facing away from the viewer would make the BSDF black.
+            if (dot(ns, wo) > 0) ns_shade = ns;
         }
     }
-    return L;
+    path.footprint += t_hit * path.spread;
+    return {
+        object, prim,          b0, b1, b2, t_hit, path.o + path.d * t_hit, ng, ns_shade,
+        wo,     path.footprint};
 }
+
+// The material plugin fills the BSDF inputs at `sv` (the plugin SDK's PelageHit and
+// PelageShade); `albedo` receives its albedo, clamped to [0, 1].
+template <typename Instr>
+PelageShade PathIntegrator::shade(const SurfaceVertex &sv, int depth, Rgb *albedo,
+                                  RenderStats &stats, const Instr &instr) const {
+    const ObjectGeometry &og = m_scene.geometry().objects()[sv.object];
+    const MeshData &mesh = *og.mesh;
+    PelageHit ph{};
+    ph.object_id = sv.object;
+    ph.primitive_id = sv.prim;
+    ph.b1 = sv.b1;
+    ph.b2 = sv.b2;
+    ph.p[0] = sv.p.x;
+    ph.p[1] = sv.p.y;
+    ph.p[2] = sv.p.z;
+    ph.n[0] = sv.ns.x;
+    ph.n[1] = sv.ns.y;
+    ph.n[2] = sv.ns.z;
+    if (!mesh.corner_uvs.empty()) {
+        const float *U = &mesh.corner_uvs[6 * size_t(sv.prim)];
+        ph.uv[0] = U[0] * sv.b0 + U[2] * sv.b1 + U[4] * sv.b2;
+        ph.uv[1] = U[1] * sv.b0 + U[3] * sv.b1 + U[5] * sv.b2;
+        ph.has_uv = 1;
+    }
+    ph.footprint = sv.footprint * og.to_object_length;
+    ph.depth = uint32_t(depth);
+    PelageShade sh{};
+    sh.albedo[0] = sh.albedo[1] = sh.albedo[2] = 0.5f;
+    sh.roughness = -1;
+    instr.shade(m_scene.materials()[sv.object], ph, sh, stats);
+    *albedo = {std::isfinite(sh.albedo[0]) ? std::clamp(sh.albedo[0], 0.0f, 1.0f) : 0.0f,
+               std::isfinite(sh.albedo[1]) ? std::clamp(sh.albedo[1], 0.0f, 1.0f) : 0.0f,
+               std::isfinite(sh.albedo[2]) ? std::clamp(sh.albedo[2], 0.0f, 1.0f) : 0.0f};
+    return sh;
+}
+
+// The film's first-hit values for a camera ray that hit a surface.
+void PathIntegrator::set_first_hit(const SurfaceVertex &sv, const PelageShade &sh,
+                                   const Rgb &albedo, const CameraRay &cam,
+                                   FilmSample &fs, FilmPointAovs *aovs) const {
+    fs.alpha = 1;
+    fs.albedo = albedo;
+    fs.normal = sv.ns;
+    if (!aovs) return;
+    aovs->depth =
+        sv.t_hit * dot(cam.d, cam.forward);  // motion blur: this sample's camera
+    aovs->object_id = float(sv.object);
+    aovs->primitive_id = float(sv.prim);
+    if (sh.aov_written)
+        for (int k = 0; k < PELAGE_SHADER_AOV_SLOTS; ++k)
+            aovs->shader[k] = std::isfinite(sh.aov[k]) ? sh.aov[k] : 0.0f;
+}
+
+// Builds the material's BSDF from the plugin's inputs and scatters with it.
+template <typename Instr>
+bool PathIntegrator::scatter_at_surface(const SurfaceVertex &sv, const PelageShade &sh,
+                                        const Rgb &albedo, Sampler &sampler,
+                                        PathState &path, RenderStats &stats,
+                                        const Instr &instr) const {
+    // Braces evaluate in order: the sampler dimensions are consumed as listed.
+    const VertexSamples u{sampler.get_2d(), sampler.get_2d(), sampler.get_2d()};
+    const Material &mat = m_scene.materials()[sv.object];
+    if (mat.bsdf != MaterialDesc::Bsdf::coated)
+        return scatter(BsdfLambert(albedo), sv, u, path, stats, instr);
+    // The plugin may override the coat's roughness and ior (per cell type, say).
+    const float roughness =
+        sh.roughness >= 0 ? std::min(sh.roughness, 1.0f) : mat.roughness;
+    const bool own_ior = sh.ior >= 1 && sh.ior <= 3;
+    return scatter(
+        BsdfCoated(albedo, roughness, own_ior ? sh.ior : mat.ior,
+                   own_ior ? BsdfCoated::internal_diffuse_reflectance_table(sh.ior)
+                           : mat.coat_F_int),
+        sv, u, path, stats, instr);
+}
+
+// Direct light at the vertex, then the continuation: the BSDF samples the next
+// direction, which must leave above the geometric surface.
+template <typename Bsdf, typename Instr>
+bool PathIntegrator::scatter(const Bsdf &bsdf, const SurfaceVertex &sv,
+                             const VertexSamples &u, PathState &path, RenderStats &stats,
+                             const Instr &instr) const {
+    const Frame frame = Frame::from_z(sv.ns);
+    const Vec3f wo_local = frame.to_local(sv.wo);
+    sample_ld(bsdf, sv, frame, wo_local, u, path, stats, instr);
+    const std::optional<BsdfSample> bs =
+        bsdf.sample(wo_local, u.pick.u2, u.bsdf.u1, u.bsdf.u2);
+    if (!bs) return false;
+    const Vec3f wi = frame.to_world(bs->wi);
+    if (dot(wi, sv.ng) <= 0) return false;  // below the geometric surface
+    path.beta *= bs->weight;
+    path.prev_pdf = bs->pdf;
+    path.prev_specular = bs->specular;
+    path.prev_ng = sv.ng;
+    path.o = offset_ray_origin(sv.p, sv.ng, wi);
+    path.d = wi;
+    return true;
+}
+
+// Next-event estimation (pbrt-v4 §13.4, SampleLd): one light, chosen by its power, is
+// sampled and, when unoccluded, adds β·f·Li·|cos θ|·w / p to L, with the power heuristic
+// weight w against BSDF sampling (Veach 1997 §9.2). β multiplies first: the product's
+// order is part of the image.
+template <typename Bsdf, typename Instr>
+void PathIntegrator::sample_ld(const Bsdf &bsdf, const SurfaceVertex &sv,
+                               const Frame &frame, Vec3f wo_local, const VertexSamples &u,
+                               PathState &path, RenderStats &stats,
+                               const Instr &instr) const {
+    const Lights &lights = m_scene.lights();
+    LightSample ls;
+    float select_pdf = 0;
+    const int li = lights.count() > 0 ? lights.select(u.pick.u1, &select_pdf) : -1;
+    if (li < 0 || !lights.sample(li, sv.p, sv.ng, u.light.u1, u.light.u2, &ls) ||
+        !(dot(ls.wi, sv.ng) > 0))
+        return;
+    const Vec3f wi_local = frame.to_local(ls.wi);
+    float bsdf_pdf;
+    const Rgb f = eval_with_pdf(bsdf, wo_local, wi_local, &bsdf_pdf);
+    if (is_black(f)) return;
+    const Vec3f so = offset_ray_origin(sv.p, sv.ng, ls.wi);
+    const float tfar =
+        std::isinf(ls.distance) ? inf : ls.distance * (1 - shadow_ray_shortening);
+    RTCIntersectContext sctx;
+    rtcInitIntersectContext(&sctx);
+    sctx.flags = RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT;
+    RTCRay sr;
+    set_ray(sr, so, ls.wi, tfar);
+    rtcOccluded1(m_rtc, &sctx, &sr);
+    instr.ray(so, ls.wi, tfar, shadow_ray);
+    ++stats.shadow_rays;
+    if (!(sr.tfar >= 0)) return;  // Embree sets tfar = -inf when occluded
+    const float light_pdf = select_pdf * ls.pdf;
+    const float w = ls.delta ? 1.0f : power_heuristic(light_pdf, bsdf_pdf);
+    path.L += path.beta * f * ls.Li * (std::abs(wi_local.z) * w / light_pdf);
+}
+
+// After a vertex scattered: widens the ray cone for a non-specular bounce (ray_cone.h),
+// then decides whether the path goes on. Not when its throughput is black; from rr_depth
+// on, Russian roulette (pbrt-v4 §2.2.4) continues with probability min(0.95, max(β)) and
+// divides β by it, so the estimate stays unbiased.
+bool PathIntegrator::continue_path(int depth, Sampler &sampler, PathState &path) const {
+    if (is_black(path.beta)) return false;
+    if (!path.prev_specular) path.spread += bounce_spread(path.prev_pdf, m_spp);
+    if (depth + 1 < m_rr_depth) return true;
+    const float p_continue = std::min(0.95f, max_component(path.beta));
+    if (sampler.get_1d() >= p_continue) return false;
+    path.beta = path.beta / p_continue;
+    return true;
+}
+
+template void PathIntegrator::render_tile(Film &, Sampler &, int, int, int, int, int, int,
+                                          RenderStats &, const NoInstrumentation &) const;
+template void PathIntegrator::render_tile(Film &, Sampler &, int, int, int, int, int, int,
+                                          RenderStats &, const Instrumented &) const;
 
 }  // namespace pelage::renderer

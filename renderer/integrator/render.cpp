@@ -21,10 +21,9 @@ RenderResult render(const Scene &scene, const RenderOptions &opt) {
     const Camera camera(opt.camera ? *opt.camera : scene.desc().camera, W, H);
     const PixelFilter filter(fd.filter, fd.filter_radius);
     PathIntegrator integrator(scene, camera, filter, W, H);
-    integrator.set_plugin_timing_stride(opt.plugin_timing_stride);
-    if (opt.camera_motion)
-        integrator.set_camera_motion(
-            [&opt, W, H](float u) { return Camera(opt.camera_motion(u), W, H); });
+    if (opt.camera_motion) integrator.set_camera_motion(&*opt.camera_motion);
+    const bool instrumented = opt.instrument || opt.record_rays;
+    const double timer_overhead = instrumented ? timer_overhead_seconds() : 0.0;
 
     RenderResult result;
     result.film = std::make_unique<Film>(W, H);
@@ -48,20 +47,27 @@ RenderResult render(const Scene &scene, const RenderOptions &opt) {
             tbb::blocked_range<int>(0, num_tiles, 1),
             [&](const tbb::blocked_range<int> &range) {
                 RenderStats &st = stats.local();
-                std::vector<RecordedRay> *log = opt.record_rays ? &logs.local() : nullptr;
                 Sampler sampler(opt.seed, opt.frame);
-                for (int tile = range.begin(); tile != range.end(); ++tile) {
-                    if (opt.cancel && opt.cancel->load(std::memory_order_relaxed)) {
-                        stopped.store(true);
-                        return;
+                auto render_tiles = [&](const auto &instr) {
+                    for (int tile = range.begin(); tile != range.end(); ++tile) {
+                        if (opt.cancel && opt.cancel->load(std::memory_order_relaxed)) {
+                            stopped.store(true);
+                            return;
+                        }
+                        const int tx = tile % tiles_x, ty = tile / tiles_x;
+                        const int x0 = tx * tile_size, y0 = ty * tile_size;
+                        integrator.render_tile(
+                            *result.film, sampler, x0, y0, std::min(W, x0 + tile_size),
+                            std::min(H, y0 + tile_size), s0, s1, st, instr);
+                        progress.advance();
                     }
-                    const int tx = tile % tiles_x, ty = tile / tiles_x;
-                    const int x0 = tx * tile_size, y0 = ty * tile_size;
-                    integrator.render_tile(*result.film, sampler, x0, y0,
-                                           std::min(W, x0 + tile_size),
-                                           std::min(H, y0 + tile_size), s0, s1, st, log);
-                    progress.advance();
-                }
+                };
+                if (instrumented)
+                    render_tiles(Instrumented{
+                        opt.record_rays ? &logs.local() : nullptr,
+                        std::max<uint64_t>(1, opt.plugin_timing_stride), timer_overhead});
+                else
+                    render_tiles(NoInstrumentation{});
             });
         scene.geometry().check();  // an Embree error fails the run
         if (!stopped.load()) result.spp_done = s1;

@@ -7,7 +7,6 @@
 #pragma once
 
 #include <atomic>
-#include <functional>
 #include <memory>
 #include <optional>
 #include <vector>
@@ -22,13 +21,18 @@ struct RenderOptions {
     uint64_t seed = 0;
     uint32_t frame = 0;
     const std::atomic<bool> *cancel = nullptr;
-    bool progress = false;     // draw a progress bar (the caller checks for a TTY)
-    bool record_rays = false;  // keep every ray cast (benchmarks only)
-    uint64_t plugin_timing_stride = 16;  // time 1 plugin call in N (1: every call)
-    // Animation: the camera to use instead of the scene's, and camera motion blur (the
-    // camera at shutter position u in [0, 1)); both optional.
+    bool progress = false;  // draw a progress bar (the caller checks for a TTY)
+    // Instrumentation (`pelage bench render`, `pelage render --stats-json`): when set,
+    // the integrator's instrumented instantiation runs, timing 1 plugin call in
+    // `plugin_timing_stride` (plugin_seconds) and, with record_rays, keeping every ray
+    // cast. Unset, the production instantiation carries none of it (instrumentation.h).
+    bool instrument = false;
+    uint64_t plugin_timing_stride = 16;  // 1: every call
+    bool record_rays = false;            // implies instrument
+    // Animation: the camera to use instead of the scene's, and camera motion blur; both
+    // optional.
     std::optional<CameraDesc> camera;
-    std::function<CameraDesc(float)> camera_motion;
+    std::optional<CameraMotion> camera_motion;
 };
 
 struct RenderResult {
