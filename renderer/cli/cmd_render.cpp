@@ -78,49 +78,56 @@ std::string frame_path(const std::string &pattern, int frame) {
     return pattern.substr(0, first) + padded + pattern.substr(last + 1);
 }
 
-int run(const RenderCliOptions &o) {
-    const auto control = o.threads.apply();
-    SceneDesc desc = load_scene_file(o.scene);
+// What the command line asks for, checked before any work starts.
+struct RenderPlan {
+    std::string output, preview;  // file names, with #### where a range puts frames
+    std::optional<DisplayTransform> display;
+    bool animated = false;  // --frames given
+    std::vector<int> frames;
+};
 
-    // --- Command-line overrides ---
+// Applies the command-line overrides to `desc`, then checks every output: a missing
+// folder or a bad name fails now, not after the render.
+RenderPlan plan_render(const RenderCliOptions &o, SceneDesc &desc) {
     if (o.spp > 0) desc.film.spp = o.spp;
     if (!o.res.empty())
         parse_resolution(o.res, 65536, &desc.film.width, &desc.film.height);
     if (!o.view.empty()) desc.film.view = o.view;
-    const std::string output = !o.output.empty() ? o.output : desc.film.output;
+    RenderPlan plan;
+    plan.output = !o.output.empty() ? o.output : desc.film.output;
+    const std::string &output = plan.output;
     if (output.empty())
         throw InputError(o.scene, 0, "film.output",
                          "no output file: give -o OUT.exr or set film.output");
     if (lower_extension(output) != ".exr")
         throw InputError("", 0, "-o",
                          "\"" + output + "\": the render is written as OpenEXR (.exr)");
-    const std::string preview = !o.preview.empty() ? o.preview : desc.film.preview;
-    std::optional<DisplayTransform> display;
+    plan.preview = !o.preview.empty() ? o.preview : desc.film.preview;
+    const std::string &preview = plan.preview;
     if (!preview.empty()) {
         const std::string e = lower_extension(preview);
         if (e != ".png" && e != ".jpg" && e != ".jpeg")
             throw InputError("", 0, "--preview",
                              "\"" + preview + "\": expected a .png or .jpg file");
-        display.emplace(desc.film.view, "");  // checks the view before any work is done
+        plan.display.emplace(desc.film.view, "");  // checks the view now
     }
 
-    // --- Frames: --frames A-B [--step N], or the still (frame 0 of an animation) ---
-    const bool animated = !o.frames.empty();
-    const std::vector<int> frames =
-        animated ? parse_frames(o.frames, o.step, desc.animation, o.scene)
-                 : std::vector<int>{0};
-    if (frames.size() > 1 && output.find('#') == std::string::npos)
+    // --frames A-B [--step N], or the still (frame 0 of an animation).
+    plan.animated = !o.frames.empty();
+    plan.frames = plan.animated ? parse_frames(o.frames, o.step, desc.animation, o.scene)
+                                : std::vector<int>{0};
+    if (plan.frames.size() > 1 && output.find('#') == std::string::npos)
         throw InputError("", 0, "-o",
                          "\"" + output +
                              "\": several frames need a #### in the file name "
                              "(replaced by the zero-padded frame number)");
-    if (frames.size() > 1 && !preview.empty() && preview.find('#') == std::string::npos)
+    if (plan.frames.size() > 1 && !preview.empty() &&
+        preview.find('#') == std::string::npos)
         throw InputError("", 0, "--preview",
                          "\"" + preview + "\": several frames need a #### in the name");
-    if (o.resume && !animated)
+    if (o.resume && !plan.animated)
         throw InputError("", 0, "--resume", "resumes a frame range: give --frames too");
 
-    // --- Fail before rendering, not after, when an output folder is missing ---
     for (const auto &[flag, file] : {std::pair<std::string, std::string>{"-o", output},
                                      {"--preview", preview},
                                      {"--stats-json", o.stats_json}}) {
@@ -131,147 +138,185 @@ int run(const RenderCliOptions &o) {
                 "", 0, flag,
                 "\"" + file + "\": folder " + dir.string() + " does not exist");
     }
+    return plan;
+}
 
-    // --- Build the scene once when only the camera moves; per frame otherwise ---
-    const PluginRegistry plugins;
+// One scene for every frame when only the camera moves (and for a still); null when an
+// object turns or deforms, and each frame builds its own.
+std::unique_ptr<Scene> shared_scene_for(const SceneDesc &desc,
+                                        const PluginRegistry &plugins) {
     bool rigid = desc.animation.present;
     for (const auto &ob : desc.objects) rigid = rigid && ob.deform.empty();
     const auto &tt = desc.animation.turntable;
     if (tt && tt->target == TurntableDesc::Target::object) rigid = false;
-    std::unique_ptr<Scene> shared_scene;
-    if (rigid || !desc.animation.present)
-        shared_scene = std::make_unique<Scene>(
-            desc.animation.present ? scene_at_frame(desc, 0) : desc, plugins);
+    if (!rigid && desc.animation.present) return nullptr;
+    return std::make_unique<Scene>(
+        desc.animation.present ? scene_at_frame(desc, 0) : desc, plugins);
+}
+
+// The totals over the frames of one run, for --stats-json and the summary line.
+struct RunTotals {
+    nlohmann::json frame_stats = nlohmann::json::array();
+    RenderStats stats;
+    double seconds = 0;
+    int rendered = 0, skipped = 0, spp_done = 0;
+    bool interrupted = false;
+};
+
+enum class FrameOutcome {
+    written,  // rendered (whole, or a still stopped by Ctrl-C) and written
+    skipped,  // --resume found it complete
+    aborted,  // a range interrupted mid-frame: nothing written, --resume redoes it
+};
+
+// Frame f: rendered (Ctrl-C stops at the next tile and keeps what is done), then its
+// EXR and preview written atomically.
+FrameOutcome render_frame(const RenderCliOptions &o, const SceneDesc &desc,
+                          const RenderPlan &plan, const PluginRegistry &plugins,
+                          const Scene *shared_scene, int f, RunTotals *totals) {
+    const std::string out_f = frame_path(plan.output, f);
+    const std::string preview_f = plan.preview.empty() ? "" : frame_path(plan.preview, f);
+    if (o.resume) {
+        std::string why;
+        if (exr_is_complete(out_f, &why)) {
+            ++totals->skipped;
+            if (!o.quiet) std::printf("%s: complete, skipped\n", out_f.c_str());
+            return FrameOutcome::skipped;
+        }
+        if (!o.quiet && why != "no file")
+            std::printf("%s: %s, rendering again\n", out_f.c_str(), why.c_str());
+    }
+    const SceneDesc fd = desc.animation.present ? scene_at_frame(desc, f) : desc;
+    std::unique_ptr<Scene> own;
+    if (!shared_scene) own = std::make_unique<Scene>(fd, plugins);
+    const Scene &scene = shared_scene ? *shared_scene : *own;
+
+    RenderOptions ro;
+    ro.seed = o.seed;
+    ro.frame = uint32_t(f);
+    ro.cancel = &InterruptGuard::flag();
+    ro.progress = !o.quiet && Progress::stderr_is_tty();
+    ro.camera = fd.camera;
+    ro.instrument = !o.stats_json.empty();  // plugin_seconds
+    const auto &tt = desc.animation.turntable;
+    if (tt && tt->motion_blur()) {
+        const double open = f + double(tt->shutter_open),
+                     span = double(tt->shutter_close - tt->shutter_open);
+        ro.camera_motion = CameraMotion{&desc, open, span};
+    }
+    const RenderResult r = render(scene, ro);
+    if (r.interrupted && plan.animated) {
+        std::fprintf(stderr,
+                     "pelage render: interrupted during frame %d; %s not written\n", f,
+                     out_f.c_str());
+        return FrameOutcome::aborted;
+    }
+
+    const std::vector<float> pixels = r.film->resolve();
+    ImageMetadata meta;
+    meta.scene = fs::absolute(o.scene).lexically_normal().string();
+    meta.software = "pelage " PELAGE_VERSION;
+    meta.spp = r.spp_done;
+    meta.seed = o.seed;
+    meta.render_seconds = r.seconds;
+    meta.interrupted = r.interrupted;
+    if (plan.animated) {
+        meta.frame = f;
+        if (desc.animation.present) meta.fps = desc.animation.fps;
+        meta.record_time = false;  // frames are byte-identical wherever rendered
+    }
+    write_exr(out_f, fd.film.width, fd.film.height, pixels,
+              Film::channel_names(scene.shader_aov_names()), fd.film.half, meta);
+    if (plan.display)
+        write_preview(preview_f, fd.film.width, fd.film.height, pixels,
+                      Film::num_channels, *plan.display);
+    ++totals->rendered;
+    totals->stats.add(r.stats);
+    totals->seconds += r.seconds;
+    totals->frame_stats.push_back(
+        {{"frame", f}, {"seconds", r.seconds}, {"output", out_f}});
+
+    const double rays_per_second =
+        r.seconds > 0 ? double(r.stats.rays()) / r.seconds : 0.0;
+    if (!o.quiet)
+        std::printf("%s: %dx%d, %d spp, %.2f s, %.2f Mrays/s%s\n", out_f.c_str(),
+                    fd.film.width, fd.film.height, r.spp_done, r.seconds,
+                    rays_per_second * 1e-6,
+                    r.stats.nonfinite_samples
+                        ? (", " + std::to_string(r.stats.nonfinite_samples) +
+                           " non-finite samples dropped")
+                              .c_str()
+                        : "");
+    totals->spp_done = std::min(totals->spp_done, r.spp_done);
+    if (r.interrupted) {
+        std::fprintf(stderr,
+                     "pelage render: interrupted; wrote %s with %d samples in every "
+                     "pixel (more in some)\n",
+                     out_f.c_str(), r.spp_done);
+        totals->interrupted = true;
+    }
+    return FrameOutcome::written;
+}
+
+// The run's summary for --stats-json: the keys are a contract with scripts.
+void write_stats_json(const RenderCliOptions &o, const SceneDesc &desc,
+                      const RenderPlan &plan, const Scene *shared_scene,
+                      const RunTotals &totals) {
+    const double rays_per_second =
+        totals.seconds > 0 ? double(totals.stats.rays()) / totals.seconds : 0.0;
+    nlohmann::json j = {{"seconds", totals.seconds},
+                        {"spp", totals.spp_done},
+                        {"width", desc.film.width},
+                        {"height", desc.film.height},
+                        {"rays", totals.stats.rays()},
+                        {"rays_per_second", rays_per_second},
+                        {"plugin_seconds", totals.stats.plugin_seconds()},
+                        {"camera_rays", totals.stats.camera_rays},
+                        {"secondary_rays", totals.stats.secondary_rays},
+                        {"shadow_rays", totals.stats.shadow_rays},
+                        {"samples", totals.stats.samples},
+                        {"nonfinite_samples", totals.stats.nonfinite_samples},
+                        {"plugin_calls", totals.stats.plugin_calls},
+                        {"seed", o.seed},
+                        {"threads", o.threads.threads},
+                        {"interrupted", totals.interrupted},
+                        {"output", frame_path(plan.output, plan.frames.front())}};
+    if (shared_scene) j["triangles"] = shared_scene->geometry().num_triangles();
+    if (shared_scene && shared_scene->fur()) {  // fur (docs/guide/fur.md)
+        j["fur_strands"] = shared_scene->fur()->num_strands();
+        j["fur_grow_seconds"] = shared_scene->fur()->grow_seconds();
+        j["fur_embree_seconds"] = shared_scene->fur()->embree_seconds();
+    }
+    if (plan.animated) {
+        j["frames"] = totals.frame_stats;
+        j["frames_rendered"] = totals.rendered;
+        j["frames_skipped"] = totals.skipped;
+    }
+    write_json_file(o.stats_json, j);
+}
+
+int run(const RenderCliOptions &o) {
+    const auto control = o.threads.apply();
+    SceneDesc desc = load_scene_file(o.scene);
+    const RenderPlan plan = plan_render(o, desc);
+    const PluginRegistry plugins;
+    const std::unique_ptr<Scene> shared_scene = shared_scene_for(desc, plugins);
 
     InterruptGuard guard;
-    nlohmann::json frame_stats = nlohmann::json::array();
-    RenderStats total;
-    double total_seconds = 0;
-    int rendered = 0, skipped = 0, spp_done = desc.film.spp;
-    bool interrupted = false;
-    for (const int f : frames) {
-        const std::string out_f = frame_path(output, f);
-        const std::string preview_f = preview.empty() ? "" : frame_path(preview, f);
-        if (o.resume) {
-            std::string why;
-            if (exr_is_complete(out_f, &why)) {
-                ++skipped;
-                if (!o.quiet) std::printf("%s: complete, skipped\n", out_f.c_str());
-                continue;
-            }
-            if (!o.quiet && why != "no file")
-                std::printf("%s: %s, rendering again\n", out_f.c_str(), why.c_str());
-        }
-        const SceneDesc fd = desc.animation.present ? scene_at_frame(desc, f) : desc;
-        std::unique_ptr<Scene> own;
-        if (!shared_scene) own = std::make_unique<Scene>(fd, plugins);
-        const Scene &scene = shared_scene ? *shared_scene : *own;
-
-        // --- Render; Ctrl-C stops at the next tile and keeps what is done ---
-        RenderOptions ro;
-        ro.seed = o.seed;
-        ro.frame = uint32_t(f);
-        ro.cancel = &InterruptGuard::flag();
-        ro.progress = !o.quiet && Progress::stderr_is_tty();
-        ro.camera = fd.camera;
-        ro.instrument = !o.stats_json.empty();  // plugin_seconds
-        if (tt && tt->motion_blur()) {
-            const double open = f + double(tt->shutter_open),
-                         span = double(tt->shutter_close - tt->shutter_open);
-            ro.camera_motion = CameraMotion{&desc, open, span};
-        }
-        const RenderResult r = render(scene, ro);
-        if (r.interrupted && animated) {
-            // A partial frame never lands under its final name: --resume redoes it.
-            std::fprintf(stderr,
-                         "pelage render: interrupted during frame %d; %s not written\n",
-                         f, out_f.c_str());
-            return exit_interrupted;
-        }
-
-        // --- Write the outputs, atomically ---
-        const std::vector<float> pixels = r.film->resolve();
-        ImageMetadata meta;
-        meta.scene = fs::absolute(o.scene).lexically_normal().string();
-        meta.software = "pelage " PELAGE_VERSION;
-        meta.spp = r.spp_done;
-        meta.seed = o.seed;
-        meta.render_seconds = r.seconds;
-        meta.interrupted = r.interrupted;
-        if (animated) {
-            meta.frame = f;
-            if (desc.animation.present) meta.fps = desc.animation.fps;
-            meta.record_time = false;  // frames are byte-identical wherever rendered
-        }
-        write_exr(out_f, fd.film.width, fd.film.height, pixels,
-                  Film::channel_names(scene.shader_aov_names()), fd.film.half, meta);
-        if (display)
-            write_preview(preview_f, fd.film.width, fd.film.height, pixels,
-                          Film::num_channels, *display);
-        ++rendered;
-        total.add(r.stats);
-        total_seconds += r.seconds;
-        frame_stats.push_back({{"frame", f}, {"seconds", r.seconds}, {"output", out_f}});
-
-        const double rays_per_second =
-            r.seconds > 0 ? double(r.stats.rays()) / r.seconds : 0.0;
-        if (!o.quiet)
-            std::printf("%s: %dx%d, %d spp, %.2f s, %.2f Mrays/s%s\n", out_f.c_str(),
-                        fd.film.width, fd.film.height, r.spp_done, r.seconds,
-                        rays_per_second * 1e-6,
-                        r.stats.nonfinite_samples
-                            ? (", " + std::to_string(r.stats.nonfinite_samples) +
-                               " non-finite samples dropped")
-                                  .c_str()
-                            : "");
-        spp_done = std::min(spp_done, r.spp_done);
-        if (r.interrupted) {
-            std::fprintf(stderr,
-                         "pelage render: interrupted; wrote %s with %d samples in every "
-                         "pixel (more in some)\n",
-                         out_f.c_str(), r.spp_done);
-            interrupted = true;
-            break;
-        }
+    RunTotals totals;
+    totals.spp_done = desc.film.spp;
+    for (const int f : plan.frames) {
+        const FrameOutcome done =
+            render_frame(o, desc, plan, plugins, shared_scene.get(), f, &totals);
+        if (done == FrameOutcome::aborted) return exit_interrupted;
+        if (totals.interrupted) break;
     }
-
-    if (!o.stats_json.empty()) {
-        const double rays_per_second =
-            total_seconds > 0 ? double(total.rays()) / total_seconds : 0.0;
-        nlohmann::json j = {{"seconds", total_seconds},
-                            {"spp", spp_done},
-                            {"width", desc.film.width},
-                            {"height", desc.film.height},
-                            {"rays", total.rays()},
-                            {"rays_per_second", rays_per_second},
-                            {"plugin_seconds", total.plugin_seconds()},
-                            {"camera_rays", total.camera_rays},
-                            {"secondary_rays", total.secondary_rays},
-                            {"shadow_rays", total.shadow_rays},
-                            {"samples", total.samples},
-                            {"nonfinite_samples", total.nonfinite_samples},
-                            {"plugin_calls", total.plugin_calls},
-                            {"seed", o.seed},
-                            {"threads", o.threads.threads},
-                            {"interrupted", interrupted},
-                            {"output", frame_path(output, frames.front())}};
-        if (shared_scene) j["triangles"] = shared_scene->geometry().num_triangles();
-        if (shared_scene && shared_scene->fur()) {  // fur (docs/guide/fur.md)
-            j["fur_strands"] = shared_scene->fur()->num_strands();
-            j["fur_grow_seconds"] = shared_scene->fur()->grow_seconds();
-            j["fur_embree_seconds"] = shared_scene->fur()->embree_seconds();
-        }
-        if (animated) {
-            j["frames"] = frame_stats;
-            j["frames_rendered"] = rendered;
-            j["frames_skipped"] = skipped;
-        }
-        write_json_file(o.stats_json, j);
-    }
-    if (animated && !o.quiet)
-        std::printf("%d frame(s) rendered, %d skipped (complete), %.2f s\n", rendered,
-                    skipped, total_seconds);
-    return interrupted ? exit_interrupted : 0;
+    if (!o.stats_json.empty())
+        write_stats_json(o, desc, plan, shared_scene.get(), totals);
+    if (plan.animated && !o.quiet)
+        std::printf("%d frame(s) rendered, %d skipped (complete), %.2f s\n",
+                    totals.rendered, totals.skipped, totals.seconds);
+    return totals.interrupted ? exit_interrupted : 0;
 }
 
 }  // namespace
