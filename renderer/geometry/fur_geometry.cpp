@@ -101,9 +101,8 @@ FurGeometry::FurGeometry(const SceneDesc &desc, EmbreeScene &scene,
         // gravity stays world −y.
         fur::FurParams params = *desc.objects[i].fur;
         {
-            const fur::Vec3f c = params.comb_direction;
-            const Vec3f w = desc.objects[i].transform.vector({c.x, c.y, c.z});
-            if (length(w) > 0) params.comb_direction = {w.x, w.y, w.z};
+            const Vec3f w = desc.objects[i].transform.vector(params.comb_direction);
+            if (length(w) > 0) params.comb_direction = w;
         }
         const std::string field = "objects[" + std::to_string(i) + "].fur";
         const ObjectGeometry &og = scene.objects()[i];
@@ -115,10 +114,8 @@ FurGeometry::FurGeometry(const SceneDesc &desc, EmbreeScene &scene,
         skin.num_vertices = og.mesh->num_vertices;
         skin.num_triangles = og.mesh->num_triangles;
 
-        const fur::PigmentLookup lookup = [&](const fur::SurfacePoint &s, fur::Vec3f p,
-                                              fur::Vec3f n) {
-            return pigment(i, s, p, n);
-        };
+        const fur::PigmentLookup lookup = [&](const fur::SurfacePoint &s, Vec3f p,
+                                              Vec3f n) { return pigment(i, s, p, n); };
 
         FurLayer layer;
         layer.object = uint32_t(i);

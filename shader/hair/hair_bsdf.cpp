@@ -167,11 +167,9 @@ float azimuthal_scattering(float phi, int p, float s, float gamma_o, float gamma
 }
 
 float offset_h(Vec3f x, Vec3f n, Vec3f wo) {
-    const auto dot = [](Vec3f a, Vec3f b) { return a.x * b.x + a.y * b.y + a.z * b.z; };
-    const Vec3f n_cross_wo{n.y * wo.z - n.z * wo.y, n.z * wo.x - n.x * wo.z,
-                           n.x * wo.y - n.y * wo.x};
+    const Vec3f n_cross_wo = cross(n, wo);
     const Vec3f wo_perp = wo - x * dot(wo, x);
-    const float len = std::sqrt(dot(wo_perp, wo_perp));
+    const float len = length(wo_perp);
     if (!(len > 0)) return 0;  // wo along the fibre: every h sees the same geometry
     return std::clamp(dot(x, n_cross_wo) / len, -1.0f, 1.0f);
 }
@@ -337,7 +335,7 @@ void HairBsdf::evaluate(Vec3f wo, Vec3f wi, Rgb *f, float *pdf) const {
     // f = S / |cos θ_i| w.r.t. the shading normal z, so the integrator's |wi.z| cancels
     if (f) {
         const float abs_cos = std::abs(wi.z);
-        *f = abs_cos > 0 ? s_sum / abs_cos : Rgb{};
+        *f = abs_cos > 0 ? divide_exactly(s_sum, abs_cos) : Rgb{};
     }
     if (pdf) *pdf = pdf_sum;
 }

@@ -35,7 +35,7 @@
 #include <concepts>
 #include <optional>
 
-#include "shader/hair/hair_math.h"
+#include "sim/core/vec.h"
 
 namespace pelage::hair {
 
@@ -103,8 +103,8 @@ class HairBsdf {
     std::array<float, 3> m_cos_2k_alpha;
 };
 
-// The signatures renderer/bsdf/bsdf.h's Bsdf concept expects (with this folder's own
-// types, which shader/ cannot take from the renderer): a wrapper only converts types.
+// The signatures renderer/bsdf/bsdf.h's Bsdf concept expects, on the core vector types
+// (sim/core/vec.h) the renderer shares: a wrapper passes its arguments through.
 static_assert(requires(const HairBsdf &b, Vec3f w, float u) {
     { b.eval(w, w) } -> std::same_as<Rgb>;
     { b.pdf(w, w) } -> std::same_as<float>;

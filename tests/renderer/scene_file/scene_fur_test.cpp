@@ -38,7 +38,7 @@ TEST(SceneFur, EveryKeyReachesTheParameters) {
     EXPECT_FLOAT_EQ(p.tip_radius, 0.002f);
     EXPECT_EQ(p.segments, 5);
     EXPECT_EQ(p.comb, fur::FurParams::Comb::world);
-    EXPECT_EQ(p.comb_direction, (fur::Vec3f{1, 0, 0}));
+    EXPECT_EQ(p.comb_direction, (Vec3f{1, 0, 0}));
     EXPECT_FLOAT_EQ(p.comb_angle_deg, 45);
     EXPECT_FLOAT_EQ(p.comb_jitter_deg, 3);
     EXPECT_FLOAT_EQ(p.gravity, 0.7f);

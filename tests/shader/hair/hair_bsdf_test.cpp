@@ -284,7 +284,7 @@ TEST(HairBsdf, OffsetHPutsTheMirrorDirectionOnTheRLobe) {
     auto cross = [](Vec3f a, Vec3f b) {
         return Vec3f{a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
     };
-    auto normalize = [&](Vec3f a) { return a / std::sqrt(dot(a, a)); };
+    auto normalize = [&](Vec3f a) { return divide_exactly(a, std::sqrt(dot(a, a))); };
     for (int k = 0; k < 2000; ++k) {
         const Vec3f x = rng.direction();
         const Vec3f n = normalize(cross(x, rng.direction()));
