@@ -4,6 +4,7 @@
 #include <stdexcept>
 
 #include "renderer/geometry/embree_scene.h"
+#include "shader/hair/hair_bsdf.h"
 #include "sim/core/input_error.h"
 
 namespace pelage::renderer {
@@ -125,6 +126,15 @@ FurGeometry::FurGeometry(const SceneDesc &desc, EmbreeScene &scene,
         layer.alpha = params.alpha_deg * pi / 180;
         const auto t0 = Clock::now();
         try {
+            // The strands' HairBsdf only DCHECKs its parameters at each hit, so they are
+            // validated here, once per layer (as scatter_at_strand() builds them; each
+            // strand's σ_a is a non-negative combination of melanin that grow_fur() keeps
+            // finite and >= 0).
+            hair::HairParams hp;
+            hp.beta_m = layer.beta_m;
+            hp.beta_n = layer.beta_n;
+            hp.alpha = layer.alpha;
+            hair::HairBsdf::validate(hp, 0);
             layer.strands = fur::grow_fur(params, skin, lookup);
         } catch (const std::invalid_argument &e) {
             throw InputError(desc.path, 0, field, e.what());

@@ -67,6 +67,9 @@ TEST(SceneFur, BadValuesNameTheirJsonPath) {
         {R"({"tip_radius": 0})", "objects[1].fur.tip_radius"},
         {R"({"clump": 1.5})", "objects[1].fur.clump"},
         {R"({"alpha": 60})", "objects[1].fur.alpha"},
+        // HairBsdf only DCHECKs its parameters: parsing rejects them
+        {R"({"beta_m": 0})", "objects[1].fur.beta_m"},
+        {R"({"beta_n": 1.5})", "objects[1].fur.beta_n"},
         {R"({"comb": "up"})", "objects[1].fur.comb"},
         {R"({"comb": [1, "x", 0]})", "objects[1].fur.comb[1]"},
         {R"({"density_by_type": [0, 0]})", "objects[1].fur.density_by_type"},
