@@ -3,6 +3,8 @@
 // tests/data/bad_scenes/fur_*.json).
 #include <gtest/gtest.h>
 
+#include "renderer/plugins/plugin_loader.h"
+#include "renderer/scene/scene.h"
 #include "renderer/scene_file/scene_file.h"
 #include "sim/core/input_error.h"
 
@@ -85,6 +87,21 @@ TEST(SceneFur, BadValuesNameTheirJsonPath) {
             EXPECT_NE(std::string(e.what()).find(field), std::string::npos)
                 << fur << ": " << e.what();
         }
+    }
+}
+
+// HairBsdf only DCHECKs its parameters at each strand hit, so the scene build validates
+// them once per fur layer: 1e-50 passes the parser's (0, 1] as a double but is 0 as the
+// float the BSDF takes.
+TEST(SceneFur, HairParametersAreValidatedOncePerLayer) {
+    const SceneDesc desc = with_fur(R"({"density": 10, "beta_m": 1e-50})");
+    const PluginRegistry plugins;
+    try {
+        const Scene s(desc, plugins);
+        ADD_FAILURE() << "beta_m = 1e-50 was accepted";
+    } catch (const InputError &e) {
+        EXPECT_NE(std::string(e.what()).find("beta_m = 0"), std::string::npos)
+            << e.what();
     }
 }
 
