@@ -26,9 +26,9 @@ struct Rng {
     explicit Rng(uint32_t seed) : gen(seed) {}
     float operator()() { return std::uniform_real_distribution<float>(0.0f, 1.0f)(gen); }
     float in(float a, float b) { return a + (b - a) * (*this)(); }
-    hair::Vec3f direction() {
+    Vec3f direction() {
         const float z = 1 - 2 * (*this)(), r = std::sqrt(std::max(0.0f, 1 - z * z));
-        const float phi = 2 * hair::pi * (*this)();
+        const float phi = 2 * pi * (*this)();
         return {r * std::cos(phi), r * std::sin(phi), z};
     }
     std::mt19937 gen;
@@ -40,7 +40,7 @@ hair::HairParams random_params(Rng &rng, bool absorbing) {
                   : hair::HairParams{};
     p.beta_m = rng.in(0.1f, 1.0f);
     p.beta_n = rng.in(0.1f, 1.0f);
-    p.alpha = rng.in(-5.0f, 5.0f) * hair::pi / 180;
+    p.alpha = rng.in(-5.0f, 5.0f) * pi / 180;
     return p;
 }
 
@@ -51,7 +51,7 @@ int run(const BenchHairOptions &o) {
     const Timer furnace_timer;
     for (int k = 0; k < o.configs; ++k) {
         const hair::HairBsdf white(random_params(rng, false), rng.in(-1, 1));
-        const hair::Vec3f wo = rng.direction();
+        const Vec3f wo = rng.direction();
         const hair::FurnaceResult r =
             hair::furnace_quadrature(white, wo, o.theta_steps, 2 * o.theta_steps, true);
         for (int c = 0; c < 3; ++c)
@@ -66,7 +66,7 @@ int run(const BenchHairOptions &o) {
     for (int k = 0; k < 256; ++k)
         fibres.emplace_back(random_params(rng, true), rng.in(-1, 1));
     const int n = 1 << 20;
-    std::vector<hair::Vec3f> wo(n), wi(n);
+    std::vector<Vec3f> wo(n), wi(n);
     std::vector<float> u(3 * n);
     for (int k = 0; k < n; ++k) {
         wo[k] = rng.direction();

@@ -1,66 +1,13 @@
-// Single-precision vector types for the renderer's hot paths (the simulation's geometry
-// stays in double, sim/core/vec.h). Colours are scene-linear Rec.709 RGB.
+// The renderer's geometric helpers on the core vector type (sim/core/vec.h): frames,
+// affine transforms and ray-origin offsets.
 #pragma once
 
 #include <algorithm>
 #include <cmath>
-#include <cstdint>
+
+#include "sim/core/vec.h"
 
 namespace pelage::renderer {
-
-inline constexpr float pi = 3.14159265358979323846f;
-inline constexpr float inv_pi = 0.31830988618379067154f;
-
-struct Vec3f {
-    float x = 0, y = 0, z = 0;
-
-    constexpr Vec3f operator+(Vec3f o) const { return {x + o.x, y + o.y, z + o.z}; }
-    constexpr Vec3f operator-(Vec3f o) const { return {x - o.x, y - o.y, z - o.z}; }
-    constexpr Vec3f operator-() const { return {-x, -y, -z}; }
-    constexpr Vec3f operator*(float s) const { return {x * s, y * s, z * s}; }
-    constexpr Vec3f operator*(Vec3f o) const { return {x * o.x, y * o.y, z * o.z}; }
-    constexpr Vec3f operator/(float s) const {
-        const float inv = 1.0f / s;  // one division, not three
-        return {x * inv, y * inv, z * inv};
-    }
-    constexpr Vec3f &operator+=(Vec3f o) {
-        x += o.x;
-        y += o.y;
-        z += o.z;
-        return *this;
-    }
-    constexpr Vec3f &operator*=(Vec3f o) {
-        x *= o.x;
-        y *= o.y;
-        z *= o.z;
-        return *this;
-    }
-    constexpr Vec3f &operator*=(float s) {
-        x *= s;
-        y *= s;
-        z *= s;
-        return *this;
-    }
-    constexpr float operator[](int i) const { return i == 0 ? x : (i == 1 ? y : z); }
-    constexpr bool operator==(const Vec3f &) const = default;
-};
-
-using Rgb = Vec3f;
-
-constexpr Vec3f operator*(float s, Vec3f v) { return v * s; }
-constexpr float dot(Vec3f a, Vec3f b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
-constexpr Vec3f cross(Vec3f a, Vec3f b) {
-    return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
-}
-inline float length(Vec3f a) { return std::sqrt(dot(a, a)); }
-inline Vec3f normalize(Vec3f a) { return a / length(a); }
-constexpr float max_component(Vec3f a) { return std::max(a.x, std::max(a.y, a.z)); }
-inline bool is_finite(Vec3f a) {
-    return std::isfinite(a.x) && std::isfinite(a.y) && std::isfinite(a.z);
-}
-constexpr bool is_black(Rgb c) { return c.x == 0 && c.y == 0 && c.z == 0; }
-constexpr float luminance(Rgb c) { return 0.2126f * c.x + 0.7152f * c.y + 0.0722f * c.z; }
-constexpr float sqr(float x) { return x * x; }
 
 // An orthonormal basis around n (Duff et al. 2017, "Building an Orthonormal Basis,
 // Revisited", JCGT 6(1)); local z is n.

@@ -5,21 +5,15 @@
 
 #include <cstdint>
 
-namespace pelage::renderer {
+#include "sim/core/hash.h"
 
-// A 64-bit finalizer (splitmix64, Steele et al. 2014 "Fast splittable pseudorandom
-// number generators", OOPSLA): a bijective mix with full avalanche.
-constexpr uint64_t mix64(uint64_t z) {
-    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
-    z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
-    return z ^ (z >> 31);
-}
+namespace pelage::renderer {
 
 class Sampler {
   public:
     Sampler() = default;  // for arrays of per-pixel streams; assign before use
     Sampler(uint64_t seed, uint32_t frame)
-        : m_base(mix64(seed ^ mix64(0x9e3779b97f4a7c15ull + frame))) {}
+        : m_base(mix64(seed ^ mix64(golden_gamma + frame))) {}
 
     // Starts the stream of one pixel sample; dimensions restart at 0.
     void start_pixel_sample(uint32_t x, uint32_t y, uint32_t sample) {
@@ -29,7 +23,7 @@ class Sampler {
     }
     // A uniform float in [0, 1).
     float get_1d() {
-        const uint64_t h = mix64(m_key + (uint64_t(++m_dim) * 0x9e3779b97f4a7c15ull));
+        const uint64_t h = mix64(m_key + (uint64_t(++m_dim) * golden_gamma));
         return float(h >> 40) * 0x1p-24f;
     }
     // Two uniform floats in [0, 1) from one hash: the top and the next 24 bits of a
@@ -39,7 +33,7 @@ class Sampler {
         float u1, u2;
     };
     Pair get_2d() {
-        const uint64_t h = mix64(m_key + (uint64_t(++m_dim) * 0x9e3779b97f4a7c15ull));
+        const uint64_t h = mix64(m_key + (uint64_t(++m_dim) * golden_gamma));
         return {float(h >> 40) * 0x1p-24f, float((h >> 16) & 0xffffffu) * 0x1p-24f};
     }
 

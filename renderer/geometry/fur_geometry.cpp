@@ -4,6 +4,7 @@
 #include <stdexcept>
 
 #include "renderer/geometry/embree_scene.h"
+#include "shader/hair/hair_bsdf.h"
 #include "sim/core/input_error.h"
 
 namespace pelage::renderer {
@@ -101,9 +102,8 @@ FurGeometry::FurGeometry(const SceneDesc &desc, EmbreeScene &scene,
         // gravity stays world −y.
         fur::FurParams params = *desc.objects[i].fur;
         {
-            const fur::Vec3f c = params.comb_direction;
-            const Vec3f w = desc.objects[i].transform.vector({c.x, c.y, c.z});
-            if (length(w) > 0) params.comb_direction = {w.x, w.y, w.z};
+            const Vec3f w = desc.objects[i].transform.vector(params.comb_direction);
+            if (length(w) > 0) params.comb_direction = w;
         }
         const std::string field = "objects[" + std::to_string(i) + "].fur";
         const ObjectGeometry &og = scene.objects()[i];
@@ -115,10 +115,8 @@ FurGeometry::FurGeometry(const SceneDesc &desc, EmbreeScene &scene,
         skin.num_vertices = og.mesh->num_vertices;
         skin.num_triangles = og.mesh->num_triangles;
 
-        const fur::PigmentLookup lookup = [&](const fur::SurfacePoint &s, fur::Vec3f p,
-                                              fur::Vec3f n) {
-            return pigment(i, s, p, n);
-        };
+        const fur::PigmentLookup lookup = [&](const fur::SurfacePoint &s, Vec3f p,
+                                              Vec3f n) { return pigment(i, s, p, n); };
 
         FurLayer layer;
         layer.object = uint32_t(i);
@@ -128,6 +126,15 @@ FurGeometry::FurGeometry(const SceneDesc &desc, EmbreeScene &scene,
         layer.alpha = params.alpha_deg * pi / 180;
         const auto t0 = Clock::now();
         try {
+            // The strands' HairBsdf only DCHECKs its parameters at each hit, so they are
+            // validated here, once per layer (as scatter_at_strand() builds them; each
+            // strand's σ_a is a non-negative combination of melanin that grow_fur() keeps
+            // finite and >= 0).
+            hair::HairParams hp;
+            hp.beta_m = layer.beta_m;
+            hp.beta_n = layer.beta_n;
+            hp.alpha = layer.alpha;
+            hair::HairBsdf::validate(hp, 0);
             layer.strands = fur::grow_fur(params, skin, lookup);
         } catch (const std::invalid_argument &e) {
             throw InputError(desc.path, 0, field, e.what());

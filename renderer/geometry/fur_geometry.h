@@ -27,7 +27,7 @@ namespace pelage::renderer {
 
 // A root's pigment on object `object`: the skin's material evaluated at that point.
 using ObjectPigmentLookup = std::function<fur::RootPigment(
-    size_t object, const fur::SurfacePoint &, fur::Vec3f p, fur::Vec3f n)>;
+    size_t object, const fur::SurfacePoint &, Vec3f p, Vec3f n)>;
 
 struct FurLayer {
     uint32_t object = 0;  // the scene object the fur grows on

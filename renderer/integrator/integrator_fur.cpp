@@ -14,8 +14,8 @@ namespace {
 constexpr float inf = std::numeric_limits<float>::infinity();
 constexpr float shadow_ray_shortening = 1e-4f;  // as integrator_path.cpp
 
-hair::Vec3f to_hair(Vec3f v) { return {v.x, v.y, v.z}; }
-Rgb from_hair(hair::Vec3f v) { return {v.x, v.y, v.z}; }
+Vec3f to_hair(Vec3f v) { return {v.x, v.y, v.z}; }
+Rgb from_hair(Vec3f v) { return {v.x, v.y, v.z}; }
 
 // The fibre frame: x the tangent, z ⊥ x facing wo, y = z × x.
 struct FibreFrame {

@@ -82,8 +82,8 @@ void Scene::build(const SceneDesc &desc, const PluginRegistry &plugins) {
     for (const ObjectDesc &o : desc.objects)
         if (o.fur) {
             // Each root's pigment: the skin's own material plugin at that point.
-            const auto pigment = [this](size_t i, const fur::SurfacePoint &s,
-                                        fur::Vec3f p, fur::Vec3f n) {
+            const auto pigment = [this](size_t i, const fur::SurfacePoint &s, Vec3f p,
+                                        Vec3f n) {
                 const Material &mat = m_materials[i];
                 PelageHit hit{};
                 hit.object_id = uint32_t(i);

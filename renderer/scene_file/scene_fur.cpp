@@ -60,7 +60,7 @@ fur::FurParams read_fur(const json &j, const std::string &field,
                     float(r.check_number((*v)[k],
                                          r.field("comb") + "[" + std::to_string(k) + "]",
                                          -1e6, 1e6));
-            const fur::Vec3f c = p.comb_direction;
+            const Vec3f c = p.comb_direction;
             if (c.x * c.x + c.y * c.y + c.z * c.z <= 0)
                 r.fail(r.field("comb"), "must not be zero");
         } else {

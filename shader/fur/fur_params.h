@@ -7,11 +7,9 @@
 #include <cstdint>
 #include <vector>
 
-#include "shader/hair/hair_math.h"
+#include "sim/core/vec.h"
 
 namespace pelage::fur {
-
-using Vec3f = hair::Vec3f;
 
 struct FurParams {
     // --- Roots ---

@@ -13,10 +13,6 @@ Vec3f vertex(const SkinMesh &m, uint32_t v) {
     return {m.positions[3 * size_t(v)], m.positions[3 * size_t(v) + 1],
             m.positions[3 * size_t(v) + 2]};
 }
-Vec3f cross(Vec3f a, Vec3f b) {
-    return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
-}
-float length(Vec3f a) { return std::sqrt(a.x * a.x + a.y * a.y + a.z * a.z); }
 
 }  // namespace
 
@@ -53,14 +49,14 @@ void RootSampler::point_normal(const SurfacePoint &s, Vec3f *p, Vec3f *n) const 
                 p2 = vertex(m_mesh, tri[2]);
     *p = p0 * b0 + p1 * s.b1 + p2 * s.b2;
     Vec3f face = cross(p1 - p0, p2 - p0);
-    face = face / std::max(length(face), 1e-30f);
+    face = divide_exactly(face, std::max(length(face), 1e-30f));
     Vec3f normal = face;
     if (m_mesh.corner_normals) {
         const float *N = &m_mesh.corner_normals[9 * size_t(s.triangle)];
         const Vec3f ns = Vec3f{N[0], N[1], N[2]} * b0 + Vec3f{N[3], N[4], N[5]} * s.b1 +
                          Vec3f{N[6], N[7], N[8]} * s.b2;
         const float len = length(ns);
-        if (len > 0) normal = ns / len;
+        if (len > 0) normal = divide_exactly(ns, len);
     }
     *n = normal;
 }

@@ -7,11 +7,8 @@ namespace pelage::fur {
 
 namespace {
 
-float dot(Vec3f a, Vec3f b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
-Vec3f cross(Vec3f a, Vec3f b) {
-    return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
-}
-Vec3f normalize(Vec3f a) { return a / std::sqrt(std::max(dot(a, a), 1e-30f)); }
+// a / |a| with |a|² clamped away from 0, so a degenerate direction stays finite.
+Vec3f unit(Vec3f a) { return divide_exactly(a, std::sqrt(std::max(dot(a, a), 1e-30f))); }
 
 // Any unit vector ⊥ n (Duff et al. 2017, JCGT 6(1), first basis vector).
 Vec3f any_perpendicular(Vec3f n) {
@@ -31,7 +28,7 @@ Vec3f comb_tangent(const FurParams &params, Vec3f n) {
     if (params.comb == FurParams::Comb::normal) return any_perpendicular(n);
     const Vec3f c = params.comb_direction;
     const Vec3f t = c - n * dot(c, n);
-    return dot(t, t) > 1e-8f * std::max(dot(c, c), 1e-30f) ? normalize(t)
+    return dot(t, t) > 1e-8f * std::max(dot(c, c), 1e-30f) ? unit(t)
                                                            : any_perpendicular(n);
 }
 
@@ -42,18 +39,18 @@ void grow_centre_line(const FurParams &params, Vec3f p, Vec3f n, float L,
     const float angle =
         params.comb == FurParams::Comb::normal ? 90 * deg : params.comb_angle_deg * deg;
     const Vec3f t = comb_tangent(params, n), b = cross(n, t);
-    Vec3f d = normalize(t * std::cos(angle) + n * std::sin(angle));
+    Vec3f d = unit(t * std::cos(angle) + n * std::sin(angle));
     {
-        const float az = 2 * hair::pi * r.jitter_u;
+        const float az = 2 * pi * r.jitter_u;
         const float tilt = std::tan(params.comb_jitter_deg * deg) * std::sqrt(r.jitter_v);
-        d = normalize(d + (t * std::cos(az) + b * std::sin(az)) * tilt);
-        if (dot(d, n) < min_lift) d = normalize(d + n * (min_lift - dot(d, n)));
+        d = unit(d + (t * std::cos(az) + b * std::sin(az)) * tilt);
+        if (dot(d, n) < min_lift) d = unit(d + n * (min_lift - dot(d, n)));
     }
     // --- Helix axes ⊥ the root direction, rotated by the strand's phase ---
     const Vec3f h0 =
-        normalize(cross(d, std::abs(d.y) < 0.9f ? Vec3f{0, 1, 0} : Vec3f{1, 0, 0}));
+        unit(cross(d, std::abs(d.y) < 0.9f ? Vec3f{0, 1, 0} : Vec3f{1, 0, 0}));
     const Vec3f h1 = cross(d, h0);
-    const float phase = 2 * hair::pi * r.curl_phase;
+    const float phase = 2 * pi * r.curl_phase;
     const Vec3f ca = h0 * std::cos(phase) + h1 * std::sin(phase),
                 cb = h1 * std::cos(phase) - h0 * std::sin(phase);
     const float curl_r = params.curl_radius * L;
@@ -64,12 +61,12 @@ void grow_centre_line(const FurParams &params, Vec3f p, Vec3f n, float L,
     for (int k = 1; k <= S; ++k) {
         q += d * step;
         const float s = float(k) / float(S);
-        const float theta = 2 * hair::pi * params.curl_turns * s;
+        const float theta = 2 * pi * params.curl_turns * s;
         // The helix starts at the root (offset 0 at s = 0).
         out[k] =
             q + ca * (curl_r * (std::cos(theta) - 1)) + cb * (curl_r * std::sin(theta));
-        d = normalize(d + Vec3f{0, -1, 0} * (params.gravity / float(S)));
-        if (dot(d, n) < min_lift) d = normalize(d + n * (min_lift - dot(d, n)));
+        d = unit(d + Vec3f{0, -1, 0} * (params.gravity / float(S)));
+        if (dot(d, n) < min_lift) d = unit(d + n * (min_lift - dot(d, n)));
     }
 }
 

@@ -10,6 +10,7 @@
 #include <string>
 
 #include "shader/hair/hair_pigments.h"
+#include "sim/core/check.h"
 
 namespace pelage::hair {
 namespace {
@@ -20,9 +21,12 @@ constexpr float two_pi = 2 * pi;
 constexpr float min_cos_theta = 1e-7f;
 constexpr float ln_2 = 0.693147181f;
 
-[[noreturn]] void bad(const std::string &name, float value, const char *expected) {
-    throw std::invalid_argument("HairBsdf: " + name + " = " + std::to_string(value) +
-                                ": " + expected);
+// The model reads sin θ and cos θ off a direction's components, so directions must be
+// unit length (to float rounding).
+[[maybe_unused]] bool is_unit(Vec3f w) { return std::abs(dot(w, w) - 1) <= 1e-3f; }
+
+std::string bad(const std::string &name, float value, const char *expected) {
+    return "HairBsdf: " + name + " = " + std::to_string(value) + ": " + expected;
 }
 
 // Modified Bessel function of the first kind, order 0, by its power series
@@ -167,11 +171,9 @@ float azimuthal_scattering(float phi, int p, float s, float gamma_o, float gamma
 }
 
 float offset_h(Vec3f x, Vec3f n, Vec3f wo) {
-    const auto dot = [](Vec3f a, Vec3f b) { return a.x * b.x + a.y * b.y + a.z * b.z; };
-    const Vec3f n_cross_wo{n.y * wo.z - n.z * wo.y, n.z * wo.x - n.x * wo.z,
-                           n.x * wo.y - n.y * wo.x};
+    const Vec3f n_cross_wo = cross(n, wo);
     const Vec3f wo_perp = wo - x * dot(wo, x);
-    const float len = std::sqrt(dot(wo_perp, wo_perp));
+    const float len = length(wo_perp);
     if (!(len > 0)) return 0;  // wo along the fibre: every h sees the same geometry
     return std::clamp(dot(x, n_cross_wo) / len, -1.0f, 1.0f);
 }
@@ -193,21 +195,29 @@ HairParams HairParams::from_colour(Rgb colour, float beta_m, float beta_n) {
     return p;
 }
 
-HairBsdf::HairBsdf(const HairParams &params, float h) : m_params(params), m_h(h) {
-    // --- Validate ---
-    if (!(h >= -1 && h <= 1)) bad("h", h, "must be in [-1, 1]");
+std::string HairBsdf::invalid(const HairParams &params, float h) {
+    if (!(h >= -1 && h <= 1)) return bad("h", h, "must be in [-1, 1]");
     if (!(params.beta_m > 0 && params.beta_m <= 1))
-        bad("beta_m", params.beta_m, "must be in (0, 1]");
+        return bad("beta_m", params.beta_m, "must be in (0, 1]");
     if (!(params.beta_n > 0 && params.beta_n <= 1))
-        bad("beta_n", params.beta_n, "must be in (0, 1]");
+        return bad("beta_n", params.beta_n, "must be in (0, 1]");
     if (!(std::abs(params.alpha) < pi / 4))
-        bad("alpha", params.alpha, "must be in (-pi/4, pi/4) radians");
+        return bad("alpha", params.alpha, "must be in (-pi/4, pi/4) radians");
     if (!(params.eta >= 1 && std::isfinite(params.eta)))
-        bad("eta", params.eta, "must be finite and >= 1");
+        return bad("eta", params.eta, "must be finite and >= 1");
     for (int c = 0; c < 3; ++c)
         if (!(params.sigma_a[c] >= 0 && std::isfinite(params.sigma_a[c])))
-            bad("sigma_a[" + std::to_string(c) + "]", params.sigma_a[c],
-                "must be finite and >= 0");
+            return bad("sigma_a[" + std::to_string(c) + "]", params.sigma_a[c],
+                       "must be finite and >= 0");
+    return {};
+}
+
+void HairBsdf::validate(const HairParams &params, float h) {
+    if (std::string e = invalid(params, h); !e.empty()) throw std::invalid_argument(e);
+}
+
+HairBsdf::HairBsdf(const HairParams &params, float h) : m_params(params), m_h(h) {
+    PELAGE_DCHECK(invalid(params, h).empty());
 
     m_gamma_o = safe_asin(h);
 
@@ -303,6 +313,7 @@ Rgb HairBsdf::albedo() const {
 }
 
 void HairBsdf::evaluate(Vec3f wo, Vec3f wi, Rgb *f, float *pdf) const {
+    PELAGE_DCHECK(is_unit(wo) && is_unit(wi));
     const Refraction r = refract(wo.x, m_params.eta, m_h);
     const float sin_theta_i = std::clamp(wi.x, -1.0f, 1.0f);
     const float cos_theta_i = safe_sqrt(1 - sqr(sin_theta_i));
@@ -337,7 +348,7 @@ void HairBsdf::evaluate(Vec3f wo, Vec3f wi, Rgb *f, float *pdf) const {
     // f = S / |cos θ_i| w.r.t. the shading normal z, so the integrator's |wi.z| cancels
     if (f) {
         const float abs_cos = std::abs(wi.z);
-        *f = abs_cos > 0 ? s_sum / abs_cos : Rgb{};
+        *f = abs_cos > 0 ? divide_exactly(s_sum, abs_cos) : Rgb{};
     }
     if (pdf) *pdf = pdf_sum;
 }
@@ -356,6 +367,7 @@ float HairBsdf::pdf(Vec3f wo, Vec3f wi) const {
 
 std::optional<HairSample> HairBsdf::sample(Vec3f wo, float u_lobe, float u1,
                                            float u2) const {
+    PELAGE_DCHECK(is_unit(wo));
     const Refraction r = refract(wo.x, m_params.eta, m_h);
     const auto w = lobe_pdf(wo.x);
 

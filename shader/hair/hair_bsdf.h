@@ -34,12 +34,13 @@
 #include <array>
 #include <concepts>
 #include <optional>
+#include <string>
 
-#include "shader/hair/hair_math.h"
+#include "sim/core/vec.h"
 
 namespace pelage::hair {
 
-// The model's parameters; HairBsdf's constructor validates them.
+// The model's parameters; HairBsdf::validate() checks their ranges.
 struct HairParams {
     float beta_m = 0.3f;       // longitudinal roughness, (0, 1]
     float beta_n = 0.3f;       // azimuthal roughness, (0, 1]
@@ -66,9 +67,17 @@ class HairBsdf {
   public:
     static constexpr int p_max = 3;
 
-    // Throws std::invalid_argument naming the parameter and value: h ∉ [-1, 1],
-    // beta_m/beta_n ∉ (0, 1], sigma_a < 0 or not finite, eta < 1, |alpha| >= π/4.
+    // Precondition: validate(params, h) passes. The constructor runs at every strand hit,
+    // so it only DCHECKs this; callers validate parameters once, where they come in
+    // (renderer/geometry/fur_geometry.cpp per fur layer; h from offset_h() is in range).
     HairBsdf(const HairParams &params, float h);
+
+    // The first invalid argument as "HairBsdf: name = value: expected range", or "" when
+    // all are valid: h ∉ [-1, 1], beta_m/beta_n ∉ (0, 1], sigma_a < 0 or not finite,
+    // eta < 1 or not finite, |alpha| >= π/4.
+    static std::string invalid(const HairParams &params, float h);
+    // Throws std::invalid_argument with invalid()'s message when it is not "".
+    static void validate(const HairParams &params, float h);
 
     Rgb eval(Vec3f wo, Vec3f wi) const;
     float pdf(Vec3f wo, Vec3f wi) const;
@@ -103,8 +112,8 @@ class HairBsdf {
     std::array<float, 3> m_cos_2k_alpha;
 };
 
-// The signatures renderer/bsdf/bsdf.h's Bsdf concept expects (with this folder's own
-// types, which shader/ cannot take from the renderer): a wrapper only converts types.
+// The signatures renderer/bsdf/bsdf.h's Bsdf concept expects, on the core vector types
+// (sim/core/vec.h) the renderer shares: a wrapper passes its arguments through.
 static_assert(requires(const HairBsdf &b, Vec3f w, float u) {
     { b.eval(w, w) } -> std::same_as<Rgb>;
     { b.pdf(w, w) } -> std::same_as<float>;

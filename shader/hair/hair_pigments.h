@@ -16,7 +16,7 @@
 // std::invalid_argument naming the parameter and the value.
 #pragma once
 
-#include "shader/hair/hair_math.h"
+#include "sim/core/vec.h"
 
 namespace pelage::hair {
 

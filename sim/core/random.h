@@ -1,23 +1,18 @@
 // Counter-based random numbers: every draw is a pure function of (seed, stream, index),
 // so a result never depends on which thread asked for it or in what order
-// (docs/design.md, "Determinism"). The mixer is SplitMix64's finaliser (Steele, Lea,
-// Flood 2014), applied to a combination of the three counters.
+// (docs/design.md, "Determinism"). Each counter passes through a full SplitMix64 step
+// (sim/core/hash.h) before it is combined with the next.
 #pragma once
 
 #include <cmath>
 #include <cstdint>
 
+#include "sim/core/hash.h"
+
 namespace pelage::sim {
 
-constexpr uint64_t mix64(uint64_t z) {
-    z += 0x9e3779b97f4a7c15ull;
-    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
-    z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
-    return z ^ (z >> 31);
-}
-
 constexpr uint64_t hash_counters(uint64_t seed, uint64_t stream, uint64_t index) {
-    return mix64(mix64(mix64(seed) ^ stream) ^ index);
+    return splitmix64(splitmix64(splitmix64(seed) ^ stream) ^ index);
 }
 
 // Named streams, so two uses of the same index never share numbers.
@@ -36,7 +31,9 @@ class CounterRng {
     CounterRng(uint64_t seed, RandomStream stream, uint64_t index)
         : m_key(hash_counters(seed, static_cast<uint64_t>(stream), index)) {}
 
-    uint64_t next_u64() { return mix64(m_key + 0x632be59bd9b4e019ull * ++m_counter); }
+    uint64_t next_u64() {
+        return splitmix64(m_key + 0x632be59bd9b4e019ull * ++m_counter);
+    }
     // Uniform in [0, 1) with 53 random bits.
     double uniform() { return double(next_u64() >> 11) * 0x1.0p-53; }
     // Uniform in (0, 1]: safe under log().

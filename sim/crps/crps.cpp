@@ -45,6 +45,8 @@ Vec2d xz(Vec3d p) { return {p.x, p.z}; }
 Crps::Crps(const TriangleMesh &mesh, Topology topo)
     : m_topo(std::move(topo)), m_triangles(mesh.triangles) {
     const size_t nt = mesh.num_triangles();
+    // The topology must be the mesh's own (build_topology(mesh)): the maps index its CSR.
+    PELAGE_CHECK(m_topo.nbr_row.size() == nt + 1 && m_topo.flipped.size() == nt);
     m_frames.resize(nt);
 
     // --- Reference triangles (Teo §4.2): rotate the normal to +Y, drop Y ---

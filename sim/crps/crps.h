@@ -24,6 +24,7 @@
 #include <span>
 #include <vector>
 
+#include "sim/core/check.h"
 #include "sim/crps/rigid_map.h"
 #include "sim/mesh/mesh.h"
 #include "sim/mesh/topology.h"
@@ -50,7 +51,10 @@ class Crps {
     Crps(const TriangleMesh &mesh, Topology topo);
 
     size_t num_triangles() const { return m_frames.size(); }
-    const CrpsFrame &frame(TriId t) const { return m_frames[t]; }
+    const CrpsFrame &frame(TriId t) const {
+        PELAGE_DCHECK(t < m_frames.size());
+        return m_frames[t];
+    }
     const Topology &topology() const { return m_topo; }
 
     // --- Conversions (exact up to rounding) ---
@@ -62,10 +66,12 @@ class Crps {
     // --- Neighbour maps, parallel to topology().neighbours(i) ---
     // to_master(i)[k] = F[j→i] and to_neighbour(i)[k] = F[i→j] for j = neighbours(i)[k].
     std::span<const RigidMap2> to_master(TriId i) const {
+        PELAGE_DCHECK(size_t(i) + 1 < m_topo.nbr_row.size());
         return {m_to_master.data() + m_topo.nbr_row[i],
                 m_topo.nbr_row[i + 1] - m_topo.nbr_row[i]};
     }
     std::span<const RigidMap2> to_neighbour(TriId i) const {
+        PELAGE_DCHECK(size_t(i) + 1 < m_topo.nbr_row.size());
         return {m_to_nbr.data() + m_topo.nbr_row[i],
                 m_topo.nbr_row[i + 1] - m_topo.nbr_row[i]};
     }

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "sim/core/check.h"
 #include "sim/core/vec.h"
 
 namespace pelage::sim {
@@ -33,7 +34,11 @@ struct TriangleMesh {
 
     size_t num_triangles() const { return triangles.size(); }
     size_t num_vertices() const { return positions.size(); }
-    Vec3d vertex(TriId t, int corner) const { return positions[triangles[t][corner]]; }
+    Vec3d vertex(TriId t, int corner) const {
+        PELAGE_DCHECK(t < triangles.size() && corner >= 0 && corner < 3);
+        PELAGE_DCHECK(triangles[t][corner] < positions.size());
+        return positions[triangles[t][corner]];
+    }
     Vec3d face_normal_unnormalized(TriId t) const;  // (v1 - v0) x (v2 - v0)
     double triangle_area(TriId t) const;
     Bounds3 bounds() const;

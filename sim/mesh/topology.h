@@ -9,6 +9,7 @@
 #include <span>
 #include <vector>
 
+#include "sim/core/check.h"
 #include "sim/mesh/mesh.h"
 
 namespace pelage::sim {
@@ -49,16 +50,20 @@ struct Topology {
 
     size_t num_edges() const { return edge_vertices.size(); }
     std::span<const TriId> faces_of_edge(EdgeId e) const {
+        PELAGE_DCHECK(size_t(e) + 1 < edge_face_row.size());
         return {edge_faces.data() + edge_face_row[e],
                 edge_face_row[e + 1] - edge_face_row[e]};
     }
     std::span<const TriId> fan_of(VertId v) const {
+        PELAGE_DCHECK(size_t(v) + 1 < fan_row.size());
         return {fan.data() + fan_row[v], fan_row[v + 1] - fan_row[v]};
     }
     std::span<const TriId> neighbours(TriId t) const {
+        PELAGE_DCHECK(size_t(t) + 1 < nbr_row.size());
         return {nbr.data() + nbr_row[t], nbr_row[t + 1] - nbr_row[t]};
     }
     std::span<const TriId> primary_neighbours(TriId t) const {
+        PELAGE_DCHECK(t < num_primary.size() && size_t(t) + 1 < nbr_row.size());
         return {nbr.data() + nbr_row[t], num_primary[t]};
     }
     bool is_boundary(EdgeId e) const {

@@ -13,8 +13,6 @@
 namespace pelage::test {
 namespace {
 
-using renderer::Vec3f;
-
 TEST(SinCos, QuarterTurnPolynomialsMatchDoublePrecision) {
     const double quarter = M_PI / 4;
     double worst = 0;
@@ -76,7 +74,7 @@ TEST(SampleCone, DirectionsStayInTheConeAndAreUnit) {
     for (int k = 0; k < 4096; ++k) {
         const Vec3f w = renderer::sample_uniform_cone((k % 64 + 0.5f) / 64,
                                                       (k / 64 + 0.5f) / 64, cos_max);
-        EXPECT_NEAR(renderer::length(w), 1.0f, 1e-6f);
+        EXPECT_NEAR(length(w), 1.0f, 1e-6f);
         EXPECT_GE(w.z, cos_max - 1e-6f);
     }
 }
@@ -90,7 +88,7 @@ TEST(SampleCosineHemisphere, UnitDirectionsWithTheMomentsOfCosThetaOverPi) {
         for (int i = 0; i < n; ++i) {
             const Vec3f w =
                 renderer::sample_cosine_hemisphere((i + 0.5f) / n, (j + 0.5f) / n);
-            ASSERT_NEAR(renderer::length(w), 1.0f, 1e-6f);
+            ASSERT_NEAR(length(w), 1.0f, 1e-6f);
             ASSERT_GE(w.z, 0.0f);
             z1 += w.z;
             z2 += w.z * w.z;

@@ -13,8 +13,6 @@
 namespace pelage::test {
 namespace {
 
-using renderer::Vec3f;
-
 // An instanced mesh (used twice), a baked one and the ground: every kind of hit id.
 constexpr const char *scene_json = R"({
   "camera": {"position": [0, 0, 6], "look_at": [0, 0, 0]},
@@ -68,7 +66,7 @@ TEST(PacketIntersector, PacketsOfEverySizeFindTheHitsOfSingleRays) {
             // Half the batches coherent (a camera's fan), half random directions.
             o[i] = batch % 2 ? Vec3f{4 * c - 2, 4 * e - 2, 6} : Vec3f{0, 0, 6};
             const Vec3f aim{6 * a - 3, 4 * b - 2, 0};
-            d[i] = renderer::normalize(aim - o[i]);
+            d[i] = normalize(aim - o[i]);
         }
         RTCRayHit out[K];
         packets.intersect(o, d, n, out);
@@ -92,8 +90,7 @@ TEST(PacketIntersector, PacketsOfEverySizeFindTheHitsOfSingleRays) {
             EXPECT_NEAR(out[i].hit.v, ref.hit.v, 1e-4f);
             const Vec3f ng{out[i].hit.Ng_x, out[i].hit.Ng_y, out[i].hit.Ng_z},
                 ng_ref{ref.hit.Ng_x, ref.hit.Ng_y, ref.hit.Ng_z};
-            EXPECT_GT(renderer::dot(ng, ng_ref),
-                      0.9999f * renderer::length(ng) * renderer::length(ng_ref));
+            EXPECT_GT(dot(ng, ng_ref), 0.9999f * length(ng) * length(ng_ref));
         }
     }
     // The rays reach everything: misses, baked and instanced hits.

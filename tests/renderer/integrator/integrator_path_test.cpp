@@ -10,8 +10,6 @@
 namespace pelage::test {
 namespace {
 
-using renderer::Vec3f;
-
 // A flat-shaded icosphere (convex: every bounce escapes) seen whole by the camera.
 std::string furnace_scene(float albedo, float L, int spp) {
     return R"({
@@ -98,11 +96,10 @@ TEST(PathIntegrator, UncoveredPixelsSeeTheEnvironmentWithZeroAlpha) {
 double polygon_irradiance(const Vec3f *corners, int n, Vec3f p, Vec3f normal, double Le) {
     double sum = 0;
     for (int i = 0; i < n; ++i) {
-        const Vec3f a = renderer::normalize(corners[i] - p),
-                    b = renderer::normalize(corners[(i + 1) % n] - p);
-        const double theta =
-            std::acos(std::clamp(double(renderer::dot(a, b)), -1.0, 1.0));
-        sum += theta * renderer::dot(normal, renderer::normalize(renderer::cross(a, b)));
+        const Vec3f a = normalize(corners[i] - p),
+                    b = normalize(corners[(i + 1) % n] - p);
+        const double theta = std::acos(std::clamp(double(dot(a, b)), -1.0, 1.0));
+        sum += theta * dot(normal, normalize(cross(a, b)));
     }
     return Le * 0.5 * std::abs(sum);
 }
@@ -127,7 +124,7 @@ TEST(PathIntegrator, QuadLightOverDiffusePlaneMatchesClosedFormIrradiance) {
     // Pixel (x, y) covers ground points with X in [-0.9, 0.9] left to right and Z from
     // -0.9 (top) to 0.9 (bottom): fov 90 at height 0.9. Average the closed form over the
     // pixel footprint (8×8 points) rather than taking the centre.
-    const float half = cam_y * std::tan(0.5f * renderer::pi / 2);
+    const float half = cam_y * std::tan(0.5f * pi / 2);
     for (int y : {1, 5, 8, 12, 14})
         for (int x : {2, 7, 10, 15}) {
             double expected = 0;
@@ -136,8 +133,8 @@ TEST(PathIntegrator, QuadLightOverDiffusePlaneMatchesClosedFormIrradiance) {
                     const float sx = (x + (i + 0.5f) / 8) / W,
                                 sy = (y + (j + 0.5f) / 8) / H;
                     const Vec3f p{(2 * sx - 1) * half, 0, (2 * sy - 1) * half};
-                    expected += rho / renderer::pi *
-                                polygon_irradiance(corners, 4, p, {0, 1, 0}, Le) / 64;
+                    expected +=
+                        rho / pi * polygon_irradiance(corners, 4, p, {0, 1, 0}, Le) / 64;
                 }
             const double got = (img.at(x, y, 0) + img.at(x, y, 1) + img.at(x, y, 2)) / 3;
             // 2 %: the required tolerance (the Monte Carlo error at 8192 spp is ~0.3 %).
@@ -304,7 +301,7 @@ std::vector<double> two_quads_expected() {
                     const float sx = (x + (i + 0.5f) / 8) / 16,
                                 sy = (y + (j + 0.5f) / 8) / 16;
                     const Vec3f p{(2 * sx - 1) * half, 0, (2 * sy - 1) * half};
-                    e[y * 16 + x] += rho / renderer::pi / 64 *
+                    e[y * 16 + x] += rho / pi / 64 *
                                      (polygon_irradiance(a, 4, p, {0, 1, 0}, 20) +
                                       polygon_irradiance(b, 4, p, {0, 1, 0}, 0.25));
                 }
@@ -394,7 +391,7 @@ TEST(PathIntegrator, AreaLightsOccludeAndTheirBackIsBlack) {
     EXPECT_EQ(img.at(8, 8, 0), 0.0f);  // in the quad's shadow
     // 2 %: the sun is picked for ~99 % of the samples (by power), so the estimate is
     // noisy at the 0.4 % level.
-    EXPECT_NEAR(img.at(0, 0, 0), 0.5f * 3 / renderer::pi, 0.02 * 0.5f * 3 / renderer::pi);
+    EXPECT_NEAR(img.at(0, 0, 0), 0.5f * 3 / pi, 0.02 * 0.5f * 3 / pi);
     const std::string above = R"({
       "camera": {"position": [0, 3, 0], "look_at": [0, 0, 0], "up": [0, 0, -1], "fov": 20},
       "film": {"width": 16, "height": 16, "spp": 4, "filter": {"type": "box"}},

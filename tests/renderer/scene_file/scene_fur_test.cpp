@@ -3,6 +3,8 @@
 // tests/data/bad_scenes/fur_*.json).
 #include <gtest/gtest.h>
 
+#include "renderer/plugins/plugin_loader.h"
+#include "renderer/scene/scene.h"
 #include "renderer/scene_file/scene_file.h"
 #include "sim/core/input_error.h"
 
@@ -38,7 +40,7 @@ TEST(SceneFur, EveryKeyReachesTheParameters) {
     EXPECT_FLOAT_EQ(p.tip_radius, 0.002f);
     EXPECT_EQ(p.segments, 5);
     EXPECT_EQ(p.comb, fur::FurParams::Comb::world);
-    EXPECT_EQ(p.comb_direction, (fur::Vec3f{1, 0, 0}));
+    EXPECT_EQ(p.comb_direction, (Vec3f{1, 0, 0}));
     EXPECT_FLOAT_EQ(p.comb_angle_deg, 45);
     EXPECT_FLOAT_EQ(p.comb_jitter_deg, 3);
     EXPECT_FLOAT_EQ(p.gravity, 0.7f);
@@ -67,6 +69,9 @@ TEST(SceneFur, BadValuesNameTheirJsonPath) {
         {R"({"tip_radius": 0})", "objects[1].fur.tip_radius"},
         {R"({"clump": 1.5})", "objects[1].fur.clump"},
         {R"({"alpha": 60})", "objects[1].fur.alpha"},
+        // HairBsdf only DCHECKs its parameters: parsing rejects them
+        {R"({"beta_m": 0})", "objects[1].fur.beta_m"},
+        {R"({"beta_n": 1.5})", "objects[1].fur.beta_n"},
         {R"({"comb": "up"})", "objects[1].fur.comb"},
         {R"({"comb": [1, "x", 0]})", "objects[1].fur.comb[1]"},
         {R"({"density_by_type": [0, 0]})", "objects[1].fur.density_by_type"},
@@ -82,6 +87,21 @@ TEST(SceneFur, BadValuesNameTheirJsonPath) {
             EXPECT_NE(std::string(e.what()).find(field), std::string::npos)
                 << fur << ": " << e.what();
         }
+    }
+}
+
+// HairBsdf only DCHECKs its parameters at each strand hit, so the scene build validates
+// them once per fur layer: 1e-50 passes the parser's (0, 1] as a double but is 0 as the
+// float the BSDF takes.
+TEST(SceneFur, HairParametersAreValidatedOncePerLayer) {
+    const SceneDesc desc = with_fur(R"({"density": 10, "beta_m": 1e-50})");
+    const PluginRegistry plugins;
+    try {
+        const Scene s(desc, plugins);
+        ADD_FAILURE() << "beta_m = 1e-50 was accepted";
+    } catch (const InputError &e) {
+        EXPECT_NE(std::string(e.what()).find("beta_m = 0"), std::string::npos)
+            << e.what();
     }
 }
 

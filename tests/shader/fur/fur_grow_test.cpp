@@ -170,12 +170,14 @@ TEST(FurGrow, StrandsStartAtTheRootWithTheCombAngleLengthAndRadii) {
             const float *P = &s.points[i * s.points_per_strand * 4];
             auto pt = [&](int k) { return Vec3f{P[4 * k], P[4 * k + 1], P[4 * k + 2]}; };
             // The curve's first point: the B-spline (P0 + 4 P1 + P2)/6, or P0.
-            const Vec3f start = round ? (pt(0) + pt(1) * 4 + pt(2)) / 6 : pt(0);
+            const Vec3f start =
+                round ? divide_exactly(pt(0) + pt(1) * 4 + pt(2), 6) : pt(0);
             const int first = round ? 1 : 0;  // the polyline's root in the array
             EXPECT_NEAR(start.y, 0.0f, 1e-6f);
             EXPECT_NEAR(start.x, pt(first).x, 1e-5f);
             // Without gravity or curl the strand is straight: length L, 30° to the skin.
-            const Vec3f tip = pt(first + 8), d = (tip - pt(first)) / p.length;
+            const Vec3f tip = pt(first + 8),
+                        d = divide_exactly(tip - pt(first), p.length);
             EXPECT_NEAR(std::sqrt(d.x * d.x + d.y * d.y + d.z * d.z), 1.0f, 1e-4f);
             EXPECT_NEAR(d.y, 0.5f, 1e-4f);              // sin 30°
             EXPECT_NEAR(d.x, std::sqrt(0.75f), 1e-4f);  // combed along +x

@@ -284,7 +284,7 @@ TEST(HairBsdf, OffsetHPutsTheMirrorDirectionOnTheRLobe) {
     auto cross = [](Vec3f a, Vec3f b) {
         return Vec3f{a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
     };
-    auto normalize = [&](Vec3f a) { return a / std::sqrt(dot(a, a)); };
+    auto normalize = [&](Vec3f a) { return divide_exactly(a, std::sqrt(dot(a, a))); };
     for (int k = 0; k < 2000; ++k) {
         const Vec3f x = rng.direction();
         const Vec3f n = normalize(cross(x, rng.direction()));
@@ -375,30 +375,35 @@ void expect_invalid(F &&make, const std::string &name) {
     }
 }
 
-TEST(HairBsdf, BadParametersThrow) {
+TEST(HairBsdf, BadParametersThrowFromValidate) {
     const HairParams ok;
     auto with = [&](auto change) {
         HairParams p = ok;
         change(p);
         return p;
     };
-    expect_invalid([&] { HairBsdf(ok, 1.5f); }, "h = 1.5");
-    expect_invalid([&] { HairBsdf(ok, NAN); }, "h = ");
-    expect_invalid([&] { HairBsdf(with([](HairParams &p) { p.beta_m = 0; }), 0); },
-                   "beta_m = 0");
-    expect_invalid([&] { HairBsdf(with([](HairParams &p) { p.beta_m = 1.2f; }), 0); },
-                   "beta_m = 1.2");
-    expect_invalid([&] { HairBsdf(with([](HairParams &p) { p.beta_n = -0.1f; }), 0); },
-                   "beta_n = -0.1");
+    expect_invalid([&] { HairBsdf::validate(ok, 1.5f); }, "h = 1.5");
+    expect_invalid([&] { HairBsdf::validate(ok, NAN); }, "h = ");
+    expect_invalid(
+        [&] { HairBsdf::validate(with([](HairParams &p) { p.beta_m = 0; }), 0); },
+        "beta_m = 0");
+    expect_invalid(
+        [&] { HairBsdf::validate(with([](HairParams &p) { p.beta_m = 1.2f; }), 0); },
+        "beta_m = 1.2");
+    expect_invalid(
+        [&] { HairBsdf::validate(with([](HairParams &p) { p.beta_n = -0.1f; }), 0); },
+        "beta_n = -0.1");
     expect_invalid(
         [&] {
-            HairBsdf(with([](HairParams &p) { p.sigma_a = {0.1f, -1, 0}; }), 0);
+            HairBsdf::validate(with([](HairParams &p) { p.sigma_a = {0.1f, -1, 0}; }), 0);
         },
         "sigma_a[1] = -1");
-    expect_invalid([&] { HairBsdf(with([](HairParams &p) { p.eta = 0.5f; }), 0); },
-                   "eta = 0.5");
-    expect_invalid([&] { HairBsdf(with([](HairParams &p) { p.alpha = 1; }), 0); },
-                   "alpha = 1");
+    expect_invalid(
+        [&] { HairBsdf::validate(with([](HairParams &p) { p.eta = 0.5f; }), 0); },
+        "eta = 0.5");
+    expect_invalid(
+        [&] { HairBsdf::validate(with([](HairParams &p) { p.alpha = 1; }), 0); },
+        "alpha = 1");
     expect_invalid([] { sigma_a_from_melanin(-1, 0); }, "eumelanin = -1");
     expect_invalid([] { sigma_a_from_melanin(0, INFINITY); }, "pheomelanin = inf");
     expect_invalid([] { sigma_a_from_colour({0.5f, 0, 0.5f}, 0.3f); }, "colour[1] = 0");
@@ -408,6 +413,20 @@ TEST(HairBsdf, BadParametersThrow) {
         },
         "colour[1] = 1.5");
     expect_invalid([] { sigma_a_from_colour({0.5f, 0.5f, 0.5f}, 0); }, "beta_n = 0");
+}
+
+// The constructor runs at every strand hit and only DCHECKs validate()'s conditions.
+TEST(HairBsdf, ConstructorChecksItsPreconditionInDebugBuilds) {
+    EXPECT_TRUE(HairBsdf::invalid(HairParams{}, 0).empty());
+    EXPECT_NE(HairBsdf::invalid(HairParams{}, 1.5f).find("h = 1.5"), std::string::npos);
+#ifdef NDEBUG
+    GTEST_SKIP() << "PELAGE_DCHECK is compiled out with NDEBUG";
+#else
+    HairParams bad;
+    bad.beta_m = 0;
+    EXPECT_DEATH(HairBsdf(HairParams{}, 1.5f), "check failed: invalid");
+    EXPECT_DEATH(HairBsdf(bad, 0), "check failed: invalid");
+#endif
 }
 
 }  // namespace
