@@ -3,7 +3,7 @@
 
 #include "renderer/cli/common.h"
 
-namespace pelage::cli {
+namespace pelage::renderer::cli {
 
 Runner add_bench_crps(CLI::App &bench);
 Runner add_bench_lookup(CLI::App &bench);
@@ -12,4 +12,4 @@ Runner add_bench_render(CLI::App &bench);
 Runner add_bench_hair(CLI::App &bench);
 Runner add_bench_fur(CLI::App &bench);
 
-}  // namespace pelage::cli
+}  // namespace pelage::renderer::cli

@@ -8,7 +8,7 @@
 #include "sim/core/input_error.h"
 #include "sim/mesh/mesh_write_obj.h"
 
-namespace pelage::cli {
+namespace pelage::renderer::cli {
 namespace {
 
 struct BakeOptions {
@@ -23,10 +23,10 @@ int run(const BakeOptions &o) {
         throw InputError("", 0, "-o",
                          "\"" + o.output + "\": the atlas is written as OpenEXR (.exr)");
     const Timer timer;
-    const shader::MosaicPattern pattern(o.cells, o.mesh);
-    shader::BakedPattern baked;
+    const shader::clonal_mosaic::MosaicPattern pattern(o.cells, o.mesh);
+    shader::clonal_mosaic::BakedPattern baked;
     try {
-        baked = shader::bake_pattern(pattern, o.res, o.gutter);
+        baked = shader::clonal_mosaic::bake_pattern(pattern, o.res, o.gutter);
     } catch (const std::invalid_argument &e) {
         throw InputError("", 0, "--res", e.what());
     }
@@ -70,4 +70,4 @@ Runner add_bake_command(CLI::App &app) {
     return [o] { return run(*o); };
 }
 
-}  // namespace pelage::cli
+}  // namespace pelage::renderer::cli

@@ -3,7 +3,7 @@
 
 #include "renderer/cli/bench.h"
 
-namespace pelage::cli {
+namespace pelage::renderer::cli {
 
 Runner add_bench_command(CLI::App &app) {
     CLI::App *bench =
@@ -28,4 +28,4 @@ Runner add_bench_command(CLI::App &app) {
     };
 }
 
-}  // namespace pelage::cli
+}  // namespace pelage::renderer::cli

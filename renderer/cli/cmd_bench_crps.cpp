@@ -11,7 +11,7 @@
 #include "sim/crps/surface.h"
 #include "sim/crps/unfold.h"
 
-namespace pelage::cli {
+namespace pelage::renderer::cli {
 namespace {
 
 struct BenchCrpsOptions {
@@ -126,4 +126,4 @@ Runner add_bench_crps(CLI::App &bench) {
     return [o] { return run(*o); };
 }
 
-}  // namespace pelage::cli
+}  // namespace pelage::renderer::cli

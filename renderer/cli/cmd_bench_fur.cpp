@@ -20,7 +20,7 @@
 #include "sim/core/input_error.h"
 #include "sim/mesh/mesh_load.h"
 
-namespace pelage::cli {
+namespace pelage::renderer::cli {
 namespace {
 
 using namespace pelage::renderer;
@@ -198,4 +198,4 @@ Runner add_bench_fur(CLI::App &bench) {
     return [o] { return run(*o); };
 }
 
-}  // namespace pelage::cli
+}  // namespace pelage::renderer::cli

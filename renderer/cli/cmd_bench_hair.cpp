@@ -13,7 +13,7 @@
 #include "shader/hair/hair_bsdf.h"
 #include "shader/hair/hair_furnace.h"
 
-namespace pelage::cli {
+namespace pelage::renderer::cli {
 namespace {
 
 struct BenchHairOptions {
@@ -34,10 +34,10 @@ struct Rng {
     std::mt19937 gen;
 };
 
-hair::HairParams random_params(Rng &rng, bool absorbing) {
-    hair::HairParams p =
-        absorbing ? hair::HairParams::from_melanin(rng.in(0, 4), rng.in(0, 2), 0.3f, 0.3f)
-                  : hair::HairParams{};
+shader::hair::HairParams random_params(Rng &rng, bool absorbing) {
+    shader::hair::HairParams p = absorbing ? shader::hair::HairParams::from_melanin(
+                                                 rng.in(0, 4), rng.in(0, 2), 0.3f, 0.3f)
+                                           : shader::hair::HairParams{};
     p.beta_m = rng.in(0.1f, 1.0f);
     p.beta_n = rng.in(0.1f, 1.0f);
     p.alpha = rng.in(-5.0f, 5.0f) * pi / 180;
@@ -50,10 +50,10 @@ int run(const BenchHairOptions &o) {
     double furnace_max = 0, pdf_max = 0;
     const Timer furnace_timer;
     for (int k = 0; k < o.configs; ++k) {
-        const hair::HairBsdf white(random_params(rng, false), rng.in(-1, 1));
+        const shader::hair::HairBsdf white(random_params(rng, false), rng.in(-1, 1));
         const Vec3f wo = rng.direction();
-        const hair::FurnaceResult r =
-            hair::furnace_quadrature(white, wo, o.theta_steps, 2 * o.theta_steps, true);
+        const shader::hair::FurnaceResult r = shader::hair::furnace_quadrature(
+            white, wo, o.theta_steps, 2 * o.theta_steps, true);
         for (int c = 0; c < 3; ++c)
             furnace_max =
                 std::max(furnace_max, std::abs(double(r.f_cos_integral[c]) - 1));
@@ -62,7 +62,7 @@ int run(const BenchHairOptions &o) {
     const double furnace_seconds = furnace_timer.seconds();
 
     // --- Timing: 256 absorbing fibres, 2^20 calls each of eval, pdf, sample ---
-    std::vector<hair::HairBsdf> fibres;
+    std::vector<shader::hair::HairBsdf> fibres;
     for (int k = 0; k < 256; ++k)
         fibres.emplace_back(random_params(rng, true), rng.in(-1, 1));
     const int n = 1 << 20;
@@ -79,17 +79,17 @@ int run(const BenchHairOptions &o) {
         for (int k = 0; k < n; ++k) sink += call(fibres[k & 255], k);
         return 1e9 * t.seconds() / n;
     };
-    const double eval_ns =
-        time_ns([&](const hair::HairBsdf &b, int k) { return b.eval(wo[k], wi[k]).y; });
-    const double pdf_ns =
-        time_ns([&](const hair::HairBsdf &b, int k) { return b.pdf(wo[k], wi[k]); });
-    const double sample_ns = time_ns([&](const hair::HairBsdf &b, int k) {
+    const double eval_ns = time_ns(
+        [&](const shader::hair::HairBsdf &b, int k) { return b.eval(wo[k], wi[k]).y; });
+    const double pdf_ns = time_ns(
+        [&](const shader::hair::HairBsdf &b, int k) { return b.pdf(wo[k], wi[k]); });
+    const double sample_ns = time_ns([&](const shader::hair::HairBsdf &b, int k) {
         const auto s = b.sample(wo[k], u[3 * k], u[3 * k + 1], u[3 * k + 2]);
         return s ? s->weight.y : 0.0f;
     });
     const Timer build_timer;
     for (int k = 0; k < n; ++k) {
-        const hair::HairBsdf b(fibres[k & 255].params(), 2 * u[k] - 1);
+        const shader::hair::HairBsdf b(fibres[k & 255].params(), 2 * u[k] - 1);
         sink += b.h();
     }
     const double construct_ns = 1e9 * build_timer.seconds() / n;
@@ -127,4 +127,4 @@ Runner add_bench_hair(CLI::App &bench) {
     return [o] { return run(*o); };
 }
 
-}  // namespace pelage::cli
+}  // namespace pelage::renderer::cli

@@ -22,7 +22,7 @@
 #include "sim/crps/surface.h"
 #include "sim/crps/surface_sampling.h"
 
-namespace pelage::cli {
+namespace pelage::renderer::cli {
 namespace {
 
 struct BenchLookupOptions {
@@ -34,7 +34,7 @@ struct BenchLookupOptions {
     ThreadOption threads;
 };
 
-using Query = std::pair<sim::TriId, shader::Vec2f>;
+using Query = std::pair<sim::TriId, shader::clonal_mosaic::Vec2f>;
 
 // This thread's CPU seconds: on a shared machine wall time also counts the time other
 // jobs hold the cores, CPU time only the lookups' own (cache contention still shows).
@@ -52,11 +52,13 @@ class CpuTimer {
     double m_start;
 };
 
-nlohmann::json measure(const sim::Surface &s, const shader::CellTable &cells,
+nlohmann::json measure(const sim::Surface &s,
+                       const shader::clonal_mosaic::CellTable &cells,
                        const std::vector<Query> &queries,
                        const std::vector<Query> &coherent, sim::UnfoldPaths paths,
                        uint32_t subdivision) {
-    const shader::ClosestCellIndex index(s.crps, cells, {paths, subdivision});
+    const shader::clonal_mosaic::ClosestCellIndex index(s.crps, cells,
+                                                        {paths, subdivision});
     uint64_t sink = 0;
     const Timer wall;
     const CpuTimer pruned;
@@ -65,9 +67,9 @@ nlohmann::json measure(const sim::Surface &s, const shader::CellTable &cells,
     const double ns_wall = 1e9 * wall.seconds() / queries.size();
     // The same lookups with the four-lane scans (lane_scan.h): their time, and that they
     // find the same cells.
-    shader::ClosestCellOptions narrow_options{paths, subdivision};
+    shader::clonal_mosaic::ClosestCellOptions narrow_options{paths, subdivision};
     narrow_options.wide_lanes = false;
-    const shader::ClosestCellIndex narrow(s.crps, cells, narrow_options);
+    const shader::clonal_mosaic::ClosestCellIndex narrow(s.crps, cells, narrow_options);
     uint64_t wide_sink = 0, narrow_sink = 0;
     for (const auto &[t, q] : queries) wide_sink += index.find(t, q).index;
     const CpuTimer four_lanes;
@@ -107,18 +109,18 @@ nlohmann::json measure(const sim::Surface &s, const shader::CellTable &cells,
     for (const Step &w : walk)
         sink += index.find_three_within(w.t, w.b1, w.b2, band).index[1];
     const double ns_walk = 1e9 * walked.seconds() / walk.size();
-    shader::CoherentLookup reuse;
+    shader::clonal_mosaic::CoherentLookup reuse;
     const CpuTimer reused;
     for (const Step &w : walk)
         sink += reuse.find_three_within(index, 1, w.t, w.b1, w.b2, band).index[1];
     const double ns_walk_reuse = 1e9 * reused.seconds() / walk.size();
     // Indirect hits with wide footprints (the material's level of detail): the filtered
     // look at random points, in random order.
-    const shader::MosaicLod lod(
+    const shader::clonal_mosaic::MosaicLod lod(
         s, index,
         [&](uint32_t c) {
             const float v = float(cells.type[c]);
-            return shader::FilteredLook{{v, 1 - v, 0.5f * v, v, 1 - v}};
+            return shader::clonal_mosaic::FilteredLook{{v, 1 - v, 0.5f * v, v, 1 - v}};
         },
         2);
     std::vector<std::array<float, 2>> bary;  // hits come with barycentrics
@@ -139,14 +141,15 @@ nlohmann::json measure(const sim::Surface &s, const shader::CellTable &cells,
     size_t agree = 0;
     const CpuTimer exhaustive;
     for (size_t i = 0; i < n_ex; ++i) {
-        const shader::ClosestCell a =
+        const shader::clonal_mosaic::ClosestCell a =
             index.find_exhaustive(queries[i].first, queries[i].second);
-        const shader::ClosestCell b = index.find(queries[i].first, queries[i].second);
+        const shader::clonal_mosaic::ClosestCell b =
+            index.find(queries[i].first, queries[i].second);
         agree += a.index == b.index && a.f2 == b.f2;
     }
     const double ns_ex = 1e9 * exhaustive.seconds() / n_ex - ns;  // minus the pruned call
-    const shader::EdgeConsistency edges =
-        shader::measure_edge_consistency(s.mesh, s.crps, index);
+    const shader::clonal_mosaic::EdgeConsistency edges =
+        shader::clonal_mosaic::measure_edge_consistency(s.mesh, s.crps, index);
     return {{"unfolding",
              paths == sim::UnfoldPaths::edges_only ? "edges_only" : "edges_and_vertices"},
             {"build_seconds", index.stats().build_seconds},
@@ -193,14 +196,14 @@ int run(const BenchLookupOptions &o) {
         const sim::Surface s = sim::build_surface(mesh);
         // Area-uniform random cells stand in for a simulated mosaic: same density, and
         // the search does not care how the cells got there.
-        std::vector<shader::CellOnSurface> list;
+        std::vector<shader::clonal_mosaic::CellOnSurface> list;
         uint32_t id = 0;
         for (const auto &p : sim::sample_surface_uniform(s.crps, o.cells, o.seed)) {
             list.push_back({p.tri, p.p.x, p.p.y, id, uint8_t(id % 2)});
             ++id;
         }
-        const shader::CellTable cells =
-            shader::make_cell_table(s.crps.num_triangles(), list);
+        const shader::clonal_mosaic::CellTable cells =
+            shader::clonal_mosaic::make_cell_table(s.crps.num_triangles(), list);
         std::vector<Query> queries;
         for (const auto &p : sim::sample_surface_uniform(s.crps, o.queries, o.seed + 1))
             queries.push_back({p.tri, {float(p.p.x), float(p.p.y)}});
@@ -248,4 +251,4 @@ Runner add_bench_lookup(CLI::App &bench) {
     return [o] { return run(*o); };
 }
 
-}  // namespace pelage::cli
+}  // namespace pelage::renderer::cli

@@ -21,7 +21,7 @@
 #include "renderer/scene_file/scene_file.h"
 #include "sim/core/input_error.h"
 
-namespace pelage::cli {
+namespace pelage::renderer::cli {
 namespace {
 
 using namespace pelage::renderer;
@@ -216,4 +216,4 @@ Runner add_bench_render(CLI::App &bench) {
     return [o] { return run(*o); };
 }
 
-}  // namespace pelage::cli
+}  // namespace pelage::renderer::cli

@@ -15,7 +15,7 @@
 #include "sim/crps/surface.h"
 #include "sim/mosaic/cm_simulation.h"
 
-namespace pelage::cli {
+namespace pelage::renderer::cli {
 namespace {
 
 struct BenchSimOptions {
@@ -187,4 +187,4 @@ Runner add_bench_sim(CLI::App &bench) {
     return [o] { return run(*o); };
 }
 
-}  // namespace pelage::cli
+}  // namespace pelage::renderer::cli

@@ -11,7 +11,7 @@
 #include "sim/cells_io/cells_file.h"
 #include "sim/core/atomic_file.h"
 
-namespace pelage::cli {
+namespace pelage::renderer::cli {
 namespace {
 
 struct CellsOptions {
@@ -57,4 +57,4 @@ Runner add_cells_command(CLI::App &app) {
     return [o] { return run(*o); };
 }
 
-}  // namespace pelage::cli
+}  // namespace pelage::renderer::cli

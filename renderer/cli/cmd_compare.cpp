@@ -18,7 +18,7 @@
 #include "sim/core/input_error.h"
 #include "sim/mesh/mesh_write_obj.h"
 
-namespace pelage::cli {
+namespace pelage::renderer::cli {
 namespace {
 
 struct CompareCliOptions {
@@ -65,8 +65,9 @@ void bake_atlas_for_texture(const renderer::SceneDesc &desc, int res, TempDir &d
                fmt::format("pelage_compare_{}", getpid());
     std::filesystem::create_directories(dir.path);
     const Timer timer;
-    const shader::MosaicPattern pattern(subject->cells, subject->mesh);
-    const shader::BakedPattern baked = shader::bake_pattern(pattern, res);
+    const shader::clonal_mosaic::MosaicPattern pattern(subject->cells, subject->mesh);
+    const shader::clonal_mosaic::BakedPattern baked =
+        shader::clonal_mosaic::bake_pattern(pattern, res);
     co.texture_file = (dir.path / "atlas.exr").string();
     co.texture_mesh = (dir.path / "atlas.obj").string();
     co.texels_per_unit = float(baked.atlas.texels_per_unit);
@@ -189,4 +190,4 @@ Runner add_compare_command(CLI::App &app) {
     return [o] { return run(*o); };
 }
 
-}  // namespace pelage::cli
+}  // namespace pelage::renderer::cli

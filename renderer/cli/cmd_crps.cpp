@@ -8,7 +8,7 @@
 #include "sim/crps/crps_validation.h"
 #include "sim/crps/surface.h"
 
-namespace pelage::cli {
+namespace pelage::renderer::cli {
 namespace {
 
 struct CrpsOptions {
@@ -121,4 +121,4 @@ Runner add_crps_command(CLI::App &app) {
     return [o] { return run_crps(*o); };
 }
 
-}  // namespace pelage::cli
+}  // namespace pelage::renderer::cli

@@ -11,7 +11,7 @@
 #include "sim/core/input_error.h"
 #include "sim/core/text_lines.h"
 
-namespace pelage::cli {
+namespace pelage::renderer::cli {
 namespace {
 
 struct LookupOptions {
@@ -19,7 +19,7 @@ struct LookupOptions {
 };
 
 int run(const LookupOptions &o) {
-    const shader::MosaicPattern pattern(o.cells, o.mesh);
+    const shader::clonal_mosaic::MosaicPattern pattern(o.cells, o.mesh);
     std::ifstream in(o.points, std::ios::binary);
     if (!in) throw InputError(o.points, 0, "", "cannot open file");
     // Parse everything first: a bad line fails the run before anything is printed.
@@ -57,9 +57,9 @@ int run(const LookupOptions &o) {
         queries.push_back({sim::TriId(face), float(b1), float(b2)});
     }
     for (const Query &q : queries) {
-        const shader::ClosestCell c =
+        const shader::clonal_mosaic::ClosestCell c =
             pattern.index().find_nearest(q.face, q.b1, q.b2);  // as the renderer
-        if (c.index == shader::ClosestCell::none) {
+        if (c.index == shader::clonal_mosaic::ClosestCell::none) {
             std::printf("none none inf\n");
             continue;
         }
@@ -83,4 +83,4 @@ Runner add_lookup_command(CLI::App &app) {
     return [o] { return run(*o); };
 }
 
-}  // namespace pelage::cli
+}  // namespace pelage::renderer::cli

@@ -8,7 +8,7 @@
 #include "renderer/image/movie.h"
 #include "sim/core/input_error.h"
 
-namespace pelage::cli {
+namespace pelage::renderer::cli {
 namespace {
 
 struct MovieCliOptions {
@@ -64,4 +64,4 @@ Runner add_movie_command(CLI::App &app) {
     return [o] { return run(*o); };
 }
 
-}  // namespace pelage::cli
+}  // namespace pelage::renderer::cli

@@ -9,7 +9,7 @@
 #include "sim/cells_io/cells_preview.h"
 #include "sim/core/input_error.h"
 
-namespace pelage::cli {
+namespace pelage::renderer::cli {
 namespace {
 
 struct PreviewCliOptions {
@@ -50,4 +50,4 @@ Runner add_preview_command(CLI::App &app) {
     return [o] { return run_preview(*o); };
 }
 
-}  // namespace pelage::cli
+}  // namespace pelage::renderer::cli

@@ -15,7 +15,7 @@
 #include "renderer/scene_file/scene_file.h"
 #include "sim/core/input_error.h"
 
-namespace pelage::cli {
+namespace pelage::renderer::cli {
 namespace {
 
 namespace fs = std::filesystem;
@@ -353,4 +353,4 @@ Runner add_render_command(CLI::App &app) {
     return [o] { return run(*o); };
 }
 
-}  // namespace pelage::cli
+}  // namespace pelage::renderer::cli

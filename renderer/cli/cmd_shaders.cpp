@@ -12,7 +12,7 @@
 #include "renderer/plugins/plugin_loader.h"
 #include "sim/core/input_error.h"
 
-namespace pelage::cli {
+namespace pelage::renderer::cli {
 namespace {
 
 using namespace pelage::renderer;
@@ -176,4 +176,4 @@ Runner add_shaders_command(CLI::App &app) {
     return [o] { return run(*o); };
 }
 
-}  // namespace pelage::cli
+}  // namespace pelage::renderer::cli

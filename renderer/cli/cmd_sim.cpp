@@ -16,7 +16,7 @@
 #include "sim/crps/surface.h"
 #include "sim/mosaic/cm_simulation.h"
 
-namespace pelage::cli {
+namespace pelage::renderer::cli {
 namespace {
 
 struct SimOptions {
@@ -145,4 +145,4 @@ Runner add_sim_command(CLI::App &app) {
     return [o] { return run_sim(*o); };
 }
 
-}  // namespace pelage::cli
+}  // namespace pelage::renderer::cli

@@ -10,7 +10,7 @@
 #include "sim/cells_io/pattern_stats.h"
 #include "sim/mesh/mesh_load.h"
 
-namespace pelage::cli {
+namespace pelage::renderer::cli {
 namespace {
 
 struct StatsOptions {
@@ -62,4 +62,4 @@ Runner add_stats_command(CLI::App &app) {
     return [o] { return run_stats(*o); };
 }
 
-}  // namespace pelage::cli
+}  // namespace pelage::renderer::cli

@@ -7,7 +7,7 @@
 #include "sim/core/atomic_file.h"
 #include "sim/core/input_error.h"
 
-namespace pelage::cli {
+namespace pelage::renderer::cli {
 
 void ThreadOption::add_to(CLI::App &app) {
     app.add_option("--threads", threads,
@@ -42,4 +42,4 @@ std::string data_path(const std::string &relative) {
     return (std::filesystem::path(PELAGE_SOURCE_DIR) / relative).string();
 }
 
-}  // namespace pelage::cli
+}  // namespace pelage::renderer::cli

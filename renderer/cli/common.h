@@ -11,7 +11,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
-namespace pelage::cli {
+namespace pelage::renderer::cli {
 
 // A subcommand registers its options on `app` and returns what runs once parsing
 // succeeded; it returns the exit code (0 ok, 1 runtime failure). Bad input is thrown as
@@ -61,4 +61,4 @@ class Timer {
     std::chrono::steady_clock::time_point m_start;
 };
 
-}  // namespace pelage::cli
+}  // namespace pelage::renderer::cli

@@ -17,24 +17,24 @@ int main(int argc, char **argv) {
     app.require_subcommand(1);
     app.set_version_flag("--version", PELAGE_VERSION);
 
-    std::vector<std::pair<CLI::App *, cli::Runner>> commands;
-    auto add = [&](cli::Runner (*fn)(CLI::App &)) {
+    std::vector<std::pair<CLI::App *, renderer::cli::Runner>> commands;
+    auto add = [&](renderer::cli::Runner (*fn)(CLI::App &)) {
         const size_t before = app.get_subcommands({}).size();
-        cli::Runner run = fn(app);
+        renderer::cli::Runner run = fn(app);
         commands.emplace_back(app.get_subcommands({})[before], std::move(run));
     };
-    add(cli::add_crps_command);
-    add(cli::add_sim_command);
-    add(cli::add_stats_command);
-    add(cli::add_preview_command);
-    add(cli::add_render_command);
-    add(cli::add_shaders_command);
-    add(cli::add_compare_command);
-    add(cli::add_cells_command);
-    add(cli::add_lookup_command);
-    add(cli::add_bake_command);
-    add(cli::add_movie_command);
-    add(cli::add_bench_command);
+    add(renderer::cli::add_crps_command);
+    add(renderer::cli::add_sim_command);
+    add(renderer::cli::add_stats_command);
+    add(renderer::cli::add_preview_command);
+    add(renderer::cli::add_render_command);
+    add(renderer::cli::add_shaders_command);
+    add(renderer::cli::add_compare_command);
+    add(renderer::cli::add_cells_command);
+    add(renderer::cli::add_lookup_command);
+    add(renderer::cli::add_bake_command);
+    add(renderer::cli::add_movie_command);
+    add(renderer::cli::add_bench_command);
 
     try {
         app.parse(argc, argv);

@@ -26,8 +26,8 @@
 namespace pelage::renderer {
 
 // A root's pigment on object `object`: the skin's material evaluated at that point.
-using ObjectPigmentLookup = std::function<fur::RootPigment(
-    size_t object, const fur::SurfacePoint &, Vec3f p, Vec3f n)>;
+using ObjectPigmentLookup = std::function<shader::fur::RootPigment(
+    size_t object, const shader::fur::SurfacePoint &, Vec3f p, Vec3f n)>;
 
 struct FurLayer {
     uint32_t object = 0;  // the scene object the fur grows on
@@ -35,7 +35,7 @@ struct FurLayer {
     uint32_t strand_offset = 0;  // global index of this layer's first strand
     bool round = true;
     float beta_m = 0.25f, beta_n = 0.3f, alpha = 0;  // alpha in radians
-    fur::Strands strands;
+    shader::fur::Strands strands;
 
     // Centre-line point and unit tangent of segment `prim` at curve parameter u.
     void centre(unsigned prim, float u, Vec3f *c, Vec3f *tangent, float *radius) const;

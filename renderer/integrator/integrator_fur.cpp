@@ -58,7 +58,7 @@ bool scatter_at_strand(const Scene &scene, const FurLayer &layer, const RTCRayHi
         n = e + wo_perp * (radius * std::sqrt(std::max(0.0f, 1 - s * s)));
     }
     n = length(n) > 0 ? normalize(n) : wo_perp;
-    const float h = hair::offset_h(to_hair(x), to_hair(n), to_hair(wo));
+    const float h = shader::hair::offset_h(to_hair(x), to_hair(n), to_hair(wo));
     // z: the normal turned to face wo (the model only uses φ_i − φ_o, hair_bsdf.h).
     FibreFrame frame;
     frame.x = x;
@@ -68,10 +68,10 @@ bool scatter_at_strand(const Scene &scene, const FurLayer &layer, const RTCRayHi
     // --- The strand's BSDF from its melanin ---
     const float eu = layer.strands.melanin[2 * size_t(strand)],
                 pheo = layer.strands.melanin[2 * size_t(strand) + 1];
-    hair::HairParams hp =
-        hair::HairParams::from_melanin(eu, pheo, layer.beta_m, layer.beta_n);
+    shader::hair::HairParams hp =
+        shader::hair::HairParams::from_melanin(eu, pheo, layer.beta_m, layer.beta_n);
     hp.alpha = layer.alpha;
-    const hair::HairBsdf bsdf(hp, h);
+    const shader::hair::HairBsdf bsdf(hp, h);
 
     if (depth == 0) {
         fs.alpha = 1;

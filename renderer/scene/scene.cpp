@@ -82,8 +82,8 @@ void Scene::build(const SceneDesc &desc, const PluginRegistry &plugins) {
     for (const ObjectDesc &o : desc.objects)
         if (o.fur) {
             // Each root's pigment: the skin's own material plugin at that point.
-            const auto pigment = [this](size_t i, const fur::SurfacePoint &s, Vec3f p,
-                                        Vec3f n) {
+            const auto pigment = [this](size_t i, const shader::fur::SurfacePoint &s,
+                                        Vec3f p, Vec3f n) {
                 const Material &mat = m_materials[i];
                 PelageHit hit{};
                 hit.object_id = uint32_t(i);
@@ -98,7 +98,7 @@ void Scene::build(const SceneDesc &desc, const PluginRegistry &plugins) {
                 sh.albedo[0] = sh.albedo[1] = sh.albedo[2] = 0.5f;
                 sh.roughness = -1;
                 mat.plugin->shade(mat.instance, &hit, &sh);
-                fur::RootPigment rp{sh.eumelanin, sh.pheomelanin, -1};
+                shader::fur::RootPigment rp{sh.eumelanin, sh.pheomelanin, -1};
                 // The cell type, when the plugin names an AOV slot "cell_type".
                 if (sh.aov_written && mat.plugin->aov_names)
                     for (int k = 0;

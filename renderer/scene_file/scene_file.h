@@ -81,7 +81,7 @@ struct ObjectDesc {
     // parser (the last pose, weight 1) and by scene_at_frame().
     std::string deform_mesh;
     float deform_weight = 0;
-    std::optional<fur::FurParams>
+    std::optional<shader::fur::FurParams>
         fur;  // strands on this object (renderer/scene_file/scene_fur.h)
 };
 

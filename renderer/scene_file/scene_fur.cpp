@@ -31,10 +31,10 @@ float num(JsonFields &r, const std::string &key, float def, double lo, double hi
 
 }  // namespace
 
-fur::FurParams read_fur(const json &j, const std::string &field,
-                        const std::string &scene_path) {
+shader::fur::FurParams read_fur(const json &j, const std::string &field,
+                                const std::string &scene_path) {
     JsonFields r(j, field, scene_path);
-    fur::FurParams p;
+    shader::fur::FurParams p;
     if (const json *v = r.take("density"))
         p.density = r.check_number(*v, r.field("density"), 0, 1e12);
     p.density_by_type = per_type(r, "density_by_type", true);
@@ -51,7 +51,7 @@ fur::FurParams read_fur(const json &j, const std::string &field,
     p.segments = int(r.unsigned_integer("segments", uint64_t(p.segments), 1, 64));
     if (const json *v = r.take("comb")) {
         if (v->is_string() && v->get<std::string>() == "normal") {
-            p.comb = fur::FurParams::Comb::normal;
+            p.comb = shader::fur::FurParams::Comb::normal;
         } else if (v->is_array() && v->size() == 3) {
             for (int k = 0; k < 3; ++k)
                 (k == 0   ? p.comb_direction.x
@@ -83,15 +83,15 @@ fur::FurParams read_fur(const json &j, const std::string &field,
     if (const json *v = r.take("curve")) {
         const std::string s = v->is_string() ? v->get<std::string>() : "";
         if (s == "round")
-            p.curve = fur::FurParams::Curve::round;
+            p.curve = shader::fur::FurParams::Curve::round;
         else if (s == "flat")
-            p.curve = fur::FurParams::Curve::flat;
+            p.curve = shader::fur::FurParams::Curve::flat;
         else
             r.fail(r.field("curve"),
                    "expected \"round\" (B-spline tubes, close-ups) or "
                    "\"flat\" (linear ribbons, distance)");
     }
-    if (p.curve == fur::FurParams::Curve::round && p.segments < 2)
+    if (p.curve == shader::fur::FurParams::Curve::round && p.segments < 2)
         r.fail(r.field("segments"),
                "a round (B-spline) strand needs at least 2 segments");
     r.finish();

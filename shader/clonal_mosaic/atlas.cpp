@@ -5,7 +5,7 @@
 #include <numeric>
 #include <stdexcept>
 
-namespace pelage::shader {
+namespace pelage::shader::clonal_mosaic {
 namespace {
 
 struct Placed {
@@ -114,4 +114,4 @@ Atlas pack_atlas(const sim::Crps &crps, int resolution, int gutter) {
     return atlas;
 }
 
-}  // namespace pelage::shader
+}  // namespace pelage::shader::clonal_mosaic

@@ -9,7 +9,7 @@
 
 #include "sim/crps/crps.h"
 
-namespace pelage::shader {
+namespace pelage::shader::clonal_mosaic {
 
 struct AtlasTriangle {
     // Atlas position (in texels, y down) of local CRPS point p: A·p + offset.
@@ -34,4 +34,4 @@ struct Atlas {
 // std::invalid_argument when even a tiny scale cannot fit (resolution too small).
 Atlas pack_atlas(const sim::Crps &crps, int resolution, int gutter = 2);
 
-}  // namespace pelage::shader
+}  // namespace pelage::shader::clonal_mosaic

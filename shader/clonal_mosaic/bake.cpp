@@ -5,7 +5,7 @@
 #include <algorithm>
 #include <cmath>
 
-namespace pelage::shader {
+namespace pelage::shader::clonal_mosaic {
 namespace {
 
 // Barycentrics of p in the atlas triangle; clamped to the triangle when `clamp`.
@@ -120,4 +120,4 @@ BakedPattern bake_pattern(const MosaicPattern &pattern, int resolution, int gutt
     return out;
 }
 
-}  // namespace pelage::shader
+}  // namespace pelage::shader::clonal_mosaic

@@ -7,7 +7,7 @@
 #include "shader/clonal_mosaic/atlas.h"
 #include "shader/clonal_mosaic/pattern.h"
 
-namespace pelage::shader {
+namespace pelage::shader::clonal_mosaic {
 
 struct BakedPattern {
     Atlas atlas;
@@ -20,4 +20,4 @@ struct BakedPattern {
 
 BakedPattern bake_pattern(const MosaicPattern &pattern, int resolution, int gutter = 2);
 
-}  // namespace pelage::shader
+}  // namespace pelage::shader::clonal_mosaic

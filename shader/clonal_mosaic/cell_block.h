@@ -5,7 +5,7 @@
 
 #include <cstdint>
 
-namespace pelage::shader {
+namespace pelage::shader::clonal_mosaic {
 
 struct Vec2f {
     float x = 0, y = 0;
@@ -29,4 +29,4 @@ struct alignas(64) CellBlock {
 };
 static_assert(sizeof(CellBlock) == 64);
 
-}  // namespace pelage::shader
+}  // namespace pelage::shader::clonal_mosaic

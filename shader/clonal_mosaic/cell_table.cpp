@@ -4,7 +4,7 @@
 #include <numeric>
 #include <stdexcept>
 
-namespace pelage::shader {
+namespace pelage::shader::clonal_mosaic {
 
 CellTable make_cell_table(size_t num_triangles, std::span<const CellOnSurface> cells) {
     CellTable table;
@@ -37,4 +37,4 @@ CellTable make_cell_table(size_t num_triangles, std::span<const CellOnSurface> c
     return table;
 }
 
-}  // namespace pelage::shader
+}  // namespace pelage::shader::clonal_mosaic

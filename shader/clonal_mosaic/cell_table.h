@@ -10,7 +10,7 @@
 
 #include "sim/mesh/mesh.h"
 
-namespace pelage::shader {
+namespace pelage::shader::clonal_mosaic {
 
 struct CellOnSurface {
     sim::TriId tri;
@@ -35,4 +35,4 @@ struct CellTable {
 // Throws std::invalid_argument for a cell on a triangle >= num_triangles.
 CellTable make_cell_table(size_t num_triangles, std::span<const CellOnSurface> cells);
 
-}  // namespace pelage::shader
+}  // namespace pelage::shader::clonal_mosaic

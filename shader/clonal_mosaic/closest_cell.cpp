@@ -9,7 +9,7 @@
 #include "shader/clonal_mosaic/lane_scan.h"
 #include "shader/clonal_mosaic/subdivision.h"
 
-namespace pelage::shader {
+namespace pelage::shader::clonal_mosaic {
 namespace {
 
 constexpr float inf_f = std::numeric_limits<float>::infinity();
@@ -278,4 +278,4 @@ float ClosestCellIndex::distance_to_cell(sim::TriId t, Vec2f q, uint32_t cell) c
     return std::numeric_limits<float>::infinity();
 }
 
-}  // namespace pelage::shader
+}  // namespace pelage::shader::clonal_mosaic

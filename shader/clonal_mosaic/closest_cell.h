@@ -74,7 +74,7 @@
 #include "sim/crps/crps.h"
 #include "sim/crps/unfold.h"
 
-namespace pelage::shader {
+namespace pelage::shader::clonal_mosaic {
 
 struct ClosestCell {
     static constexpr uint32_t none = 0xffffffffu;
@@ -231,4 +231,4 @@ class ClosestCellIndex {
     ClosestCellStats m_stats;
 };
 
-}  // namespace pelage::shader
+}  // namespace pelage::shader::clonal_mosaic

@@ -12,7 +12,7 @@
 #include "shader/clonal_mosaic/closest_cell.h"
 #include "shader/clonal_mosaic/subdivision.h"
 
-namespace pelage::shader {
+namespace pelage::shader::clonal_mosaic {
 namespace {
 
 constexpr double inf = std::numeric_limits<double>::infinity();
@@ -297,4 +297,4 @@ void ClosestCellIndex::build_triangle(const sim::Crps &crps, sim::TriId t,
     }
 }
 
-}  // namespace pelage::shader
+}  // namespace pelage::shader::clonal_mosaic

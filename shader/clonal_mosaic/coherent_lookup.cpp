@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-namespace pelage::shader {
+namespace pelage::shader::clonal_mosaic {
 
 CoherentLookup::Result CoherentLookup::search(const ClosestCellIndex &index,
                                               uint64_t serial, sim::TriId t, float b1,
@@ -34,4 +34,4 @@ CoherentLookup::Result CoherentLookup::search(const ClosestCellIndex &index,
     return n;
 }
 
-}  // namespace pelage::shader
+}  // namespace pelage::shader::clonal_mosaic

@@ -27,7 +27,7 @@
 
 #include "shader/clonal_mosaic/closest_cell.h"
 
-namespace pelage::shader {
+namespace pelage::shader::clonal_mosaic {
 
 class CoherentLookup {
   public:
@@ -91,4 +91,4 @@ class CoherentLookup {
     size_t m_reused = 0, m_searched = 0;
 };
 
-}  // namespace pelage::shader
+}  // namespace pelage::shader::clonal_mosaic

@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-namespace pelage::shader {
+namespace pelage::shader::clonal_mosaic {
 
 EdgeConsistency measure_edge_consistency(const sim::TriangleMesh &mesh,
                                          const sim::Crps &crps,
@@ -39,4 +39,4 @@ EdgeConsistency measure_edge_consistency(const sim::TriangleMesh &mesh,
     return r;
 }
 
-}  // namespace pelage::shader
+}  // namespace pelage::shader::clonal_mosaic

@@ -12,7 +12,7 @@
 #include "shader/clonal_mosaic/closest_cell.h"
 #include "sim/mesh/mesh.h"
 
-namespace pelage::shader {
+namespace pelage::shader::clonal_mosaic {
 
 struct EdgeConsistency {
     size_t samples = 0;
@@ -26,4 +26,4 @@ EdgeConsistency measure_edge_consistency(const sim::TriangleMesh &mesh,
                                          const sim::Crps &crps,
                                          const ClosestCellIndex &index, int per_edge = 3);
 
-}  // namespace pelage::shader
+}  // namespace pelage::shader::clonal_mosaic

@@ -7,7 +7,7 @@
 #include <cstdint>
 #include <limits>
 
-namespace pelage::shader::lanes {
+namespace pelage::shader::clonal_mosaic::lanes {
 
 using Lanes4f = float __attribute__((vector_size(16)));
 using Lanes4u = uint32_t __attribute__((vector_size(16)));
@@ -49,4 +49,4 @@ struct LaneNearest {
     }
 };
 
-}  // namespace pelage::shader::lanes
+}  // namespace pelage::shader::clonal_mosaic::lanes

@@ -7,7 +7,7 @@
 
 #include "shader/clonal_mosaic/lane_nearest.h"
 
-namespace pelage::shader {
+namespace pelage::shader::clonal_mosaic {
 namespace {
 
 constexpr float inf_f = std::numeric_limits<float>::infinity();
@@ -88,4 +88,4 @@ LaneScanners lane_scanners(bool wide) {
     return {&scan4<1>, &scan4<2>, 4};
 }
 
-}  // namespace pelage::shader
+}  // namespace pelage::shader::clonal_mosaic

@@ -17,7 +17,7 @@
 
 #include "shader/clonal_mosaic/cell_block.h"
 
-namespace pelage::shader {
+namespace pelage::shader::clonal_mosaic {
 
 // What a lane scan found. Cells are named by their slot in the list (block × 5 + lane),
 // read by the caller; squared distances.
@@ -51,4 +51,4 @@ namespace detail {
 LaneScanners wide_lane_scanners();
 }  // namespace detail
 
-}  // namespace pelage::shader
+}  // namespace pelage::shader::clonal_mosaic

@@ -18,7 +18,7 @@
 #define PELAGE_WIDE_LANES 1
 #endif
 
-namespace pelage::shader::detail {
+namespace pelage::shader::clonal_mosaic::detail {
 
 #ifdef PELAGE_WIDE_LANES
 namespace {
@@ -132,4 +132,4 @@ LaneScanners wide_lane_scanners() {
 LaneScanners wide_lane_scanners() { return {}; }
 #endif
 
-}  // namespace pelage::shader::detail
+}  // namespace pelage::shader::clonal_mosaic::detail

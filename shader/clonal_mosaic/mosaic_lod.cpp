@@ -5,7 +5,7 @@
 
 #include "shader/clonal_mosaic/subdivision.h"
 
-namespace pelage::shader {
+namespace pelage::shader::clonal_mosaic {
 
 constexpr int channels = FilteredLook::channels;
 
@@ -96,4 +96,4 @@ FilteredLook MosaicLod::at(uint32_t t, float b1, float b2) const {
     return out;
 }
 
-}  // namespace pelage::shader
+}  // namespace pelage::shader::clonal_mosaic

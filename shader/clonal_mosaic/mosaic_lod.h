@@ -19,7 +19,7 @@
 
 #include "shader/clonal_mosaic/pattern.h"
 
-namespace pelage::shader {
+namespace pelage::shader::clonal_mosaic {
 
 // What the material blends: colour and the fur's melanins.
 struct FilteredLook {
@@ -67,4 +67,4 @@ class MosaicLod {
     std::vector<uint32_t> m_dominant;
 };
 
-}  // namespace pelage::shader
+}  // namespace pelage::shader::clonal_mosaic

@@ -1,6 +1,6 @@
 #include "shader/clonal_mosaic/pattern.h"
 
-namespace pelage::shader {
+namespace pelage::shader::clonal_mosaic {
 
 MosaicPattern::MosaicPattern(const std::string &cells_path, const std::string &mesh_path,
                              sim::UnfoldPaths paths)
@@ -27,4 +27,4 @@ MosaicPattern::MosaicPattern(const std::string &cells_path, const std::string &m
     }
 }
 
-}  // namespace pelage::shader
+}  // namespace pelage::shader::clonal_mosaic

@@ -12,7 +12,7 @@
 #include "sim/cells_io/cells_file.h"
 #include "sim/crps/surface.h"
 
-namespace pelage::shader {
+namespace pelage::shader::clonal_mosaic {
 
 class MosaicPattern {
   public:
@@ -42,4 +42,4 @@ class MosaicPattern {
         m_tri;  // per triangle: v0 (2), e1 (2), e2 (2), local CRPS coordinates
 };
 
-}  // namespace pelage::shader
+}  // namespace pelage::shader::clonal_mosaic

@@ -7,7 +7,7 @@
 #include <array>
 #include <cstdint>
 
-namespace pelage::shader {
+namespace pelage::shader::clonal_mosaic {
 
 // The barycentric (b1, b2) corners of sub-triangle (i, j, upper) of an n-subdivision.
 inline std::array<std::array<double, 2>, 3> sub_triangle(uint32_t n, uint32_t i,
@@ -40,4 +40,4 @@ template <typename Real>
     return slot_index(n, i, j, upper);
 }
 
-}  // namespace pelage::shader
+}  // namespace pelage::shader::clonal_mosaic

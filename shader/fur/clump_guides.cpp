@@ -5,7 +5,7 @@
 #include "shader/fur/fur_hash.h"
 #include "shader/fur/strand_shape.h"
 
-namespace pelage::fur {
+namespace pelage::shader::fur {
 
 namespace {
 constexpr float clump_pi = 3.14159265358979323846f;
@@ -74,4 +74,4 @@ void ClumpGuides::pull(Vec3f *line) const {
     }
 }
 
-}  // namespace pelage::fur
+}  // namespace pelage::shader::fur

@@ -11,7 +11,7 @@
 #include "shader/fur/fur_params.h"
 #include "shader/fur/root_sampling.h"
 
-namespace pelage::fur {
+namespace pelage::shader::fur {
 
 class ClumpGuides {
   public:
@@ -32,4 +32,4 @@ class ClumpGuides {
     std::unordered_map<uint64_t, std::vector<uint32_t>> m_grid;
 };
 
-}  // namespace pelage::fur
+}  // namespace pelage::shader::fur

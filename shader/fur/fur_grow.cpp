@@ -10,7 +10,7 @@
 #include "shader/fur/fur_hash.h"
 #include "shader/fur/strand_shape.h"
 
-namespace pelage::fur {
+namespace pelage::shader::fur {
 
 namespace {
 
@@ -143,4 +143,4 @@ Strands grow_fur(const FurParams &params, const SkinMesh &mesh,
     return out;
 }
 
-}  // namespace pelage::fur
+}  // namespace pelage::shader::fur

@@ -16,7 +16,7 @@
 #include "shader/fur/fur_params.h"
 #include "shader/fur/root_sampling.h"
 
-namespace pelage::fur {
+namespace pelage::shader::fur {
 
 // What the skin says at a root: its pigment and its cell type (−1 when unknown).
 struct RootPigment {
@@ -48,4 +48,4 @@ Strands grow_fur(const FurParams &params, const SkinMesh &mesh,
 // The expected strand count before thinning: density × max(density_by_type) × area.
 double expected_candidates(const FurParams &params, double area);
 
-}  // namespace pelage::fur
+}  // namespace pelage::shader::fur

@@ -9,7 +9,7 @@
 
 #include "sim/core/vec.h"
 
-namespace pelage::fur {
+namespace pelage::shader::fur {
 
 struct FurParams {
     // --- Roots ---
@@ -42,4 +42,4 @@ struct FurParams {
     enum class Curve { round, flat } curve = Curve::round;
 };
 
-}  // namespace pelage::fur
+}  // namespace pelage::shader::fur

@@ -5,7 +5,7 @@
 
 #include "shader/fur/fur_hash.h"
 
-namespace pelage::fur {
+namespace pelage::shader::fur {
 
 namespace {
 
@@ -67,4 +67,4 @@ uint64_t candidate_count(double expected, uint64_t seed) {
            (uniform(seed, Stream::thinning, ~0ull, 0) < expected - whole);
 }
 
-}  // namespace pelage::fur
+}  // namespace pelage::shader::fur

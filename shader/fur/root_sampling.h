@@ -8,7 +8,7 @@
 
 #include "shader/fur/fur_params.h"
 
-namespace pelage::fur {
+namespace pelage::shader::fur {
 
 // A triangle mesh in world space. corner_normals (9 floats per triangle) may be null:
 // face normals are used then.
@@ -42,4 +42,4 @@ class RootSampler {
 // the fraction (a hash of the seed), so the count's mean is exact.
 uint64_t candidate_count(double expected, uint64_t seed);
 
-}  // namespace pelage::fur
+}  // namespace pelage::shader::fur

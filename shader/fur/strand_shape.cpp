@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-namespace pelage::fur {
+namespace pelage::shader::fur {
 
 namespace {
 
@@ -70,4 +70,4 @@ void grow_centre_line(const FurParams &params, Vec3f p, Vec3f n, float L,
     }
 }
 
-}  // namespace pelage::fur
+}  // namespace pelage::shader::fur

@@ -12,7 +12,7 @@
 #include "shader/hair/hair_pigments.h"
 #include "sim/core/check.h"
 
-namespace pelage::hair {
+namespace pelage::shader::hair {
 namespace {
 
 constexpr float two_pi = 2 * pi;
@@ -411,4 +411,4 @@ std::optional<HairSample> HairBsdf::sample(Vec3f wo, float u_lobe, float u1,
     return HairSample{wi, f, pdf_wi, f * (abs_cos / pdf_wi), p};
 }
 
-}  // namespace pelage::hair
+}  // namespace pelage::shader::hair

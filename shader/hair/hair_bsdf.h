@@ -38,7 +38,7 @@
 
 #include "sim/core/vec.h"
 
-namespace pelage::hair {
+namespace pelage::shader::hair {
 
 // The model's parameters; HairBsdf::validate() checks their ranges.
 struct HairParams {
@@ -136,4 +136,4 @@ float azimuthal_scattering(float phi, int p, float s, float gamma_o, float gamma
 // Unpolarised Fresnel reflectance of a dielectric interface (from outside, IOR eta).
 float fresnel_dielectric(float cos_theta_i, float eta);
 
-}  // namespace pelage::hair
+}  // namespace pelage::shader::hair

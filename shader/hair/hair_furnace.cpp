@@ -3,7 +3,7 @@
 
 #include <cmath>
 
-namespace pelage::hair {
+namespace pelage::shader::hair {
 
 FurnaceResult furnace_quadrature(const HairBsdf &bsdf, Vec3f wo, int n_theta, int n_phi,
                                  bool with_pdf) {
@@ -29,4 +29,4 @@ FurnaceResult furnace_quadrature(const HairBsdf &bsdf, Vec3f wo, int n_theta, in
     return {Rgb{float(sum[0]), float(sum[1]), float(sum[2])}, sum_pdf};
 }
 
-}  // namespace pelage::hair
+}  // namespace pelage::shader::hair

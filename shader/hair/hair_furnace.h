@@ -11,7 +11,7 @@
 
 #include "shader/hair/hair_bsdf.h"
 
-namespace pelage::hair {
+namespace pelage::shader::hair {
 
 struct FurnaceResult {
     Rgb f_cos_integral;   // ∫ f |cos θ_i| dω_i, per channel
@@ -21,4 +21,4 @@ struct FurnaceResult {
 FurnaceResult furnace_quadrature(const HairBsdf &bsdf, Vec3f wo, int n_theta = 512,
                                  int n_phi = 1024, bool with_pdf = false);
 
-}  // namespace pelage::hair
+}  // namespace pelage::shader::hair

@@ -5,7 +5,7 @@
 #include <stdexcept>
 #include <string>
 
-namespace pelage::hair {
+namespace pelage::shader::hair {
 namespace {
 
 void check_concentration(const char *name, float c) {
@@ -46,4 +46,4 @@ Rgb sigma_a_from_colour(Rgb colour, float beta_n) {
     return sigma_a;
 }
 
-}  // namespace pelage::hair
+}  // namespace pelage::shader::hair

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <numeric>
 
-namespace pelage::shader {
+namespace pelage::shader::perlin {
 namespace {
 
 float fade(float t) {
@@ -71,4 +71,4 @@ float PerlinNoise::fbm(float x, float y, float z, int octaves, float lacunarity,
     return norm > 0 ? sum / norm : 0.0f;
 }
 
-}  // namespace pelage::shader
+}  // namespace pelage::shader::perlin

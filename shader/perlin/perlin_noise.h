@@ -7,7 +7,7 @@
 #include <array>
 #include <cstdint>
 
-namespace pelage::shader {
+namespace pelage::shader::perlin {
 
 class PerlinNoise {
   public:
@@ -22,4 +22,4 @@ class PerlinNoise {
     std::array<uint8_t, 512> m_perm;  // doubled, so perm[perm[x] + y] never wraps
 };
 
-}  // namespace pelage::shader
+}  // namespace pelage::shader::perlin

@@ -13,7 +13,7 @@
 
 namespace {
 
-using namespace pelage::shader;
+using namespace pelage::shader::perlin;
 using namespace pelage::shader::sdk;
 
 struct Perlin {

@@ -5,7 +5,7 @@
 #include <cmath>
 #include <limits>
 
-namespace pelage::shader {
+namespace pelage::shader::worley {
 namespace {
 
 uint32_t hash3(int32_t x, int32_t y, int32_t z, uint32_t seed) {
@@ -91,4 +91,4 @@ WorleyResult worley(const float p[3], uint32_t seed, float mean_points) {
     return {std::sqrt(d1), std::sqrt(d2), id1};
 }
 
-}  // namespace pelage::shader
+}  // namespace pelage::shader::worley

@@ -7,7 +7,7 @@
 
 #include <cstdint>
 
-namespace pelage::shader {
+namespace pelage::shader::worley {
 
 struct WorleyResult {
     float f1 = 0, f2 = 0;
@@ -24,4 +24,4 @@ WorleyResult worley(const float p[3], uint32_t seed, float mean_points);
 int worley_cube_points(int32_t x, int32_t y, int32_t z, uint32_t seed, float mean_points,
                        float points[16][3], uint32_t ids[16]);
 
-}  // namespace pelage::shader
+}  // namespace pelage::shader::worley

@@ -18,7 +18,7 @@
 
 namespace {
 
-using namespace pelage::shader;
+using namespace pelage::shader::worley;
 using namespace pelage::shader::sdk;
 
 struct Worley {

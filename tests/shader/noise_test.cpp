@@ -10,6 +10,10 @@
 namespace pelage::shader {
 namespace {
 
+using perlin::PerlinNoise;
+using worley::worley_cube_points;
+using worley::WorleyResult;
+
 TEST(PerlinNoise, ZeroAtLatticePointsAndBounded) {
     const PerlinNoise n(7);
     for (int x = -3; x <= 3; ++x)
@@ -51,7 +55,7 @@ TEST(WorleyNoise, F1IsZeroAtFeaturePointsAndNeverAboveF2) {
             uint32_t ids[16];
             const int n = worley_cube_points(x, 1, z, 5, 3.0f, pts, ids);
             for (int i = 0; i < n; ++i, ++points) {
-                const WorleyResult r = worley(pts[i], 5, 3.0f);
+                const WorleyResult r = worley::worley(pts[i], 5, 3.0f);
                 ASSERT_LT(r.f1, 1e-6f);
                 ASSERT_EQ(r.id1, ids[i]);
                 ASSERT_GT(r.f2, 0.0f);
@@ -62,7 +66,7 @@ TEST(WorleyNoise, F1IsZeroAtFeaturePointsAndNeverAboveF2) {
     std::uniform_real_distribution<float> u(-50, 50);
     for (int s = 0; s < 20000; ++s) {
         const float p[3] = {u(rng), u(rng), u(rng)};
-        const WorleyResult r = worley(p, 5, 3.0f);
+        const WorleyResult r = worley::worley(p, 5, 3.0f);
         ASSERT_LE(r.f1, r.f2);
     }
 }
@@ -72,7 +76,8 @@ TEST(WorleyNoise, F1AndF2MatchBruteForce) {
     std::uniform_real_distribution<float> u(-20, 20);
     for (int s = 0; s < 300; ++s) {
         const float p[3] = {u(rng), u(rng), u(rng)};
-        const WorleyResult r = worley(p, 9, 1.0f);  // sparse: exercises the outer rings
+        const WorleyResult r =
+            worley::worley(p, 9, 1.0f);  // sparse: exercises the outer rings
         double d1 = 1e30, d2 = 1e30;
         uint32_t id1 = 0;
         for (int dx = -4; dx <= 4; ++dx)
@@ -111,7 +116,7 @@ TEST(WorleyNoise, DensityFollowsThePoissonMean) {
         const int count = 40000;
         for (int i = 0; i < count; ++i) {
             const float p[3] = {u(rng), u(rng), u(rng)};
-            sum += worley(p, 3, lambda).f1;
+            sum += worley::worley(p, 3, lambda).f1;
         }
         const double expected = 0.8929795 / std::cbrt(4.0 * M_PI * lambda / 3.0);
         EXPECT_NEAR(sum / count, expected, 0.03 * expected) << lambda;

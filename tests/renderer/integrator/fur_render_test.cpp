@@ -108,7 +108,7 @@ TEST(FurRender, EachStrandTakesTheMosaicsMelaninAtItsRoot) {
     const renderer::Scene s(desc, plugins);
     ASSERT_NE(s.fur(), nullptr);
     const renderer::FurLayer &layer = s.fur()->layers().at(0);
-    const fur::Strands &strands = layer.strands;
+    const shader::fur::Strands &strands = layer.strands;
     ASSERT_GT(strands.size(), 1000u);
     const renderer::Material &m = s.materials()[0];
     size_t dark = 0, light = 0;

@@ -28,7 +28,7 @@ TEST(SceneFur, EveryKeyReachesTheParameters) {
         "alpha": -3, "curve": "flat"})");
     ASSERT_FALSE(s.objects[0].fur.has_value());
     ASSERT_TRUE(s.objects[1].fur.has_value());
-    const fur::FurParams &p = *s.objects[1].fur;
+    const shader::fur::FurParams &p = *s.objects[1].fur;
     EXPECT_EQ(p.density, 1234);
     EXPECT_EQ(p.density_by_type, (std::vector<float>{1.5f, 0.5f}));
     EXPECT_EQ(p.seed, 9u);
@@ -39,7 +39,7 @@ TEST(SceneFur, EveryKeyReachesTheParameters) {
     EXPECT_FLOAT_EQ(p.root_radius, 0.01f);
     EXPECT_FLOAT_EQ(p.tip_radius, 0.002f);
     EXPECT_EQ(p.segments, 5);
-    EXPECT_EQ(p.comb, fur::FurParams::Comb::world);
+    EXPECT_EQ(p.comb, shader::fur::FurParams::Comb::world);
     EXPECT_EQ(p.comb_direction, (Vec3f{1, 0, 0}));
     EXPECT_FLOAT_EQ(p.comb_angle_deg, 45);
     EXPECT_FLOAT_EQ(p.comb_jitter_deg, 3);
@@ -53,13 +53,13 @@ TEST(SceneFur, EveryKeyReachesTheParameters) {
     EXPECT_FLOAT_EQ(p.beta_m, 0.4f);
     EXPECT_FLOAT_EQ(p.beta_n, 0.5f);
     EXPECT_FLOAT_EQ(p.alpha_deg, -3);
-    EXPECT_EQ(p.curve, fur::FurParams::Curve::flat);
+    EXPECT_EQ(p.curve, shader::fur::FurParams::Curve::flat);
 
-    const fur::FurParams d = *with_fur("{}").objects[1].fur;
-    EXPECT_EQ(d.density, fur::FurParams{}.density);
-    EXPECT_EQ(d.curve, fur::FurParams::Curve::round);
+    const shader::fur::FurParams d = *with_fur("{}").objects[1].fur;
+    EXPECT_EQ(d.density, shader::fur::FurParams{}.density);
+    EXPECT_EQ(d.curve, shader::fur::FurParams::Curve::round);
     EXPECT_EQ(with_fur(R"({"comb": "normal"})").objects[1].fur->comb,
-              fur::FurParams::Comb::normal);
+              shader::fur::FurParams::Comb::normal);
 }
 
 TEST(SceneFur, BadValuesNameTheirJsonPath) {

@@ -15,9 +15,10 @@ namespace {
 TEST(Bake, AtlasTrianglesAreUndistortedCopiesOfTheFaces) {
     TempDir tmp;
     const std::string mesh = "procedural:icosphere:3";
-    const shader::MosaicPattern pattern(simulate_two_type_cells(tmp, mesh, 500, 0.4),
-                                        mesh);
-    const shader::Atlas atlas = shader::pack_atlas(pattern.surface().crps, 1024);
+    const shader::clonal_mosaic::MosaicPattern pattern(
+        simulate_two_type_cells(tmp, mesh, 500, 0.4), mesh);
+    const shader::clonal_mosaic::Atlas atlas =
+        shader::clonal_mosaic::pack_atlas(pattern.surface().crps, 1024);
     for (sim::TriId t = 0; t < pattern.num_triangles(); ++t)
         for (int c = 0; c < 3; ++c) {
             const double l3 = length(pattern.surface().mesh.vertex(t, (c + 1) % 3) -
@@ -33,12 +34,15 @@ TEST(Bake, AtlasTrianglesAreUndistortedCopiesOfTheFaces) {
 TEST(Bake, TexelsEqualTheRenderersLookup) {
     TempDir tmp;
     const std::string mesh = "procedural:icosphere:3";
-    const shader::MosaicPattern pattern(simulate_two_type_cells(tmp, mesh, 500, 0.4),
-                                        mesh);
+    const shader::clonal_mosaic::MosaicPattern pattern(
+        simulate_two_type_cells(tmp, mesh, 500, 0.4), mesh);
     const int res = 512;
-    const shader::BakedPattern baked = shader::bake_pattern(pattern, res);
+    const shader::clonal_mosaic::BakedPattern baked =
+        shader::clonal_mosaic::bake_pattern(pattern, res);
     const auto id_at = [&](int x, int y) {
-        return baked.pixels[(size_t(y) * res + x) * shader::BakedPattern::channels + 5];
+        return baked.pixels[(size_t(y) * res + x) *
+                                shader::clonal_mosaic::BakedPattern::channels +
+                            5];
     };
 
     // Exactly at the centres of texels inside a triangle.
@@ -52,7 +56,7 @@ TEST(Bake, TexelsEqualTheRenderersLookup) {
                 const double det = cross(e1, e2), b1 = cross(p - a.corners[0], e2) / det,
                              b2 = cross(e1, p - a.corners[0]) / det;
                 if (b1 < 0 || b2 < 0 || b1 + b2 > 1) continue;
-                const shader::ClosestCell c = pattern.index().find_nearest(
+                const shader::clonal_mosaic::ClosestCell c = pattern.index().find_nearest(
                     t, pattern.point(t, float(b1), float(b2)));
                 ASSERT_EQ(id_at(x, y), float(pattern.cells().id[c.index]));
                 ++centres;
@@ -76,7 +80,7 @@ TEST(Bake, TexelsEqualTheRenderersLookup) {
         for (int c = 0; c < 3; ++c) uv += baked.atlas.uv(t, c) * b[c];
         const int x = std::min(res - 1, int(uv.x * res)),
                   y = std::min(res - 1, int((1 - uv.y) * res));
-        const shader::ClosestCell c =
+        const shader::clonal_mosaic::ClosestCell c =
             pattern.index().find_nearest(t, pattern.point(t, b1, b2));
         agree += id_at(x, y) == float(pattern.cells().id[c.index]);
     }

@@ -17,7 +17,7 @@
 #include "sim/mesh/procedural_mesh.h"
 #include "tests/test_paths.h"
 
-namespace pelage::shader {
+namespace pelage::shader::clonal_mosaic {
 namespace {
 
 CellTable random_cells(const sim::Crps &crps, size_t n, uint64_t seed) {
@@ -344,4 +344,4 @@ TEST(ClosestCell, CracksVanishOnASmoothSphere) {
 }
 
 }  // namespace
-}  // namespace pelage::shader
+}  // namespace pelage::shader::clonal_mosaic

@@ -8,7 +8,7 @@
 #include "sim/crps/surface_sampling.h"
 #include "tests/test_paths.h"
 
-namespace pelage::shader {
+namespace pelage::shader::clonal_mosaic {
 namespace {
 
 TEST(CoherentLookup, EqualsTheSearchBitForBitAndReusesMostCoherentQueries) {
@@ -55,4 +55,4 @@ TEST(CoherentLookup, EqualsTheSearchBitForBitAndReusesMostCoherentQueries) {
 }
 
 }  // namespace
-}  // namespace pelage::shader
+}  // namespace pelage::shader::clonal_mosaic

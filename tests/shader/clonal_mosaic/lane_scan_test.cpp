@@ -13,7 +13,7 @@
 #include <random>
 #include <vector>
 
-namespace pelage::shader {
+namespace pelage::shader::clonal_mosaic {
 namespace {
 
 constexpr float inf = std::numeric_limits<float>::infinity();
@@ -140,4 +140,4 @@ TEST(LaneScan, ExactTiesAreReported) {
 }
 
 }  // namespace
-}  // namespace pelage::shader
+}  // namespace pelage::shader::clonal_mosaic

@@ -16,7 +16,8 @@ namespace {
 
 const std::string mesh_spec = "procedural:icosphere:2";  // 320 triangles
 
-shader::FilteredLook type_look(const shader::MosaicPattern &p, uint32_t cell) {
+shader::clonal_mosaic::FilteredLook type_look(
+    const shader::clonal_mosaic::MosaicPattern &p, uint32_t cell) {
     const sim::CellType &t = p.types()[p.cells().type[cell]];
     return {{t.colour[0], t.colour[1], t.colour[2], t.eumelanin, t.pheomelanin}};
 }
@@ -24,9 +25,9 @@ shader::FilteredLook type_look(const shader::MosaicPattern &p, uint32_t cell) {
 struct Fixture {
     TempDir tmp;
     std::string cells = simulate_two_type_cells(tmp, mesh_spec, 1500);
-    shader::MosaicPattern pattern{cells, mesh_spec};
-    shader::MosaicLod lod{pattern, [this](uint32_t c) { return type_look(pattern, c); },
-                          2};
+    shader::clonal_mosaic::MosaicPattern pattern{cells, mesh_spec};
+    shader::clonal_mosaic::MosaicLod lod{
+        pattern, [this](uint32_t c) { return type_look(pattern, c); }, 2};
 };
 
 // The mean over a triangle, against 4000 random area-uniform points of the exact pattern:
@@ -48,9 +49,10 @@ TEST(MosaicLod, TriangleMeansAreTheAreaMeansOfThePattern) {
                 b1 = 1 - b1;
                 b2 = 1 - b2;
             }
-            const shader::ClosestCell c = f.pattern.index().find_nearest(t, b1, b2);
-            ASSERT_NE(c.index, shader::ClosestCell::none);
-            const shader::FilteredLook l = type_look(f.pattern, c.index);
+            const shader::clonal_mosaic::ClosestCell c =
+                f.pattern.index().find_nearest(t, b1, b2);
+            ASSERT_NE(c.index, shader::clonal_mosaic::ClosestCell::none);
+            const shader::clonal_mosaic::FilteredLook l = type_look(f.pattern, c.index);
             for (int ch = 0; ch < 5; ++ch) mean[ch] += l.v[ch] / n;
         }
         // Red: F is 0.1, B 0.9.
@@ -87,7 +89,8 @@ TEST(MosaicLod, VertexMeansAreContinuousAcrossEdges) {
     for (sim::TriId t = 0; t < mesh.num_triangles(); ++t)
         for (int c = 0; c < 3; ++c) {
             const sim::VertId v = mesh.triangles[t][c];
-            const shader::FilteredLook at = f.lod.at(t, corners_b[c][0], corners_b[c][1]);
+            const shader::clonal_mosaic::FilteredLook at =
+                f.lod.at(t, corners_b[c][0], corners_b[c][1]);
             for (int ch = 0; ch < 5; ++ch)
                 ASSERT_NEAR(at.v[ch], corner[5 * v + ch] / area[v], 1e-5)
                     << t << " " << c;
@@ -108,8 +111,8 @@ TEST(MosaicLod, VertexMeansAreContinuousAcrossEdges) {
                         if (b > 0) bn[b - 1] += 0.5f;
                     }
             ASSERT_EQ(shared, 2);
-            const shader::FilteredLook x = f.lod.at(t, bt[0], bt[1]),
-                                       y = f.lod.at(n, bn[0], bn[1]);
+            const shader::clonal_mosaic::FilteredLook x = f.lod.at(t, bt[0], bt[1]),
+                                                      y = f.lod.at(n, bn[0], bn[1]);
             for (int ch = 0; ch < 5; ++ch) ASSERT_NEAR(x.v[ch], y.v[ch], 1e-5);
             ++edges;
         }

@@ -8,7 +8,7 @@
 
 #include <cmath>
 
-namespace pelage::fur {
+namespace pelage::shader::fur {
 namespace {
 
 // Eight separate triangles in the y = 0 plane (normal +y) with areas k/2, k = 1..8.
@@ -213,4 +213,4 @@ TEST(FurGrow, RefusesMoreStrandsThanMaxStrands) {
 }
 
 }  // namespace
-}  // namespace pelage::fur
+}  // namespace pelage::shader::fur

@@ -16,7 +16,7 @@
 #include "shader/hair/hair_furnace.h"
 #include "shader/hair/hair_pigments.h"
 
-namespace pelage::hair {
+namespace pelage::shader::hair {
 namespace {
 
 constexpr float deg = pi / 180;
@@ -430,7 +430,7 @@ TEST(HairBsdf, ConstructorChecksItsPreconditionInDebugBuilds) {
 }
 
 }  // namespace
-}  // namespace pelage::hair
+}  // namespace pelage::shader::hair
 
 // `pelage bench hair` output contract: one JSON object with furnace_max_error.
 // A small, fast set (2 fibres, 128 × 256 grid); the error bound is the required 1 %.
