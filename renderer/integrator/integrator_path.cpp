@@ -171,11 +171,18 @@ Rgb PathIntegrator::radiance(const CameraRay &cam, const RTCRayHit &first,
     return path.L;
 }
 
+// The steps below are separate functions for reading only: the ones run once per vertex
+// are always inlined, so radiance() compiles to one loop whose path state stays in
+// registers. scatter() and sample_ld(), one copy per BSDF type, are left to the
+// compiler: forcing both copies inline makes the loop too large for it to inline their
+// own callees.
+
 // The next vertex along a BSDF-sampled ray (the camera ray was traced in a packet). The
 // ray skips the fur strand it leaves.
 template <typename Instr>
-RTCRayHit PathIntegrator::trace(PathState &path, RenderStats &stats,
-                                const Instr &instr) const {
+[[gnu::always_inline]] inline RTCRayHit PathIntegrator::trace(PathState &path,
+                                                              RenderStats &stats,
+                                                              const Instr &instr) const {
     RTCRayHit rh;
     RTCIntersectContext ctx;
     rtcInitIntersectContext(&ctx);
@@ -194,9 +201,9 @@ RTCRayHit PathIntegrator::trace(PathState &path, RenderStats &stats,
 // §9.2) unless the ray came from the camera or a specular bounce. True when the path
 // ends: at an area light's own geometry, which emits (front side) and never reflects, or
 // when the ray escaped to the environment and distant discs.
-bool PathIntegrator::add_emission(const RTCRayHit &rh, int depth, const CameraRay &cam,
-                                  PathState &path, FilmSample &fs,
-                                  FilmPointAovs *aovs) const {
+[[gnu::always_inline]] inline bool PathIntegrator::add_emission(
+    const RTCRayHit &rh, int depth, const CameraRay &cam, PathState &path, FilmSample &fs,
+    FilmPointAovs *aovs) const {
     const Lights &lights = m_scene.lights();
     const bool hit_geometry = rh.hit.geomID != RTC_INVALID_GEOMETRY_ID;
     const float t_hit = hit_geometry ? rh.ray.tfar : inf;
@@ -233,8 +240,8 @@ bool PathIntegrator::add_emission(const RTCRayHit &rh, int depth, const CameraRa
 
 // The mesh point the ray hit: position, two-sided geometric and shading normals, and
 // the ray cone's footprint there (which this adds to the path's).
-PathIntegrator::SurfaceVertex PathIntegrator::surface_vertex(const RTCRayHit &rh,
-                                                             PathState &path) const {
+[[gnu::always_inline]] inline PathIntegrator::SurfaceVertex
+PathIntegrator::surface_vertex(const RTCRayHit &rh, PathState &path) const {
     const EmbreeScene &geometry = m_scene.geometry();
     const uint32_t object = geometry.object_of(rh.hit.geomID, rh.hit.instID[0]);
     const ObjectGeometry &og = geometry.objects()[object];
@@ -284,8 +291,9 @@ PathIntegrator::SurfaceVertex PathIntegrator::surface_vertex(const RTCRayHit &rh
 // The material plugin fills the BSDF inputs at `sv` (the plugin SDK's PelageHit and
 // PelageShade); `albedo` receives its albedo, clamped to [0, 1].
 template <typename Instr>
-PelageShade PathIntegrator::shade(const SurfaceVertex &sv, int depth, Rgb *albedo,
-                                  RenderStats &stats, const Instr &instr) const {
+[[gnu::always_inline]] inline PelageShade PathIntegrator::shade(
+    const SurfaceVertex &sv, int depth, Rgb *albedo, RenderStats &stats,
+    const Instr &instr) const {
     const ObjectGeometry &og = m_scene.geometry().objects()[sv.object];
     const MeshData &mesh = *og.mesh;
     PelageHit ph{};
@@ -318,9 +326,9 @@ PelageShade PathIntegrator::shade(const SurfaceVertex &sv, int depth, Rgb *albed
 }
 
 // The film's first-hit values for a camera ray that hit a surface.
-void PathIntegrator::set_first_hit(const SurfaceVertex &sv, const PelageShade &sh,
-                                   const Rgb &albedo, const CameraRay &cam,
-                                   FilmSample &fs, FilmPointAovs *aovs) const {
+[[gnu::always_inline]] inline void PathIntegrator::set_first_hit(
+    const SurfaceVertex &sv, const PelageShade &sh, const Rgb &albedo,
+    const CameraRay &cam, FilmSample &fs, FilmPointAovs *aovs) const {
     fs.alpha = 1;
     fs.albedo = albedo;
     fs.normal = sv.ns;
@@ -336,10 +344,9 @@ void PathIntegrator::set_first_hit(const SurfaceVertex &sv, const PelageShade &s
 
 // Builds the material's BSDF from the plugin's inputs and scatters with it.
 template <typename Instr>
-bool PathIntegrator::scatter_at_surface(const SurfaceVertex &sv, const PelageShade &sh,
-                                        const Rgb &albedo, Sampler &sampler,
-                                        PathState &path, RenderStats &stats,
-                                        const Instr &instr) const {
+[[gnu::always_inline]] inline bool PathIntegrator::scatter_at_surface(
+    const SurfaceVertex &sv, const PelageShade &sh, const Rgb &albedo, Sampler &sampler,
+    PathState &path, RenderStats &stats, const Instr &instr) const {
     // Braces evaluate in order: the sampler dimensions are consumed as listed.
     const VertexSamples u{sampler.get_2d(), sampler.get_2d(), sampler.get_2d()};
     const Material &mat = m_scene.materials()[sv.object];
@@ -420,7 +427,9 @@ void PathIntegrator::sample_ld(const Bsdf &bsdf, const SurfaceVertex &sv,
 // then decides whether the path goes on. Not when its throughput is black; from rr_depth
 // on, Russian roulette (pbrt-v4 §2.2.4) continues with probability min(0.95, max(β)) and
 // divides β by it, so the estimate stays unbiased.
-bool PathIntegrator::continue_path(int depth, Sampler &sampler, PathState &path) const {
+[[gnu::always_inline]] inline bool PathIntegrator::continue_path(int depth,
+                                                                 Sampler &sampler,
+                                                                 PathState &path) const {
     if (is_black(path.beta)) return false;
     if (!path.prev_specular) path.spread += bounce_spread(path.prev_pdf, m_spp);
     if (depth + 1 < m_rr_depth) return true;
