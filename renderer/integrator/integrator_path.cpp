@@ -10,6 +10,7 @@
 #include "renderer/core/sampling.h"
 #include "renderer/geometry/embree_ray.h"
 #include "renderer/integrator/integrator_fur.h"
+#include "renderer/integrator/light_sampling.h"
 
 namespace pelage::renderer {
 
@@ -17,8 +18,6 @@ namespace {
 
 constexpr float inf = std::numeric_limits<float>::infinity();
 constexpr int max_infinite_lights = 8;
-constexpr float shadow_ray_shortening =
-    1e-4f;  // keep shadow rays off the light's surface
 
 // f and the BSDF's pdf for one direction pair, fused when the BSDF offers it.
 template <typename B>
@@ -30,6 +29,24 @@ Rgb eval_with_pdf(const B &bsdf, Vec3f wo, Vec3f wi, float *pdf) {
         return bsdf.eval(wo, wi);
     }
 }
+
+// A surface vertex as sample_ld() sees it: light from above the geometric surface only;
+// f and pdf from one fused evaluation where the BSDF offers it.
+template <typename Bsdf>
+struct SurfaceLdVertex {
+    const Bsdf &bsdf;
+    const Frame &frame;
+    Vec3f wo_local, p, n;  // n: the geometric normal
+    static constexpr unsigned ray_id = 0;
+    mutable float bsdf_pdf = 0;
+
+    bool accepts(Vec3f wi) const { return dot(wi, n) > 0; }
+    Vec3f to_local(Vec3f w) const { return frame.to_local(w); }
+    Rgb f(Vec3f wi_local) const {
+        return eval_with_pdf(bsdf, wo_local, wi_local, &bsdf_pdf);
+    }
+    float pdf(Vec3f) const { return bsdf_pdf; }
+};
 
 }  // namespace
 
@@ -173,9 +190,8 @@ Rgb PathIntegrator::radiance(const CameraRay &cam, const RTCRayHit &first,
 
 // The steps below are separate functions for reading only: the ones run once per vertex
 // are always inlined, so radiance() compiles to one loop whose path state stays in
-// registers. scatter() and sample_ld(), one copy per BSDF type, are left to the
-// compiler: forcing both copies inline makes the loop too large for it to inline their
-// own callees.
+// registers. scatter(), one copy per BSDF type, is left to the compiler: forcing both
+// copies inline makes the loop too large for it to inline their own callees.
 
 // The next vertex along a BSDF-sampled ray (the camera ray was traced in a packet). The
 // ray skips the fur strand it leaves.
@@ -363,15 +379,17 @@ template <typename Instr>
         sv, u, path, stats, instr);
 }
 
-// Direct light at the vertex, then the continuation: the BSDF samples the next
-// direction, which must leave above the geometric surface.
+// Direct light at the vertex (sample_ld, light_sampling.h), then the continuation: the
+// BSDF samples the next direction, which must leave above the geometric surface.
 template <typename Bsdf, typename Instr>
 bool PathIntegrator::scatter(const Bsdf &bsdf, const SurfaceVertex &sv,
                              const VertexSamples &u, PathState &path, RenderStats &stats,
                              const Instr &instr) const {
     const Frame frame = Frame::from_z(sv.ns);
     const Vec3f wo_local = frame.to_local(sv.wo);
-    sample_ld(bsdf, sv, frame, wo_local, u, path, stats, instr);
+    sample_ld(m_scene.lights(), m_rtc,
+              SurfaceLdVertex<Bsdf>{bsdf, frame, wo_local, sv.p, sv.ng}, u.pick.u1,
+              u.light.u1, u.light.u2, path.beta, path.L, stats, instr);
     const std::optional<BsdfSample> bs =
         bsdf.sample(wo_local, u.pick.u2, u.bsdf.u1, u.bsdf.u2);
     if (!bs) return false;
@@ -384,43 +402,6 @@ bool PathIntegrator::scatter(const Bsdf &bsdf, const SurfaceVertex &sv,
     path.o = offset_ray_origin(sv.p, sv.ng, wi);
     path.d = wi;
     return true;
-}
-
-// Next-event estimation (pbrt-v4 §13.4, SampleLd): one light, chosen by its power, is
-// sampled and, when unoccluded, adds β·f·Li·|cos θ|·w / p to L, with the power heuristic
-// weight w against BSDF sampling (Veach 1997 §9.2). β multiplies first: the product's
-// order is part of the image.
-template <typename Bsdf, typename Instr>
-void PathIntegrator::sample_ld(const Bsdf &bsdf, const SurfaceVertex &sv,
-                               const Frame &frame, Vec3f wo_local, const VertexSamples &u,
-                               PathState &path, RenderStats &stats,
-                               const Instr &instr) const {
-    const Lights &lights = m_scene.lights();
-    LightSample ls;
-    float select_pdf = 0;
-    const int li = lights.count() > 0 ? lights.select(u.pick.u1, &select_pdf) : -1;
-    if (li < 0 || !lights.sample(li, sv.p, sv.ng, u.light.u1, u.light.u2, &ls) ||
-        !(dot(ls.wi, sv.ng) > 0))
-        return;
-    const Vec3f wi_local = frame.to_local(ls.wi);
-    float bsdf_pdf;
-    const Rgb f = eval_with_pdf(bsdf, wo_local, wi_local, &bsdf_pdf);
-    if (is_black(f)) return;
-    const Vec3f so = offset_ray_origin(sv.p, sv.ng, ls.wi);
-    const float tfar =
-        std::isinf(ls.distance) ? inf : ls.distance * (1 - shadow_ray_shortening);
-    RTCIntersectContext sctx;
-    rtcInitIntersectContext(&sctx);
-    sctx.flags = RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT;
-    RTCRay sr;
-    set_ray(sr, so, ls.wi, tfar);
-    rtcOccluded1(m_rtc, &sctx, &sr);
-    instr.ray(so, ls.wi, tfar, shadow_ray);
-    ++stats.shadow_rays;
-    if (!(sr.tfar >= 0)) return;  // Embree sets tfar = -inf when occluded
-    const float light_pdf = select_pdf * ls.pdf;
-    const float w = ls.delta ? 1.0f : power_heuristic(light_pdf, bsdf_pdf);
-    path.L += path.beta * f * ls.Li * (std::abs(wi_local.z) * w / light_pdf);
 }
 
 // After a vertex scattered: widens the ray cone for a non-specular bounce (ray_cone.h),
