@@ -1,27 +1,35 @@
 #include "renderer/integrator/integrator_fur.h"
 
 #include <cmath>
-#include <limits>
 
 #include "renderer/core/sampling.h"
 #include "renderer/geometry/embree_ray.h"
+#include "renderer/integrator/light_sampling.h"
 #include "shader/hair/hair_bsdf.h"
 
 namespace pelage::renderer {
 
 namespace {
 
-constexpr float inf = std::numeric_limits<float>::infinity();
-constexpr float shadow_ray_shortening = 1e-4f;  // as integrator_path.cpp
-
-Vec3f to_hair(Vec3f v) { return {v.x, v.y, v.z}; }
-Rgb from_hair(Vec3f v) { return {v.x, v.y, v.z}; }
-
 // The fibre frame: x the tangent, z ⊥ x facing wo, y = z × x.
 struct FibreFrame {
     Vec3f x, y, z;
     Vec3f to_local(Vec3f v) const { return {dot(v, x), dot(v, y), dot(v, z)}; }
     Vec3f to_world(Vec3f v) const { return x * v.x + y * v.y + z * v.z; }
+};
+
+// A strand vertex as sample_ld() sees it: the fibre transmits, so light from either side
+// of z counts; shadow rays skip the strand (ray_id).
+struct StrandLdVertex {
+    const shader::hair::HairBsdf &bsdf;
+    const FibreFrame &frame;
+    Vec3f wo_local, p, n;
+    unsigned ray_id;
+
+    bool accepts(Vec3f) const { return true; }
+    Vec3f to_local(Vec3f w) const { return frame.to_local(w); }
+    Rgb f(Vec3f wi_local) const { return bsdf.eval(wo_local, wi_local); }
+    float pdf(Vec3f wi_local) const { return bsdf.pdf(wo_local, wi_local); }
 };
 
 }  // namespace
@@ -58,7 +66,7 @@ bool scatter_at_strand(const Scene &scene, const FurLayer &layer, const RTCRayHi
         n = e + wo_perp * (radius * std::sqrt(std::max(0.0f, 1 - s * s)));
     }
     n = length(n) > 0 ? normalize(n) : wo_perp;
-    const float h = shader::hair::offset_h(to_hair(x), to_hair(n), to_hair(wo));
+    const float h = shader::hair::offset_h(x, n, wo);
     // z: the normal turned to face wo (the model only uses φ_i − φ_o, hair_bsdf.h).
     FibreFrame frame;
     frame.x = x;
@@ -75,7 +83,7 @@ bool scatter_at_strand(const Scene &scene, const FurLayer &layer, const RTCRayHi
 
     if (depth == 0) {
         fs.alpha = 1;
-        fs.albedo = from_hair(bsdf.albedo());
+        fs.albedo = bsdf.albedo();
         fs.normal = frame.z;
         if (aovs) {
             aovs->depth = rh.ray.tfar * dot(st.d, cam.forward);
@@ -93,41 +101,14 @@ bool scatter_at_strand(const Scene &scene, const FurLayer &layer, const RTCRayHi
     auto origin = [&](Vec3f w) { return offset_ray_origin(p, frame.z, w); };
 
     // --- Next-event estimation: one light, either side of the fibre ---
-    const int num_lights = lights.count();
-    float select_pdf = 0;
-    const int li = num_lights > 0 ? lights.select(u_light, &select_pdf) : -1;
-    LightSample ls;
-    if (li >= 0 && lights.sample(li, p, frame.z, ul1, ul2, &ls)) {
-        const Vec3f wi_local = frame.to_local(ls.wi);
-        const Rgb f = from_hair(bsdf.eval(to_hair(wo_local), to_hair(wi_local)));
-        if (!is_black(f)) {
-            const Vec3f so = origin(ls.wi);
-            const float tfar =
-                std::isinf(ls.distance) ? inf : ls.distance * (1 - shadow_ray_shortening);
-            RTCIntersectContext sctx;
-            rtcInitIntersectContext(&sctx);
-            sctx.flags = RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT;
-            RTCRay sr;
-            set_ray(sr, so, ls.wi, tfar, own_id);
-            rtcOccluded1(rtc, &sctx, &sr);
-            instr.ray(so, ls.wi, tfar, shadow_ray);
-            ++stats.shadow_rays;
-            if (sr.tfar >= 0) {
-                const float light_pdf = select_pdf * ls.pdf;
-                const float w =
-                    ls.delta ? 1.0f
-                             : power_heuristic(light_pdf, bsdf.pdf(to_hair(wo_local),
-                                                                   to_hair(wi_local)));
-                st.L += st.beta * f * ls.Li * (std::abs(wi_local.z) * w / light_pdf);
-            }
-        }
-    }
+    sample_ld(lights, rtc, StrandLdVertex{bsdf, frame, wo_local, p, frame.z, own_id},
+              u_light, ul1, ul2, st.beta, st.L, stats, instr);
 
     // --- Continue the path by sampling the hair BSDF ---
-    const auto bs = bsdf.sample(to_hair(wo_local), u_lobe, ub1, ub2);
+    const auto bs = bsdf.sample(wo_local, u_lobe, ub1, ub2);
     if (!bs) return false;
     const Vec3f wi = frame.to_world({bs->wi.x, bs->wi.y, bs->wi.z});
-    st.beta *= from_hair(bs->weight);
+    st.beta *= bs->weight;
     st.prev_pdf = bs->pdf;
     st.prev_specular = false;
     st.prev_ng = frame.z;

@@ -10,6 +10,7 @@
 #include "renderer/core/sampling.h"
 #include "renderer/geometry/embree_ray.h"
 #include "renderer/integrator/integrator_fur.h"
+#include "renderer/integrator/light_sampling.h"
 
 namespace pelage::renderer {
 
@@ -17,8 +18,6 @@ namespace {
 
 constexpr float inf = std::numeric_limits<float>::infinity();
 constexpr int max_infinite_lights = 8;
-constexpr float shadow_ray_shortening =
-    1e-4f;  // keep shadow rays off the light's surface
 
 // f and the BSDF's pdf for one direction pair, fused when the BSDF offers it.
 template <typename B>
@@ -30,6 +29,24 @@ Rgb eval_with_pdf(const B &bsdf, Vec3f wo, Vec3f wi, float *pdf) {
         return bsdf.eval(wo, wi);
     }
 }
+
+// A surface vertex as sample_ld() sees it: light from above the geometric surface only;
+// f and pdf from one fused evaluation where the BSDF offers it.
+template <typename Bsdf>
+struct SurfaceLdVertex {
+    const Bsdf &bsdf;
+    const Frame &frame;
+    Vec3f wo_local, p, n;  // n: the geometric normal
+    static constexpr unsigned ray_id = 0;
+    mutable float bsdf_pdf = 0;
+
+    bool accepts(Vec3f wi) const { return dot(wi, n) > 0; }
+    Vec3f to_local(Vec3f w) const { return frame.to_local(w); }
+    Rgb f(Vec3f wi_local) const {
+        return eval_with_pdf(bsdf, wo_local, wi_local, &bsdf_pdf);
+    }
+    float pdf(Vec3f) const { return bsdf_pdf; }
+};
 
 }  // namespace
 
@@ -171,11 +188,17 @@ Rgb PathIntegrator::radiance(const CameraRay &cam, const RTCRayHit &first,
     return path.L;
 }
 
+// The steps below are separate functions for reading only: the ones run once per vertex
+// are always inlined, so radiance() compiles to one loop whose path state stays in
+// registers. scatter(), one copy per BSDF type, is left to the compiler: forcing both
+// copies inline makes the loop too large for it to inline their own callees.
+
 // The next vertex along a BSDF-sampled ray (the camera ray was traced in a packet). The
 // ray skips the fur strand it leaves.
 template <typename Instr>
-RTCRayHit PathIntegrator::trace(PathState &path, RenderStats &stats,
-                                const Instr &instr) const {
+[[gnu::always_inline]] inline RTCRayHit PathIntegrator::trace(PathState &path,
+                                                              RenderStats &stats,
+                                                              const Instr &instr) const {
     RTCRayHit rh;
     RTCIntersectContext ctx;
     rtcInitIntersectContext(&ctx);
@@ -194,9 +217,9 @@ RTCRayHit PathIntegrator::trace(PathState &path, RenderStats &stats,
 // §9.2) unless the ray came from the camera or a specular bounce. True when the path
 // ends: at an area light's own geometry, which emits (front side) and never reflects, or
 // when the ray escaped to the environment and distant discs.
-bool PathIntegrator::add_emission(const RTCRayHit &rh, int depth, const CameraRay &cam,
-                                  PathState &path, FilmSample &fs,
-                                  FilmPointAovs *aovs) const {
+[[gnu::always_inline]] inline bool PathIntegrator::add_emission(
+    const RTCRayHit &rh, int depth, const CameraRay &cam, PathState &path, FilmSample &fs,
+    FilmPointAovs *aovs) const {
     const Lights &lights = m_scene.lights();
     const bool hit_geometry = rh.hit.geomID != RTC_INVALID_GEOMETRY_ID;
     const float t_hit = hit_geometry ? rh.ray.tfar : inf;
@@ -233,8 +256,8 @@ bool PathIntegrator::add_emission(const RTCRayHit &rh, int depth, const CameraRa
 
 // The mesh point the ray hit: position, two-sided geometric and shading normals, and
 // the ray cone's footprint there (which this adds to the path's).
-PathIntegrator::SurfaceVertex PathIntegrator::surface_vertex(const RTCRayHit &rh,
-                                                             PathState &path) const {
+[[gnu::always_inline]] inline PathIntegrator::SurfaceVertex
+PathIntegrator::surface_vertex(const RTCRayHit &rh, PathState &path) const {
     const EmbreeScene &geometry = m_scene.geometry();
     const uint32_t object = geometry.object_of(rh.hit.geomID, rh.hit.instID[0]);
     const ObjectGeometry &og = geometry.objects()[object];
@@ -284,8 +307,9 @@ PathIntegrator::SurfaceVertex PathIntegrator::surface_vertex(const RTCRayHit &rh
 // The material plugin fills the BSDF inputs at `sv` (the plugin SDK's PelageHit and
 // PelageShade); `albedo` receives its albedo, clamped to [0, 1].
 template <typename Instr>
-PelageShade PathIntegrator::shade(const SurfaceVertex &sv, int depth, Rgb *albedo,
-                                  RenderStats &stats, const Instr &instr) const {
+[[gnu::always_inline]] inline PelageShade PathIntegrator::shade(
+    const SurfaceVertex &sv, int depth, Rgb *albedo, RenderStats &stats,
+    const Instr &instr) const {
     const ObjectGeometry &og = m_scene.geometry().objects()[sv.object];
     const MeshData &mesh = *og.mesh;
     PelageHit ph{};
@@ -318,9 +342,9 @@ PelageShade PathIntegrator::shade(const SurfaceVertex &sv, int depth, Rgb *albed
 }
 
 // The film's first-hit values for a camera ray that hit a surface.
-void PathIntegrator::set_first_hit(const SurfaceVertex &sv, const PelageShade &sh,
-                                   const Rgb &albedo, const CameraRay &cam,
-                                   FilmSample &fs, FilmPointAovs *aovs) const {
+[[gnu::always_inline]] inline void PathIntegrator::set_first_hit(
+    const SurfaceVertex &sv, const PelageShade &sh, const Rgb &albedo,
+    const CameraRay &cam, FilmSample &fs, FilmPointAovs *aovs) const {
     fs.alpha = 1;
     fs.albedo = albedo;
     fs.normal = sv.ns;
@@ -336,10 +360,9 @@ void PathIntegrator::set_first_hit(const SurfaceVertex &sv, const PelageShade &s
 
 // Builds the material's BSDF from the plugin's inputs and scatters with it.
 template <typename Instr>
-bool PathIntegrator::scatter_at_surface(const SurfaceVertex &sv, const PelageShade &sh,
-                                        const Rgb &albedo, Sampler &sampler,
-                                        PathState &path, RenderStats &stats,
-                                        const Instr &instr) const {
+[[gnu::always_inline]] inline bool PathIntegrator::scatter_at_surface(
+    const SurfaceVertex &sv, const PelageShade &sh, const Rgb &albedo, Sampler &sampler,
+    PathState &path, RenderStats &stats, const Instr &instr) const {
     // Braces evaluate in order: the sampler dimensions are consumed as listed.
     const VertexSamples u{sampler.get_2d(), sampler.get_2d(), sampler.get_2d()};
     const Material &mat = m_scene.materials()[sv.object];
@@ -356,15 +379,17 @@ bool PathIntegrator::scatter_at_surface(const SurfaceVertex &sv, const PelageSha
         sv, u, path, stats, instr);
 }
 
-// Direct light at the vertex, then the continuation: the BSDF samples the next
-// direction, which must leave above the geometric surface.
+// Direct light at the vertex (sample_ld, light_sampling.h), then the continuation: the
+// BSDF samples the next direction, which must leave above the geometric surface.
 template <typename Bsdf, typename Instr>
 bool PathIntegrator::scatter(const Bsdf &bsdf, const SurfaceVertex &sv,
                              const VertexSamples &u, PathState &path, RenderStats &stats,
                              const Instr &instr) const {
     const Frame frame = Frame::from_z(sv.ns);
     const Vec3f wo_local = frame.to_local(sv.wo);
-    sample_ld(bsdf, sv, frame, wo_local, u, path, stats, instr);
+    sample_ld(m_scene.lights(), m_rtc,
+              SurfaceLdVertex<Bsdf>{bsdf, frame, wo_local, sv.p, sv.ng}, u.pick.u1,
+              u.light.u1, u.light.u2, path.beta, path.L, stats, instr);
     const std::optional<BsdfSample> bs =
         bsdf.sample(wo_local, u.pick.u2, u.bsdf.u1, u.bsdf.u2);
     if (!bs) return false;
@@ -379,48 +404,13 @@ bool PathIntegrator::scatter(const Bsdf &bsdf, const SurfaceVertex &sv,
     return true;
 }
 
-// Next-event estimation (pbrt-v4 §13.4, SampleLd): one light, chosen by its power, is
-// sampled and, when unoccluded, adds β·f·Li·|cos θ|·w / p to L, with the power heuristic
-// weight w against BSDF sampling (Veach 1997 §9.2). β multiplies first: the product's
-// order is part of the image.
-template <typename Bsdf, typename Instr>
-void PathIntegrator::sample_ld(const Bsdf &bsdf, const SurfaceVertex &sv,
-                               const Frame &frame, Vec3f wo_local, const VertexSamples &u,
-                               PathState &path, RenderStats &stats,
-                               const Instr &instr) const {
-    const Lights &lights = m_scene.lights();
-    LightSample ls;
-    float select_pdf = 0;
-    const int li = lights.count() > 0 ? lights.select(u.pick.u1, &select_pdf) : -1;
-    if (li < 0 || !lights.sample(li, sv.p, sv.ng, u.light.u1, u.light.u2, &ls) ||
-        !(dot(ls.wi, sv.ng) > 0))
-        return;
-    const Vec3f wi_local = frame.to_local(ls.wi);
-    float bsdf_pdf;
-    const Rgb f = eval_with_pdf(bsdf, wo_local, wi_local, &bsdf_pdf);
-    if (is_black(f)) return;
-    const Vec3f so = offset_ray_origin(sv.p, sv.ng, ls.wi);
-    const float tfar =
-        std::isinf(ls.distance) ? inf : ls.distance * (1 - shadow_ray_shortening);
-    RTCIntersectContext sctx;
-    rtcInitIntersectContext(&sctx);
-    sctx.flags = RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT;
-    RTCRay sr;
-    set_ray(sr, so, ls.wi, tfar);
-    rtcOccluded1(m_rtc, &sctx, &sr);
-    instr.ray(so, ls.wi, tfar, shadow_ray);
-    ++stats.shadow_rays;
-    if (!(sr.tfar >= 0)) return;  // Embree sets tfar = -inf when occluded
-    const float light_pdf = select_pdf * ls.pdf;
-    const float w = ls.delta ? 1.0f : power_heuristic(light_pdf, bsdf_pdf);
-    path.L += path.beta * f * ls.Li * (std::abs(wi_local.z) * w / light_pdf);
-}
-
 // After a vertex scattered: widens the ray cone for a non-specular bounce (ray_cone.h),
 // then decides whether the path goes on. Not when its throughput is black; from rr_depth
 // on, Russian roulette (pbrt-v4 §2.2.4) continues with probability min(0.95, max(β)) and
 // divides β by it, so the estimate stays unbiased.
-bool PathIntegrator::continue_path(int depth, Sampler &sampler, PathState &path) const {
+[[gnu::always_inline]] inline bool PathIntegrator::continue_path(int depth,
+                                                                 Sampler &sampler,
+                                                                 PathState &path) const {
     if (is_black(path.beta)) return false;
     if (!path.prev_specular) path.spread += bounce_spread(path.prev_pdf, m_spp);
     if (depth + 1 < m_rr_depth) return true;

@@ -67,10 +67,6 @@ class PathIntegrator {
     template <typename Bsdf, typename Instr>
     bool scatter(const Bsdf &bsdf, const SurfaceVertex &sv, const VertexSamples &u,
                  PathState &path, RenderStats &stats, const Instr &instr) const;
-    template <typename Bsdf, typename Instr>
-    void sample_ld(const Bsdf &bsdf, const SurfaceVertex &sv, const Frame &frame,
-                   Vec3f wo_local, const VertexSamples &u, PathState &path,
-                   RenderStats &stats, const Instr &instr) const;
     bool continue_path(int depth, Sampler &sampler, PathState &path) const;
 
     const Scene &m_scene;
