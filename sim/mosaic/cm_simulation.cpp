@@ -179,7 +179,7 @@ std::vector<TriId> CmSimulation::take_local_active() {
     return active;
 }
 
-void CmSimulation::divide(const Event &e) {
+void CmSimulation::divide(Event e) {
     std::pop_heap(m_heap.begin(), m_heap.end(), std::greater<>());
     m_heap.pop_back();
     const uint64_t k = m_stats.divisions++;

@@ -77,7 +77,8 @@ class CmSimulation {
         }
     };
     double division_delay(int type, CounterRng &rng) const;
-    void divide(const Event &e);
+    // Takes the event by value: it pops the heap, which moves the front element.
+    void divide(Event e);
     void mark_local(SurfacePoint at);
     std::vector<TriId> all_triangles_with_cells() const;
     std::vector<TriId> take_local_active();

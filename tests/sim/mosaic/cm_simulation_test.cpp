@@ -309,3 +309,35 @@ TEST(Relaxation, TwoCellsOnDifferentTrianglesRepelExactlyAsInWalter) {
 
 }  // namespace
 }  // namespace pelage::sim
+
+namespace pelage::sim {
+namespace {
+
+// The event loop divides the cell whose event is due, at that event's time: with one
+// fast-dividing F cell and one B cell that divides after ~1000 time units, a run to
+// t = 6 grows only the F lineage. (Dividing whichever event heads the heap after the
+// due one is popped loses the F lineage and divides B early instead: F = 1, B = 2.)
+TEST(CmSimulation, TheDueCellDividesAndNoOther) {
+    const Surface s = build_surface("procedural:sphere:8x8");
+    const Preset p = parse_preset(
+        R"({"name": "due", "types": [
+              {"name": "F", "colour": [0.1, 0.1, 0.1], "division_time": 1, "initial_probability": 0.5},
+              {"name": "B", "colour": [0.9, 0.7, 0.3], "division_time": 1000, "initial_probability": 0.5}],
+            "adhesion": [[0.5, 0.5], [0.5, 0.5]],
+            "simulation": {"initial_cells": 2, "initial_relax_steps": 0, "w_r": 1.0,
+                           "w_d": 0.05, "rho": 1, "end_time": 6}})",
+        "due");
+    for (uint64_t seed : {1, 2, 3, 4, 5}) {
+        CmSimulation sim(s.crps, p.types, p.params, seed);
+        sim.initialize();
+        ASSERT_EQ(sim.count_by_type(), (std::vector<size_t>{1, 1}));
+        sim.run();
+        const std::vector<size_t> n = sim.count_by_type();
+        EXPECT_GE(sim.stats().divisions, 1u) << "seed " << seed;
+        EXPECT_EQ(n[0], 1 + sim.stats().divisions) << "seed " << seed;
+        EXPECT_EQ(n[1], 1u) << "seed " << seed;
+    }
+}
+
+}  // namespace
+}  // namespace pelage::sim
