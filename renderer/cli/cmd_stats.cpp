@@ -1,11 +1,14 @@
-// `pelage stats FILE.cells [--json]`: pattern statistics of a .cells file
+// `pelage stats FILE.cells [--mesh MESH] [--json]`: pattern statistics of a .cells file
 // (sim/cells_io/pattern_stats.h). JSON keys are a contract: cells_by_type, spot_fraction,
-// spots, mean_spot_area.
+// spots, mean_spot_area; with --mesh also the area each type covers as the renderer
+// shows it (shader/clonal_mosaic/area_fractions.h): area_fraction_by_type,
+// spot_fraction_by_area, area_samples.
 #include <fmt/core.h>
 
 #include <iostream>
 
 #include "renderer/cli/common.h"
+#include "shader/clonal_mosaic/area_fractions.h"
 #include "sim/cells_io/cells_file.h"
 #include "sim/cells_io/pattern_stats.h"
 #include "sim/mesh/mesh_load.h"
@@ -16,7 +19,28 @@ namespace {
 struct StatsOptions {
     std::string file, stats_json, mesh;
     bool json = false;
+    size_t area_samples = 200000;
+    uint64_t seed = 1;
 };
+
+// Adds the area keys: each type's share of the surface, and F / (F + B) by area (the
+// count-based spot_fraction's definition, measured by area).
+void add_area_fractions(const StatsOptions &o, nlohmann::json *j) {
+    const shader::clonal_mosaic::MosaicPattern pattern(o.file, o.mesh);
+    const shader::clonal_mosaic::AreaFractions a =
+        shader::clonal_mosaic::measure_area_fractions(pattern, o.area_samples, o.seed);
+    nlohmann::json by_type = nlohmann::json::object();
+    double f = 0, b = 0;
+    for (size_t k = 0; k < a.by_type.size(); ++k) {
+        const std::string &name = pattern.types()[k].name;
+        by_type[name] = a.by_type[k];
+        if (name == "F") f = a.by_type[k];
+        if (name == "B") b = a.by_type[k];
+    }
+    (*j)["area_fraction_by_type"] = by_type;
+    (*j)["spot_fraction_by_area"] = f + b > 0 ? f / (f + b) : 0.0;
+    (*j)["area_samples"] = a.samples;
+}
 
 int run_stats(const StatsOptions &o) {
     const sim::CellsData data = sim::read_cells_file(o.file);
@@ -25,7 +49,7 @@ int run_stats(const StatsOptions &o) {
     const sim::PatternStats s = sim::compute_pattern_stats(data);
     nlohmann::json by_type = nlohmann::json::object();
     for (const auto &[name, n] : s.cells_by_type) by_type[name] = n;
-    const nlohmann::json j = {
+    nlohmann::json j = {
         {"file", o.file},
         {"triangles", data.num_triangles()},
         {"area", s.area},
@@ -36,6 +60,7 @@ int run_stats(const StatsOptions &o) {
         {"mean_spot_area", s.mean_spot_area},
         {"largest_spot_cells", s.largest_spot_cells},
     };
+    if (!o.mesh.empty()) add_area_fractions(o, &j);
     if (!o.stats_json.empty()) write_json_file(o.stats_json, j);
     if (o.json) {
         std::cout << j.dump(2) << std::endl;
@@ -45,6 +70,11 @@ int run_stats(const StatsOptions &o) {
                    s.area, s.total_cells, by_type.dump());
         fmt::print("  spot fraction {:.4f}  spots {}  mean spot area {:.4g}\n",
                    s.spot_fraction, s.spots, s.mean_spot_area);
+        if (j.contains("spot_fraction_by_area"))
+            fmt::print("  by area ({} points): spot fraction {:.4f}  {}\n",
+                       j["area_samples"].get<size_t>(),
+                       j["spot_fraction_by_area"].get<double>(),
+                       j["area_fraction_by_type"].dump());
     }
     return 0;
 }
@@ -57,7 +87,15 @@ Runner add_stats_command(CLI::App &app) {
     sub->add_option("file", o->file, ".cells file")->required();
     sub->add_flag("--json", o->json, "Print JSON on stdout");
     sub->add_option("--mesh", o->mesh,
-                    "Also check that the cells were made for this mesh");
+                    "The mesh the cells were grown on: checks it and adds the area each "
+                    "type covers (area_fraction_by_type, spot_fraction_by_area)");
+    sub->add_option("--area-samples", o->area_samples,
+                    "Surface points for the area fractions (standard error "
+                    "sqrt(f(1-f)/n))")
+        ->capture_default_str()
+        ->check(CLI::Range(size_t(1000), size_t(100000000)));
+    sub->add_option("--seed", o->seed, "Seed of the surface points")
+        ->capture_default_str();
     sub->add_option("--stats-json", o->stats_json, "Also write the JSON to this file");
     return [o] { return run_stats(*o); };
 }

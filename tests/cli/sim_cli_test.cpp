@@ -40,6 +40,19 @@ TEST(SimCli, StatsJsonHasTheContractKeys) {
     EXPECT_EQ(st["cells_by_type"], s["cells_by_type"]);
     EXPECT_GT(st["spots"].get<size_t>(), 0u);
     EXPECT_LE(st["spots"].get<size_t>(), f);
+    // Without --mesh there is no surface to sample; with it, the area each type covers.
+    EXPECT_FALSE(st.contains("spot_fraction_by_area"));
+    ASSERT_EQ(run_pelage("stats " + tmp.file("a.cells") +
+                             " --mesh procedural:sphere:20x20 --area-samples 5000 --json",
+                         &out),
+              0);
+    const auto sa = nlohmann::json::parse(out);
+    ASSERT_TRUE(sa.contains("area_fraction_by_type"));
+    const double af = sa["area_fraction_by_type"]["F"],
+                 ab = sa["area_fraction_by_type"]["B"];
+    EXPECT_NEAR(af + ab, 1.0, 1e-12);
+    EXPECT_NEAR(sa["spot_fraction_by_area"].get<double>(), af / (af + ab), 1e-12);
+    EXPECT_EQ(sa["area_samples"], 5000);
 
     ASSERT_EQ(run_pelage("preview " + tmp.file("a.cells") + " --size 64 -o " +
                          tmp.file("p.png")),
