@@ -156,6 +156,8 @@ def t_default_job():
         ["seconds (one thread)", f"{num(s['seconds'])} ({num(s['seconds_initial'])} initial relaxation)"],
         ["spot fraction, spots, largest spot", f"{st['spot_fraction']:.3f}, {st['spots']}, "
                                                f"{num(st['largest_spot_cells'])} cells"],
+        ["spot fraction by area", f"{st['spot_fraction_by_area']:.3f} "
+                                  f"({num(st['area_samples'])} surface points)"],
     ], "ll")
 
 
