@@ -10,6 +10,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "shader/sdk/params.h"
 #include "sim/core/input_error.h"
 
 namespace pelage::renderer {
@@ -114,19 +115,7 @@ const LoadedPlugin &PluginRegistry::get(const std::string &name,
                          "; see `pelage shaders`, $PELAGE_SHADER_PATH)");
 }
 
-const char *param_type_name(PelageParamType t) {
-    switch (t) {
-        case PELAGE_PARAM_FLOAT:
-            return "float";
-        case PELAGE_PARAM_INT:
-            return "int";
-        case PELAGE_PARAM_RGB:
-            return "rgb";
-        case PELAGE_PARAM_STRING:
-            return "string";
-    }
-    return "?";
-}
+const char *param_type_name(PelageParamType t) { return shader::sdk::type_name(t); }
 
 PluginParams validate_plugin_params(const PelageShaderPlugin &plugin,
                                     const nlohmann::json &params,
