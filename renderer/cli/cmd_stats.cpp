@@ -2,13 +2,18 @@
 // (sim/cells_io/pattern_stats.h). JSON keys are a contract: cells_by_type, spot_fraction,
 // spots, mean_spot_area; with --mesh also the area each type covers as the renderer
 // shows it (shader/clonal_mosaic/area_fractions.h): area_fraction_by_type,
-// spot_fraction_by_area, area_samples.
+// spot_fraction_by_area, area_samples; and the look of the spots measured on the surface
+// (shader/clonal_mosaic/spot_statistics.h): spot_count, spot_area_mean, spot_area_sd,
+// spot_area_share_mean, spot_neighbours_mean, spot_circularity_mean, spot_complexity,
+// background_components, background_largest_share, background_near_spot,
+// grid_resolution.
 #include <fmt/core.h>
 
 #include <iostream>
 
 #include "renderer/cli/common.h"
 #include "shader/clonal_mosaic/area_fractions.h"
+#include "shader/clonal_mosaic/spot_statistics.h"
 #include "sim/cells_io/cells_file.h"
 #include "sim/cells_io/pattern_stats.h"
 #include "sim/mesh/mesh_load.h"
@@ -20,6 +25,7 @@ struct StatsOptions {
     std::string file, stats_json, mesh;
     bool json = false;
     size_t area_samples = 200000;
+    double grid_resolution = 6;
     uint64_t seed = 1;
 };
 
@@ -40,6 +46,20 @@ void add_area_fractions(const StatsOptions &o, nlohmann::json *j) {
     (*j)["area_fraction_by_type"] = by_type;
     (*j)["spot_fraction_by_area"] = f + b > 0 ? f / (f + b) : 0.0;
     (*j)["area_samples"] = a.samples;
+
+    const shader::clonal_mosaic::SpotStatistics l =
+        shader::clonal_mosaic::measure_spot_statistics(pattern, o.grid_resolution);
+    (*j)["spot_count"] = l.spots;
+    (*j)["spot_area_mean"] = l.spot_area_mean;
+    (*j)["spot_area_sd"] = l.spot_area_sd;
+    (*j)["spot_area_share_mean"] = l.area > 0 ? l.spot_area_mean / l.area : 0.0;
+    (*j)["spot_neighbours_mean"] = l.spot_neighbours_mean;
+    (*j)["spot_circularity_mean"] = l.spot_circularity_mean;
+    (*j)["spot_complexity"] = l.spot_complexity;
+    (*j)["background_components"] = l.background_components;
+    (*j)["background_largest_share"] = l.background_largest_share;
+    (*j)["background_near_spot"] = l.background_near_spot;
+    (*j)["grid_resolution"] = o.grid_resolution;
 }
 
 int run_stats(const StatsOptions &o) {
@@ -75,6 +95,23 @@ int run_stats(const StatsOptions &o) {
                        j["area_samples"].get<size_t>(),
                        j["spot_fraction_by_area"].get<double>(),
                        j["area_fraction_by_type"].dump());
+        if (j.contains("spot_count")) {
+            fmt::print(
+                "  spots {}  area mean {:.4g} sd {:.4g} ({:.3g} % of the surface "
+                "each)  neighbours {:.2f}  circularity {:.3f}  complexity {:.3f}\n",
+                j["spot_count"].get<size_t>(), j["spot_area_mean"].get<double>(),
+                j["spot_area_sd"].get<double>(),
+                100 * j["spot_area_share_mean"].get<double>(),
+                j["spot_neighbours_mean"].get<double>(),
+                j["spot_circularity_mean"].get<double>(),
+                j["spot_complexity"].get<double>());
+            fmt::print(
+                "  background: {} components, largest {:.3f}, touching a spot "
+                "{:.3f} (by area)\n",
+                j["background_components"].get<size_t>(),
+                j["background_largest_share"].get<double>(),
+                j["background_near_spot"].get<double>());
+        }
     }
     return 0;
 }
@@ -94,6 +131,10 @@ Runner add_stats_command(CLI::App &app) {
                     "sqrt(f(1-f)/n))")
         ->capture_default_str()
         ->check(CLI::Range(size_t(1000), size_t(100000000)));
+    sub->add_option("--grid-resolution", o->grid_resolution,
+                    "Grid steps per cell spacing for the spot statistics")
+        ->capture_default_str()
+        ->check(CLI::Range(1.0, 64.0));
     sub->add_option("--seed", o->seed, "Seed of the surface points")
         ->capture_default_str();
     sub->add_option("--stats-json", o->stats_json, "Also write the JSON to this file");
