@@ -13,6 +13,7 @@
 #include "sim/cells_io/cells_file.h"
 #include "sim/cells_io/pattern_stats.h"
 #include "sim/core/input_error.h"
+#include "sim/crps/body_length.h"
 #include "sim/crps/surface.h"
 #include "sim/mosaic/cm_simulation.h"
 
@@ -34,14 +35,6 @@ int run_sim(const SimOptions &o) {
         preset.params.relax = sim::RelaxMode::local;
     else if (o.relax == "global")
         preset.params.relax = sim::RelaxMode::global;
-    if (o.cells > 0 && preset.params.target_cells > 0 &&
-        preset.params.initial_cells > 0) {
-        // A target count belongs to the preset's initial count: keep their ratio, so a
-        // run with more or fewer cells grows by the same factor (Teo presets stop there).
-        preset.params.target_cells = static_cast<uint64_t>(
-            std::llround(double(preset.params.target_cells) * double(o.cells) /
-                         double(preset.params.initial_cells)));
-    }
     const sim::Surface surface = sim::build_surface(o.mesh);
 
     sim::CmSimulation simulation(surface.crps, preset.types, preset.params, o.seed);
@@ -76,6 +69,11 @@ int run_sim(const SimOptions &o) {
     const double seconds = st.seconds_total;
     fmt::print("pelage sim: {} on {} ({} triangles, area {:.6g}), seed {}\n", preset.name,
                o.mesh, surface.mesh.num_triangles(), ps.area, o.seed);
+    const double body_length = sim::body_axis(surface.crps).length;
+    fmt::print("  body length   {:.4g}   initial cell spacing {:.3g} x body length\n",
+               body_length,
+               std::sqrt(2 * ps.area / (std::sqrt(3.0) * double(st.initial_cells))) /
+                   body_length);
     fmt::print("  cells         {} -> {}   {}\n", st.initial_cells, data.num_cells(),
                by_type.dump());
     fmt::print("  spot fraction {:.4f}   spots {}   mean spot area {:.4g}\n",
@@ -97,6 +95,7 @@ int run_sim(const SimOptions &o) {
                             {"relax", params["relax"]},
                             {"triangles", surface.mesh.num_triangles()},
                             {"area", ps.area},
+                            {"body_length", body_length},
                             {"initial_cells", st.initial_cells},
                             {"final_cells", data.num_cells()},
                             {"cells_by_type", by_type},

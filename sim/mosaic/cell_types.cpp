@@ -187,11 +187,12 @@ CellType parse_type(const Reader &r, const json &t, const std::string &path) {
 
 SimParams parse_sim(const Reader &r, const json &s) {
     const std::string p = "simulation";
-    r.check_keys(s, p,
-                 {"initial_cells", "initial_density", "initial_relax_steps",
-                  "initial_relax_alpha", "initial_relax_tolerance", "w_r", "w_d", "w_a",
-                  "anisotropy", "relax", "local_steps", "rho", "end_time", "target_cells",
-                  "division_distribution", "child_radius_factor", "notes"});
+    r.check_keys(
+        s, p,
+        {"initial_cells", "initial_density", "initial_spacing", "initial_relax_steps",
+         "initial_relax_alpha", "initial_relax_tolerance", "w_r", "w_d", "w_a",
+         "anisotropy", "relax", "local_steps", "rho", "end_time", "target_cells",
+         "division_distribution", "child_radius_factor", "notes"});
     SimParams o;
     auto positive = [&](const std::string &key, double v) {
         if (!(v > 0)) r.fail(p + "." + key, Reader::fmt_value(v) + ": must be > 0");
@@ -211,10 +212,18 @@ SimParams parse_sim(const Reader &r, const json &s) {
         integer("initial_cells", r.number(s, p, "initial_cells", 0), 1e9));
     o.initial_density =
         non_negative("initial_density", r.number(s, p, "initial_density", 0));
-    if (o.initial_cells == 0 && o.initial_density == 0)
-        r.fail(p, "needs initial_cells or initial_density");
-    if (o.initial_cells > 0 && o.initial_density > 0)
-        r.fail(p, "initial_cells and initial_density conflict: give one");
+    o.initial_spacing =
+        non_negative("initial_spacing", r.number(s, p, "initial_spacing", 0));
+    if (o.initial_spacing > 1)
+        r.fail(p + ".initial_spacing",
+               Reader::fmt_value(o.initial_spacing) +
+                   ": a fraction of the body length, expected at most 1");
+    const int given =
+        (o.initial_cells > 0) + (o.initial_density > 0) + (o.initial_spacing > 0);
+    if (given == 0) r.fail(p, "needs initial_cells, initial_density or initial_spacing");
+    if (given > 1)
+        r.fail(p,
+               "initial_cells, initial_density and initial_spacing conflict: give one");
     o.initial_relax_steps = static_cast<int>(integer(
         "initial_relax_steps", r.number(s, p, "initial_relax_steps", 50), 100000));
     o.initial_relax_alpha = r.number(s, p, "initial_relax_alpha", 0);
@@ -254,6 +263,10 @@ SimParams parse_sim(const Reader &r, const json &s) {
     o.end_time = non_negative("end_time", r.number(s, p, "end_time", 0, true));
     o.target_cells = static_cast<uint64_t>(
         integer("target_cells", r.number(s, p, "target_cells", 0), 1e9));
+    if (o.target_cells > 0 && o.initial_cells == 0)
+        r.fail(p + ".target_cells",
+               "needs initial_cells: it is the count initial_cells grows to, and scales "
+               "with the initial count of each run");
     if (o.end_time * o.rho > 1e7)
         r.fail(p, "end_time · rho exceeds 10^7 relaxation steps");
     const std::string dist = r.string(s, p, "division_distribution", "poisson");

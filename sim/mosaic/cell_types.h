@@ -67,9 +67,15 @@ enum class DivisionDistribution { poisson, exponential };
 // Every number that drives a run, with the paper symbol it stands for.
 struct SimParams {
     // --- Initial cells (Walter thesis §6.4: Turk's area-uniform sampling) ---
-    uint64_t initial_cells = 0;    // used when > 0
-    double initial_density = 0;    // cells per unit area, used when initial_cells == 0
-    int initial_relax_steps = 50;  // cap of the initial relaxation phase
+    uint64_t initial_cells = 0;  // used when > 0
+    double initial_density = 0;  // cells per unit area, used when initial_cells == 0
+    // The pattern's scale relative to the body: the distance between neighbouring
+    // initial cells as a fraction of the body's length (sim/crps/body_length.h), so a
+    // preset gives the same pattern on any body whatever its units or tessellation.
+    // Used when initial_cells and initial_density are 0: m = 2A / (sqrt(3) (s L)^2), the
+    // count whose hexagonal packing has that spacing.
+    double initial_spacing = 0;
+    int initial_relax_steps = 50;           // cap of the initial relaxation phase
     double initial_relax_alpha = 0.0;       // same α for every pair during that phase
     double initial_relax_tolerance = 0.01;  // stop when max displacement < tol · r
 

@@ -5,6 +5,9 @@
 #include <cmath>
 #include <functional>
 
+#include "sim/core/input_error.h"
+#include "sim/crps/body_length.h"
+
 namespace pelage::sim {
 
 namespace {
@@ -81,13 +84,38 @@ RelaxStepResult CmSimulation::relax(const std::vector<TriId> &active,
     return r;
 }
 
+uint64_t initial_cell_count(const SimParams &params, const Crps &crps) {
+    if (params.initial_cells > 0) return params.initial_cells;
+    double area = 0;
+    for (TriId t = 0; t < crps.num_triangles(); ++t) area += crps.frame(t).area;
+    double n = params.initial_density * area;
+    if (params.initial_spacing > 0) {
+        const double d = params.initial_spacing * body_axis(crps).length;
+        n = 2 * area / (std::sqrt(3.0) * d * d);
+    }
+    if (!(n <= max_initial_cells))
+        throw InputError("", 0,
+                         params.initial_spacing > 0 ? "simulation.initial_spacing"
+                                                    : "simulation.initial_density",
+                         "gives " + std::to_string(n) +
+                             " initial cells on this mesh (at "
+                             "most " +
+                             std::to_string(max_initial_cells) + "): use a larger value");
+    return static_cast<uint64_t>(std::llround(n));
+}
+
 void CmSimulation::initialize(uint64_t override_cells) {
     const double t0 = now_seconds();
     const size_t nt = m_crps.num_triangles();
-    uint64_t n = override_cells > 0 ? override_cells : m_params.initial_cells;
-    if (n == 0)
-        n = static_cast<uint64_t>(std::llround(m_params.initial_density * m_area));
-    n = std::max<uint64_t>(n, 1);
+    const uint64_t n = std::max<uint64_t>(
+        override_cells > 0 ? override_cells : initial_cell_count(m_params, m_crps), 1);
+    if (m_params.target_cells > 0 && m_params.initial_cells > 0 &&
+        n != m_params.initial_cells) {
+        // A target count belongs to the preset's initial count: keep their ratio, so a
+        // run with more or fewer cells grows by the same factor.
+        m_params.target_cells = static_cast<uint64_t>(std::llround(
+            double(m_params.target_cells) * double(n) / double(m_params.initial_cells)));
+    }
     m_cells.reserve(std::max<uint64_t>(n, m_params.target_cells));
 
     // --- Turk's method (Walter thesis §6.4): triangle by cumulative area, then a
@@ -248,3 +276,4 @@ void CmSimulation::run(const std::function<void(double)> &progress) {
 }
 
 }  // namespace pelage::sim
+#include "sim/crps/body_length.h"

@@ -45,6 +45,12 @@ struct SimStats {
     size_t neighbourhood_builds = 0;
 };
 
+// The initial count a run starts from: initial_cells, or initial_density × area, or the
+// count whose hexagonal packing has initial_spacing × the body length. InputError above
+// max_initial_cells.
+inline constexpr double max_initial_cells = 1e8;
+uint64_t initial_cell_count(const SimParams &params, const Crps &crps);
+
 class CmSimulation {
   public:
     // The CRPS must outlive the simulation.

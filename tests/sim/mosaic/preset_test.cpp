@@ -63,6 +63,13 @@ TEST(Preset, BadValuesNameTheFileAndJsonPath) {
         {"\"w_d\": 0.1", "\"w_d\": 0.1, \"w_x\": 1", "simulation.w_x"},
         {"\"end_time\": 1", "\"end_time\": 1, \"relax\": \"sideways\"",
          "simulation.relax"},
+        {"\"initial_cells\": 10", "\"initial_cells\": 10, \"initial_spacing\": 0.1",
+         "conflict"},
+        {"\"initial_cells\": 10", "\"initial_spacing\": 1.5",
+         "simulation.initial_spacing"},
+        {"\"initial_cells\": 10", "\"initial_spacing\": 0.05, \"target_cells\": 90",
+         "simulation.target_cells"},
+        {"\"initial_cells\": 10, ", "", "needs initial_cells, initial_density or"},
     };
     for (const BadCase &c : cases) {
         std::string bad = good;
