@@ -41,4 +41,60 @@ $pelage render scenes/cow_giraffe.json --res 480x270 --spp 16 -q -o "$tmp/bare_c
 $pelage sim --mesh scenes/meshes/cow.off --preset giraffe-reticulata --cells 3000 --seed 1 \
     -o "$tmp/cow3000.cells"
 $pelage preview "$tmp/cow3000.cells" -o images/sim_cow_giraffe_reticulata.png --size 480
+
+# The gallery (fonts-dejavu-core labels it): every preset on the sphere and on the cow, labelled, and the look of each
+# measured by `pelage stats --mesh` (docs/data/gallery.json, shown in
+# docs/guide/presets.md). Presets scaled to the body (initial_spacing) start from about
+# 100 founders on the sphere, whose area against its length is 3.4 times a cow's.
+font=/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf
+tiles_sphere=() tiles_cow=()
+echo '{' >"$tmp/gallery.json"
+first=1
+for preset in scenes/presets/*.json; do
+    name=$(basename "$preset" .json)
+    cells=$(python3 -c 'import json,sys; p=json.load(open(sys.argv[1])); s=p["simulation"]
+f=next(t for t in p["types"] if t["name"]=="F") if any(t["name"]=="F" for t in p["types"]) else p["types"][0]
+print(round(100/f["initial_probability"]) if "initial_spacing" in s else 0)' "$preset")
+    for kind in sphere cow; do
+        mesh=procedural:sphere:20x20
+        [ $kind = cow ] && mesh=scenes/meshes/cow.off
+        extra=()
+        [ $kind = sphere ] && [ "$cells" != 0 ] && extra=(--cells "$cells")
+        $pelage sim --mesh "$mesh" --preset "$preset" --seed 1 "${extra[@]}" \
+            -o build/gallery_$kind.cells >/dev/null
+        $pelage stats build/gallery_$kind.cells --mesh "$mesh" --json >"$tmp/$name.$kind.json"
+        $pelage render scenes/gallery_$kind.json -q -o "$tmp/g.exr" --preview "$tmp/g.png"
+        oiiotool --create 240x22 3 --text:x=6:y=16:size=14:color=1,1,1:font=$font "$name" \
+            -o "$tmp/label.png"
+        oiiotool "$tmp/g.png" --ch R,G,B "$tmp/label.png" --mosaic 1x2 \
+            -o "$tmp/tile_${kind}_$name.png"
+        [ $kind = sphere ] && tiles_sphere+=("$tmp/tile_${kind}_$name.png")
+        [ $kind = cow ] && tiles_cow+=("$tmp/tile_${kind}_$name.png")
+    done
+    [ $first = 1 ] || echo ',' >>"$tmp/gallery.json"
+    first=0
+    printf '"%s": {"sphere": %s, "cow": %s, "sphere_initial_cells": %s}' "$name" \
+        "$(cat "$tmp/$name.sphere.json")" "$(cat "$tmp/$name.cow.json")" "$cells" \
+        >>"$tmp/gallery.json"
+done
+echo '}' >>"$tmp/gallery.json"
+rows=$(( (${#tiles_sphere[@]} + 3) / 4 ))
+oiiotool "${tiles_sphere[@]}" --mosaic:pad=4 4x$rows -o images/gallery_sphere.png
+oiiotool "${tiles_cow[@]}" --mosaic:pad=4 4x$rows -o images/gallery_cow.png
+python3 - "$tmp/gallery.json" >docs/data/gallery.json <<'PY'
+import json, os, sys
+keep = ["cells", "cells_by_type", "spot_fraction", "spot_fraction_by_area", "spot_count",
+        "spot_area_share_mean", "spot_neighbours_mean", "spot_complexity",
+        "background_components", "background_largest_share", "background_near_spot"]
+d = json.load(open(sys.argv[1]))
+out = {}
+for name, g in d.items():
+    preset = json.load(open(os.path.join("scenes", "presets", name + ".json")))
+    out[name] = {"published": preset.get("published", {}),
+                 "sphere_initial_cells": g["sphere_initial_cells"],
+                 "sphere": {k: g["sphere"][k] for k in keep},
+                 "cow": {k: g["cow"][k] for k in keep}}
+print(json.dumps({"gallery": out, "seed": 1}, indent=2, sort_keys=True))
+PY
+rm -f build/gallery_sphere.cells build/gallery_cow.cells
 echo "make_images.sh: images/*.png regenerated"

@@ -75,7 +75,7 @@ run stats_cow     "$pelage" stats "$work/cow_giraffe.cells" --mesh scenes/meshes
 # Every preset with published counts, seeds 1-5, on Teo's 760-triangle sphere.
 for preset in scenes/presets/*.json; do
     name=$(basename "$preset" .json)
-    python3 -c 'import json,sys; sys.exit(0 if json.load(open(sys.argv[1])).get("published") else 1)' \
+    python3 -c 'import json,sys; sys.exit(0 if json.load(open(sys.argv[1])).get("published", {}).get("cells_by_type") else 1)' \
         "$preset" || continue
     for seed in 1 2 3 4 5; do
         run "preset_${name}_$seed" "$pelage" sim --mesh procedural:sphere:20x20 \
