@@ -23,7 +23,7 @@ import sys
 
 DOCS = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 DATA = os.path.join(DOCS, "data")
-FILES = ["performance.md", "validation.md"]
+FILES = ["performance.md", "validation.md", "guide/presets.md"]
 MARKER = re.compile(
     r"(<!-- BEGIN generated: (?P<name>[\w.-]+) -->\n)(?P<body>.*?)(<!-- END generated: (?P=name) -->)",
     re.S)
@@ -305,12 +305,55 @@ def t_hair_furnace():
     ], "lr")
 
 
+def t_gallery():
+    d = data("gallery")["gallery"]
+    rows = []
+    for name in sorted(d):
+        g = d[name]
+        target = g["published"].get("spot_fraction_by_area")
+        sides = g["published"].get("sides_per_spot")
+        for mesh in ("sphere", "cow"):
+            m = g[mesh]
+            rows.append([f"`{name}`", mesh, num(m["cells"]),
+                         f"{m['spot_fraction']:.2f}", f"{m['spot_fraction_by_area']:.2f}",
+                         "—" if target is None else f"{target:.2f}",
+                         num(m["spot_count"]), f"{m['spot_neighbours_mean']:.1f}",
+                         "—" if sides is None else str(sides),
+                         f"{m['spot_complexity']:.2f}",
+                         f"{m['background_largest_share']:.2f}",
+                         f"{m['background_near_spot']:.2f}"])
+    return table(["preset", "mesh", "cells", "F by count", "F by area", "published",
+                  "spots", "neighbours", "published sides", "complexity",
+                  "largest background", "background touching a spot"], rows,
+                 "llrrrrrrrrrr")
+
+
+def t_looks():
+    d = data("looks")["looks"]
+    rows = []
+    for name in sorted(d):
+        p = d[name]
+        for mesh, runs in sorted(p["meshes"].items(), reverse=True):
+            fr = [r["spot_fraction_by_area"] for r in runs["seeds"].values()]
+            mean = lambda k: statistics.mean(r[k] for r in runs["seeds"].values())
+            rows.append([f"`{name}`", mesh, f"{p['target']:.2f}",
+                         f"{statistics.mean(fr):.3f}", f"{min(fr):.3f} … {max(fr):.3f}",
+                         num(round(mean("spot_count"))), f"{mean('spot_neighbours_mean'):.1f}",
+                         f"{mean('spot_complexity'):.2f}",
+                         f"{mean('background_largest_share'):.3f}",
+                         f"{mean('background_near_spot'):.2f}"])
+    n = len(next(iter(next(iter(d.values()))["meshes"].values()))["seeds"])
+    return table(["preset", "mesh", "target", f"F by area, mean of {n} seeds", "range",
+                  "spots", "neighbours", "complexity", "largest background",
+                  "background touching a spot"], rows, "llrrrrrrrr")
+
+
 TABLES = {
     "machine": t_machine, "crps": t_crps, "sim": t_sim, "default-job": t_default_job,
     "lookup": t_lookup, "lookup-lanes": t_lookup_lanes, "render": t_render,
     "compare": t_compare, "hair": t_hair, "fur": t_fur, "presets": t_presets,
     "crps-errors": t_crps_errors, "lookup-quality": t_lookup_quality,
-    "hair-furnace": t_hair_furnace,
+    "hair-furnace": t_hair_furnace, "gallery": t_gallery, "looks": t_looks,
 }
 
 
