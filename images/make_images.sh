@@ -64,9 +64,9 @@ print(round(100/f["initial_probability"]) if "initial_spacing" in s else 0)' "$p
             -o build/gallery_$kind.cells >/dev/null
         $pelage stats build/gallery_$kind.cells --mesh "$mesh" --json >"$tmp/$name.$kind.json"
         $pelage render scenes/gallery_$kind.json -q -o "$tmp/g.exr" --preview "$tmp/g.png"
-        oiiotool --create 240x22 3 --text:x=6:y=16:size=14:color=1,1,1:font=$font "$name" \
-            -o "$tmp/label.png"
-        oiiotool "$tmp/g.png" --ch R,G,B "$tmp/label.png" --mosaic 1x2 \
+        oiiotool --create 240x202 3 \
+            --text:x=6:y=196:size=14:color=1,1,1:font=$font "$name" -o "$tmp/label.png"
+        oiiotool "$tmp/g.png" --ch R,G,B "$tmp/label.png" --paste +0+0 \
             -o "$tmp/tile_${kind}_$name.png"
         [ $kind = sphere ] && tiles_sphere+=("$tmp/tile_${kind}_$name.png")
         [ $kind = cow ] && tiles_cow+=("$tmp/tile_${kind}_$name.png")
