@@ -56,6 +56,11 @@ class Crps {
         return m_frames[t];
     }
     const Topology &topology() const { return m_topo; }
+    // The mesh vertices at t's corners (corner c of the reference triangle is v[c]).
+    const std::array<VertId, 3> &corners(TriId t) const {
+        PELAGE_DCHECK(t < m_triangles.size());
+        return m_triangles[t];
+    }
 
     // --- Conversions (exact up to rounding) ---
     Vec2d to_2d(TriId t, Vec3d p_world) const;  // projects onto t's plane
