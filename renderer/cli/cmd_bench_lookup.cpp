@@ -55,10 +55,11 @@ class CpuTimer {
 nlohmann::json measure(const sim::Surface &s,
                        const shader::clonal_mosaic::CellTable &cells,
                        const std::vector<Query> &queries,
-                       const std::vector<Query> &coherent, sim::UnfoldPaths paths,
+                       const std::vector<Query> &coherent,
+                       shader::clonal_mosaic::Neighbourhood neighbourhood,
                        uint32_t subdivision) {
     const shader::clonal_mosaic::ClosestCellIndex index(s.crps, cells,
-                                                        {paths, subdivision});
+                                                        {neighbourhood, subdivision});
     uint64_t sink = 0;
     const Timer wall;
     const CpuTimer pruned;
@@ -67,7 +68,7 @@ nlohmann::json measure(const sim::Surface &s,
     const double ns_wall = 1e9 * wall.seconds() / queries.size();
     // The same lookups with the four-lane scans (lane_scan.h): their time, and that they
     // find the same cells.
-    shader::clonal_mosaic::ClosestCellOptions narrow_options{paths, subdivision};
+    shader::clonal_mosaic::ClosestCellOptions narrow_options{neighbourhood, subdivision};
     narrow_options.wide_lanes = false;
     const shader::clonal_mosaic::ClosestCellIndex narrow(s.crps, cells, narrow_options);
     uint64_t wide_sink = 0, narrow_sink = 0;
@@ -150,8 +151,11 @@ nlohmann::json measure(const sim::Surface &s,
     const double ns_ex = 1e9 * exhaustive.seconds() / n_ex - ns;  // minus the pruned call
     const shader::clonal_mosaic::EdgeConsistency edges =
         shader::clonal_mosaic::measure_edge_consistency(s.mesh, s.crps, index);
-    return {{"unfolding",
-             paths == sim::UnfoldPaths::edges_only ? "edges_only" : "edges_and_vertices"},
+    using shader::clonal_mosaic::Neighbourhood;
+    return {{"neighbourhood", neighbourhood == Neighbourhood::geodesic ? "geodesic"
+                              : neighbourhood == Neighbourhood::unfolding_edges
+                                  ? "unfolding_edges"
+                                  : "unfolding_teo"},
             {"build_seconds", index.stats().build_seconds},
             {"mean_candidates", index.stats().mean_candidates},
             {"mean_candidate_cells", index.stats().mean_candidate_cells},
@@ -215,14 +219,16 @@ int run(const BenchLookupOptions &o) {
             coherent.begin(), coherent.end(),
             [](const Query &a, const Query &b) { return a.first < b.first; });
 
-        nlohmann::json run = measure(s, cells, queries, coherent,
-                                     sim::UnfoldPaths::edges_only, o.subdivision);
+        using shader::clonal_mosaic::Neighbourhood;
+        nlohmann::json run =
+            measure(s, cells, queries, coherent, Neighbourhood::geodesic, o.subdivision);
         run["mesh"] = mesh;
         run["triangles"] = s.mesh.num_triangles();
         run["cells"] = cells.size();
-        run["teo_unfolding"] =
-            measure(s, cells, queries, coherent, sim::UnfoldPaths::edges_and_vertices,
-                    o.subdivision);
+        run["unfolding_edges"] = measure(s, cells, queries, coherent,
+                                         Neighbourhood::unfolding_edges, o.subdivision);
+        run["teo_unfolding"] = measure(s, cells, queries, coherent,
+                                       Neighbourhood::unfolding_teo, o.subdivision);
         runs.push_back(run);
     }
     const nlohmann::json j = {

@@ -111,13 +111,14 @@ const PelageParamSpec params[] = {
      0.0f,
      "per-type coat reflectance at normal incidence (F0, 0…0.25; 0.04 = ior 1.5), e.g. "
      "\"F=0.02,B=0.05\"; empty keeps the material's ior"},
-    {"unfolding",
+    {"neighbourhood",
      PELAGE_PARAM_STRING,
      {0, 0, 0},
-     "edges",
+     "geodesic",
      0.0f,
      0.0f,
-     "\"edges\" (edge maps only: fewer cracks) or \"teo\" (edge and vertex maps)"},
+     "\"geodesic\" (exact surface distances), or the planar unfoldings kept to compare "
+     "with: \"edges\" (edge maps) or \"teo\" (edge and vertex maps, Teo 2006)"},
     {"lod",
      PELAGE_PARAM_INT,
      {1, 0, 0},
@@ -219,15 +220,16 @@ std::unique_ptr<ClonalMosaic> make(const PelageParamSet &ps) {
     cm->antialias = p.get_bool("antialias");
     cm->coherence = p.get_bool("coherence");
     cm->serial = ++instances_created;
-    const std::string unfolding = p.get_string("unfolding");
-    if (unfolding != "edges" && unfolding != "teo")
-        throw std::invalid_argument("unfolding: \"" + unfolding +
-                                    "\" is neither \"edges\" nor \"teo\"");
+    const std::string neighbourhood = p.get_string("neighbourhood");
+    if (neighbourhood != "geodesic" && neighbourhood != "edges" && neighbourhood != "teo")
+        throw std::invalid_argument("neighbourhood: \"" + neighbourhood +
+                                    "\" is none of \"geodesic\", \"edges\", \"teo\"");
 
     cm->pattern = std::make_unique<shader::clonal_mosaic::MosaicPattern>(
         ps.mesh.cells_path, ps.mesh.mesh_path,
-        unfolding == "teo" ? sim::UnfoldPaths::edges_and_vertices
-                           : sim::UnfoldPaths::edges_only);
+        neighbourhood == "geodesic" ? shader::clonal_mosaic::Neighbourhood::geodesic
+        : neighbourhood == "teo"    ? shader::clonal_mosaic::Neighbourhood::unfolding_teo
+                                 : shader::clonal_mosaic::Neighbourhood::unfolding_edges);
     if (cm->pattern->num_triangles() != ps.mesh.num_triangles)
         throw std::invalid_argument("the renderer's mesh has " +
                                     std::to_string(ps.mesh.num_triangles) +

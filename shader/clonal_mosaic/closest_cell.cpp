@@ -74,10 +74,10 @@ const ClosestCellIndex::Block *ClosestCellIndex::scan(const Block *b, const Bloc
             int pos = K;
             bool seen = false;
             for (int j = K - 1; j >= 0; --j) {
-                if constexpr (dedupe) seen |= n.index[j] == cell;
+                if constexpr (dedupe) seen |= cell_of(n.index[j]) == cell_of(cell);
                 if (d2[l] < n.d2[j] ||
                     (d2[l] == n.d2[j] && n.index[j] != ClosestCell::none &&
-                     id[cell] < id[n.index[j]]))
+                     id[cell_of(cell)] < id[cell_of(n.index[j])]))
                     pos = j;
             }
             if (seen) continue;
@@ -135,11 +135,61 @@ const ClosestCellIndex::Block *ClosestCellIndex::scan_lanes(const Block *b,
     return r.stop;
 }
 
+float ClosestCellIndex::BentWindow::distance(Vec2f q) const {
+    const float d = sigma + std::sqrt(squared_distance(sx, sy, q));
+    if (std::isnan(x0x)) return d;
+    const float r0x = x0x - sx, r0y = x0y - sy, r1x = x1x - sx, r1y = x1y - sy;
+    const float dx = q.x - sx, dy = q.y - sy;
+    const float w = r0x * r1y - r0y * r1x;
+    // A relative slack of 1e-5: points on the ray between two windows belong to both.
+    const float tol = 1e-5f *
+                      (std::abs(r0x) + std::abs(r0y) + std::abs(r1x) + std::abs(r1y)) *
+                      (std::abs(dx) + std::abs(dy));
+    const float a = r0x * dy - r0y * dx, b = dx * r1y - dy * r1x;
+    const bool inside = w >= 0 ? (a >= -tol && b >= -tol) : (a <= tol && b <= tol);
+    return inside ? d : std::numeric_limits<float>::infinity();
+}
+
+float ClosestCellIndex::bent_distance(uint32_t entry, Vec2f q) const {
+    const Bent &b = m_bent[entry & ~bent_flag];
+    float best = std::numeric_limits<float>::infinity(), any = best;
+    for (uint32_t i = b.first; i < b.first + b.count; ++i) {
+        const BentWindow &w = m_bent_windows[i];
+        best = std::min(best, w.distance(q));
+        any = std::min(any, w.sigma + std::sqrt(squared_distance(w.sx, w.sy, q)));
+    }
+    // Rounding can leave q just outside every wedge: the nearest formula then.
+    return std::isinf(best) ? any : best;
+}
+
+template <int K>
+void ClosestCellIndex::resolve(Nearest<K> &n, Vec2f q) const {
+    bool any = false;
+    for (int k = 0; k < K; ++k) {
+        const uint32_t e = n.index[k];
+        if (e == ClosestCell::none || !(e & bent_flag)) continue;
+        const float d = bent_distance(e, q);
+        n.index[k] = m_bent[e & ~bent_flag].cell;
+        n.d2[k] = d * d;
+        any = true;
+    }
+    if (n.second != ClosestCell::none && (n.second & bent_flag)) {
+        n.second = m_bent[n.second & ~bent_flag].cell;
+        any = true;
+    }
+    if (any) n.bent = true;
+}
+
+template void ClosestCellIndex::resolve<1>(Nearest<1> &, Vec2f) const;
+template void ClosestCellIndex::resolve<2>(Nearest<2> &, Vec2f) const;
+template void ClosestCellIndex::resolve<3>(Nearest<3> &, Vec2f) const;
+
 ClosestCell ClosestCellIndex::find(sim::TriId t, Vec2f q) const {
     Nearest<2> n;
     const Block *e;
     const Block *b = blocks_of(t, q, e);
     scan_lanes<2>(b, e, q, n);
+    resolve(n, q);
     return {n.index[0], n.index[1], std::sqrt(n.d2[0]), std::sqrt(n.d2[1])};
 }
 
@@ -148,6 +198,7 @@ ClosestCell ClosestCellIndex::find_nearest(sim::TriId t, Vec2f q) const {
     const Block *e;
     const Block *b = blocks_of(t, q, e);
     scan_lanes<1>(b, e, q, n);
+    resolve(n, q);
     return {n.index[0], ClosestCell::none, std::sqrt(n.d2[0]),
             std::numeric_limits<float>::infinity()};
 }
@@ -157,6 +208,7 @@ ClosestCellIndex::Nearest<3> ClosestCellIndex::find_three(sim::TriId t, Vec2f q)
     const Block *e;
     const Block *b = blocks_of(t, q, e);
     scan<true, false, 3>(b, e, q, n);
+    resolve(n, q);
     return n;
 }
 
@@ -164,7 +216,9 @@ ClosestCellIndex::Nearest<3> ClosestCellIndex::find_three_within(sim::TriId t, V
                                                                  float band) const {
     const Block *e;
     const Block *b = blocks_of(t, q, e);
-    return three_within(b, e, q, band);
+    Nearest<3> n = three_within(b, e, q, band);
+    resolve(n, q);
+    return n;
 }
 
 ClosestCellIndex::Nearest<3> ClosestCellIndex::three_within(const Block *b,
@@ -229,7 +283,7 @@ ClosestCellIndex::Nearest<3> ClosestCellIndex::three_within(const Block *b,
             for (int j = 2; j >= 1; --j)
                 if (d2[l] < n.d2[j] ||
                     (d2[l] == n.d2[j] && n.index[j] != ClosestCell::none &&
-                     id[cell] < id[n.index[j]]))
+                     id[cell_of(cell)] < id[cell_of(n.index[j])]))
                     pos = j;
             if (pos == 3) continue;
             if (pos == 1) {
@@ -248,9 +302,18 @@ ClosestCell ClosestCellIndex::find_nearest(sim::TriId t, float b1, float b2) con
     Nearest<1> n;
     const Block *e;
     const Block *b = blocks_at(t, b1, b2, e);
-    scan_lanes<1>(b, e, point(t, b1, b2), n);
+    const Vec2f q = point(t, b1, b2);
+    scan_lanes<1>(b, e, q, n);
+    resolve(n, q);
     return {n.index[0], ClosestCell::none, std::sqrt(n.d2[0]),
             std::numeric_limits<float>::infinity()};
+}
+
+ClosestCellIndex::Nearest<3> ClosestCellIndex::find_three_within_listed(
+    sim::TriId t, float b1, float b2, float band) const {
+    const Block *e;
+    const Block *b = blocks_at(t, b1, b2, e);
+    return three_within(b, e, point(t, b1, b2), band);
 }
 
 ClosestCellIndex::Nearest<3> ClosestCellIndex::find_three_within(sim::TriId t, float b1,
@@ -258,15 +321,19 @@ ClosestCellIndex::Nearest<3> ClosestCellIndex::find_three_within(sim::TriId t, f
                                                                  float band) const {
     const Block *e;
     const Block *b = blocks_at(t, b1, b2, e);
-    return three_within(b, e, point(t, b1, b2), band);
+    const Vec2f q = point(t, b1, b2);
+    Nearest<3> n = three_within(b, e, q, band);
+    resolve(n, q);
+    return n;
 }
 
 ClosestCell ClosestCellIndex::find_exhaustive(sim::TriId t, Vec2f q) const {
-    // Every region's list.
+    // The whole of q's region list, without pruning.
     Nearest<2> n;
-    scan<false, true, 2>(m_blocks.data() + m_region_block[m_first_region[t] >> 2],
-                         m_blocks.data() + m_region_block[m_first_region[t + 1] >> 2], q,
-                         n);
+    const Block *e;
+    const Block *b = blocks_of(t, q, e);
+    scan<false, false, 2>(b, e, q, n);
+    resolve(n, q);
     return {n.index[0], n.index[1], std::sqrt(n.d2[0]), std::sqrt(n.d2[1])};
 }
 
@@ -274,7 +341,11 @@ float ClosestCellIndex::distance_to_cell(sim::TriId t, Vec2f q, uint32_t cell) c
     const Block *e;
     for (const Block *b = blocks_of(t, q, e); b != e; ++b)
         for (int l = 0; l < per_block; ++l)
-            if (b->cell[l] == cell) return std::hypot(b->x[l] - q.x, b->y[l] - q.y);
+            if (cell_of(b->cell[l]) == cell) {
+                if (!(b->cell[l] & bent_flag))
+                    return std::hypot(b->x[l] - q.x, b->y[l] - q.y);
+                return bent_distance(b->cell[l], q);
+            }
     return std::numeric_limits<float>::infinity();
 }
 

@@ -85,8 +85,18 @@ struct ClosestCell {
     float f2 = std::numeric_limits<float>::infinity();  // ... to the second nearest
 };
 
+// Where a triangle's candidate cells and their positions in its frame come from.
+//   geodesic: exact polyhedral geodesics (sim/geodesic): each cell's windows on the
+//     triangle; per region, the window that realises the cell's distance at most of the
+//     region's sample points gives its position (a pseudo-source's σ folded in by moving
+//     the source back by σ, away from the region).
+//   unfolding_edges, unfolding_teo: the breadth-first planar unfolding of Teo 2006
+//     §4.1 across edges only or across edges and vertices (sim/crps/unfold.h); kept to
+//     measure against. They fold over around saddle vertices and thin parts.
+enum class Neighbourhood { geodesic, unfolding_edges, unfolding_teo };
+
 struct ClosestCellOptions {
-    sim::UnfoldPaths paths = sim::UnfoldPaths::edges_only;
+    Neighbourhood neighbourhood = Neighbourhood::geodesic;
     // Regions searched per triangle side, at most (1 … 3): finer regions mean shorter
     // scans but longer lists in total (more memory, more cache misses on random
     // queries). Which triangles get more than one: see the layouts above.
@@ -109,6 +119,12 @@ struct ClosestCellStats {
     size_t triangles_with_regions = 0;  // searched in r x r regions (r > 1)
     bool fine_regions = false;          // which layout fitted (fine_regions_max_bytes)
     int lanes = 0;                      // the lane scans' width (lane_scan.h)
+    // Neighbourhood::geodesic: the windows' final radius, the propagation rounds it
+    // took, and the largest window set held at once (count, bytes).
+    double geodesic_radius = 0;
+    int geodesic_rounds = 0;
+    size_t geodesic_windows = 0, geodesic_bytes = 0;
+    size_t bent_entries = 0;  // list entries of paths bent round a pseudo-source
 };
 
 class ClosestCellIndex {
@@ -147,6 +163,9 @@ class ClosestCellIndex {
         // for a nearby query that no other cell comes near (coherent_lookup.h).
         float next_d2 = std::numeric_limits<float>::infinity();
         float third_d2 = std::numeric_limits<float>::infinity();
+        // A returned cell's distance is not |q - its position| (a path bent round a
+        // pseudo-source vertex, see bent_flag): nearby queries cannot reuse the result.
+        bool bent = false;
         Nearest() {
             d2.fill(std::numeric_limits<float>::infinity());
             index.fill(ClosestCell::none);
@@ -158,7 +177,7 @@ class ClosestCellIndex {
     // What a blend over a band of width `band` past the nearest cell needs, in one scan
     // that prunes at F1 + band instead of F3 (band = 0: the nearest cell and its ties).
     Nearest<3> find_three_within(sim::TriId t, Vec2f q, float band) const;
-    // t's whole list, without any pruning: the reference the tests compare find()
+    // q's whole region list, without any pruning: the reference the tests compare find()
     // against (it checks the pruning bounds).
     ClosestCell find_exhaustive(sim::TriId t, Vec2f q) const;
 
@@ -178,6 +197,10 @@ class ClosestCellIndex {
     };
     static_assert(sizeof(Frame) == 32);
     const Frame &frame(sim::TriId t) const { return m_frames[t]; }
+    // The regions per side of t's lists (1 … 3): a cell's listed position can differ
+    // from one region of t to the next (geodesic neighbourhoods), so results are
+    // comparable within one region only (coherent_lookup.h).
+    uint32_t regions_per_side(sim::TriId t) const { return m_first_region[t] & 3u; }
     // Local CRPS coordinates of barycentric point (b1, b2) of t (what those use).
     Vec2f point(sim::TriId t, float b1, float b2) const {
         return m_frames[t].point(b1, b2);
@@ -190,8 +213,43 @@ class ClosestCellIndex {
     const ClosestCellStats &stats() const { return m_stats; }
     const CellTable &cells() const { return *m_cells; }
 
+    // A list entry whose cell's distance over the region is not one straight line
+    // from one position — its path bends round a pseudo-source vertex (σ > 0), or
+    // different parts of the region see the cell through different unfoldings — is
+    // listed at the position of the unfolding that serves most of the region (the source
+    // moved back by σ for a bent path) and carries this flag with an index into the bent
+    // table: the cell's windows on the region, from which the returned cells' exact
+    // distances come (the least σ + |q - s| over the windows whose wedge holds q).
+    static constexpr uint32_t bent_flag = 0x80000000u;
+    struct Bent {
+        uint32_t cell, first, count;  // windows [first, first + count) of bent_windows
+    };
+    struct BentWindow {
+        float sx, sy, sigma;
+        float x0x, x0y, x1x, x1y;  // the wedge's entry interval; whole face: x0x = NaN
+        float distance(Vec2f q) const;  // +inf when q lies outside the wedge
+    };
+    // The cell of a list entry, and a bent entry's exact distance from q.
+    uint32_t cell_of(uint32_t entry) const {
+        return entry == ClosestCell::none || !(entry & bent_flag)
+                   ? entry
+                   : m_bent[entry & ~bent_flag].cell;
+    }
+    float bent_distance(uint32_t entry, Vec2f q) const;
+    // Bent entries among the results: their cells and exact distances. The order stays
+    // the one of the listed positions (the searches agree with one another; where a
+    // bent cell's exact distance overtakes the next cell's, F1 may exceed F2).
+    template <int K>
+    void resolve(Nearest<K> &n, Vec2f q) const;
+    // find_three_within() before resolve(): indices are list entries (bent_flag set for
+    // bent ones), distances the listed positions'. For callers that reuse a result
+    // (coherent_lookup.h): selection by listed positions, exact distances from resolve.
+    Nearest<3> find_three_within_listed(sim::TriId t, float b1, float b2,
+                                        float band) const;
+
   private:
     static constexpr int per_block = CellBlock::size;
+
     using Block = CellBlock;
 
     struct Built;  // one triangle's list while building
@@ -211,9 +269,11 @@ class ClosestCellIndex {
     template <int K>
     const Block *scan_lanes(const Block *b, const Block *e, Vec2f q, Nearest<K> &n,
                             float *cells_left_d2 = nullptr) const;
-    void build_triangle(const sim::Crps &crps, sim::TriId t, sim::UnfoldScratch &scratch,
-                        std::vector<sim::UnfoldedTriangle> &unfolded,
-                        std::array<Built, 2> &out) const;
+    struct Candidates;  // where build_triangle() finds a triangle's cells
+    // Returns the reach the triangle's lists needed (+inf when fewer than three cells
+    // were found): more than the geodesic radius means the windows were too short.
+    double build_triangle(const sim::Crps &crps, sim::TriId t, Candidates &candidates,
+                          std::array<Built, 2> &out) const;
 
     const CellTable *m_cells;
     ClosestCellOptions m_options;
@@ -227,6 +287,8 @@ class ClosestCellIndex {
     std::vector<uint32_t> m_first_region;
     std::vector<uint32_t> m_region_block;
     std::vector<Block> m_blocks;
+    std::vector<Bent> m_bent;
+    std::vector<BentWindow> m_bent_windows;
     LaneScanners m_lanes;
     ClosestCellStats m_stats;
 };

@@ -14,8 +14,9 @@
 // costs the scan at most one more line, and the exact F3 would save few searches.
 // The result is the same bits: |q - c1|² is computed from c1's position exactly as the
 // scan computes it, and the comparison keeps a relative margin far above float
-// rounding. Keyed by an index serial (callers give each index a number never reused,
-// not its address) and the triangle.
+// rounding. Only queries in the search's region of the triangle reuse it: a cell's
+// listed position may differ between regions. Keyed by an index serial (callers give each
+// index a number never reused, not its address) and the triangle.
 //
 // One object per thread (the plugin keeps it thread_local); not thread-safe.
 #pragma once
@@ -26,6 +27,7 @@
 #include <cstdint>
 
 #include "shader/clonal_mosaic/closest_cell.h"
+#include "shader/clonal_mosaic/subdivision.h"
 
 namespace pelage::shader::clonal_mosaic {
 
@@ -47,6 +49,7 @@ class CoherentLookup {
     // provably answers the query; false when it takes search().
     bool reuse(uint64_t serial, sim::TriId t, float b1, float b2, float band, Result &n) {
         if (m_serial != serial || m_tri != t) return false;
+        if (m_regions > 1 && slot_at(m_regions, b1, b2) != m_slot) return false;
         const Vec2f q = m_frame.point(b1, b2);  // index.point(t, b1, b2), the same bits
         // c1 and c2 at q, the nearer first by (distance, id) as the scan orders.
         const float d1 = squared_distance(m_at[0].x, m_at[0].y, q),
@@ -69,6 +72,7 @@ class CoherentLookup {
             n.d2[1] = db;
             n.index[1] = m_cell[b];
         }
+        if (m_bent) m_index->resolve(n, q);
         return true;
     }
     // The search, remembered for the next queries (out of line: the cold path).
@@ -81,11 +85,14 @@ class CoherentLookup {
   private:
     uint64_t m_serial = 0;  // 0: nothing to reuse
     sim::TriId m_tri = 0;
+    uint32_t m_regions = 1, m_slot = 0;  // the search's region of the triangle
     ClosestCellIndex::Frame m_frame{};  // the triangle's (a copy: no index read to reuse)
     Vec2f m_q;                          // the search's query, in the triangle's frame
-    uint32_t m_cell[2]{};               // c1, c2 (none: no second cell)
-    uint32_t m_id[2]{};                 // their stable ids (ties)
-    Vec2f m_at[2];                      // their positions (+inf: none)
+    const ClosestCellIndex *m_index = nullptr;  // the index of m_serial
+    uint32_t m_cell[2]{};  // c1, c2 as list entries (none: no second cell)
+    bool m_bent = false;   // either is a bent entry
+    uint32_t m_id[2]{};    // their stable ids (ties)
+    Vec2f m_at[2];         // their positions (+inf: none)
     // A lower bound on the search's F3, less a margin for float rounding (search()).
     float m_f3_less_margin = 0;
     size_t m_reused = 0, m_searched = 0;

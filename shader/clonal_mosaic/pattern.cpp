@@ -3,7 +3,7 @@
 namespace pelage::shader::clonal_mosaic {
 
 MosaicPattern::MosaicPattern(const std::string &cells_path, const std::string &mesh_path,
-                             sim::UnfoldPaths paths)
+                             Neighbourhood neighbourhood)
     : m_data(sim::read_cells_file(cells_path)),
       // The same loader as `pelage sim` and the renderer: identical triangles, so a hit's
       // primitive id is the .cells triangle.
@@ -16,7 +16,7 @@ MosaicPattern::MosaicPattern(const std::string &cells_path, const std::string &m
             list.push_back({t, m_data.x[k], m_data.z[k], m_data.id[k], m_data.type[k]});
     m_cells = make_cell_table(m_data.num_triangles(), list);
     m_index = std::make_unique<ClosestCellIndex>(m_surface->crps, m_cells,
-                                                 ClosestCellOptions{paths});
+                                                 ClosestCellOptions{neighbourhood});
     m_tri.resize(6 * m_data.num_triangles());
     for (sim::TriId t = 0; t < m_data.num_triangles(); ++t) {
         const sim::CrpsFrame &f = m_surface->crps.frame(t);

@@ -19,7 +19,7 @@ class MosaicPattern {
     // Throws pelage::InputError for an unreadable or corrupt .cells file or a mesh that
     // is not the one the cells were grown on.
     MosaicPattern(const std::string &cells_path, const std::string &mesh_path,
-                  sim::UnfoldPaths paths = sim::UnfoldPaths::edges_only);
+                  Neighbourhood neighbourhood = Neighbourhood::geodesic);
 
     size_t num_triangles() const { return m_cells.num_triangles(); }
     // Local CRPS coordinates of barycentric point (b1, b2) of triangle t.

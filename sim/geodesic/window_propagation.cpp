@@ -83,7 +83,7 @@ void WindowPropagation::reach_vertex(VertId v, double d) {
     }
 }
 
-void WindowPropagation::run(TriId t, Vec2d p, double radius,
+void WindowPropagation::run(TriId t, Vec2d p_in, double radius,
                             std::vector<GeodesicWindow> &out) {
     out.clear();
     m_pool.clear();
@@ -97,6 +97,7 @@ void WindowPropagation::run(TriId t, Vec2d p, double radius,
     }
     const Crps &crps = m_mesh->crps();
     const CrpsFrame &f = crps.frame(t);
+    Vec2d p = p_in;
     // The source's own triangle, and every other triangle whose closure holds the
     // source (across an edge it lies on, around a corner it sits at): a wedge from a
     // point on the entry edge would be degenerate.
@@ -107,9 +108,22 @@ void WindowPropagation::run(TriId t, Vec2d p, double radius,
         s.pseudo_vertex = invalid_id;
         push(s);
     };
+    // Sources within a millionth of the triangle's size from a corner or an edge (cell
+    // positions are stored in float) are moved onto it: a wedge from a point a rounding
+    // error off its entry edge is numerically degenerate.
+    constexpr double snap = 1e-6;
+    const Vec3d bary = barycentric_in(f, p);
+    double b[3] = {bary.x, bary.y, bary.z};
     int at_corner = -1;
     for (int c = 0; c < 3; ++c)
-        if (length(f.v[c] - p) <= m_eps) at_corner = c;
+        if (b[c] > 1 - snap) at_corner = c;
+    if (at_corner < 0) {
+        for (int c = 0; c < 3; ++c) b[c] = std::max(b[c], 0.0);
+        for (int c = 0; c < 3; ++c)
+            if (b[c] < snap) b[c] = 0;
+        const double sum = b[0] + b[1] + b[2];
+        p = (f.v[0] * b[0] + f.v[1] * b[1] + f.v[2] * b[2]) / sum;
+    }
     if (at_corner >= 0) {
         const VertId v = crps.corners(t)[at_corner];
         for (TriId h : crps.topology().fan_of(v)) {
@@ -119,8 +133,7 @@ void WindowPropagation::run(TriId t, Vec2d p, double radius,
     } else {
         whole_face(t, p);
         for (int k = 0; k < 3; ++k) {
-            const Vec2d a = f.v[k], b = f.v[(k + 1) % 3];
-            if (std::abs(cross(b - a, p - a)) > m_eps * length(b - a)) continue;
+            if (b[(k + 2) % 3] != 0) continue;  // not on edge k (opposite corner k + 2)
             const GeodesicMesh::EdgeLink &l = m_mesh->link(t, k);
             if (l.across != invalid_id) whole_face(l.across, l.to_across.apply(p));
         }

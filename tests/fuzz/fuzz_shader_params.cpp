@@ -19,7 +19,7 @@ const PelageParamSpec specs[] = {
     {"antialias", PELAGE_PARAM_INT, {1, 0, 0}, nullptr, 0.0f, 1.0f, "ranged int"},
     {"octaves", PELAGE_PARAM_INT, {4, 0, 0}, nullptr, 0.0f, 0.0f, "unranged int"},
     {"color", PELAGE_PARAM_RGB, {0.5f, 0.5f, 0.5f}, nullptr, 0.0f, 1.0f, "ranged rgb"},
-    {"unfolding", PELAGE_PARAM_STRING, {0, 0, 0}, "edges", 0.0f, 0.0f, "string"},
+    {"neighbourhood", PELAGE_PARAM_STRING, {0, 0, 0}, "geodesic", 0.0f, 0.0f, "string"},
     {nullptr, PelageParamType(0), {0, 0, 0}, nullptr, 0, 0, nullptr},
 };
 
