@@ -17,6 +17,7 @@ packages=(
     libembree-dev libopenimageio-dev openimageio-tools libopenexr-dev libopencolorio-dev
     libopencv-core-dev   # Debian's OpenImageIO CMake config names an opencv4 include folder
     libgtest-dev libgmock-dev libbenchmark-dev
+    libcgal-dev          # tests: the exact-geodesic oracle (tests/oracle)
     ffmpeg               # pelage movie (encodes EXR sequences)
     fonts-dejavu-core    # labels of `pelage compare` contact sheets
 )
