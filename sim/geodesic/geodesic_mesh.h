@@ -7,7 +7,9 @@
 // it is at least 2π (a saddle vertex) or on the boundary (Mitchell, Mount & Papadimitriou
 // 1987, "The discrete geodesic problem", §2). Such vertices become pseudo-sources of the
 // propagation (window_propagation.h). Around a convex vertex (angle sum below 2π) paths
-// never bend.
+// never bend. A pinch vertex (fans that share only the vertex, e.g. two file vertices
+// welded into one) becomes one vertex per fan, so no path crosses from one fan to the
+// other through it; vertex ids here are the mesh's plus those extra copies.
 //
 // Saddle vertices whose excess angle is below `flat_tolerance` are treated as flat: the
 // paths they would bend change distances by at most the excess angle times the distance
@@ -16,6 +18,7 @@
 #pragma once
 
 #include <array>
+#include <span>
 #include <vector>
 
 #include "sim/crps/crps.h"
@@ -39,6 +42,12 @@ class GeodesicMesh {
     const Crps &crps() const { return *m_crps; }
     // Edge k joins corners k and (k + 1) % 3.
     const EdgeLink &link(TriId t, int k) const { return m_links[t][k]; }
+    // The vertices at t's corners (a pinch vertex's copy for t's fan).
+    const std::array<VertId, 3> &corners(TriId t) const { return m_corners[t]; }
+    // The triangles around vertex v.
+    std::span<const TriId> fan_of(VertId v) const {
+        return {m_fan.data() + m_fan_row[v], m_fan_row[v + 1] - m_fan_row[v]};
+    }
     bool pseudo_source(VertId v) const { return m_pseudo_source[v] != 0; }
     double angle_sum(VertId v) const { return m_angle_sum[v]; }
     size_t num_pseudo_sources() const { return m_num_pseudo_sources; }
@@ -47,6 +56,9 @@ class GeodesicMesh {
   private:
     const Crps *m_crps;
     std::vector<std::array<EdgeLink, 3>> m_links;
+    std::vector<std::array<VertId, 3>> m_corners;
+    std::vector<uint32_t> m_fan_row;
+    std::vector<TriId> m_fan;
     std::vector<double> m_angle_sum;
     std::vector<uint8_t> m_pseudo_source;
     size_t m_num_pseudo_sources = 0;

@@ -69,8 +69,8 @@ void WindowPropagation::reach_vertex(VertId v, double d) {
     if (!m_mesh->pseudo_source(v)) return;
     ++m_stats.pseudo_sources;
     const Crps &crps = m_mesh->crps();
-    for (TriId h : crps.topology().fan_of(v)) {
-        const auto &c = crps.corners(h);
+    for (TriId h : m_mesh->fan_of(v)) {
+        const auto &c = m_mesh->corners(h);
         const int k = c[0] == v ? 0 : (c[1] == v ? 1 : 2);
         Pending p;
         p.w.face = h;
@@ -125,9 +125,9 @@ void WindowPropagation::run(TriId t, Vec2d p_in, double radius,
         p = (f.v[0] * b[0] + f.v[1] * b[1] + f.v[2] * b[2]) / sum;
     }
     if (at_corner >= 0) {
-        const VertId v = crps.corners(t)[at_corner];
-        for (TriId h : crps.topology().fan_of(v)) {
-            const auto &c = crps.corners(h);
+        const VertId v = m_mesh->corners(t)[at_corner];
+        for (TriId h : m_mesh->fan_of(v)) {
+            const auto &c = m_mesh->corners(h);
             whole_face(h, crps.frame(h).v[c[0] == v ? 0 : (c[1] == v ? 1 : 2)]);
         }
     } else {
@@ -159,7 +159,7 @@ void WindowPropagation::run(TriId t, Vec2d p_in, double radius,
 void WindowPropagation::propagate_whole_face(const Pending &p) {
     const Crps &crps = m_mesh->crps();
     const CrpsFrame &f = crps.frame(p.w.face);
-    const auto &corners = crps.corners(p.w.face);
+    const auto &corners = m_mesh->corners(p.w.face);
     const Vec2d s = p.w.source;
     for (int k = 0; k < 3; ++k) reach_vertex(corners[k], p.w.sigma + length(f.v[k] - s));
     for (int k = 0; k < 3; ++k) {
@@ -179,7 +179,7 @@ void WindowPropagation::propagate_entry(const Pending &p) {
     const Crps &crps = m_mesh->crps();
     const TriId t = p.w.face;
     const CrpsFrame &f = crps.frame(t);
-    const auto &corners = crps.corners(t);
+    const auto &corners = m_mesh->corners(t);
     const int k = p.w.edge;
     const Vec2d s = p.w.source, r0 = p.w.x0 - s, r1 = p.w.x1 - s;
     const double w = cross(r0, r1);
@@ -238,7 +238,7 @@ void WindowPropagation::add_child(const Pending &parent, int exit, Vec2d y0, Vec
     const TriId t = parent.w.face;
     const GeodesicMesh::EdgeLink &l = m_mesh->link(t, exit);
     const CrpsFrame &f = crps.frame(t);
-    const auto &corners = crps.corners(t);
+    const auto &corners = m_mesh->corners(t);
     const Vec2d s = parent.w.source;
     const double sigma = parent.w.sigma;
     const double min_d = sigma + point_segment_distance(s, y0, y1);
