@@ -137,7 +137,11 @@ const ClosestCellIndex::Block *ClosestCellIndex::scan_lanes(const Block *b,
 
 float ClosestCellIndex::BentWindow::distance(Vec2f q) const {
     const float d = sigma + std::sqrt(squared_distance(sx, sy, q));
-    if (std::isnan(x0x)) return d;
+    return covers(q) ? d : std::numeric_limits<float>::infinity();
+}
+
+bool ClosestCellIndex::BentWindow::covers(Vec2f q) const {
+    if (std::isnan(x0x)) return true;
     const float r0x = x0x - sx, r0y = x0y - sy, r1x = x1x - sx, r1y = x1y - sy;
     const float dx = q.x - sx, dy = q.y - sy;
     const float w = r0x * r1y - r0y * r1x;
@@ -146,17 +150,18 @@ float ClosestCellIndex::BentWindow::distance(Vec2f q) const {
                       (std::abs(r0x) + std::abs(r0y) + std::abs(r1x) + std::abs(r1y)) *
                       (std::abs(dx) + std::abs(dy));
     const float a = r0x * dy - r0y * dx, b = dx * r1y - dy * r1x;
-    const bool inside = w >= 0 ? (a >= -tol && b >= -tol) : (a <= tol && b <= tol);
-    return inside ? d : std::numeric_limits<float>::infinity();
+    return w >= 0 ? (a >= -tol && b >= -tol) : (a <= tol && b <= tol);
 }
 
 float ClosestCellIndex::bent_distance(uint32_t entry, Vec2f q) const {
-    const Bent &b = m_bent[entry & ~bent_flag];
     float best = std::numeric_limits<float>::infinity(), any = best;
-    for (uint32_t i = b.first; i < b.first + b.count; ++i) {
+    const size_t n = m_bent_windows.size();
+    for (size_t i = entry & ~bent_flag;;) {
         const BentWindow &w = m_bent_windows[i];
-        best = std::min(best, w.distance(q));
-        any = std::min(any, w.sigma + std::sqrt(squared_distance(w.sx, w.sy, q)));
+        const float d = w.sigma + std::sqrt(squared_distance(w.sx, w.sy, q));
+        any = std::min(any, d);
+        if (d < best && w.covers(q)) best = d;
+        if (++i == n || m_bent_windows[i].tag != BentWindow::more) break;
     }
     // Rounding can leave q just outside every wedge: the nearest formula then.
     return std::isinf(best) ? any : best;
@@ -169,12 +174,12 @@ void ClosestCellIndex::resolve(Nearest<K> &n, Vec2f q) const {
         const uint32_t e = n.index[k];
         if (e == ClosestCell::none || !(e & bent_flag)) continue;
         const float d = bent_distance(e, q);
-        n.index[k] = m_bent[e & ~bent_flag].cell;
+        n.index[k] = cell_of(e);
         n.d2[k] = d * d;
         any = true;
     }
     if (n.second != ClosestCell::none && (n.second & bent_flag)) {
-        n.second = m_bent[n.second & ~bent_flag].cell;
+        n.second = cell_of(n.second);
         any = true;
     }
     if (any) n.bent = true;

@@ -217,23 +217,27 @@ class ClosestCellIndex {
     // from one position — its path bends round a pseudo-source vertex (σ > 0), or
     // different parts of the region see the cell through different unfoldings — is
     // listed at the position of the unfolding that serves most of the region (the source
-    // moved back by σ for a bent path) and carries this flag with an index into the bent
-    // table: the cell's windows on the region, from which the returned cells' exact
-    // distances come (the least σ + |q - s| over the windows whose wedge holds q).
+    // moved back by σ for a bent path) and carries this flag with the index of its
+    // first window in the bent table: the cell's windows on the triangle, from which the
+    // returned cells' exact distances come (the least σ + |q - s| over the windows
+    // whose wedge holds q). A run of windows starts with one tagged with its cell and
+    // goes on while the tag says `more`: one cache line holds the cell and two windows,
+    // so a bent result costs one more miss, not two.
     static constexpr uint32_t bent_flag = 0x80000000u;
-    struct Bent {
-        uint32_t cell, first, count;  // windows [first, first + count) of bent_windows
-    };
-    struct BentWindow {
+    struct alignas(32) BentWindow {
+        static constexpr uint32_t more = 0xffffffffu;
         float sx, sy, sigma;
         float x0x, x0y, x1x, x1y;  // the wedge's entry interval; whole face: x0x = NaN
+        uint32_t tag;              // the cell on a run's first window, else `more`
         float distance(Vec2f q) const;  // +inf when q lies outside the wedge
+        bool covers(Vec2f q) const;
     };
+    static_assert(sizeof(BentWindow) == 32);
     // The cell of a list entry, and a bent entry's exact distance from q.
     uint32_t cell_of(uint32_t entry) const {
         return entry == ClosestCell::none || !(entry & bent_flag)
                    ? entry
-                   : m_bent[entry & ~bent_flag].cell;
+                   : m_bent_windows[entry & ~bent_flag].tag;
     }
     float bent_distance(uint32_t entry, Vec2f q) const;
     // Bent entries among the results: their cells and exact distances. The order stays
@@ -287,7 +291,6 @@ class ClosestCellIndex {
     std::vector<uint32_t> m_first_region;
     std::vector<uint32_t> m_region_block;
     std::vector<Block> m_blocks;
-    std::vector<Bent> m_bent;
     std::vector<BentWindow> m_bent_windows;
     LaneScanners m_lanes;
     ClosestCellStats m_stats;

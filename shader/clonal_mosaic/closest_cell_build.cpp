@@ -148,8 +148,8 @@ struct ClosestCellIndex::Built {
     std::array<uint32_t, max_subdivision * max_subdivision>
         end{};  // each list's, in blocks
     std::vector<Block> blocks;
-    std::vector<Bent> bent;  // indexed by the blocks' bent entries, from 0
-    std::vector<BentWindow> bent_windows;
+    std::vector<BentWindow> bent_windows;  // indexed by the blocks' bent entries, from 0
+    size_t bent_entries = 0;
     size_t entries = 0, distinct_triangles = 0, longest = 0;
 };
 
@@ -253,15 +253,13 @@ ClosestCellIndex::ClosestCellIndex(const sim::Crps &crps, const CellTable &cells
         const uint32_t first = static_cast<uint32_t>(m_blocks.size());
         for (uint32_t k = 0; k < b.regions * b.regions; ++k)
             m_region_block.push_back(first + (k ? b.end[k - 1] : 0));
-        const uint32_t bent_offset = static_cast<uint32_t>(m_bent.size());
-        if (m_bent.size() + b.bent.size() >= bent_flag)
-            throw std::length_error("closest-cell index: more than 2^31 bent entries");
+        const uint32_t bent_offset = static_cast<uint32_t>(m_bent_windows.size());
+        if (m_bent_windows.size() + b.bent_windows.size() >= bent_flag)
+            throw std::length_error("closest-cell index: more than 2^31 bent windows");
         for (Block &blk : b.blocks)
             for (uint32_t &c : blk.cell)
                 if (c != ClosestCell::none && (c & bent_flag)) c += bent_offset;
-        for (Bent &bent : b.bent)
-            bent.first += static_cast<uint32_t>(m_bent_windows.size());
-        m_bent.insert(m_bent.end(), b.bent.begin(), b.bent.end());
+        m_stats.bent_entries += b.bent_entries;
         m_bent_windows.insert(m_bent_windows.end(), b.bent_windows.begin(),
                               b.bent_windows.end());
         m_blocks.insert(m_blocks.end(), b.blocks.begin(), b.blocks.end());
@@ -280,8 +278,7 @@ ClosestCellIndex::ClosestCellIndex(const sim::Crps &crps, const CellTable &cells
     m_stats.bytes =
         m_frames.size() * sizeof(Frame) + m_first_region.size() * sizeof(uint32_t) +
         m_region_block.size() * sizeof(uint32_t) + m_blocks.size() * sizeof(Block) +
-        m_bent.size() * sizeof(Bent) + m_bent_windows.size() * sizeof(BentWindow);
-    m_stats.bent_entries = m_bent.size();
+        m_bent_windows.size() * sizeof(BentWindow);
     m_stats.build_seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
@@ -528,10 +525,9 @@ double ClosestCellIndex::build_triangle(const sim::Crps &crps, sim::TriId t,
                     b.cell[l] = real ? list[i + l].m->cell : ClosestCell::none;
                     if (real && list[i + l].m->bent) {
                         const Mapped &m = *list[i + l].m;
-                        b.cell[l] = bent_flag | static_cast<uint32_t>(o.bent.size());
-                        o.bent.push_back({m.cell,
-                                          static_cast<uint32_t>(o.bent_windows.size()),
-                                          m.num_windows});
+                        b.cell[l] =
+                            bent_flag | static_cast<uint32_t>(o.bent_windows.size());
+                        ++o.bent_entries;
                         for (uint32_t k = 0; k < m.num_windows; ++k) {
                             const sim::GeodesicWindow &w = m.windows[k].window;
                             const bool whole = w.edge == sim::GeodesicWindow::whole_face;
@@ -539,7 +535,8 @@ double ClosestCellIndex::build_triangle(const sim::Crps &crps, sim::TriId t,
                                 {float(w.source.x), float(w.source.y), float(w.sigma),
                                  whole ? std::numeric_limits<float>::quiet_NaN()
                                        : float(w.x0.x),
-                                 float(w.x0.y), float(w.x1.x), float(w.x1.y)});
+                                 float(w.x0.y), float(w.x1.x), float(w.x1.y),
+                                 k == 0 ? m.cell : BentWindow::more});
                         }
                     }
                 }
