@@ -153,7 +153,7 @@ bool ClosestCellIndex::BentWindow::covers(Vec2f q) const {
     return w >= 0 ? (a >= -tol && b >= -tol) : (a <= tol && b <= tol);
 }
 
-float ClosestCellIndex::bent_distance(uint32_t entry, Vec2f q) const {
+float ClosestCellIndex::bent_distance(uint32_t entry, Vec2f q, float listed) const {
     float best = std::numeric_limits<float>::infinity(), any = best;
     const size_t n = m_bent_windows.size();
     for (size_t i = entry & ~bent_flag;;) {
@@ -163,8 +163,9 @@ float ClosestCellIndex::bent_distance(uint32_t entry, Vec2f q) const {
         if (d < best && w.covers(q)) best = d;
         if (++i == n || m_bent_windows[i].tag != BentWindow::more) break;
     }
-    // Rounding can leave q just outside every wedge: the nearest formula then.
-    return std::isinf(best) ? any : best;
+    // A rounding error outside every wedge: the nearest formula, else (no window at all,
+    // which the build never lists) the listed position.
+    return std::isinf(best) ? (std::isinf(any) ? listed : any) : best;
 }
 
 template <int K>
@@ -173,7 +174,7 @@ void ClosestCellIndex::resolve(Nearest<K> &n, Vec2f q) const {
     for (int k = 0; k < K; ++k) {
         const uint32_t e = n.index[k];
         if (e == ClosestCell::none || !(e & bent_flag)) continue;
-        const float d = bent_distance(e, q);
+        const float d = bent_distance(e, q, std::sqrt(n.d2[k]));
         n.index[k] = cell_of(e);
         n.d2[k] = d * d;
         any = true;
@@ -349,7 +350,8 @@ float ClosestCellIndex::distance_to_cell(sim::TriId t, Vec2f q, uint32_t cell) c
             if (cell_of(b->cell[l]) == cell) {
                 if (!(b->cell[l] & bent_flag))
                     return std::hypot(b->x[l] - q.x, b->y[l] - q.y);
-                return bent_distance(b->cell[l], q);
+                return bent_distance(b->cell[l], q,
+                                     std::hypot(b->x[l] - q.x, b->y[l] - q.y));
             }
     return std::numeric_limits<float>::infinity();
 }

@@ -239,7 +239,8 @@ class ClosestCellIndex {
                    ? entry
                    : m_bent_windows[entry & ~bent_flag].tag;
     }
-    float bent_distance(uint32_t entry, Vec2f q) const;
+    // `listed`: the distance from the entry's listed position (used between the windows).
+    float bent_distance(uint32_t entry, Vec2f q, float listed) const;
     // Bent entries among the results: their cells and exact distances. The order stays
     // the one of the listed positions (the searches agree with one another; where a
     // bent cell's exact distance overtakes the next cell's, F1 may exceed F2).

@@ -134,9 +134,9 @@ TEST(ClosestCell, DenseCellsOnLargeTrianglesGiveTheTrueVoronoiDiagram) {
 
 // The two layouts (fine regions, or one list per triangle below six spacings across).
 // Geodesic lists stand for a cell by one position per region, and the layouts' regions
-// differ: the same cells except within a hair of a boundary, and the same distances
-// there (exact for bent entries, the same window's source otherwise); the coarse layout
-// is the smaller.
+// differ: the same cells except within a hair of a boundary, and distances within the
+// positions' fit (closest_cell_build.cpp: at most 0.1 % over the exact distance); the
+// coarse layout is the smaller.
 TEST(ClosestCell, FineAndCoarseRegionsGiveTheSameCells) {
     const sim::Surface s = sim::build_surface(test::sample_mesh("cow.off"));
     const CellTable cells = random_cells(s.crps, 20000, 21);
@@ -155,7 +155,7 @@ TEST(ClosestCell, FineAndCoarseRegionsGiveTheSameCells) {
         ++n;
         if (a.index != b.index) continue;
         ++same;
-        ASSERT_NEAR(a.f1, b.f1, 1e-4f * a.f1);
+        ASSERT_NEAR(a.f1, b.f1, 1e-3f * a.f1);
     }
     EXPECT_GE(double(same) / n, 0.999);
 }
