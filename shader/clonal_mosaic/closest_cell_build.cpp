@@ -49,8 +49,23 @@ bool representative(const sim::SourcedWindow *begin, const sim::SourcedWindow *e
     constexpr double fit_below = 1e-6, fit_above = 1e-3;
     constexpr int per_side = 4, samples = (per_side + 1) * (per_side + 2) / 2;
     const int n = static_cast<int>(end - begin);
+    // The common case first: the cell's only window on the triangle is straight and
+    // covers the whole region (its wedge and the region are convex: the corners tell).
+    if (n == 1 && begin->window.sigma == 0 && begin->window.covers(region[0]) &&
+        begin->window.covers(region[1]) && begin->window.covers(region[2])) {
+        out.p = begin->window.source;
+        out.bent = false;
+        out.windows = begin;
+        out.num_windows = 1;
+        return true;
+    }
     thread_local std::vector<int> votes;
+    thread_local std::vector<char> whole;  // covers the whole region: no test per sample
     votes.assign(n, 0);
+    whole.resize(n);
+    for (int w = 0; w < n; ++w)
+        whole[w] = begin[w].window.covers(region[0]) &&
+                   begin[w].window.covers(region[1]) && begin[w].window.covers(region[2]);
     sim::Vec2d q[samples];
     double d[samples];
     int m = 0;
@@ -61,11 +76,11 @@ bool representative(const sim::SourcedWindow *begin, const sim::SourcedWindow *e
                 region[0] * (1 - b1 - b2) + region[1] * b1 + region[2] * b2;
             int best = -1;
             double best_d = inf;
-            for (int w = 0; w < n; ++w)
-                if (begin[w].window.covers(x)) {
-                    const double dw = begin[w].window.distance(x);
-                    if (dw < best_d) best_d = dw, best = w;
-                }
+            for (int w = 0; w < n; ++w) {
+                const double dw = begin[w].window.distance(x);
+                if (dw < best_d && (whole[w] || begin[w].window.covers(x)))
+                    best_d = dw, best = w;
+            }
             if (best < 0) continue;
             ++votes[best];
             q[m] = x;
@@ -429,20 +444,55 @@ double ClosestCellIndex::build_triangle(const sim::Crps &crps, sim::TriId t,
     double needed = 0;
     if (candidates.windows) {
         // Geodesic: each cell's windows on t, one position per region.
+        struct Group {
+            size_t begin, end;
+            double lower;
+        };
+        std::vector<Group> groups;
         const auto ws = candidates.windows->of(t);
         for (int layout = 0; layout < 2; ++layout)
             for (uint32_t k = 0; k < rs[layout] * rs[layout]; ++k) {
+                if (layout == 1 && rs[1] == rs[0]) {  // the same regions
+                    mapped[1][k] = mapped[0][k];
+                    continue;
+                }
                 const auto region = region_of(rs[layout], k);
                 auto &list = mapped[layout][k];
+                // Cells that cannot be among the three nearest anywhere in the region
+                // are skipped before their positions are fitted: a cell's distance over
+                // the region is at least its windows' least σ + |region − s|, and the
+                // third-nearest distance at most the one at the centre plus the way from
+                // the centre to the farthest corner.
+                const sim::Vec2d centre = (region[0] + region[1] + region[2]) / 3.0;
+                double reach_centre = 0;
+                for (const sim::Vec2d &c : region)
+                    reach_centre = std::max(reach_centre, length(c - centre));
+                groups.clear();
+                double at_centre[3] = {inf, inf, inf};
                 for (size_t i = 0; i < ws.size();) {
                     size_t j = i;
-                    while (j < ws.size() && ws[j].source == ws[i].source) ++j;
-                    Mapped m;
-                    m.cell = ws[i].source;
-                    m.tri = candidates.cell_tri[ws[i].source];
-                    if (representative(ws.data() + i, ws.data() + j, region, m))
-                        list.push_back(m);
+                    double lower = inf, here = inf;
+                    for (; j < ws.size() && ws[j].source == ws[i].source; ++j) {
+                        const sim::GeodesicWindow &w = ws[j].window;
+                        lower = std::min(lower, w.sigma + sim::point_triangle_distance(
+                                                              w.source, region.data()));
+                        if (w.covers(centre)) here = std::min(here, w.distance(centre));
+                    }
+                    groups.push_back({i, j, lower});
+                    if (here < at_centre[2]) {
+                        at_centre[2] = here;
+                        std::sort(at_centre, at_centre + 3);
+                    }
                     i = j;
+                }
+                const double cut = (at_centre[2] + reach_centre) * (1 + 1e-6);
+                for (const Group &g : groups) {
+                    if (g.lower > cut) continue;
+                    Mapped m;
+                    m.cell = ws[g.begin].source;
+                    m.tri = candidates.cell_tri[m.cell];
+                    if (representative(ws.data() + g.begin, ws.data() + g.end, region, m))
+                        list.push_back(m);
                 }
             }
         for (size_t i = 0; i < subs.size(); ++i)
