@@ -287,12 +287,17 @@ def t_crps_errors():
 
 
 def t_lookup_quality():
-    rows = [[mesh_name(r["mesh"]), num(r["triangles"]), pct(r["exhaustive_agreement"]),
-             pct(r["edge_disagreement"]), pct(r["teo_unfolding"]["edge_disagreement"]),
-             num(r["edge_samples"])] for r in lookup_runs()]
-    return table(["mesh", "triangles", "agreement with exhaustive search",
-                  "edge disagreement, edge maps (default)",
-                  "edge disagreement, edge + vertex maps (`teo`)", "edge samples"], rows)
+    rows = []
+    for r in lookup_runs():
+        for label, x in (("geodesic (default)", r), ("unfolding, edge maps", r["unfolding_edges"]),
+                         ("unfolding, edge + vertex maps (Teo)", r["teo_unfolding"])):
+            rows.append([mesh_name(r["mesh"]), label, pct(x["geodesic_same_cell"], 2),
+                         pct(x["geodesic_same_colour"], 2), pct(x["geodesic_impossible"], 2),
+                         pct(x["geodesic_distance_error_max"], 2), pct(x["edge_disagreement"]),
+                         pct(x["exhaustive_agreement"])])
+    return table(["mesh", "neighbourhood", "same cell as exact geodesics",
+                  "same colour", "impossible answers", "largest distance error",
+                  "edge disagreement (cracks)", "pruned = exhaustive"], rows)
 
 
 def t_hair_furnace():

@@ -10,6 +10,7 @@
 #include <random>
 
 #include "shader/clonal_mosaic/closest_cell.h"
+#include "shader/clonal_mosaic/pattern.h"
 #include "sim/crps/surface.h"
 #include "sim/crps/surface_sampling.h"
 #include "sim/geodesic/window_propagation.h"
@@ -108,6 +109,51 @@ TEST_P(GeodesicAgreement, ClosestCellIsTheGeodesicallyNearest) {
     std::printf(
         "%s: same cell %.4f, same colour %.4f, impossible %zu, off by > 1 %% %zu\n",
         GetParam(), same / n, same_colour / n, impossible, far);
+}
+
+// Simulated mosaics as `pelage sim` grows them (the cells crowd and clump, unlike random
+// ones), looked up through the renderer's MosaicPattern.
+TEST(GeodesicAgreementPresets, SimulatedPatternsOnTheSampleAnimals) {
+    test::TempDir tmp;
+    const std::pair<const char *, const char *> runs[] = {{"cow.off", "walter-cheetah"},
+                                                          {"bull.off", "teo-jaguar"}};
+    for (const auto &[mesh, preset] : runs) {
+        const std::string cells_path = tmp.file(std::string(preset) + ".cells");
+        ASSERT_EQ(test::run_pelage("sim --mesh " + test::sample_mesh(mesh) +
+                                   " --preset " + preset + " --seed 7 -o " + cells_path),
+                  0);
+        const MosaicPattern pattern(cells_path, test::sample_mesh(mesh));
+        const sim::Surface &s = pattern.surface();
+        const CellTable &cells = pattern.cells();
+        const test::ExactGeodesicOracle oracle(s.mesh);
+        std::vector<test::SurfaceLocation> sources;
+        for (sim::TriId t = 0; t < cells.num_triangles(); ++t)
+            for (uint32_t k = cells.row[t]; k < cells.row[t + 1]; ++k)
+                sources.push_back(location(s.crps, t, {cells.x[k], cells.z[k]}));
+        const auto queries = sim::sample_surface_uniform(s.crps, 4000, 45);
+        std::vector<test::SurfaceLocation> at;
+        for (const auto &q : queries) at.push_back(location(s.crps, q.tri, q.p));
+        const auto exact = oracle.nearest(sources, at);
+        size_t same = 0, same_colour = 0, far = 0;
+        for (size_t i = 0; i < queries.size(); ++i) {
+            const auto &q = queries[i];
+            const ClosestCell c =
+                pattern.index().find_nearest(q.tri, Vec2f{float(q.p.x), float(q.p.y)});
+            ASSERT_NE(c.index, ClosestCell::none);
+            same += c.index == exact[i].source;
+            same_colour += cells.type[c.index] == cells.type[exact[i].source];
+            double d = exact[i].distance;
+            if (c.index != exact[i].source)
+                d = oracle.distances(sources[c.index], {&at[i], 1})[0];
+            far += std::abs(c.f1 - d) > 0.01 * d;
+        }
+        const double n = double(queries.size());
+        EXPECT_GE(same / n, 0.995) << preset;
+        EXPECT_GE(same_colour / n, 0.999) << preset;
+        EXPECT_EQ(far, 0u) << preset;
+        std::printf("%s on %s: same cell %.4f, same colour %.4f\n", preset, mesh,
+                    same / n, same_colour / n);
+    }
 }
 
 INSTANTIATE_TEST_SUITE_P(SampleMeshes, GeodesicAgreement,
