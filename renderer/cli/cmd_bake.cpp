@@ -24,6 +24,10 @@ int run(const BakeOptions &o) {
                          "\"" + o.output + "\": the atlas is written as OpenEXR (.exr)");
     const Timer timer;
     const shader::clonal_mosaic::MosaicPattern pattern(o.cells, o.mesh);
+    if (pattern.transfer())
+        throw InputError(o.mesh, 0, "--mesh",
+                         "bake lays out the triangles the cells were grown on: give that "
+                         "mesh (this one is another mesh of the same shape)");
     shader::clonal_mosaic::BakedPattern baked;
     try {
         baked = shader::clonal_mosaic::bake_pattern(pattern, o.res, o.gutter);

@@ -1,6 +1,8 @@
 // `pelage lookup FILE.cells --mesh M --points PTS.txt`: for each `face b0 b1 b2` line,
 // the nearest cell's `id type distance` as the clonal_mosaic material finds it (the same
-// MosaicPattern and search). Faces are triangles of the mesh as pelage loads it.
+// MosaicPattern and search). Faces are triangles of the mesh as pelage loads it: the one
+// the cells were grown on, or another of its shape (shader/clonal_mosaic/
+// surface_transfer.h).
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -46,10 +48,13 @@ int run(const LookupOptions &o) {
         }
         if (!(ss >> b0 >> b1 >> b2) || (ss >> extra))
             throw InputError(o.points, line_no, "", "expected `face b0 b1 b2`");
-        if (face < 0 || size_t(face) >= pattern.num_triangles())
+        const size_t faces = pattern.transfer()
+                                 ? pattern.transfer()->num_render_triangles()
+                                 : pattern.num_triangles();
+        if (face < 0 || size_t(face) >= faces)
             throw InputError(o.points, line_no, "",
                              "face " + std::to_string(face) + " out of range [0, " +
-                                 std::to_string(pattern.num_triangles()) + ")");
+                                 std::to_string(faces) + ")");
         if (!std::isfinite(b0) || !std::isfinite(b1) || !std::isfinite(b2) ||
             std::abs(b0 + b1 + b2 - 1) > 1e-4 || b0 < -1e-4 || b1 < -1e-4 || b2 < -1e-4)
             throw InputError(o.points, line_no, "",
@@ -57,8 +62,11 @@ int run(const LookupOptions &o) {
         queries.push_back({sim::TriId(face), float(b1), float(b2)});
     }
     for (const Query &q : queries) {
+        // As the renderer: carried onto the simulation surface when the mesh is another.
+        shader::clonal_mosaic::SurfaceTransfer::Target at{q.face, q.b1, q.b2};
+        if (pattern.transfer()) at = pattern.transfer()->map(q.face, q.b1, q.b2);
         const shader::clonal_mosaic::ClosestCell c =
-            pattern.index().find_nearest(q.face, q.b1, q.b2);  // as the renderer
+            pattern.index().find_nearest(at.tri, at.b1, at.b2);
         if (c.index == shader::clonal_mosaic::ClosestCell::none) {
             std::printf("none none inf\n");
             continue;
@@ -77,7 +85,11 @@ Runner add_lookup_command(CLI::App &app) {
         "lookup",
         "Nearest cell (id type distance) of surface points, as the renderer finds it");
     sub->add_option("cells", o->cells, "The .cells file")->required();
-    sub->add_option("--mesh", o->mesh, "The mesh the cells were grown on")->required();
+    sub->add_option("--mesh", o->mesh,
+                    "The mesh the points lie on: the one the cells were grown on, or "
+                    "another of its "
+                    "shape (subdivided, remeshed, rescaled)")
+        ->required();
     sub->add_option("--points", o->points, "Text file of `face b0 b1 b2` lines")
         ->required();
     return [o] { return run(*o); };

@@ -50,6 +50,9 @@ struct ClonalMosaic {
     std::unique_ptr<shader::clonal_mosaic::MosaicPattern> pattern;
     const shader::clonal_mosaic::CellTable *cells_ptr = nullptr;
     const shader::clonal_mosaic::ClosestCellIndex *index = nullptr;
+    // Rendering another mesh of the simulation surface's shape: hits are carried onto it
+    // (surface_transfer.h); null when the render mesh is the simulation's own.
+    const shader::clonal_mosaic::SurfaceTransfer *transfer = nullptr;
     std::vector<TypeLook> types;
     std::vector<CellLook> looks;                            // per cell, CellTable order
     std::unique_ptr<shader::clonal_mosaic::MosaicLod> lod;  // null: lod = 0
@@ -230,11 +233,22 @@ std::unique_ptr<ClonalMosaic> make(const PelageParamSet &ps) {
         neighbourhood == "geodesic" ? shader::clonal_mosaic::Neighbourhood::geodesic
         : neighbourhood == "teo"    ? shader::clonal_mosaic::Neighbourhood::unfolding_teo
                                  : shader::clonal_mosaic::Neighbourhood::unfolding_edges);
-    if (cm->pattern->num_triangles() != ps.mesh.num_triangles)
-        throw std::invalid_argument("the renderer's mesh has " +
-                                    std::to_string(ps.mesh.num_triangles) +
-                                    " triangles, the .cells file " +
-                                    std::to_string(cm->pattern->num_triangles()));
+    cm->transfer = cm->pattern->transfer();
+    if (cm->transfer)
+        std::fprintf(stderr,
+                     "clonal_mosaic: %s was grown on another mesh of this shape (%zu "
+                     "triangles%s); it is rendered on %s (%zu triangles) through the "
+                     "closest points of that surface, at most %.2f %% of its size away\n",
+                     ps.mesh.cells_path, cm->pattern->num_triangles(),
+                     cm->transfer->similarity_applied() ? ", another size or place" : "",
+                     ps.mesh.mesh_path, cm->transfer->num_render_triangles(),
+                     100 * cm->transfer->max_deviation());
+    const size_t render_triangles = cm->transfer ? cm->transfer->num_render_triangles()
+                                                 : cm->pattern->num_triangles();
+    if (render_triangles != ps.mesh.num_triangles)
+        throw std::invalid_argument(
+            "the renderer's mesh has " + std::to_string(ps.mesh.num_triangles) +
+            " triangles, the pattern's " + std::to_string(render_triangles));
     cm->cells_ptr = &cm->pattern->cells();
     cm->index = &cm->pattern->index();
     const std::vector<sim::CellType> &types = cm->pattern->types();
@@ -403,8 +417,21 @@ void shade_cells(const ClonalMosaic &cm, const PelageHit *hit, PelageShade *out,
     }
 }
 
-void shade(const void *self, const PelageHit *hit, PelageShade *out) {
+void shade(const void *self, const PelageHit *render_hit, PelageShade *out) {
     const ClonalMosaic &cm = *static_cast<const ClonalMosaic *>(self);
+    const PelageHit *hit = render_hit;
+    PelageHit carried;
+    if (cm.transfer) {
+        if (render_hit->primitive_id >= cm.transfer->num_render_triangles()) return;
+        carried = *render_hit;
+        const auto at =
+            cm.transfer->map(render_hit->primitive_id, render_hit->b1, render_hit->b2);
+        carried.primitive_id = at.tri;
+        carried.b1 = at.b1;
+        carried.b2 = at.b2;
+        carried.footprint *= cm.transfer->scale();
+        hit = &carried;
+    }
     // Camera hits with a footprint that sees the exact pattern (most calls): when the
     // previous hit's cells provably answer this one too (coherent_lookup.h), blend them
     // here — what shade_any() would do, the same bits, with less code on the way.

@@ -5,10 +5,17 @@ namespace pelage::shader::clonal_mosaic {
 MosaicPattern::MosaicPattern(const std::string &cells_path, const std::string &mesh_path,
                              Neighbourhood neighbourhood)
     : m_data(sim::read_cells_file(cells_path)),
-      // The same loader as `pelage sim` and the renderer: identical triangles, so a hit's
-      // primitive id is the .cells triangle.
+      // The same loader as `pelage sim` and the renderer: for the mesh the cells were
+      // grown on, identical triangles, so a hit's primitive id is the .cells triangle.
       m_surface(std::make_unique<sim::Surface>(sim::build_surface(mesh_path))) {
-    sim::check_cells_match_mesh(m_data, m_surface->mesh, cells_path);
+    if (m_data.num_triangles() != m_surface->mesh.num_triangles() ||
+        m_data.mesh_hash != sim::mesh_hash(m_surface->mesh)) {
+        const sim::TriangleMesh render = std::move(m_surface->mesh);
+        m_surface = std::make_unique<sim::Surface>(
+            sim::build_surface(sim::surface_mesh(m_data, cells_path)));
+        m_transfer =
+            std::make_unique<SurfaceTransfer>(*m_surface, render, cells_path, mesh_path);
+    }
     std::vector<CellOnSurface> list;
     list.reserve(m_data.num_cells());
     for (sim::TriId t = 0; t < m_data.num_triangles(); ++t)

@@ -1,7 +1,10 @@
-// A simulated mosaic ready for lookups: the .cells file, the mesh it was grown on
-// (checked against the file's mesh hash) and the closest-cell index. The clonal_mosaic
-// plugin, the fur layer, `pelage lookup` and `pelage bake` all go through this one class,
-// so every tool sees exactly the renderer's pattern.
+// A simulated mosaic ready for lookups: the .cells file, the surface it was grown on and
+// the closest-cell index. The mesh given is the one rendered: when it is the one the
+// cells were grown on (its hash), lookups take its triangles directly; when it is
+// another mesh of the same shape, the simulation surface is rebuilt from the file and
+// transfer() carries the render mesh's points onto it (surface_transfer.h). The
+// clonal_mosaic plugin, the fur layer, `pelage lookup` and `pelage bake` all go through
+// this one class, so every tool sees exactly the renderer's pattern.
 #pragma once
 
 #include <memory>
@@ -9,6 +12,7 @@
 #include <vector>
 
 #include "shader/clonal_mosaic/closest_cell.h"
+#include "shader/clonal_mosaic/surface_transfer.h"
 #include "sim/cells_io/cells_file.h"
 #include "sim/crps/surface.h"
 
@@ -17,11 +21,14 @@ namespace pelage::shader::clonal_mosaic {
 class MosaicPattern {
   public:
     // Throws pelage::InputError for an unreadable or corrupt .cells file or a mesh that
-    // is not the one the cells were grown on.
+    // is not the shape the cells were grown on.
     MosaicPattern(const std::string &cells_path, const std::string &mesh_path,
                   Neighbourhood neighbourhood = Neighbourhood::geodesic);
 
+    // Triangles of the simulation surface (what the index and cells refer to).
     size_t num_triangles() const { return m_cells.num_triangles(); }
+    // The map from the render mesh to the simulation surface; null when they are one.
+    const SurfaceTransfer *transfer() const { return m_transfer.get(); }
     // Local CRPS coordinates of barycentric point (b1, b2) of triangle t.
     Vec2f point(sim::TriId t, float b1, float b2) const {
         const float *f = &m_tri[6 * size_t(t)];
@@ -31,13 +38,14 @@ class MosaicPattern {
     const CellTable &cells() const { return m_cells; }
     const std::vector<sim::CellType> &types() const { return m_data.types; }
     const sim::CellsData &data() const { return m_data; }
-    const sim::Surface &surface() const { return *m_surface; }
+    const sim::Surface &surface() const { return *m_surface; }  // the simulation's
 
   private:
     sim::CellsData m_data;
     std::unique_ptr<sim::Surface> m_surface;
     CellTable m_cells;
     std::unique_ptr<ClosestCellIndex> m_index;
+    std::unique_ptr<SurfaceTransfer> m_transfer;
     std::vector<float>
         m_tri;  // per triangle: v0 (2), e1 (2), e2 (2), local CRPS coordinates
 };

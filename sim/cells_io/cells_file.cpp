@@ -7,6 +7,7 @@
 
 #include "sim/core/atomic_file.h"
 #include "sim/core/input_error.h"
+#include "sim/mesh/mesh_clean.h"
 
 namespace pelage::sim {
 
@@ -346,6 +347,21 @@ CellsData read_cells_file(const std::string &path) {
     if (!in.read(reinterpret_cast<char *>(bytes.data()), size))
         throw InputError(path, 0, "", "read failed");
     return parse_cells(bytes, path);
+}
+
+TriangleMesh surface_mesh(const CellsData &data, const std::string &path) {
+    TriangleMesh corners;
+    corners.positions.reserve(3 * data.num_triangles());
+    for (const CrpsFrame &f : data.frames) {
+        const VertId first = static_cast<VertId>(corners.positions.size());
+        for (int c = 0; c < 3; ++c)
+            corners.positions.push_back(f.rotation.transpose_times(
+                {f.v[c].x + f.centre.x, f.y_offset, f.v[c].y + f.centre.y}));
+        corners.triangles.push_back({first, first + 1, first + 2});
+        corners.source_face.push_back(
+            static_cast<uint32_t>(corners.triangles.size() - 1));
+    }
+    return clean_mesh(corners, path);
 }
 
 void check_cells_match_mesh(const CellsData &data, const TriangleMesh &mesh,

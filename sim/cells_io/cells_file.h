@@ -70,6 +70,11 @@ CellsData parse_cells(const std::vector<uint8_t> &bytes, const std::string &name
 
 void write_cells_file(const std::string &path, const CellsData &data);  // atomic
 CellsData read_cells_file(const std::string &path);                     // one bulk read
+// The surface the cells were grown on, rebuilt from the file's frames (each reference
+// triangle carried back to 3D; corners welded as pelage welds a loaded mesh): the same
+// triangles in the same order, so the cells' frames are its CRPS frames.
+TriangleMesh surface_mesh(const CellsData &data, const std::string &path);
+
 // InputError when the file was made for another mesh.
 void check_cells_match_mesh(const CellsData &data, const TriangleMesh &mesh,
                             const std::string &path);

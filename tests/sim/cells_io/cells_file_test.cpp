@@ -92,6 +92,18 @@ TEST(CellsFile, CorruptedFilesAreRejected) {
     }
 }
 
+// The surface rebuilt from a file's frames is the one the cells were grown on: its own
+// CRPS reproduces the file's frames, so the cells' coordinates mean the same there.
+TEST(CellsFile, TheSurfaceRebuiltFromTheFramesHasTheFramesOfTheOriginal) {
+    const Surface s = build_surface(test::sample_mesh("cow.off"));
+    const CellsData d = small_cells(s);
+    const Surface rebuilt = build_surface(surface_mesh(d, "a.cells"));
+    ASSERT_EQ(rebuilt.crps.num_triangles(), s.crps.num_triangles());
+    for (TriId t = 0; t < s.crps.num_triangles(); ++t)
+        for (int c = 0; c < 3; ++c)
+            ASSERT_LT(length(rebuilt.crps.frame(t).v[c] - d.frames[t].v[c]), 1e-12) << t;
+}
+
 TEST(CellsFile, WrongMeshIsRefused) {
     const Surface s = build_surface("procedural:sphere:10x10");
     const CellsData d = small_cells(s);
