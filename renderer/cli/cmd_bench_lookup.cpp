@@ -27,6 +27,7 @@
 #include "sim/crps/surface.h"
 #include "sim/crps/surface_sampling.h"
 #include "sim/geodesic/windows_by_face.h"
+#include "sim/mesh/subdivide.h"
 
 namespace pelage::renderer::cli {
 namespace {
@@ -37,6 +38,7 @@ struct BenchLookupOptions {
     size_t queries = 1000000;
     uint64_t seed = 1;
     uint32_t subdivision = 3;
+    int density_levels = 2;  // the first mesh split at its edge midpoints 1 … n times
     ThreadOption threads;
 };
 
@@ -281,8 +283,56 @@ int run(const BenchLookupOptions &o) {
                     o.subdivision, exact);
         runs.push_back(run);
     }
-    const nlohmann::json j = {
-        {"benchmark", "lookup"}, {"queries", o.queries}, {"runs", runs}};
+    // --- Density: the first mesh split at its edge midpoints (the same surface, 4× the
+    // triangles each time), the same number of random cells: what the geodesic index
+    // costs per cell as triangles get small against the cells ---
+    nlohmann::json density = nlohmann::json::array();
+    {
+        sim::TriangleMesh mesh = sim::build_surface(meshes[0]).mesh;
+        double base_ns = 0, base_build = 0, base_mb = 0;
+        for (int level = 0; level <= o.density_levels; ++level) {
+            if (level > 0) mesh = sim::subdivide(mesh, sim::Subdivision::midpoint);
+            const sim::Surface s = sim::build_surface(mesh);
+            std::vector<shader::clonal_mosaic::CellOnSurface> list;
+            uint32_t id = 0;
+            for (const auto &p : sim::sample_surface_uniform(s.crps, o.cells, o.seed)) {
+                list.push_back({p.tri, p.p.x, p.p.y, id, uint8_t(id % 2)});
+                ++id;
+            }
+            const auto cells =
+                shader::clonal_mosaic::make_cell_table(s.crps.num_triangles(), list);
+            const shader::clonal_mosaic::ClosestCellIndex index(s.crps, cells);
+            std::vector<Query> queries;
+            for (const auto &p : sim::sample_surface_uniform(
+                     s.crps, std::min<size_t>(o.queries, 200000), o.seed + 1))
+                queries.push_back({p.tri, {float(p.p.x), float(p.p.y)}});
+            uint64_t sink = 0;
+            const CpuTimer timer;
+            for (const auto &[t, q] : queries) sink += index.find_nearest(t, q).index;
+            const double ns = 1e9 * timer.seconds() / double(queries.size());
+            const auto &st = index.stats();
+            if (level == 0)
+                base_ns = ns, base_build = st.build_seconds, base_mb = st.bytes;
+            density.push_back({{"subdivisions", level},
+                               {"triangles", s.mesh.num_triangles()},
+                               {"cells", cells.size()},
+                               {"ns_per_lookup_f1_only", ns},
+                               {"build_seconds", st.build_seconds},
+                               {"index_megabytes", st.bytes / 1e6},
+                               {"geodesic_windows", st.geodesic_windows},
+                               {"geodesic_megabytes", st.geodesic_bytes / 1e6},
+                               {"bent_entries", st.bent_entries},
+                               {"ns_ratio", ns / base_ns},
+                               {"build_ratio", st.build_seconds / base_build},
+                               {"index_bytes_ratio", double(st.bytes) / base_mb},
+                               {"checksum", sink}});
+        }
+    }
+    const nlohmann::json j = {{"benchmark", "lookup"},
+                              {"queries", o.queries},
+                              {"runs", runs},
+                              {"density_mesh", meshes[0]},
+                              {"density", density}};
     std::cout << j.dump(2) << std::endl;
     return 0;
 }
@@ -303,6 +353,10 @@ Runner add_bench_lookup(CLI::App &bench) {
     sub->add_option("--subdivision", o->subdivision,
                     "Search regions per triangle side, at most (1-3)")
         ->check(CLI::Range(1, 3));
+    sub->add_option("--density-levels", o->density_levels,
+                    "Times the first mesh is split at its edge midpoints for the density "
+                    "runs (0: none)")
+        ->check(CLI::Range(0, 4));
     o->threads.add_to(*sub);
     return [o] { return run(*o); };
 }

@@ -13,7 +13,7 @@
 #include "sim/core/input_error.h"
 #include "sim/crps/surface_sampling.h"
 #include "sim/mesh/mesh_write_obj.h"
-#include "tests/subdivide.h"
+#include "sim/mesh/subdivide.h"
 #include "tests/test_paths.h"
 
 namespace pelage::shader::clonal_mosaic {
@@ -74,7 +74,7 @@ struct Grown {
 TEST(SurfaceTransfer, TheSameSurfaceSplitAtItsMidpointsShowsTheSamePattern) {
     Grown g;
     const sim::TriangleMesh split =
-        test::subdivide(g.on_cow->surface().mesh, test::Subdivision::midpoint);
+        sim::subdivide(g.on_cow->surface().mesh, sim::Subdivision::midpoint);
     const double a =
         g.agreement(split, "split.obj", 20000, [&](sim::TriId t, sim::Vec3d p) {
             return g.type_on_cow(t / 4, p);  // child 4t + k lies on the cow's triangle t
@@ -86,7 +86,7 @@ TEST(SurfaceTransfer, TheSameSurfaceSplitAtItsMidpointsShowsTheSamePattern) {
 TEST(SurfaceTransfer, TheLoopSubdividedCowShowsThePatternAtItsClosestPoints) {
     Grown g;
     const sim::TriangleMesh smooth =
-        test::subdivide(g.on_cow->surface().mesh, test::Subdivision::loop);
+        sim::subdivide(g.on_cow->surface().mesh, sim::Subdivision::loop);
     const double a = g.agreement(smooth, "loop.obj", 4000, [&](sim::TriId, sim::Vec3d p) {
         return g.type_near(p);
     });

@@ -1,21 +1,19 @@
-#include "tests/subdivide.h"
+#include "sim/mesh/subdivide.h"
 
 #include <map>
 #include <set>
 #include <utility>
 
-namespace pelage::test {
+namespace pelage::sim {
 
-sim::TriangleMesh subdivide(const sim::TriangleMesh &m, Subdivision kind) {
-    using sim::Vec3d;
-    using sim::VertId;
+TriangleMesh subdivide(const TriangleMesh &m, Subdivision kind) {
     std::map<std::pair<VertId, VertId>, std::vector<VertId>> opposite;  // per edge
     for (const auto &t : m.triangles)
         for (int k = 0; k < 3; ++k) {
             const VertId a = t[k], b = t[(k + 1) % 3];
             opposite[{std::min(a, b), std::max(a, b)}].push_back(t[(k + 2) % 3]);
         }
-    sim::TriangleMesh out;
+    TriangleMesh out;
     out.positions = m.positions;
     if (kind == Subdivision::loop) {
         std::vector<std::set<VertId>> ring(m.num_vertices());
@@ -61,4 +59,4 @@ sim::TriangleMesh subdivide(const sim::TriangleMesh &m, Subdivision kind) {
     return out;
 }
 
-}  // namespace pelage::test
+}  // namespace pelage::sim
