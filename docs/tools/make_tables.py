@@ -191,6 +191,18 @@ def t_lookup_lanes():
                   "same results"], rows)
 
 
+def t_lookup_density():
+    d = data("bench_lookup")
+    rows = [[str(r["subdivisions"]), num(r["triangles"]), num(r["cells"]),
+             num(r["ns_per_lookup_f1_only"]), f"{r['ns_ratio']:.2f}", num(r["build_seconds"]),
+             f"{r['build_ratio']:.2f}", num(r["index_megabytes"]),
+             num(r["geodesic_megabytes"])] for r in d["density"]]
+    return (table(["midpoint splits", "triangles", "cells", "F1 random, ns", "× first",
+                   "index build s", "× first", "index MB", "geodesic windows while building, MB"],
+                  rows) + f"\n{mesh_name(d['density_mesh'])}, the same surface split at its edge "
+            "midpoints; thread CPU time for lookups, wall time for the build (all cores).\n")
+
+
 def t_render():
     d = data("bench_render")
     return table(["quantity", "value"], [
@@ -355,7 +367,8 @@ def t_looks():
 
 TABLES = {
     "machine": t_machine, "crps": t_crps, "sim": t_sim, "default-job": t_default_job,
-    "lookup": t_lookup, "lookup-lanes": t_lookup_lanes, "render": t_render,
+    "lookup": t_lookup, "lookup-lanes": t_lookup_lanes,
+    "lookup-density": t_lookup_density, "render": t_render,
     "compare": t_compare, "hair": t_hair, "fur": t_fur, "presets": t_presets,
     "crps-errors": t_crps_errors, "lookup-quality": t_lookup_quality,
     "hair-furnace": t_hair_furnace, "gallery": t_gallery, "looks": t_looks,
