@@ -67,10 +67,12 @@ TEST(CellsCli, BadPointLinesAreExit2WithTheLine) {
                    nullptr, &err),
         2);
     EXPECT_NE(err.find("bad.txt:1"), std::string::npos) << err;
+    // Another shape (a torus for cells grown on a sphere) is refused.
     EXPECT_EQ(
-        run_pelage("lookup " + cells + " --mesh procedural:icosphere:2 --points " + pts,
+        run_pelage("lookup " + cells + " --mesh procedural:torus:24x12 --points " + pts,
                    nullptr, &err),
         2);
+    EXPECT_NE(err.find("another surface"), std::string::npos) << err;
 }
 
 }  // namespace

@@ -265,9 +265,12 @@ TEST(ClonalMosaicPlugin, RefusesMissingCellsWrongMeshAndBadParameters) {
     const Instance no_cells({}, nullptr);
     EXPECT_EQ(no_cells.self, nullptr);
     EXPECT_NE(no_cells.error.find("cells"), std::string::npos) << no_cells.error;
-    const Instance wrong_mesh({}, cells.c_str(), "procedural:icosphere:2");
+    // Another shape: a torus for cells grown on a sphere (another tessellation of the
+    // sphere would be taken, through closest points: surface_transfer_test.cpp).
+    const Instance wrong_mesh({}, cells.c_str(), "procedural:torus:24x12");
     EXPECT_EQ(wrong_mesh.self, nullptr);
-    EXPECT_NE(wrong_mesh.error.find("mesh"), std::string::npos) << wrong_mesh.error;
+    EXPECT_NE(wrong_mesh.error.find("another surface"), std::string::npos)
+        << wrong_mesh.error;
     const Instance bad_rough({{"roughness", "Q=0.3"}}, cells.c_str());
     EXPECT_EQ(bad_rough.self, nullptr);
     EXPECT_NE(bad_rough.error.find("\"Q\""), std::string::npos) << bad_rough.error;
