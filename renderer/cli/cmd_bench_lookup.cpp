@@ -220,6 +220,19 @@ nlohmann::json measure(const sim::Surface &s,
             {"checksum", sink}};
 }
 
+// Area-uniform random cells stand in for a simulated mosaic: same density, and the
+// search does not care how the cells got there. Types alternate.
+shader::clonal_mosaic::CellTable random_cells(const sim::Crps &crps, size_t n,
+                                              uint64_t seed) {
+    std::vector<shader::clonal_mosaic::CellOnSurface> list;
+    uint32_t id = 0;
+    for (const auto &p : sim::sample_surface_uniform(crps, n, seed)) {
+        list.push_back({p.tri, p.p.x, p.p.y, id, uint8_t(id % 2)});
+        ++id;
+    }
+    return shader::clonal_mosaic::make_cell_table(crps.num_triangles(), list);
+}
+
 int run(const BenchLookupOptions &o) {
     const auto control = o.threads.apply();
     std::vector<std::string> meshes = o.meshes;
@@ -235,16 +248,8 @@ int run(const BenchLookupOptions &o) {
     nlohmann::json runs = nlohmann::json::array();
     for (const std::string &mesh : meshes) {
         const sim::Surface s = sim::build_surface(mesh);
-        // Area-uniform random cells stand in for a simulated mosaic: same density, and
-        // the search does not care how the cells got there.
-        std::vector<shader::clonal_mosaic::CellOnSurface> list;
-        uint32_t id = 0;
-        for (const auto &p : sim::sample_surface_uniform(s.crps, o.cells, o.seed)) {
-            list.push_back({p.tri, p.p.x, p.p.y, id, uint8_t(id % 2)});
-            ++id;
-        }
         const shader::clonal_mosaic::CellTable cells =
-            shader::clonal_mosaic::make_cell_table(s.crps.num_triangles(), list);
+            random_cells(s.crps, o.cells, o.seed);
         std::vector<Query> queries;
         for (const auto &p : sim::sample_surface_uniform(s.crps, o.queries, o.seed + 1))
             queries.push_back({p.tri, {float(p.p.x), float(p.p.y)}});
@@ -293,14 +298,7 @@ int run(const BenchLookupOptions &o) {
         for (int level = 0; level <= o.density_levels; ++level) {
             if (level > 0) mesh = sim::subdivide(mesh, sim::Subdivision::midpoint);
             const sim::Surface s = sim::build_surface(mesh);
-            std::vector<shader::clonal_mosaic::CellOnSurface> list;
-            uint32_t id = 0;
-            for (const auto &p : sim::sample_surface_uniform(s.crps, o.cells, o.seed)) {
-                list.push_back({p.tri, p.p.x, p.p.y, id, uint8_t(id % 2)});
-                ++id;
-            }
-            const auto cells =
-                shader::clonal_mosaic::make_cell_table(s.crps.num_triangles(), list);
+            const auto cells = random_cells(s.crps, o.cells, o.seed);
             const shader::clonal_mosaic::ClosestCellIndex index(s.crps, cells);
             std::vector<Query> queries;
             for (const auto &p : sim::sample_surface_uniform(
