@@ -2,21 +2,22 @@
 // ch. 6, §6.2 and Fig. 6.2.
 //
 // A surface point (t, q) — q in triangle t's local CRPS coordinates — is coloured by the
-// cell nearest to it across the unfolded neighbourhood of t. Teo maps the *query* into
-// each candidate triangle's frame (one rigid map per triangle) instead of mapping every
-// cell into t's frame, visits triangles outward from t, and shrinks the search radius
-// D_min whenever a closer cell turns up.
+// cell nearest to it on the surface. Teo unfolds t's neighbourhood and maps the *query*
+// into each candidate triangle's frame (one rigid map per triangle) instead of mapping
+// every cell into t's frame, visits triangles outward from t, and shrinks the search
+// radius D_min whenever a closer cell turns up.
 //
 // What is precomputed (Teo's method, made fast). Each triangle t is split into n²
 // sub-triangles S (regular subdivision in barycentric coordinates; n grows with the
-// triangle's size, about two per cell spacing across, up to 6). For each S, t's
-// breadth-first unfolding (sim/crps/unfold.h) supplies every cell that can be among the
-// three nearest of some point of S: those within R_S of S, where R_S bounds F3 on S (at
-// most d_3 + b_S, d_3 the distance from S's centroid to its third-nearest cell and b_S
-// S's radius, because F3(q) <= |q - c_3| <= d_3 + b_S). Each such cell is stored *already
-// carried into t's frame* by its triangle's reverse map F[j→t]: the transform Teo applies
-// per candidate triangle at every lookup is applied once here, so a lookup is a scan of
-// one flat list.
+// triangle's size, about two per cell spacing across, up to 6). For each S, the cells'
+// exact geodesic windows on t (sim/geodesic; see Neighbourhood below for the planar
+// unfoldings kept to compare with) supply every cell that can be among the three nearest
+// of some point of S: those within R_S of S, where R_S bounds F3 on S (at most d_3 + b_S,
+// d_3 the distance from S's centroid to its third-nearest cell and b_S S's radius,
+// because F3(q) <= |q - c_3| <= d_3 + b_S). Each such cell is stored *already placed in
+// t's frame*, at the position that reproduces its surface distance over the region (see
+// bent_flag): the work Teo does per candidate triangle at every lookup is done once here,
+// so a lookup is a scan of one flat list.
 //
 // Regions. The lists of neighbouring sub-triangles overlap heavily (the same cells at
 // the same positions), so a lookup searches a *region* of t, whose list is the union of
@@ -55,10 +56,9 @@
 // whose branches predict well on camera hits (they come in runs along one list). Its
 // second pass, rare, always uses the insertion scan.
 //
-// By default the unfolding walks edges only (sim/crps/unfold.h, UnfoldPaths): the two
-// triangles on either side of an edge then see identical maps for every triangle reached
-// through that edge, which reduces Teo's "cracks" (§6.3); `pelage bench lookup` measures
-// both.
+// With exact geodesics, the two triangles on either side of an edge agree on its points'
+// nearest cells, so Teo's "cracks" (§6.3) vanish; `pelage bench lookup` measures them
+// for every neighbourhood.
 //
 // Thread-safety: immutable after construction; find() is const and allocation-free.
 #pragma once
