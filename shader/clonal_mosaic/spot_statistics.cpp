@@ -8,26 +8,12 @@
 #include <numbers>
 #include <numeric>
 
+#include "sim/core/disjoint_sets.h"
+
 namespace pelage::shader::clonal_mosaic {
 namespace {
 
 constexpr uint32_t none = ClosestCell::none;
-
-struct DisjointSets {
-    std::vector<uint32_t> parent;
-    explicit DisjointSets(size_t n) : parent(n) {
-        std::iota(parent.begin(), parent.end(), 0u);
-    }
-    uint32_t find(uint32_t a) {
-        while (parent[a] != a) a = parent[a] = parent[parent[a]];
-        return a;
-    }
-    void unite(uint32_t a, uint32_t b) {
-        a = find(a);
-        b = find(b);
-        if (a != b) parent[std::max(a, b)] = std::min(a, b);  // deterministic roots
-    }
-};
 
 // One triangle's barycentric grid of n steps: vertex (i, j) sits at b1 = i/n, b2 = j/n.
 struct Grid {
@@ -140,7 +126,7 @@ SpotStatistics measure_spot_statistics(const MosaicPattern &pattern, double reso
     // --- Spots: connected non-background cells ---
     const int bg = background_type(pattern.types());
     auto is_spot = [&](uint32_t c) { return int(cells.type[c]) != bg; };
-    DisjointSets sets(m);
+    sim::DisjointSets sets(m);
     for (const auto &[a, b] : pairs)
         if (is_spot(a) && is_spot(b)) sets.unite(a, b);
     std::vector<uint32_t> spot_of(m, none);
@@ -231,7 +217,7 @@ SpotStatistics measure_spot_statistics(const MosaicPattern &pattern, double reso
 
     // --- The background: components, the largest, the share touching a spot ---
     if (bg >= 0) {
-        DisjointSets bsets(m);
+        sim::DisjointSets bsets(m);
         for (const auto &[a, b] : pairs)
             if (!is_spot(a) && !is_spot(b)) bsets.unite(a, b);
         std::vector<double> component_area(m, 0.0);

@@ -3,6 +3,8 @@
 #include <cmath>
 #include <numeric>
 
+#include "sim/core/disjoint_sets.h"
+
 namespace pelage::sim {
 
 namespace {
@@ -12,23 +14,6 @@ int find_type(const CellsData &d, const std::string &name, int fallback) {
         if (d.types[i].name == name) return static_cast<int>(i);
     return fallback < static_cast<int>(d.types.size()) ? fallback : -1;
 }
-
-struct DisjointSets {
-    std::vector<uint32_t> parent;
-    explicit DisjointSets(size_t n) : parent(n) {
-        std::iota(parent.begin(), parent.end(), 0u);
-    }
-    uint32_t find(uint32_t a) {
-        while (parent[a] != a) a = parent[a] = parent[parent[a]];
-        return a;
-    }
-    void unite(uint32_t a, uint32_t b) {
-        a = find(a);
-        b = find(b);
-        if (a != b)
-            parent[std::max(a, b)] = std::min(a, b);  // lower root wins: deterministic
-    }
-};
 
 }  // namespace
 

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <numeric>
 
+#include "sim/core/disjoint_sets.h"
+
 namespace pelage::sim {
 namespace {
 
@@ -35,12 +37,8 @@ GeodesicMesh::GeodesicMesh(const Crps &crps, const GeodesicMeshOptions &options)
     for (VertId v = 0; v < nv && v + 1 < topo.fan_row.size(); ++v) {
         if (topo.fan_ordered[v]) continue;
         const auto fan = topo.fan_of(v);
-        std::vector<uint32_t> group(fan.size());
-        std::iota(group.begin(), group.end(), 0u);
-        auto root = [&](uint32_t a) {
-            while (group[a] != a) a = group[a] = group[group[a]];
-            return a;
-        };
+        DisjointSets group(fan.size());
+        auto root = [&](uint32_t a) { return group.find(a); };
         for (size_t i = 0; i < fan.size(); ++i)
             for (int k = 0; k < 3; ++k) {
                 const auto &c = crps.corners(fan[i]);
@@ -48,7 +46,7 @@ GeodesicMesh::GeodesicMesh(const Crps &crps, const GeodesicMeshOptions &options)
                 const TriId g = topo.across(fan[i], k);
                 const auto it = std::find(fan.begin(), fan.end(), g);
                 if (g != invalid_id && it != fan.end())
-                    group[root(uint32_t(i))] = root(uint32_t(it - fan.begin()));
+                    group.unite(uint32_t(i), uint32_t(it - fan.begin()));
             }
         std::vector<uint32_t> id_of_root(fan.size(), invalid_id);
         bool first = true;

@@ -52,7 +52,7 @@ struct Grown {
     // reference's type; `reference(t, p)` for render triangle t and 3D point p.
     template <typename Reference>
     double agreement(const sim::TriangleMesh &render, const std::string &name, size_t n,
-                     Reference reference, const MosaicPattern **out = nullptr) {
+                     Reference reference) {
         const std::string path = tmp.file(name);
         sim::write_obj(path, render, {});
         const MosaicPattern pattern(cells, path);
