@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 #include "renderer/cli/common.h"
 #include "renderer/core/progress.h"
@@ -16,12 +17,15 @@
 #include "sim/crps/body_length.h"
 #include "sim/crps/surface.h"
 #include "sim/mosaic/cm_simulation.h"
+#include "sim/mosaic/final_cells.h"
+#include "sim/remesh/cell_scale_surface.h"
 
 namespace pelage::renderer::cli {
 namespace {
 
 struct SimOptions {
     std::string mesh, preset, output, stats_json, relax;
+    std::string surface = "auto";
     uint64_t cells = 0;
     uint64_t seed = 1;
     ThreadOption threads;
@@ -35,13 +39,39 @@ int run_sim(const SimOptions &o) {
         preset.params.relax = sim::RelaxMode::local;
     else if (o.relax == "global")
         preset.params.relax = sim::RelaxMode::global;
-    const sim::Surface surface = sim::build_surface(o.mesh);
+    const sim::Surface input = sim::build_surface(o.mesh);
+
+    // --- The simulation surface: the input, or a copy at the cells' scale when its
+    //     triangles are much smaller than the cells (sim/remesh/cell_scale_surface.h).
+    //     The initial count comes from the input, so both give the same pattern scale.
+    const uint64_t initial =
+        o.cells > 0 ? o.cells : sim::initial_cell_count(preset.params, input.crps);
+    double input_area = 0;
+    for (sim::TriId t = 0; t < input.crps.num_triangles(); ++t)
+        input_area += input.crps.frame(t).area;
+    sim::CellScaleReport cell_scale;
+    std::optional<sim::Surface> simplified;
+    if (o.surface == "auto") {
+        sim::TriangleMesh mesh = sim::cell_scale_surface(
+            input.mesh, input_area,
+            sim::expected_final_cells(preset.params, preset.types, initial), &cell_scale);
+        if (cell_scale.simplified) simplified.emplace(sim::build_surface(std::move(mesh)));
+    }
+    const sim::Surface &surface = simplified ? *simplified : input;
+    if (cell_scale.simplified)
+        fmt::print("pelage sim: simulating on {} of the input's {} triangles (edges under "
+                   "{:.3g} collapsed, surface kept within {:.3g} of the input, final cell "
+                   "spacing about {:.3g}); the .cells file renders on {} through closest "
+                   "points, or use --surface input\n",
+                   cell_scale.output_triangles, cell_scale.input_triangles,
+                   cell_scale.edge_length, cell_scale.max_deviation, cell_scale.cell_spacing,
+                   o.mesh);
 
     sim::CmSimulation simulation(surface.crps, preset.types, preset.params, o.seed);
     {
         renderer::Progress progress("pelage sim", 1000,
                                     renderer::Progress::stderr_is_tty());
-        simulation.initialize(o.cells);
+        simulation.initialize(initial);
         uint64_t shown = 0;
         simulation.run([&](double f) {
             const uint64_t now = static_cast<uint64_t>(std::clamp(f, 0.0, 1.0) * 1000);
@@ -51,13 +81,23 @@ int run_sim(const SimOptions &o) {
         progress.finish();
     }
     const sim::SimStats &st = simulation.stats();
-    const nlohmann::json params = {
+    nlohmann::json params = {
         {"preset", nlohmann::json::parse(preset.json_text)},
         {"mesh", o.mesh},
         {"seed", o.seed},
         {"initial_cells", st.initial_cells},
         {"relax", preset.params.relax == sim::RelaxMode::local ? "local" : "global"},
     };
+    nlohmann::json surface_json = {{"input_triangles", cell_scale.input_triangles},
+                                   {"triangles", surface.mesh.num_triangles()},
+                            {"input_triangles", input.mesh.num_triangles()},
+                            {"simplified", cell_scale.simplified},
+                                   {"simplified", cell_scale.simplified}};
+    if (cell_scale.simplified) {
+        surface_json["edge_length"] = cell_scale.edge_length;
+        surface_json["max_deviation"] = cell_scale.max_deviation;
+    }
+    params["simulation_surface"] = surface_json;
     const sim::CellsData data =
         sim::make_cells_data(surface.mesh, surface.crps, simulation.types(),
                              simulation.cells(), params.dump(), o.seed);
@@ -94,6 +134,8 @@ int run_sim(const SimOptions &o) {
                             {"seed", o.seed},
                             {"relax", params["relax"]},
                             {"triangles", surface.mesh.num_triangles()},
+                            {"input_triangles", input.mesh.num_triangles()},
+                            {"simplified", cell_scale.simplified},
                             {"area", ps.area},
                             {"body_length", body_length},
                             {"initial_cells", st.initial_cells},
@@ -137,6 +179,12 @@ Runner add_sim_command(CLI::App &app) {
                     "Seed: same mesh, preset and seed give identical .cells");
     sub->add_option("--relax", o->relax, "Relaxation mode (overrides the preset)")
         ->check(CLI::IsMember({"local", "global"}));
+    sub->add_option("--surface", o->surface,
+                    "auto: simulate on a copy of the mesh simplified to the cells' scale "
+                    "when its triangles are much smaller than the cells; input: on the "
+                    "mesh as it is")
+        ->check(CLI::IsMember({"auto", "input"}))
+        ->capture_default_str();
     sub->add_option("-o,--output", o->output, "Write the cells to this .cells file");
     sub->add_option("--stats-json", o->stats_json,
                     "Write the run summary as JSON to this file");

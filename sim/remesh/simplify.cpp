@@ -1,0 +1,79 @@
+#include "sim/remesh/simplify.h"
+
+#include <CGAL/Simple_cartesian.h>
+#include <CGAL/Polygon_mesh_processing/orient_polygon_soup.h>
+#include <CGAL/Polygon_mesh_processing/polygon_soup_to_polygon_mesh.h>
+#include <CGAL/Surface_mesh.h>
+#include <CGAL/Surface_mesh_simplification/Policies/Edge_collapse/Bounded_normal_change_filter.h>
+#include <CGAL/Surface_mesh_simplification/Policies/Edge_collapse/Edge_length_cost.h>
+#include <CGAL/Surface_mesh_simplification/Policies/Edge_collapse/Edge_length_stop_predicate.h>
+#include <CGAL/Surface_mesh_simplification/Policies/Edge_collapse/LindstromTurk_placement.h>
+#include <CGAL/Surface_mesh_simplification/Policies/Edge_collapse/Bounded_distance_placement.h>
+#include <CGAL/Surface_mesh_simplification/edge_collapse.h>
+
+#include <array>
+#include <cmath>
+#include <vector>
+
+namespace pelage::sim {
+namespace {
+
+using Kernel = CGAL::Simple_cartesian<double>;
+using Point = Kernel::Point_3;
+using CgalMesh = CGAL::Surface_mesh<Point>;
+namespace SMS = CGAL::Surface_mesh_simplification;
+namespace PMP = CGAL::Polygon_mesh_processing;
+
+}  // namespace
+
+double mean_edge_length(const TriangleMesh &mesh) {
+    double sum = 0;
+    for (TriId t = 0; t < mesh.num_triangles(); ++t)
+        for (int c = 0; c < 3; ++c)
+            sum += length(mesh.vertex(t, (c + 1) % 3) - mesh.vertex(t, c));
+    return mesh.num_triangles() > 0 ? sum / (3.0 * double(mesh.num_triangles())) : 0.0;
+}
+
+TriangleMesh simplify(const TriangleMesh &mesh, const SimplifyOptions &options) {
+    std::vector<Point> points;
+    points.reserve(mesh.num_vertices());
+    for (const Vec3d &p : mesh.positions) points.emplace_back(p.x, p.y, p.z);
+    std::vector<std::array<size_t, 3>> faces;
+    faces.reserve(mesh.num_triangles());
+    for (const auto &t : mesh.triangles) faces.push_back({t[0], t[1], t[2]});
+    // Splits vertices where fans meet only at a point (and edges shared by more than
+    // two faces), which a halfedge mesh cannot hold; keeps the input's orientation
+    // where it is consistent.
+    PMP::orient_polygon_soup(points, faces);
+    CgalMesh cm;
+    PMP::polygon_soup_to_polygon_mesh(points, faces, cm);
+
+    SMS::Edge_length_stop_predicate<double> stop(options.edge_length);
+    SMS::Bounded_normal_change_filter<> filter;
+    SMS::Bounded_distance_placement<SMS::LindstromTurk_placement<CgalMesh>, Kernel> placement(
+        options.max_deviation);
+    SMS::edge_collapse(cm, stop,
+                       CGAL::parameters::get_cost(SMS::Edge_length_cost<CgalMesh>())
+                           .get_placement(placement)
+                           .filter(filter));
+    cm.collect_garbage();
+
+    TriangleMesh out;
+    out.positions.reserve(cm.number_of_vertices());
+    for (auto v : cm.vertices()) {
+        const Point &p = cm.point(v);
+        out.positions.push_back({p.x(), p.y(), p.z()});
+    }
+    out.triangles.reserve(cm.number_of_faces());
+    for (auto f : cm.faces()) {
+        std::array<VertId, 3> tri{};
+        int k = 0;
+        for (auto v : CGAL::vertices_around_face(cm.halfedge(f), cm))
+            tri[k++] = static_cast<VertId>(v.idx());
+        out.source_face.push_back(static_cast<uint32_t>(out.triangles.size()));
+        out.triangles.push_back(tri);
+    }
+    return out;
+}
+
+}  // namespace pelage::sim

@@ -1,0 +1,34 @@
+// A coarser copy of a mesh for the simulation to run on when the input's triangles are
+// much smaller than the cells: the relaxation's neighbourhoods are built per triangle,
+// so their cost grows with triangles per cell, while the pattern only needs the surface
+// resolved at the cells' scale.
+//
+// Edges are collapsed shortest first (Garland & Heckbert's framework as in CGAL's
+// Surface_mesh_simplification, Lindstrom & Turk's placement, "Fast and memory efficient
+// polygonal simplification", 1998) until every edge is at least `edge_length` long.
+// A collapse is refused when it would move the surface farther than `max_deviation`
+// from the input (the polyhedral envelope of Manzi et al. in CGAL, "Exact and Efficient
+// Polyhedral Envelope Containment Check", 2020) or turn a face's normal by more than
+// 90° (CGAL's bounded normal change filter), so thin parts, ears and horns stay where
+// they are at the price of keeping more triangles there. The topology is kept (link
+// condition); a vertex where two fans meet only at a point is split first.
+#pragma once
+
+#include "sim/mesh/mesh.h"
+
+namespace pelage::sim {
+
+struct SimplifyOptions {
+    double edge_length = 0;    // collapse edges shorter than this
+    double max_deviation = 0;  // the result stays within this distance of the input
+};
+
+// The simplified mesh (positions and triangles only; corner normals and UVs are
+// dropped, source_face is the triangle's index). Returns the input's geometry
+// unchanged when no edge is shorter than edge_length.
+TriangleMesh simplify(const TriangleMesh &mesh, const SimplifyOptions &options);
+
+// The mean edge length of a mesh (each triangle's three edges; shared edges twice).
+double mean_edge_length(const TriangleMesh &mesh);
+
+}  // namespace pelage::sim
