@@ -7,9 +7,9 @@
 
 #include <algorithm>
 #include <cmath>
-#include <optional>
 
 #include "renderer/cli/common.h"
+#include "renderer/cli/simulation_surface.h"
 #include "renderer/core/progress.h"
 #include "sim/cells_io/cells_file.h"
 #include "sim/cells_io/pattern_stats.h"
@@ -17,8 +17,6 @@
 #include "sim/crps/body_length.h"
 #include "sim/crps/surface.h"
 #include "sim/mosaic/cm_simulation.h"
-#include "sim/mosaic/final_cells.h"
-#include "sim/remesh/cell_scale_surface.h"
 
 namespace pelage::renderer::cli {
 namespace {
@@ -42,22 +40,11 @@ int run_sim(const SimOptions &o) {
     const sim::Surface input = sim::build_surface(o.mesh);
 
     // --- The simulation surface: the input, or a copy at the cells' scale when its
-    //     triangles are much smaller than the cells (sim/remesh/cell_scale_surface.h).
-    //     The initial count comes from the input, so both give the same pattern scale.
-    const uint64_t initial =
-        o.cells > 0 ? o.cells : sim::initial_cell_count(preset.params, input.crps);
-    double input_area = 0;
-    for (sim::TriId t = 0; t < input.crps.num_triangles(); ++t)
-        input_area += input.crps.frame(t).area;
-    sim::CellScaleReport cell_scale;
-    std::optional<sim::Surface> simplified;
-    if (o.surface == "auto") {
-        sim::TriangleMesh mesh = sim::cell_scale_surface(
-            input.mesh, input_area,
-            sim::expected_final_cells(preset.params, preset.types, initial), &cell_scale);
-        if (cell_scale.simplified) simplified.emplace(sim::build_surface(std::move(mesh)));
-    }
-    const sim::Surface &surface = simplified ? *simplified : input;
+    //     triangles are much smaller than the cells ---
+    const SimulationSurface chosen(input, preset, o.cells, o.surface == "auto");
+    const sim::Surface &surface = chosen.surface();
+    const sim::CellScaleReport &cell_scale = chosen.report();
+    const uint64_t initial = chosen.initial_cells();
     if (cell_scale.simplified)
         fmt::print("pelage sim: simulating on {} of the input's {} triangles (edges under "
                    "{:.3g} collapsed, surface kept within {:.3g} of the input, final cell "
@@ -90,8 +77,6 @@ int run_sim(const SimOptions &o) {
     };
     nlohmann::json surface_json = {{"input_triangles", cell_scale.input_triangles},
                                    {"triangles", surface.mesh.num_triangles()},
-                            {"input_triangles", input.mesh.num_triangles()},
-                            {"simplified", cell_scale.simplified},
                                    {"simplified", cell_scale.simplified}};
     if (cell_scale.simplified) {
         surface_json["edge_length"] = cell_scale.edge_length;

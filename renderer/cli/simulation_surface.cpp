@@ -1,0 +1,23 @@
+#include "renderer/cli/simulation_surface.h"
+
+#include "sim/mosaic/cm_simulation.h"
+#include "sim/mosaic/final_cells.h"
+
+namespace pelage::renderer::cli {
+
+SimulationSurface::SimulationSurface(const sim::Surface &input, const sim::Preset &preset,
+                                     uint64_t cells, bool simplify)
+    : m_input(input),
+      m_initial(cells > 0 ? cells : sim::initial_cell_count(preset.params, input.crps)) {
+    double area = 0;
+    for (sim::TriId t = 0; t < input.crps.num_triangles(); ++t)
+        area += input.crps.frame(t).area;
+    m_report.input_triangles = m_report.output_triangles = input.mesh.num_triangles();
+    if (!simplify) return;
+    sim::TriangleMesh mesh = sim::cell_scale_surface(
+        input.mesh, area, sim::expected_final_cells(preset.params, preset.types, m_initial),
+        &m_report);
+    if (m_report.simplified) m_simplified.emplace(sim::build_surface(std::move(mesh)));
+}
+
+}  // namespace pelage::renderer::cli

@@ -1,0 +1,31 @@
+// The surface `pelage sim` and `pelage bench sim` grow a pattern on: the input mesh, or a
+// copy simplified to the scale of the cells the preset is expected to end with
+// (sim/remesh/cell_scale_surface.h). The initial cell count is taken from the input, so
+// both surfaces give the same pattern scale.
+#pragma once
+
+#include <optional>
+
+#include "sim/crps/surface.h"
+#include "sim/mosaic/cell_types.h"
+#include "sim/remesh/cell_scale_surface.h"
+
+namespace pelage::renderer::cli {
+
+class SimulationSurface {
+  public:
+    // `cells` > 0 overrides the preset's initial count; `simplify` false keeps the input.
+    SimulationSurface(const sim::Surface &input, const sim::Preset &preset, uint64_t cells,
+                      bool simplify);
+    const sim::Surface &surface() const { return m_simplified ? *m_simplified : m_input; }
+    uint64_t initial_cells() const { return m_initial; }
+    const sim::CellScaleReport &report() const { return m_report; }
+
+  private:
+    const sim::Surface &m_input;
+    std::optional<sim::Surface> m_simplified;
+    uint64_t m_initial = 0;
+    sim::CellScaleReport m_report;
+};
+
+}  // namespace pelage::renderer::cli
