@@ -1,8 +1,9 @@
 // `pelage bench sim`: Teo 2006 Table 7.2 set-up (§7.1.1, Table 7.1: 760-triangle sphere,
 // w_r = 2.0, 50 steps; 10 % F dividing at 2.0, 90 % B not dividing, repulsiveness FF 0.1,
 // BB 0.5, FB 1.0) for 1000, 5000 and 10000 initial cells in both relaxation modes, plus a
-// large case (1 000 000 final cells on bunny00). Prints one JSON object; the keys `runs`
-// and `large` are a contract. Speed is reported here, never asserted in tests.
+// large case (1 000 000 final cells on bunny00), and density runs (bench_sim_density.h).
+// Prints one JSON object; the keys `runs`, `large` and `density` are a contract. Speed is
+// reported here, never asserted in tests.
 #include <sys/resource.h>
 
 #include <filesystem>
@@ -10,6 +11,7 @@
 #include <map>
 
 #include "renderer/cli/bench.h"
+#include "renderer/cli/bench_sim_density.h"
 #include "sim/cells_io/cells_file.h"
 #include "sim/core/input_error.h"
 #include "sim/crps/surface.h"
@@ -25,6 +27,8 @@ struct BenchSimOptions {
     std::string large_mesh;
     uint64_t large_initial = 250000, large_target = 1000000;
     bool skip_large = false;
+    std::string density_mesh, density_preset = "teo-leopard";
+    int density_levels = 2;
     uint64_t seed = 1;
     int repeat = 3;
     ThreadOption threads;
@@ -158,6 +162,17 @@ int run(const BenchSimOptions &o) {
                         {"spot_fraction", r.spot_fraction},
                         {"peak_rss_mb", peak_rss_mb()}};
     }
+    // --- Density: the same preset on a mesh and its midpoint subdivisions ---
+    if (o.density_levels >= 0) {
+        const std::string mesh =
+            o.density_mesh.empty() ? data_path("scenes/meshes/cow.off") : o.density_mesh;
+        if (!std::filesystem::exists(mesh))
+            throw InputError(mesh, 0, "",
+                             "sample mesh missing: run scenes/fetch_meshes.sh (or pass "
+                             "--density-mesh)");
+        out.update(density_runs(
+            {mesh, o.density_preset, o.density_levels, o.seed, o.threads.threads}));
+    }
     std::cout << out.dump(2) << std::endl;
     return 0;
 }
@@ -180,6 +195,14 @@ Runner add_bench_sim(CLI::App &bench) {
                     "Initial cells of the large run");
     sub->add_option("--large-target", o->large_target, "Final cells of the large run");
     sub->add_flag("--skip-large", o->skip_large, "Only the small runs");
+    sub->add_option("--density-mesh", o->density_mesh,
+                    "Mesh of the density runs (default cow.off)");
+    sub->add_option("--density-preset", o->density_preset, "Preset of the density runs")
+        ->capture_default_str();
+    sub->add_option("--density-levels", o->density_levels,
+                    "Midpoint subdivisions of the finest density run (-1: none)")
+        ->check(CLI::Range(-1, 4))
+        ->capture_default_str();
     sub->add_option("--seed", o->seed, "Seed");
     sub->add_option("--repeat", o->repeat, "Runs per case; the fastest counts")
         ->check(CLI::Range(1, 20));

@@ -2,8 +2,9 @@
 // and writes the .cells file (sim/mosaic/cm_simulation.h, sim/cells_io/cells_file.h). The
 // keys of
 // --stats-json are a contract: triangles, area, cells_by_type, spot_fraction,
-// divisions, relax_steps, seconds.
+// divisions, relax_steps, seconds, peak_rss_mb.
 #include <fmt/core.h>
+#include <sys/resource.h>
 
 #include <algorithm>
 #include <cmath>
@@ -20,6 +21,12 @@
 
 namespace pelage::renderer::cli {
 namespace {
+
+double peak_rss_mb() {
+    rusage u{};
+    getrusage(RUSAGE_SELF, &u);
+    return double(u.ru_maxrss) / 1024.0;  // Linux reports KiB
+}
 
 struct SimOptions {
     std::string mesh, preset, output, stats_json, relax;
@@ -46,13 +53,14 @@ int run_sim(const SimOptions &o) {
     const sim::CellScaleReport &cell_scale = chosen.report();
     const uint64_t initial = chosen.initial_cells();
     if (cell_scale.simplified)
-        fmt::print("pelage sim: simulating on {} of the input's {} triangles (edges under "
-                   "{:.3g} collapsed, surface kept within {:.3g} of the input, final cell "
-                   "spacing about {:.3g}); the .cells file renders on {} through closest "
-                   "points, or use --surface input\n",
-                   cell_scale.output_triangles, cell_scale.input_triangles,
-                   cell_scale.edge_length, cell_scale.max_deviation, cell_scale.cell_spacing,
-                   o.mesh);
+        fmt::print(
+            "pelage sim: simulating on {} of the input's {} triangles (edges under "
+            "{:.3g} collapsed, surface kept within {:.3g} of the input, final cell "
+            "spacing about {:.3g}); the .cells file renders on {} through closest "
+            "points, or use --surface input\n",
+            cell_scale.output_triangles, cell_scale.input_triangles,
+            cell_scale.edge_length, cell_scale.max_deviation, cell_scale.cell_spacing,
+            o.mesh);
 
     sim::CmSimulation simulation(surface.crps, preset.types, preset.params, o.seed);
     {
@@ -138,6 +146,7 @@ int run_sim(const SimOptions &o) {
                             {"seconds", seconds},
                             {"seconds_initial", st.seconds_initial},
                             {"seconds_neighbourhoods", st.seconds_neighbourhoods},
+                            {"peak_rss_mb", peak_rss_mb()},
                             {"cells_steps_per_second",
                              seconds > 0 ? double(st.cell_steps) / seconds : 0.0},
                         });

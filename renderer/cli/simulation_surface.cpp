@@ -15,8 +15,8 @@ SimulationSurface::SimulationSurface(const sim::Surface &input, const sim::Prese
     m_report.input_triangles = m_report.output_triangles = input.mesh.num_triangles();
     if (!simplify) return;
     sim::TriangleMesh mesh = sim::cell_scale_surface(
-        input.mesh, area, sim::expected_final_cells(preset.params, preset.types, m_initial),
-        &m_report);
+        input.mesh, area,
+        sim::expected_final_cells(preset.params, preset.types, m_initial), &m_report);
     if (m_report.simplified) m_simplified.emplace(sim::build_surface(std::move(mesh)));
 }
 

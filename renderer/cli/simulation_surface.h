@@ -15,8 +15,8 @@ namespace pelage::renderer::cli {
 class SimulationSurface {
   public:
     // `cells` > 0 overrides the preset's initial count; `simplify` false keeps the input.
-    SimulationSurface(const sim::Surface &input, const sim::Preset &preset, uint64_t cells,
-                      bool simplify);
+    SimulationSurface(const sim::Surface &input, const sim::Preset &preset,
+                      uint64_t cells, bool simplify);
     const sim::Surface &surface() const { return m_simplified ? *m_simplified : m_input; }
     uint64_t initial_cells() const { return m_initial; }
     const sim::CellScaleReport &report() const { return m_report; }

@@ -6,28 +6,16 @@
 #include "sim/remesh/simplify.h"
 
 namespace pelage::sim {
-namespace {
 
-double bbox_diagonal(const TriangleMesh &mesh) {
-    if (mesh.positions.empty()) return 0;
-    Vec3d lo = mesh.positions[0], hi = lo;
-    for (const Vec3d &p : mesh.positions) {
-        lo = {std::min(lo.x, p.x), std::min(lo.y, p.y), std::min(lo.z, p.z)};
-        hi = {std::max(hi.x, p.x), std::max(hi.y, p.y), std::max(hi.z, p.z)};
-    }
-    return length(hi - lo);
-}
-
-}  // namespace
-
-TriangleMesh cell_scale_surface(const TriangleMesh &mesh, double area, double expected_cells,
-                                CellScaleReport *report) {
+TriangleMesh cell_scale_surface(const TriangleMesh &mesh, double area,
+                                double expected_cells, CellScaleReport *report) {
     CellScaleReport rep;
     rep.input_triangles = rep.output_triangles = mesh.num_triangles();
     rep.cell_spacing = std::sqrt(area / std::max(expected_cells, 1.0));
     rep.input_mean_edge = mean_edge_length(mesh);
-    rep.bbox_diagonal = bbox_diagonal(mesh);
-    const bool dense = rep.input_mean_edge > 0 && rep.input_mean_edge < 0.5 * rep.cell_spacing;
+    rep.bbox_diagonal = mesh.bounds().diagonal();
+    const bool dense =
+        rep.input_mean_edge > 0 && rep.input_mean_edge < 0.5 * rep.cell_spacing;
     if (!dense) {
         if (report) *report = rep;
         return mesh;

@@ -1,15 +1,15 @@
 #include "sim/remesh/simplify.h"
 
-#include <CGAL/Simple_cartesian.h>
 #include <CGAL/Polygon_mesh_processing/orient_polygon_soup.h>
 #include <CGAL/Polygon_mesh_processing/polygon_soup_to_polygon_mesh.h>
+#include <CGAL/Simple_cartesian.h>
 #include <CGAL/Surface_mesh.h>
-#include <CGAL/Surface_mesh_simplification/Policies/Edge_collapse/Bounded_normal_change_filter.h>
-#include <CGAL/Surface_mesh_simplification/Policies/Edge_collapse/Edge_length_cost.h>
-#include <CGAL/Surface_mesh_simplification/Policies/Edge_collapse/Edge_length_stop_predicate.h>
-#include <CGAL/Surface_mesh_simplification/Policies/Edge_collapse/LindstromTurk_placement.h>
-#include <CGAL/Surface_mesh_simplification/Policies/Edge_collapse/Bounded_distance_placement.h>
 #include <CGAL/Surface_mesh_simplification/edge_collapse.h>
+#include <Edge_collapse/Bounded_distance_placement.h>
+#include <Edge_collapse/Bounded_normal_change_filter.h>
+#include <Edge_collapse/Edge_length_cost.h>
+#include <Edge_collapse/Edge_length_stop_predicate.h>
+#include <Edge_collapse/LindstromTurk_placement.h>
 
 #include <array>
 #include <cmath>
@@ -50,8 +50,8 @@ TriangleMesh simplify(const TriangleMesh &mesh, const SimplifyOptions &options) 
 
     SMS::Edge_length_stop_predicate<double> stop(options.edge_length);
     SMS::Bounded_normal_change_filter<> filter;
-    SMS::Bounded_distance_placement<SMS::LindstromTurk_placement<CgalMesh>, Kernel> placement(
-        options.max_deviation);
+    SMS::Bounded_distance_placement<SMS::LindstromTurk_placement<CgalMesh>, Kernel>
+        placement(options.max_deviation);
     SMS::edge_collapse(cm, stop,
                        CGAL::parameters::get_cost(SMS::Edge_length_cost<CgalMesh>())
                            .get_placement(placement)

@@ -1,0 +1,120 @@
+// The simulation surface at the cells' scale (sim/remesh/cell_scale_surface.h) against
+// the surface it stands for. The reference is the cow itself: the input is the cow split
+// twice at its edge midpoints (the same surface with 16× the triangles), and distances
+// are measured to the cow's own 5 804 triangles by brute force (Ericson's closest point),
+// not through anything the simplification used.
+#include "sim/remesh/cell_scale_surface.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <map>
+#include <utility>
+
+#include "shader/clonal_mosaic/surface_transfer.h"
+#include "sim/crps/surface.h"
+#include "sim/crps/surface_sampling.h"
+#include "sim/mesh/mesh_load.h"
+#include "sim/mesh/subdivide.h"
+#include "sim/remesh/simplify.h"
+#include "tests/test_paths.h"
+
+namespace pelage::sim {
+namespace {
+
+using shader::clonal_mosaic::closest_point_on_triangle;
+
+double distance_to_mesh(Vec3d p, const TriangleMesh &m) {
+    double best = 1e300;
+    for (TriId t = 0; t < m.num_triangles(); ++t)
+        best =
+            std::min(best, length(closest_point_on_triangle(
+                                      p, m.vertex(t, 0), m.vertex(t, 1), m.vertex(t, 2)) -
+                                  p));
+    return best;
+}
+
+// V − E + F with a vertex counted once per fan of triangles around it (a vertex where
+// two fans meet only at a point is two vertices of the surface, as the simplification
+// splits it), and the number of edges not shared by exactly two triangles.
+std::pair<long, long> euler_and_open_edges(const TriangleMesh &m) {
+    std::map<std::pair<VertId, VertId>, std::vector<TriId>> edges;
+    for (TriId t = 0; t < m.num_triangles(); ++t)
+        for (int c = 0; c < 3; ++c) {
+            const VertId a = m.triangles[t][c], b = m.triangles[t][(c + 1) % 3];
+            edges[{std::min(a, b), std::max(a, b)}].push_back(t);
+        }
+    long open = 0;
+    for (const auto &[e, tris] : edges) open += tris.size() != 2;
+    // Fans: the corners (t, v) joined across the edges at v they share.
+    std::map<std::pair<TriId, VertId>, std::pair<TriId, VertId>> parent;
+    std::function<std::pair<TriId, VertId>(std::pair<TriId, VertId>)> find =
+        [&](std::pair<TriId, VertId> x) {
+            auto it = parent.find(x);
+            if (it == parent.end() || it->second == x) return x;
+            return it->second = find(it->second);
+        };
+    for (TriId t = 0; t < m.num_triangles(); ++t)
+        for (VertId v : m.triangles[t]) parent[{t, v}] = {t, v};
+    for (const auto &[e, tris] : edges)
+        for (size_t k = 1; k < tris.size(); ++k)
+            for (VertId v : {e.first, e.second})
+                parent[find({tris[k], v})] = find({tris[0], v});
+    long fans = 0;
+    for (const auto &[x, p] : parent) fans += find(x) == x;
+    return {fans - long(edges.size()) + long(m.num_triangles()), open};
+}
+
+TEST(CellScaleSurface, LeavesAMeshAtTheCellsScaleAlone) {
+    const TriangleMesh cow = load_mesh(test::sample_mesh("cow.off"));
+    const double area = cow.surface_area(), edge = mean_edge_length(cow);
+    // Cells spaced 1.5 mean edges apart: triangles are not smaller than the cells.
+    const double cells = area / (1.5 * edge * 1.5 * edge);
+    CellScaleReport report;
+    const TriangleMesh out = cell_scale_surface(cow, area, cells, &report);
+    EXPECT_FALSE(report.simplified);
+    EXPECT_EQ(out.positions, cow.positions);
+    EXPECT_EQ(out.triangles, cow.triangles);
+}
+
+TEST(CellScaleSurface, ADenseCowStaysOnTheCowWithAboutTwoTrianglesPerCell) {
+    const TriangleMesh cow = load_mesh(test::sample_mesh("cow.off"));
+    const TriangleMesh dense =
+        subdivide(subdivide(cow, Subdivision::midpoint), Subdivision::midpoint);
+    const double area = dense.surface_area(), cells = 8474;  // teo-leopard's count
+    CellScaleReport report;
+    const TriangleMesh out = cell_scale_surface(dense, area, cells, &report);
+    ASSERT_TRUE(report.simplified);
+    EXPECT_EQ(report.input_triangles, dense.num_triangles());
+    EXPECT_EQ(report.output_triangles, out.num_triangles());
+    // About s²/(√3/4·s²) ≈ 2.3 triangles per cell where the shape allows; the bound on
+    // the deviation keeps more on the ears, horns and legs.
+    EXPECT_LT(double(out.num_triangles()), 5.0 * cells);
+    EXPECT_LT(out.num_triangles() * 4, dense.num_triangles());
+    const double diagonal = cow.bounds().diagonal();
+    EXPECT_LE(report.max_deviation, max_deviation_fraction * diagonal * (1 + 1e-12));
+
+    // Every vertex of the result lies within the bound of the cow's surface.
+    double worst_vertex = 0;
+    for (const Vec3d &p : out.positions)
+        worst_vertex = std::max(worst_vertex, distance_to_mesh(p, cow));
+    EXPECT_LE(worst_vertex, report.max_deviation * (1 + 1e-9));
+
+    // And the cow lies close to the result: area-uniform points of the cow, within a
+    // quarter of the 2 % at which a render mesh counts as another shape.
+    const Surface cow_surface = build_surface(cow);
+    double worst_point = 0;
+    for (const SurfacePointSample &s : sample_surface_uniform(cow_surface.crps, 2000, 7))
+        worst_point = std::max(worst_point,
+                               distance_to_mesh(cow_surface.crps.to_3d(s.tri, s.p), out));
+    EXPECT_LE(worst_point, 0.005 * diagonal) << "of the diagonal " << diagonal;
+
+    // Same topology (a closed surface of the same genus) and nearly the same area.
+    EXPECT_EQ(euler_and_open_edges(out), euler_and_open_edges(dense));
+    EXPECT_NEAR(out.surface_area() / area, 1.0, 0.02);
+}
+
+}  // namespace
+}  // namespace pelage::sim
