@@ -44,11 +44,11 @@ int run_sim(const SimOptions &o) {
         preset.params.relax = sim::RelaxMode::local;
     else if (o.relax == "global")
         preset.params.relax = sim::RelaxMode::global;
-    const sim::Surface input = sim::build_surface(o.mesh);
 
     // --- The simulation surface: the input, or a copy at the cells' scale when its
     //     triangles are much smaller than the cells ---
-    const SimulationSurface chosen(input, preset, o.cells, o.surface == "auto");
+    const SimulationSurface chosen(sim::build_surface(o.mesh), preset, o.cells,
+                                   o.surface == "auto");
     const sim::Surface &surface = chosen.surface();
     const sim::CellScaleReport &cell_scale = chosen.report();
     const uint64_t initial = chosen.initial_cells();
@@ -127,7 +127,7 @@ int run_sim(const SimOptions &o) {
                             {"seed", o.seed},
                             {"relax", params["relax"]},
                             {"triangles", surface.mesh.num_triangles()},
-                            {"input_triangles", input.mesh.num_triangles()},
+                            {"input_triangles", cell_scale.input_triangles},
                             {"simplified", cell_scale.simplified},
                             {"area", ps.area},
                             {"body_length", body_length},
@@ -175,8 +175,8 @@ Runner add_sim_command(CLI::App &app) {
         ->check(CLI::IsMember({"local", "global"}));
     sub->add_option("--surface", o->surface,
                     "auto: simulate on a copy of the mesh simplified to the cells' scale "
-                    "when its triangles are much smaller than the cells; input: on the "
-                    "mesh as it is")
+                    "when its triangles are smaller than the cells; input: on the mesh "
+                    "as it is")
         ->check(CLI::IsMember({"auto", "input"}))
         ->capture_default_str();
     sub->add_option("-o,--output", o->output, "Write the cells to this .cells file");

@@ -5,10 +5,12 @@
 
 namespace pelage::renderer::cli {
 
-SimulationSurface::SimulationSurface(const sim::Surface &input, const sim::Preset &preset,
-                                     uint64_t cells, bool simplify)
-    : m_input(input),
-      m_initial(cells > 0 ? cells : sim::initial_cell_count(preset.params, input.crps)) {
+SimulationSurface::SimulationSurface(sim::Surface input_surface,
+                                     const sim::Preset &preset, uint64_t cells,
+                                     bool simplify)
+    : m_input(std::move(input_surface)) {
+    const sim::Surface &input = *m_input;
+    m_initial = cells > 0 ? cells : sim::initial_cell_count(preset.params, input.crps);
     double area = 0;
     for (sim::TriId t = 0; t < input.crps.num_triangles(); ++t)
         area += input.crps.frame(t).area;
@@ -17,7 +19,9 @@ SimulationSurface::SimulationSurface(const sim::Surface &input, const sim::Prese
     sim::TriangleMesh mesh = sim::cell_scale_surface(
         input.mesh, area,
         sim::expected_final_cells(preset.params, preset.types, m_initial), &m_report);
-    if (m_report.simplified) m_simplified.emplace(sim::build_surface(std::move(mesh)));
+    if (!m_report.simplified) return;
+    m_input.reset();
+    m_simplified.emplace(sim::build_surface(std::move(mesh)));
 }
 
 }  // namespace pelage::renderer::cli

@@ -15,14 +15,18 @@ namespace pelage::renderer::cli {
 class SimulationSurface {
   public:
     // `cells` > 0 overrides the preset's initial count; `simplify` false keeps the input.
-    SimulationSurface(const sim::Surface &input, const sim::Preset &preset,
-                      uint64_t cells, bool simplify);
-    const sim::Surface &surface() const { return m_simplified ? *m_simplified : m_input; }
+    // The input is released once a simplified copy stands for it: a dense mesh would
+    // otherwise weigh on the whole run.
+    SimulationSurface(sim::Surface input, const sim::Preset &preset, uint64_t cells,
+                      bool simplify);
+    const sim::Surface &surface() const {
+        return m_simplified ? *m_simplified : *m_input;
+    }
     uint64_t initial_cells() const { return m_initial; }
     const sim::CellScaleReport &report() const { return m_report; }
 
   private:
-    const sim::Surface &m_input;
+    std::optional<sim::Surface> m_input;
     std::optional<sim::Surface> m_simplified;
     uint64_t m_initial = 0;
     sim::CellScaleReport m_report;

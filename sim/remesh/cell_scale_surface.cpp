@@ -15,7 +15,7 @@ TriangleMesh cell_scale_surface(const TriangleMesh &mesh, double area,
     rep.input_mean_edge = mean_edge_length(mesh);
     rep.bbox_diagonal = mesh.bounds().diagonal();
     const bool dense =
-        rep.input_mean_edge > 0 && rep.input_mean_edge < 0.5 * rep.cell_spacing;
+        rep.input_mean_edge > 0 && rep.input_mean_edge < rep.cell_spacing;
     if (!dense) {
         if (report) *report = rep;
         return mesh;

@@ -4,7 +4,7 @@
 // The relaxation's neighbourhoods are built per triangle and reach r ≈ w_r·s (s the mean
 // cell spacing), so their cost grows with triangles per cell; the pattern needs the
 // surface only to the cells' scale. The input is simplified when its mean edge is
-// shorter than half the final cell spacing s = sqrt(A / m): edges shorter than s are
+// shorter than the final cell spacing s = sqrt(A / m): edges shorter than s are
 // collapsed (about 2 triangles per cell where the shape allows), and no collapse may move
 // the surface farther than max_deviation_fraction of the bounding-box diagonal nor a
 // tenth of s, so the pattern transfers back to the input

@@ -70,8 +70,8 @@ std::pair<long, long> euler_and_open_edges(const TriangleMesh &m) {
 TEST(CellScaleSurface, LeavesAMeshAtTheCellsScaleAlone) {
     const TriangleMesh cow = load_mesh(test::sample_mesh("cow.off"));
     const double area = cow.surface_area(), edge = mean_edge_length(cow);
-    // Cells spaced 1.5 mean edges apart: triangles are not smaller than the cells.
-    const double cells = area / (1.5 * edge * 1.5 * edge);
+    // Cells spaced 0.9 mean edges apart: triangles are not smaller than the cells.
+    const double cells = area / (0.9 * edge * 0.9 * edge);
     CellScaleReport report;
     const TriangleMesh out = cell_scale_surface(cow, area, cells, &report);
     EXPECT_FALSE(report.simplified);
