@@ -1,5 +1,8 @@
 #include "renderer/cli/simulation_surface.h"
 
+#include <algorithm>
+#include <cmath>
+
 #include "sim/mosaic/cm_simulation.h"
 #include "sim/mosaic/final_cells.h"
 
@@ -16,9 +19,16 @@ SimulationSurface::SimulationSurface(sim::Surface input_surface,
         area += input.crps.frame(t).area;
     m_report.input_triangles = m_report.output_triangles = input.mesh.num_triangles();
     if (!simplify) return;
-    sim::TriangleMesh mesh = sim::cell_scale_surface(
-        input.mesh, area,
-        sim::expected_final_cells(preset.params, preset.types, m_initial), &m_report);
+    sim::CellScaleRequest request;
+    request.area = area;
+    request.expected_cells =
+        sim::expected_final_cells(preset.params, preset.types, m_initial);
+    // r = w_r·sqrt(A/m) (Walter 1998 §3.3) at the initial count, widened as the
+    // relaxation's cache is.
+    request.neighbourhood_radius =
+        sim::Neighbourhoods::slack * preset.params.w_r *
+        std::sqrt(area / double(std::max<uint64_t>(m_initial, 1)));
+    sim::TriangleMesh mesh = sim::cell_scale_surface(input.mesh, request, &m_report);
     if (!m_report.simplified) return;
     m_input.reset();
     m_simplified.emplace(sim::build_surface(std::move(mesh)));

@@ -7,15 +7,19 @@
 
 namespace pelage::sim {
 
-TriangleMesh cell_scale_surface(const TriangleMesh &mesh, double area,
-                                double expected_cells, CellScaleReport *report) {
+TriangleMesh cell_scale_surface(const TriangleMesh &mesh, const CellScaleRequest &request,
+                                CellScaleReport *report) {
     CellScaleReport rep;
     rep.input_triangles = rep.output_triangles = mesh.num_triangles();
-    rep.cell_spacing = std::sqrt(area / std::max(expected_cells, 1.0));
+    rep.cell_spacing = std::sqrt(request.area / std::max(request.expected_cells, 1.0));
     rep.input_mean_edge = mean_edge_length(mesh);
     rep.bbox_diagonal = mesh.bounds().diagonal();
-    const bool dense =
-        rep.input_mean_edge > 0 && rep.input_mean_edge < rep.cell_spacing;
+    const double e = rep.input_mean_edge, R = request.neighbourhood_radius;
+    if (e > 0)
+        rep.neighbourhood_entries = double(mesh.num_triangles()) * 3.141592653589793 *
+                                    (R + e) * (R + e) / (0.4330127018922193 * e * e);
+    const bool dense = e > 0 && e < rep.cell_spacing &&
+                       rep.neighbourhood_entries > max_neighbourhood_entries;
     if (!dense) {
         if (report) *report = rep;
         return mesh;

@@ -1,14 +1,17 @@
-// The surface a simulation runs on: the input mesh when its triangles are not much
-// smaller than the cells, else a copy simplified to the cells' scale (simplify.h).
+// The surface a simulation runs on: the input mesh when its triangles are not smaller
+// than the cells or when it is light enough, else a copy simplified to the cells' scale
+// (simplify.h).
 //
-// The relaxation's neighbourhoods are built per triangle and reach r ≈ w_r·s (s the mean
-// cell spacing), so their cost grows with triangles per cell; the pattern needs the
-// surface only to the cells' scale. The input is simplified when its mean edge is
-// shorter than the final cell spacing s = sqrt(A / m): edges shorter than s are
-// collapsed (about 2 triangles per cell where the shape allows), and no collapse may move
-// the surface farther than max_deviation_fraction of the bounding-box diagonal nor a
-// tenth of s, so the pattern transfers back to the input
-// (shader/clonal_mosaic/surface_transfer.h) well inside its 2 % tolerance.
+// The relaxation's neighbourhoods are built per triangle and reach R ≈ w_r·s (s the
+// cell spacing, largest at the start), so their size grows as triangles × (R/e)² for
+// mean edge e, while the pattern needs the surface only to the cells' scale. The input
+// is simplified when both hold: its mean edge is shorter than the final cell spacing
+// s = sqrt(A / m), and its neighbourhoods at the initial radius would hold more than
+// max_neighbourhood_entries unfolded triangles, triangles × π(R + e)² / (√3/4·e²).
+// Edges shorter than s are collapsed (about 2 triangles per cell where the shape
+// allows), and no collapse may move a vertex farther than max_deviation_fraction of the
+// bounding-box diagonal nor a tenth of s from the input, so the pattern transfers back
+// to the input (shader/clonal_mosaic/surface_transfer.h) well inside its 2 % tolerance.
 #pragma once
 
 #include <cstddef>
@@ -17,21 +20,29 @@
 
 namespace pelage::sim {
 
+struct CellScaleRequest {
+    double area = 0;                  // of the input
+    double expected_cells = 0;        // at the end of the run
+    double neighbourhood_radius = 0;  // R at the start of the run
+};
+
 struct CellScaleReport {
     bool simplified = false;
     size_t input_triangles = 0, output_triangles = 0;
-    double cell_spacing = 0;     // s = sqrt(A / expected final cells)
-    double input_mean_edge = 0;  // of the input
-    double edge_length = 0;      // collapse threshold (0 when not simplified)
-    double max_deviation = 0;    // bound on the distance from the input
-    double bbox_diagonal = 0;    // of the input
+    double cell_spacing = 0;           // s = sqrt(A / expected final cells)
+    double input_mean_edge = 0;        // of the input
+    double neighbourhood_entries = 0;  // estimated for the input
+    double edge_length = 0;            // collapse threshold (0 when not simplified)
+    double max_deviation = 0;          // bound on the distance from the input
+    double bbox_diagonal = 0;          // of the input
 };
 
 inline constexpr double max_deviation_fraction = 0.002;
+inline constexpr double max_neighbourhood_entries = 2e6;
 
-// The mesh to simulate on for `expected_cells` final cells over `area`; `report` says
-// what was done. Returns the input unchanged when it is coarse enough.
-TriangleMesh cell_scale_surface(const TriangleMesh &mesh, double area,
-                                double expected_cells, CellScaleReport *report);
+// The mesh to simulate on; `report` says what was done. Returns the input unchanged
+// when it is coarse or light enough.
+TriangleMesh cell_scale_surface(const TriangleMesh &mesh, const CellScaleRequest &request,
+                                CellScaleReport *report);
 
 }  // namespace pelage::sim

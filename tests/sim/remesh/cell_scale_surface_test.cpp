@@ -67,13 +67,28 @@ std::pair<long, long> euler_and_open_edges(const TriangleMesh &m) {
     return {fans - long(edges.size()) + long(m.num_triangles()), open};
 }
 
+TEST(CellScaleSurface, LeavesALightMeshAlone) {
+    // Teo's 760-triangle sphere with 150 cells: triangles smaller than the cells, but
+    // few enough to unfold as they are.
+    const TriangleMesh sphere = load_mesh("procedural:sphere:20x20");
+    const double area = sphere.surface_area(), edge = mean_edge_length(sphere);
+    CellScaleReport report;
+    const TriangleMesh out = cell_scale_surface(
+        sphere, {area, 150, 1.15 * 2 * std::sqrt(area / 150)}, &report);
+    EXPECT_GT(report.cell_spacing, edge);
+    EXPECT_LT(report.neighbourhood_entries, max_neighbourhood_entries);
+    EXPECT_FALSE(report.simplified);
+    EXPECT_EQ(out.triangles, sphere.triangles);
+}
+
 TEST(CellScaleSurface, LeavesAMeshAtTheCellsScaleAlone) {
     const TriangleMesh cow = load_mesh(test::sample_mesh("cow.off"));
     const double area = cow.surface_area(), edge = mean_edge_length(cow);
     // Cells spaced 0.9 mean edges apart: triangles are not smaller than the cells.
     const double cells = area / (0.9 * edge * 0.9 * edge);
     CellScaleReport report;
-    const TriangleMesh out = cell_scale_surface(cow, area, cells, &report);
+    // Even with neighbourhoods as wide as on the dense cow below.
+    const TriangleMesh out = cell_scale_surface(cow, {area, cells, 0.05}, &report);
     EXPECT_FALSE(report.simplified);
     EXPECT_EQ(out.positions, cow.positions);
     EXPECT_EQ(out.triangles, cow.triangles);
@@ -83,9 +98,11 @@ TEST(CellScaleSurface, ADenseCowStaysOnTheCowWithAboutTwoTrianglesPerCell) {
     const TriangleMesh cow = load_mesh(test::sample_mesh("cow.off"));
     const TriangleMesh dense =
         subdivide(subdivide(cow, Subdivision::midpoint), Subdivision::midpoint);
-    const double area = dense.surface_area(), cells = 8474;  // teo-leopard's count
+    // teo-leopard's counts and radius: 5 000 -> 8 474 cells, w_r 3.3.
+    const double area = dense.surface_area(), cells = 8474;
+    const double radius = 1.15 * 3.3 * std::sqrt(area / 5000);
     CellScaleReport report;
-    const TriangleMesh out = cell_scale_surface(dense, area, cells, &report);
+    const TriangleMesh out = cell_scale_surface(dense, {area, cells, radius}, &report);
     ASSERT_TRUE(report.simplified);
     EXPECT_EQ(report.input_triangles, dense.num_triangles());
     EXPECT_EQ(report.output_triangles, out.num_triangles());
