@@ -30,8 +30,10 @@ bool GeodesicWindow::covers(Vec2d q, double slack) const {
 double distance_from_windows(const GeodesicWindow *begin, const GeodesicWindow *end,
                              Vec2d q) {
     double best = inf;
-    for (const GeodesicWindow *w = begin; w != end; ++w)
-        if (w->covers(q)) best = std::min(best, w->distance(q));
+    for (const GeodesicWindow *w = begin; w != end; ++w) {
+        const double d = w->distance(q);  // cheaper than the wedge test: first
+        if (d < best && w->covers(q)) best = d;
+    }
     return best;
 }
 

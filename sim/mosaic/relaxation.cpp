@@ -7,11 +7,26 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
+#include <optional>
 
 #include "sim/core/random.h"
 #include "sim/crps/unfold.h"
+#include "sim/geodesic/geodesic_mesh.h"
+#include "sim/geodesic/window_propagation.h"
 
 namespace pelage::sim {
+
+size_t Neighbourhoods::entries() const {
+    size_t n = 0;
+    for (const auto &e : m_entries) n += e.size();
+    return n;
+}
+
+size_t Neighbourhoods::bytes() const {
+    return entries() * sizeof(Entry) + m_entries.size() * sizeof(m_entries[0]) +
+           m_bounding.size() * sizeof(double);
+}
 
 void Neighbourhoods::update(const Crps &crps, double r) {
     const size_t nt = crps.num_triangles();
@@ -25,14 +40,41 @@ void Neighbourhoods::update(const Crps &crps, double r) {
         m_bounding[t] = std::max({length(v[0]), length(v[1]), length(v[2])});
     }
     ++m_rebuilds;
+    std::optional<GeodesicMesh> geodesic_mesh;
+    // Saddles flatter than half the tolerance bend no path: they change a distance by
+    // at most that angle times the distance (geodesic_mesh.h), and skipping them saves
+    // most pseudo-sources on noisy meshes.
+    if (m_verified)
+        geodesic_mesh.emplace(crps, GeodesicMeshOptions{0.5 * image_tolerance});
+
+    struct Image {
+        TriId tri;
+        uint32_t next;  // the next image of the same triangle in the queue, or none
+        RigidMap2 to_t;
+    };
+    static constexpr uint32_t none = ~uint32_t(0);
     struct Scratch {
         UnfoldScratch visited;
-        std::vector<std::pair<TriId, RigidMap2>> queue;
+        std::vector<uint32_t> first;  // valid where visited: tri → first image's index
+        std::vector<Image> queue;
+        std::optional<WindowPropagation> propagation;
+        std::vector<GeodesicWindow> windows;
+        std::vector<uint32_t> window_row;  // per queue tri (sorted), windows by face
+        std::vector<TriId> tris;
+        size_t dropped = 0, replaced = 0;
     };
     tbb::enumerable_thread_specific<Scratch> scratch;
-    const double R = m_radius;
+    const double R = m_radius, tolerance = image_tolerance * R;
     const Topology &topo = crps.topology();
-    // Breadth-first unfolding as in sim/crps/unfold.h (first path wins, same order), with
+    // Whether two unfoldings put j in the same place, within the tolerance: a shift of
+    // its centroid plus a turn times its bounding radius.
+    const auto same_place = [&](const RigidMap2 &F, const RigidMap2 &G, TriId j) {
+        const double dx = F.ax - G.ax, dy = F.ay - G.ay;
+        const double turn = std::abs(F.s * G.c - F.c * G.s) * m_bounding[j];
+        return dx * dx + dy * dy <= 0.25 * tolerance * tolerance &&
+               turn <= 0.5 * tolerance;
+    };
+    // Breadth-first unfolding across edges (fewest hops, then neighbour order), with
     // cheap tests first: the centroid (origin of every 2D frame) of j mapped into t's
     // frame within R accepts; farther than R plus both bounding radii rejects; only the
     // cases in between pay for the exact triangle–triangle distance.
@@ -40,20 +82,46 @@ void Neighbourhoods::update(const Crps &crps, double r) {
         tbb::blocked_range<TriId>(0, static_cast<TriId>(nt), 64), [&](const auto &range) {
             Scratch &s = scratch.local();
             s.visited.prepare(nt);
+            s.first.resize(nt);
+            if (m_verified && !s.propagation) s.propagation.emplace(*geodesic_mesh);
             for (TriId t = range.begin(); t != range.end(); ++t) {
                 s.visited.begin();
                 s.visited.visit(t);
                 s.queue.clear();
-                s.queue.push_back({t, RigidMap2{}});
+                s.queue.push_back({t, none, RigidMap2{}});
+                s.first[t] = 0;
                 const Vec2d *vt = crps.frame(t).v.data();
+                // Whether every path to every triangle unfolds it to one place and no
+                // edge within reach is a boundary: then the unfolding is the surface
+                // laid flat without overlaps or gaps, and a straight segment in it is a
+                // shortest path on the surface.
+                bool consistent = true;
                 for (size_t head = 0; head < s.queue.size(); ++head) {
-                    const auto [parent, Fp] = s.queue[head];
-                    const auto nbrs = topo.neighbours(parent);
-                    const auto maps = crps.to_master(parent);
-                    for (size_t k = 0; k < nbrs.size(); ++k) {
+                    const Image parent = s.queue[head];
+                    consistent = consistent && topo.num_primary[parent.tri] == 3;
+                    const auto nbrs = topo.neighbours(parent.tri);
+                    const auto maps = crps.to_master(parent.tri);
+                    for (size_t k = 0; k < topo.num_primary[parent.tri]; ++k) {
                         const TriId j = nbrs[k];
-                        if (!s.visited.visit(j)) continue;
-                        const RigidMap2 F = compose(Fp, maps[k]);
+                        const RigidMap2 F = compose(parent.to_t, maps[k]);
+                        if (j == t) {  // around a cylinder or a cone back to t
+                            consistent = consistent && same_place(F, RigidMap2{}, j);
+                            continue;
+                        }
+                        const bool first_time = s.visited.visit(j);
+                        uint32_t last = none;
+                        int images = 0;
+                        if (!first_time) {
+                            if (!m_verified) continue;  // first path wins
+                            bool same = false;
+                            for (uint32_t i = s.first[j]; i != none && !same;
+                                 i = s.queue[i].next) {
+                                same = same_place(F, s.queue[i].to_t, j);
+                                ++images;
+                                last = i;
+                            }
+                            if (same) continue;
+                        }
                         const double dc =
                             std::hypot(F.ax, F.ay);  // F applied to j's centroid
                         bool accept = dc <= R;
@@ -63,17 +131,95 @@ void Neighbourhoods::update(const Crps &crps, double r) {
                                                      F.apply(vj[2])};
                             accept = triangle_triangle_distance(vt, mapped) <= R;
                         }
-                        if (accept)
-                            s.queue.push_back({j, F});
-                        else
-                            s.visited.unvisit(j);
+                        if (!accept) {
+                            if (first_time)
+                                s.visited.unvisit(j);  // another path may be nearer
+                            continue;
+                        }
+                        if (first_time) {
+                            s.first[j] = static_cast<uint32_t>(s.queue.size());
+                        } else {
+                            // Two paths unfold j to different places within R.
+                            consistent = false;
+                            if (images >= max_images) continue;
+                            s.queue[last].next = static_cast<uint32_t>(s.queue.size());
+                        }
+                        s.queue.push_back({j, none, F});
                     }
                 }
-                auto &e = m_entries[t];
-                e.reserve(s.queue.size());
-                for (const auto &[j, F] : s.queue) e.push_back({j, F.inverse()});
+                // The triangles reached, in triangle order (the force loop's order).
+                s.tris.clear();
+                for (const Image &im : s.queue)
+                    if (s.first[im.tri] == uint32_t(&im - s.queue.data()))
+                        s.tris.push_back(im.tri);
+                std::sort(s.tris.begin(), s.tris.end());
+                auto &out = m_entries[t];
+                out.reserve(s.tris.size());
+                if (!m_verified || consistent) {
+                    for (TriId j : s.tris)
+                        out.push_back({j, s.queue[s.first[j]].to_t.inverse()});
+                    continue;
+                }
+                // Exact distances from t's centroid: every point within R of t lies
+                // within R + t's bounding radius of it.
+                s.propagation->run(t, Vec2d{0, 0}, R + m_bounding[t] + 1e-9 * R,
+                                   s.windows);
+                std::stable_sort(s.windows.begin(), s.windows.end(),
+                                 [](const GeodesicWindow &a, const GeodesicWindow &b) {
+                                     return a.face < b.face;
+                                 });
+                for (TriId j : s.tris) {
+                    const auto lo = std::lower_bound(
+                        s.windows.begin(), s.windows.end(), j,
+                        [](const GeodesicWindow &w, TriId f) { return w.face < f; });
+                    auto hi = lo;
+                    while (hi != s.windows.end() && hi->face == j) ++hi;
+                    uint32_t best = none;
+                    double best_error = std::numeric_limits<double>::infinity();
+                    if (j == t) {
+                        best = 0;
+                        best_error = 0;
+                    } else if (lo != hi) {
+                        const auto &v = crps.frame(j).v;
+                        const Vec2d samples[7] = {{0, 0},
+                                                  v[0],
+                                                  v[1],
+                                                  v[2],
+                                                  (v[0] + v[1]) * 0.5,
+                                                  (v[1] + v[2]) * 0.5,
+                                                  (v[2] + v[0]) * 0.5};
+                        for (uint32_t i = s.first[j]; i != none; i = s.queue[i].next) {
+                            const RigidMap2 &F = s.queue[i].to_t;
+                            double error = 0;
+                            int known = 0;
+                            for (const Vec2d &q : samples) {
+                                const double exact =
+                                    distance_from_windows(&*lo, &*lo + (hi - lo), q);
+                                if (!std::isfinite(exact)) continue;
+                                error =
+                                    std::max(error, std::abs(length(F.apply(q)) - exact));
+                                ++known;
+                            }
+                            if (known > 0 && error < best_error) {
+                                best_error = error;
+                                best = i;
+                            }
+                        }
+                    }
+                    if (best == none || best_error > tolerance) {
+                        ++s.dropped;
+                        continue;
+                    }
+                    if (best != s.first[j]) ++s.replaced;
+                    out.push_back({j, s.queue[best].to_t.inverse()});
+                }
             }
         });
+    m_dropped = m_replaced = 0;
+    for (const Scratch &s : scratch) {
+        m_dropped += s.dropped;
+        m_replaced += s.replaced;
+    }
     m_seconds +=
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
@@ -149,8 +295,7 @@ void Relaxer::size_moves(const std::vector<TriId> &active) {
 // only its own cells).
 void Relaxer::accumulate_forces(const RelaxContext &ctx,
                                 const std::vector<TriId> &active) {
-    const double r = ctx.r, r2 = r * r, inv_r = 1.0 / r;
-    const double *xs = m_sx.data(), *zs = m_sz.data();
+    const double r = ctx.r, inv_r = 1.0 / r;
     const uint8_t *ts = m_st.data();
     const CellId *ids = m_sid.data();
     const bool aniso = ctx.field && !ctx.field->empty() && ctx.w_a > 0;
@@ -173,44 +318,25 @@ void Relaxer::accumulate_forces(const RelaxContext &ctx,
                 const uint32_t mine_begin = m_row[t], mine_end = m_row[t + 1];
                 if (mine_begin == mine_end) continue;
                 Vec2d *D = m_move.data() + m_active_row[ai];
-                for (const Neighbourhoods::Entry &e : m_nbhd.of(t)) {
-                    const uint32_t theirs_begin = m_row[e.tri],
-                                   theirs_end = m_row[e.tri + 1];
-                    if (theirs_begin == theirs_end) continue;
-                    const RigidMap2 &F = e.to_nbr;
-                    // A cell farther than r from j's bounding circle has no neighbour on
-                    // j.
-                    const double reach = r + m_nbhd.bounding_radius(e.tri),
-                                 reach2 = reach * reach;
-                    for (uint32_t k = mine_begin; k < mine_end; ++k) {
-                        const Vec2d q = F.apply({xs[k], zs[k]});  // C in j's frame
-                        if (q.x * q.x + q.y * q.y > reach2) continue;
-                        const double *oma_row = one_minus_alpha[ts[k]];
-                        double sx = 0, sz = 0;
-                        for (uint32_t p = theirs_begin; p < theirs_end; ++p) {
-                            const double dx = q.x - xs[p], dz = q.y - zs[p];
-                            const double d2 = dx * dx + dz * dz;
-                            if (d2 >= r2 || p == k) continue;
-                            // Walter 1998 Fig. 1 step 1: f = 1 − d/r, D = unit(C −
-                            // P)·f·(1 − α)·r
-                            const double oma = oma_row[ts[p]];
-                            if (d2 > 0) {
-                                const double d = std::sqrt(d2);
-                                const double s = (1.0 - d * inv_r) * oma * r / d;
-                                sx += dx * s;
-                                sz += dz * s;
-                            } else {
-                                const Vec2d u =
-                                    tie_break_direction(ctx.seed, ids[k], ids[p]);
-                                sx += u.x * oma * r;
-                                sz += u.y * oma * r;
-                            }
+                for (uint32_t k = mine_begin; k < mine_end; ++k) {
+                    const double *oma_row = one_minus_alpha[ts[k]];
+                    double sx = 0, sz = 0;
+                    for_each_neighbour(t, k, r, [&](uint32_t p, Vec2d away, double d2) {
+                        // Walter 1998 Fig. 1 step 1: f = 1 − d/r, D = unit(C −
+                        // P)·f·(1 − α)·r
+                        const double oma = oma_row[ts[p]];
+                        if (d2 > 0) {
+                            const double d = std::sqrt(d2);
+                            const double f = (1.0 - d * inv_r) * oma * r / d;
+                            sx += away.x * f;
+                            sz += away.y * f;
+                        } else {
+                            const Vec2d u = tie_break_direction(ctx.seed, ids[k], ids[p]);
+                            sx += u.x * oma * r;
+                            sz += u.y * oma * r;
                         }
-                        // Back into t's frame: the rotation of F[j→t] is the inverse one.
-                        Vec2d &Dk = D[k - mine_begin];
-                        Dk.x += F.c * sx + F.s * sz;
-                        Dk.y += -F.s * sx + F.c * sz;
-                    }
+                    });
+                    D[k - mine_begin] = {sx, sz};
                 }
                 // SG01 §3.2.1: C' = C + w_a·O + (1 − w_a)·w_d·D, O = (D·Â)·A
                 for (uint32_t k = 0; k < mine_end - mine_begin; ++k) {
@@ -226,6 +352,44 @@ void Relaxer::accumulate_forces(const RelaxContext &ctx,
                 }
             }
         });
+}
+
+template <typename Fn>
+void Relaxer::for_each_neighbour(TriId t, uint32_t k, double r, Fn &&fn) const {
+    const double r2 = r * r;
+    const double *xs = m_sx.data(), *zs = m_sz.data();
+    const Vec2d c{xs[k], zs[k]};
+    for (const Neighbourhoods::Entry &e : m_nbhd.of(t)) {
+        const uint32_t theirs_begin = m_row[e.tri], theirs_end = m_row[e.tri + 1];
+        if (theirs_begin == theirs_end) continue;
+        const RigidMap2 &F = e.to_nbr;
+        const Vec2d q = F.apply(c);  // C in j's frame
+        // A cell farther than r from j's bounding circle has no neighbour on j.
+        const double reach = r + m_nbhd.bounding_radius(e.tri);
+        if (q.x * q.x + q.y * q.y > reach * reach) continue;
+        for (uint32_t p = theirs_begin; p < theirs_end; ++p) {
+            const double dx = q.x - xs[p], dz = q.y - zs[p];
+            const double d2 = dx * dx + dz * dz;
+            if (d2 >= r2 || p == k) continue;
+            // Back into t's frame: the rotation of F[j→t] is the inverse one.
+            fn(p, Vec2d{F.c * dx + F.s * dz, -F.s * dx + F.c * dz}, d2);
+        }
+    }
+}
+
+std::vector<RelaxNeighbour> Relaxer::neighbours(const RelaxContext &ctx,
+                                                const Cells &cells, CellId c) {
+    m_nbhd.update(*ctx.crps, ctx.r);
+    gather_by_triangle(cells, ctx.crps->num_triangles());
+    const TriId t = cells.tri(c);
+    std::vector<RelaxNeighbour> out;
+    for (uint32_t k = m_row[t]; k < m_row[t + 1]; ++k) {
+        if (m_sid[k] != c) continue;
+        for_each_neighbour(t, k, ctx.r, [&](uint32_t p, Vec2d away, double d2) {
+            out.push_back({m_sid[p], std::sqrt(d2), away});
+        });
+    }
+    return out;
 }
 
 // Every moving cell walks across the surface (parallel, independent).

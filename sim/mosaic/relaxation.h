@@ -5,13 +5,13 @@
 // All displacements are computed from the old positions, then every cell moves (Jacobi).
 //
 // Neighbour search (Teo §5.1.2): the cells of triangle t and of every triangle in t's
-// breadth-first unfolding within r. Distances go through the CRPS maps, never 3D: the
-// query cell is carried into the neighbour's frame (reverse mapping, Teo §6.2) and the
-// summed displacement rotated back once per neighbour triangle.
+// unfolding within r. Distances go through the CRPS maps, never 3D: the query cell is
+// carried into the neighbour's frame (reverse mapping, Teo §6.2), through unfoldings
+// checked against exact geodesics (Neighbourhoods), so no force acts through a fold.
 //
-// Determinism: each triangle's forces are summed in a fixed order (unfolding order, then
-// bucket order) by one task; moves are applied serially in triangle order. Results do
-// not depend on the number of threads.
+// Determinism: each triangle's forces are summed in a fixed order (triangle order of
+// its unfolding, then bucket order) by one task; moves are applied serially in triangle
+// order. Results do not depend on the number of threads.
 #pragma once
 
 #include <vector>
@@ -25,6 +25,19 @@ namespace pelage::sim {
 // Unfoldings within a radius R ≥ r, cached per triangle while the radius stays close: r
 // only shrinks as cells are added, so the cache is rebuilt when r < R / rebuild_ratio
 // (keeping the candidate set tight) or r > R (it would miss triangles).
+//
+// The unfolding walks across edges only, so every map is the unfolding of an edge path
+// (Teo's vertex maps rotate about a line, not along the surface). Around a vertex whose
+// angles do not sum to 2π (a cone or a saddle: horns, ears, leg tops) paths on either
+// side unfold a triangle to different places, and a planar unfolding overlaps itself
+// or gapes: there a straight segment between two images is no path on the surface, and
+// a triangle from elsewhere on the body can land near the master (the folds). Each
+// triangle's images (up to max_images, those more than image_tolerance·R apart) are
+// therefore checked against exact geodesic distances from the master's centroid
+// (sim/geodesic, Chen & Han window propagation) at the triangle's corners, edge
+// midpoints and centroid: the image that agrees best is kept if it agrees within
+// image_tolerance·R, and a triangle with no such image, or none within R along the
+// surface, is dropped.
 class Neighbourhoods {
   public:
     struct Entry {
@@ -32,7 +45,12 @@ class Neighbourhoods {
         RigidMap2 to_nbr;  // F[t→j]: carries a point of t into j's frame
     };
     static constexpr double slack = 1.15, rebuild_ratio = 1.5;
+    static constexpr int max_images = 3;
+    static constexpr double image_tolerance = 0.05;
 
+    // Whether images are checked against exact geodesics (the default; off, the first
+    // image of the breadth-first unfolding stands, as in Teo 2006 §4.1).
+    void set_verified(bool verified) { m_verified = verified; }
     // Makes sure the cache covers radius r.
     void update(const Crps &crps, double r);
     const std::vector<Entry> &of(TriId t) const { return m_entries[t]; }
@@ -41,13 +59,19 @@ class Neighbourhoods {
     double radius() const { return m_radius; }
     size_t rebuilds() const { return m_rebuilds; }
     double seconds() const { return m_seconds; }  // total time spent building
+    // Images of the last build dropped or replaced by another image of their triangle.
+    size_t images_dropped() const { return m_dropped; }
+    size_t images_replaced() const { return m_replaced; }
+    size_t entries() const;  // over all triangles
+    size_t bytes() const;
 
   private:
     std::vector<std::vector<Entry>> m_entries;
     std::vector<double> m_bounding;
     double m_radius = 0;
-    size_t m_rebuilds = 0;
+    size_t m_rebuilds = 0, m_dropped = 0, m_replaced = 0;
     double m_seconds = 0;
+    bool m_verified = true;
 };
 
 struct RelaxContext {
@@ -58,6 +82,13 @@ struct RelaxContext {
     bool uniform_alpha = false;  // the initial phase: same α for every pair
     double alpha = 0;            // used when uniform_alpha
     uint64_t seed = 0;           // tie-break directions for coincident cells
+};
+
+// A neighbour of a cell as the relaxation sees it.
+struct RelaxNeighbour {
+    CellId id;
+    double distance;  // along the surface
+    Vec2d away;       // C − P unfolded into C's frame (length = distance)
 };
 
 struct RelaxStepResult {
@@ -72,11 +103,19 @@ class Relaxer {
     RelaxStepResult step(const RelaxContext &ctx, Cells &cells,
                          const std::vector<TriId> &active);
     Neighbourhoods &neighbourhoods() { return m_nbhd; }
+    // Every neighbour within r of cell c that pushes it, as step() would find them now
+    // (for tests and tools; rebuilds the per-step state).
+    std::vector<RelaxNeighbour> neighbours(const RelaxContext &ctx, const Cells &cells,
+                                           CellId c);
 
   private:
     void gather_by_triangle(const Cells &cells, size_t nt);
     void size_moves(const std::vector<TriId> &active);
     void accumulate_forces(const RelaxContext &ctx, const std::vector<TriId> &active);
+    // Calls fn(p, away, d2) for every neighbour p (index in triangle order) of cell k of
+    // triangle t within r; away is C − P in t's frame, d2 its squared length.
+    template <typename Fn>
+    void for_each_neighbour(TriId t, uint32_t k, double r, Fn &&fn) const;
     void walk_moves(const Crps &crps, const std::vector<TriId> &active);
     RelaxStepResult apply_moves(Cells &cells, const std::vector<TriId> &active) const;
 
