@@ -99,6 +99,10 @@ void Neighbourhoods::update(const Crps &crps, double r) {
                 for (size_t head = 0; head < s.queue.size(); ++head) {
                     const Image parent = s.queue[head];
                     consistent = consistent && topo.num_primary[parent.tri] == 3;
+                    // Other images are not walked on from: the paths on either side of
+                    // a vertex meet at its far side, where one step from each side's
+                    // first images gives both places.
+                    if (s.first[parent.tri] != head) continue;
                     const auto nbrs = topo.neighbours(parent.tri);
                     const auto maps = crps.to_master(parent.tri);
                     for (size_t k = 0; k < topo.num_primary[parent.tri]; ++k) {

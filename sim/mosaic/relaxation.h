@@ -31,13 +31,15 @@ namespace pelage::sim {
 // angles do not sum to 2π (a cone or a saddle: horns, ears, leg tops) paths on either
 // side unfold a triangle to different places, and a planar unfolding overlaps itself
 // or gapes: there a straight segment between two images is no path on the surface, and
-// a triangle from elsewhere on the body can land near the master (the folds). Each
-// triangle's images (up to max_images, those more than image_tolerance·R apart) are
-// therefore checked against exact geodesic distances from the master's centroid
-// (sim/geodesic, Chen & Han window propagation) at the triangle's corners, edge
-// midpoints and centroid: the image that agrees best is kept if it agrees within
+// a triangle from elsewhere on the body can land near the master (the folds). A
+// triangle reached from a first image that lands it elsewhere gets another image (up to
+// max_images, those more than image_tolerance·R/2 apart). Unless every path agrees and
+// no boundary is within reach (the unfolding is then the surface laid flat), each
+// triangle's images are checked against exact geodesic distances from the master's
+// centroid (sim/geodesic, Chen & Han window propagation) at the triangle's corners,
+// edge midpoints and centroid: the image that agrees best is kept if it agrees within
 // image_tolerance·R, and a triangle with no such image, or none within R along the
-// surface, is dropped.
+// surface, is dropped (validation.md, the relaxation's neighbours).
 class Neighbourhoods {
   public:
     struct Entry {

@@ -38,7 +38,7 @@ struct CellScaleReport {
 };
 
 inline constexpr double max_deviation_fraction = 0.002;
-inline constexpr double max_neighbourhood_entries = 2e6;
+inline constexpr double max_neighbourhood_entries = 5e5;
 
 // The mesh to simulate on; `report` says what was done. Returns the input unchanged
 // when it is coarse or light enough.

@@ -18,7 +18,7 @@ namespace {
 CellsData small_cells(const Surface &s) {
     const Preset p = parse_preset(
         test::preset_json(
-            R"({"initial_cells": 300, "initial_relax_steps": 3, "w_r": 2.0, "w_d": 0.1, "rho": 4, "end_time": 1})",
+            R"({"initial_cells": 2000, "initial_relax_steps": 3, "w_r": 2.0, "w_d": 0.1, "rho": 4, "end_time": 1})",
             true, "0.5"),
         "t");
     CmSimulation sim(s.crps, p.types, p.params, 1);

@@ -89,7 +89,7 @@ TEST_P(RelaxationGeodesics, NeighboursAreAsFarApartAsTheSurfaceSays) {
     EXPECT_GT(checked.pairs, 1000u);
     EXPECT_EQ(checked.through_folds, 0u);
     EXPECT_LE(checked.worst_error, 0.08);
-    EXPECT_LE(checked.missed_percent(), 1.0);
+    EXPECT_LE(checked.missed_percent(), 1.5);
     // The reference the checks exist for: first-path unfoldings of these animals push
     // cells through folds.
     EXPECT_GT(unfolded.through_folds, 0u);
