@@ -19,6 +19,7 @@ SimulationSurface::SimulationSurface(sim::Surface input_surface,
         area += input.crps.frame(t).area;
     m_report.input_triangles = m_report.output_triangles = input.mesh.num_triangles();
     if (!simplify) return;
+
     sim::CellScaleRequest request;
     request.area = area;
     request.expected_cells =
@@ -28,10 +29,13 @@ SimulationSurface::SimulationSurface(sim::Surface input_surface,
     request.neighbourhood_radius =
         sim::Neighbourhoods::slack * preset.params.w_r *
         std::sqrt(area / double(std::max<uint64_t>(m_initial, 1)));
-    sim::TriangleMesh mesh = sim::cell_scale_surface(input.mesh, request, &m_report);
+    m_report = sim::plan_cell_scale(input.mesh, request);
     if (!m_report.simplified) return;
+    // The input's CRPS and topology go before the simplification's own structures come.
+    const sim::TriangleMesh mesh = std::move(m_input->mesh);
     m_input.reset();
-    m_simplified.emplace(sim::build_surface(std::move(mesh)));
+    m_simplified.emplace(
+        sim::build_surface(sim::simplify_to_cell_scale(mesh, &m_report)));
 }
 
 }  // namespace pelage::renderer::cli

@@ -7,8 +7,8 @@
 
 namespace pelage::sim {
 
-TriangleMesh cell_scale_surface(const TriangleMesh &mesh, const CellScaleRequest &request,
-                                CellScaleReport *report) {
+CellScaleReport plan_cell_scale(const TriangleMesh &mesh,
+                                const CellScaleRequest &request) {
     CellScaleReport rep;
     rep.input_triangles = rep.output_triangles = mesh.num_triangles();
     rep.cell_spacing = std::sqrt(request.area / std::max(request.expected_cells, 1.0));
@@ -18,19 +18,20 @@ TriangleMesh cell_scale_surface(const TriangleMesh &mesh, const CellScaleRequest
     if (e > 0)
         rep.neighbourhood_entries = double(mesh.num_triangles()) * 3.141592653589793 *
                                     (R + e) * (R + e) / (0.4330127018922193 * e * e);
-    const bool dense = e > 0 && e < rep.cell_spacing &&
-                       rep.neighbourhood_entries > max_neighbourhood_entries;
-    if (!dense) {
-        if (report) *report = rep;
-        return mesh;
+    rep.simplified = e > 0 && e < rep.cell_spacing &&
+                     rep.neighbourhood_entries > max_neighbourhood_entries;
+    if (rep.simplified) {
+        rep.edge_length = rep.cell_spacing;
+        rep.max_deviation =
+            std::min(max_deviation_fraction * rep.bbox_diagonal, 0.1 * rep.cell_spacing);
     }
-    rep.simplified = true;
-    rep.edge_length = rep.cell_spacing;
-    rep.max_deviation =
-        std::min(max_deviation_fraction * rep.bbox_diagonal, 0.1 * rep.cell_spacing);
-    TriangleMesh out = simplify(mesh, {rep.edge_length, rep.max_deviation});
-    rep.output_triangles = out.num_triangles();
-    if (report) *report = rep;
+    return rep;
+}
+
+TriangleMesh simplify_to_cell_scale(const TriangleMesh &mesh, CellScaleReport *plan) {
+    if (!plan->simplified) return mesh;
+    TriangleMesh out = simplify(mesh, {plan->edge_length, plan->max_deviation});
+    plan->output_triangles = out.num_triangles();
     return out;
 }
 

@@ -27,7 +27,7 @@ struct CellScaleRequest {
 };
 
 struct CellScaleReport {
-    bool simplified = false;
+    bool simplified = false;  // planned, or done
     size_t input_triangles = 0, output_triangles = 0;
     double cell_spacing = 0;           // s = sqrt(A / expected final cells)
     double input_mean_edge = 0;        // of the input
@@ -40,9 +40,12 @@ struct CellScaleReport {
 inline constexpr double max_deviation_fraction = 0.002;
 inline constexpr double max_neighbourhood_entries = 5e5;
 
-// The mesh to simulate on; `report` says what was done. Returns the input unchanged
-// when it is coarse or light enough.
-TriangleMesh cell_scale_surface(const TriangleMesh &mesh, const CellScaleRequest &request,
-                                CellScaleReport *report);
+// Whether the mesh is to be simplified, and how (output_triangles is the input's until
+// simplify_to_cell_scale has run): a cheap look at the mesh, so a caller can release
+// what it built on a dense input before simplifying.
+CellScaleReport plan_cell_scale(const TriangleMesh &mesh,
+                                const CellScaleRequest &request);
+// The mesh to simulate on: the input simplified as planned, or unchanged.
+TriangleMesh simplify_to_cell_scale(const TriangleMesh &mesh, CellScaleReport *plan);
 
 }  // namespace pelage::sim

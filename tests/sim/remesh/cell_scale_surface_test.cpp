@@ -72,9 +72,9 @@ TEST(CellScaleSurface, LeavesALightMeshAlone) {
     // few enough to unfold as they are.
     const TriangleMesh sphere = load_mesh("procedural:sphere:20x20");
     const double area = sphere.surface_area(), edge = mean_edge_length(sphere);
-    CellScaleReport report;
-    const TriangleMesh out = cell_scale_surface(
-        sphere, {area, 150, 1.15 * 2 * std::sqrt(area / 150)}, &report);
+    CellScaleReport report =
+        plan_cell_scale(sphere, {area, 150, 1.15 * 2 * std::sqrt(area / 150)});
+    const TriangleMesh out = simplify_to_cell_scale(sphere, &report);
     EXPECT_GT(report.cell_spacing, edge);
     EXPECT_LT(report.neighbourhood_entries, max_neighbourhood_entries);
     EXPECT_FALSE(report.simplified);
@@ -86,9 +86,9 @@ TEST(CellScaleSurface, LeavesAMeshAtTheCellsScaleAlone) {
     const double area = cow.surface_area(), edge = mean_edge_length(cow);
     // Cells spaced 0.9 mean edges apart: triangles are not smaller than the cells.
     const double cells = area / (0.9 * edge * 0.9 * edge);
-    CellScaleReport report;
     // Even with neighbourhoods as wide as on the dense cow below.
-    const TriangleMesh out = cell_scale_surface(cow, {area, cells, 0.05}, &report);
+    CellScaleReport report = plan_cell_scale(cow, {area, cells, 0.05});
+    const TriangleMesh out = simplify_to_cell_scale(cow, &report);
     EXPECT_FALSE(report.simplified);
     EXPECT_EQ(out.positions, cow.positions);
     EXPECT_EQ(out.triangles, cow.triangles);
@@ -101,8 +101,8 @@ TEST(CellScaleSurface, ADenseCowStaysOnTheCowWithAboutTwoTrianglesPerCell) {
     // teo-leopard's counts and radius: 5 000 -> 8 474 cells, w_r 3.3.
     const double area = dense.surface_area(), cells = 8474;
     const double radius = 1.15 * 3.3 * std::sqrt(area / 5000);
-    CellScaleReport report;
-    const TriangleMesh out = cell_scale_surface(dense, {area, cells, radius}, &report);
+    CellScaleReport report = plan_cell_scale(dense, {area, cells, radius});
+    const TriangleMesh out = simplify_to_cell_scale(dense, &report);
     ASSERT_TRUE(report.simplified);
     EXPECT_EQ(report.input_triangles, dense.num_triangles());
     EXPECT_EQ(report.output_triangles, out.num_triangles());
