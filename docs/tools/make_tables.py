@@ -143,6 +143,22 @@ def t_sim():
     return out
 
 
+def t_sim_density():
+    d = data("bench_sim")
+    rows = [[str(r["subdivisions"]), num(r["triangles"]), num(r["simulation_triangles"]),
+             num(r["final_cells"]), num(r["seconds"]), num(r["ns_per_cell_step"]),
+             num(r["peak_rss_mb"]), f"{r['peak_rss_kb_per_cell']:.1f}"]
+            for r in d["density"]]
+    return (table(["midpoint splits", "triangles", "simulated on", "final cells", "seconds",
+                   "ns / cell-step", "peak MB", "peak KB / cell"], rows) +
+            f"\n`{d['density_preset']}` on {mesh_name(d['density_mesh'])}, the same surface "
+            "split at its edge midpoints, each run a separate `pelage sim` process "
+            f"({d['threads']} thread). Finest over coarsest: ns per cell-step "
+            f"**{d['density_ns_per_cell_step_ratio']:.2f}×** "
+            f"(`density_ns_per_cell_step_ratio`), peak memory per cell "
+            f"**{d['density_peak_rss_ratio']:.2f}×** (`density_peak_rss_ratio`).\n")
+
+
 def t_default_job():
     s, st = data("sim_cow_giraffe"), data("stats_cow_giraffe")
     by_type = ", ".join(f"{k} {num(v)}" for k, v in sorted(s["cells_by_type"].items()))
@@ -366,7 +382,7 @@ def t_looks():
 
 
 TABLES = {
-    "machine": t_machine, "crps": t_crps, "sim": t_sim, "default-job": t_default_job,
+    "machine": t_machine, "crps": t_crps, "sim": t_sim, "sim-density": t_sim_density, "default-job": t_default_job,
     "lookup": t_lookup, "lookup-lanes": t_lookup_lanes,
     "lookup-density": t_lookup_density, "render": t_render,
     "compare": t_compare, "hair": t_hair, "fur": t_fur, "presets": t_presets,
