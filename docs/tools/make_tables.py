@@ -159,6 +159,24 @@ def t_sim_density():
             f"**{d['density_peak_rss_ratio']:.2f}×** (`density_peak_rss_ratio`).\n")
 
 
+def t_sim_neighbours():
+    d = data("bench_sim")
+    pct = lambda x: f"{x:.2f} %"
+    rows = []
+    for r in d["neighbours"]:
+        c, f = r["checked"], r["first_path"]
+        rows.append([mesh_name(r["mesh"]), num(r["pairs"]), str(c["through_folds"]),
+                     pct(c["missed_percent"]), pct(100 * c["mean_error_r"]),
+                     pct(100 * c["worst_error_r"]), str(f["through_folds"]),
+                     pct(100 * f["worst_error_r"])])
+    r0 = d["neighbours"][0]
+    return (table(["mesh", "pairs within r", "checked: through folds", "missed",
+                   "mean error (of r)", "worst error (of r)", "first-path: through folds",
+                   "worst error (of r)"], rows) +
+            f"\n{num(r0['cells'])} area-uniform cells, w_r 3.3, the neighbours of "
+            f"{r0['queries']} of them per mesh (`pelage bench sim`, key `neighbours`).\n")
+
+
 def t_default_job():
     s, st = data("sim_cow_giraffe"), data("stats_cow_giraffe")
     by_type = ", ".join(f"{k} {num(v)}" for k, v in sorted(s["cells_by_type"].items()))
@@ -382,7 +400,7 @@ def t_looks():
 
 
 TABLES = {
-    "machine": t_machine, "crps": t_crps, "sim": t_sim, "sim-density": t_sim_density, "default-job": t_default_job,
+    "machine": t_machine, "crps": t_crps, "sim": t_sim, "sim-density": t_sim_density, "sim-neighbours": t_sim_neighbours, "default-job": t_default_job,
     "lookup": t_lookup, "lookup-lanes": t_lookup_lanes,
     "lookup-density": t_lookup_density, "render": t_render,
     "compare": t_compare, "hair": t_hair, "fur": t_fur, "presets": t_presets,

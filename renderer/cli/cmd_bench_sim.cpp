@@ -1,9 +1,10 @@
 // `pelage bench sim`: Teo 2006 Table 7.2 set-up (§7.1.1, Table 7.1: 760-triangle sphere,
 // w_r = 2.0, 50 steps; 10 % F dividing at 2.0, 90 % B not dividing, repulsiveness FF 0.1,
 // BB 0.5, FB 1.0) for 1000, 5000 and 10000 initial cells in both relaxation modes, plus a
-// large case (1 000 000 final cells on bunny00), and density runs (bench_sim_density.h).
-// Prints one JSON object; the keys `runs`, `large` and `density` are a contract. Speed is
-// reported here, never asserted in tests.
+// large case (1 000 000 final cells on bunny00), density runs (bench_sim_density.h) and
+// the relaxation's neighbours against exact geodesics (bench_sim_neighbours.h). Prints
+// one JSON object; the keys `runs`, `large`, `density` and `neighbours` are a contract.
+// Speed is reported here, never asserted in tests.
 #include <sys/resource.h>
 
 #include <filesystem>
@@ -12,6 +13,7 @@
 
 #include "renderer/cli/bench.h"
 #include "renderer/cli/bench_sim_density.h"
+#include "renderer/cli/bench_sim_neighbours.h"
 #include "sim/cells_io/cells_file.h"
 #include "sim/core/input_error.h"
 #include "sim/crps/surface.h"
@@ -29,6 +31,8 @@ struct BenchSimOptions {
     bool skip_large = false;
     std::string density_mesh, density_preset = "teo-leopard";
     int density_levels = 2;
+    std::vector<std::string> neighbour_meshes;
+    size_t neighbour_queries = 200;
     uint64_t seed = 1;
     int repeat = 3;
     ThreadOption threads;
@@ -173,6 +177,23 @@ int run(const BenchSimOptions &o) {
         out.update(density_runs(
             {mesh, o.density_preset, o.density_levels, o.seed, o.threads.threads}));
     }
+    // --- The relaxation's neighbours against exact geodesics ---
+    if (o.neighbour_queries > 0) {
+        NeighbourOptions n;
+        n.meshes = o.neighbour_meshes;
+        if (n.meshes.empty())
+            for (const char *name : {"cow.off", "bull.off", "triceratops.off"})
+                n.meshes.push_back(data_path(std::string("scenes/meshes/") + name));
+        for (const std::string &mesh : n.meshes)
+            if (mesh.rfind("procedural:", 0) != 0 && !std::filesystem::exists(mesh))
+                throw InputError(
+                    mesh, 0, "",
+                    "sample mesh missing: run scenes/fetch_meshes.sh (or pass "
+                    "--neighbour-meshes)");
+        n.queries = o.neighbour_queries;
+        n.seed = o.seed;
+        out.update(neighbour_runs(n));
+    }
     std::cout << out.dump(2) << std::endl;
     return 0;
 }
@@ -202,6 +223,12 @@ Runner add_bench_sim(CLI::App &bench) {
     sub->add_option("--density-levels", o->density_levels,
                     "Midpoint subdivisions of the finest density run (-1: none)")
         ->check(CLI::Range(-1, 4))
+        ->capture_default_str();
+    sub->add_option("--neighbour-meshes", o->neighbour_meshes,
+                    "Meshes of the neighbour runs (default cow, bull, triceratops)");
+    sub->add_option("--neighbour-queries", o->neighbour_queries,
+                    "Cells whose relaxation neighbours are compared with exact geodesics "
+                    "per mesh (0: none)")
         ->capture_default_str();
     sub->add_option("--seed", o->seed, "Seed");
     sub->add_option("--repeat", o->repeat, "Runs per case; the fastest counts")
