@@ -47,7 +47,7 @@ int run_sim(const SimOptions &o) {
 
     // --- The simulation surface: the input, or a copy at the cells' scale when its
     //     triangles are much smaller than the cells ---
-    const SimulationSurface chosen(sim::build_surface(o.mesh), preset, o.cells,
+    const SimulationSurface chosen(sim::build_surface(o.mesh), o.mesh, preset, o.cells,
                                    o.surface == "auto");
     const sim::Surface &surface = chosen.surface();
     const sim::CellScaleReport &cell_scale = chosen.report();

@@ -1,5 +1,8 @@
 #include "renderer/cli/simulation_surface.h"
 
+#include <sys/resource.h>
+#include <unistd.h>
+
 #include <algorithm>
 #include <cmath>
 
@@ -9,6 +12,7 @@
 namespace pelage::renderer::cli {
 
 SimulationSurface::SimulationSurface(sim::Surface input_surface,
+                                     const std::string &mesh_path,
                                      const sim::Preset &preset, uint64_t cells,
                                      bool simplify)
     : m_input(std::move(input_surface)) {
@@ -17,9 +21,6 @@ SimulationSurface::SimulationSurface(sim::Surface input_surface,
     double area = 0;
     for (sim::TriId t = 0; t < input.crps.num_triangles(); ++t)
         area += input.crps.frame(t).area;
-    m_report.input_triangles = m_report.output_triangles = input.mesh.num_triangles();
-    if (!simplify) return;
-
     sim::CellScaleRequest request;
     request.area = area;
     request.expected_cells =
@@ -30,6 +31,15 @@ SimulationSurface::SimulationSurface(sim::Surface input_surface,
         sim::Neighbourhoods::slack * preset.params.w_r *
         std::sqrt(area / double(std::max<uint64_t>(m_initial, 1)));
     m_report = sim::plan_cell_scale(input.mesh, request);
+    if (!simplify) m_report.simplified = false;
+    // Refused up front rather than run out of memory: three quarters of the machine's
+    // memory, or of the address space the process may use when that is limited.
+    double available = double(sysconf(_SC_PHYS_PAGES)) * double(sysconf(_SC_PAGE_SIZE));
+    rlimit limit{};
+    if (getrlimit(RLIMIT_AS, &limit) == 0 && limit.rlim_cur != RLIM_INFINITY)
+        available = std::min(available, double(limit.rlim_cur));
+    if (available > 0)
+        sim::check_neighbourhood_memory(m_report, 0.75 * available, mesh_path);
     if (!m_report.simplified) return;
     // The input's CRPS and topology go before the simplification's own structures come.
     const sim::TriangleMesh mesh = std::move(m_input->mesh);

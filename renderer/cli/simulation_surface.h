@@ -5,6 +5,7 @@
 #pragma once
 
 #include <optional>
+#include <string>
 
 #include "sim/crps/surface.h"
 #include "sim/mosaic/cell_types.h"
@@ -17,8 +18,9 @@ class SimulationSurface {
     // `cells` > 0 overrides the preset's initial count; `simplify` false keeps the input.
     // The input is released once a simplified copy stands for it: a dense mesh would
     // otherwise weigh on the whole run.
-    SimulationSurface(sim::Surface input, const sim::Preset &preset, uint64_t cells,
-                      bool simplify);
+    // InputError naming mesh_path when the run would not fit in memory.
+    SimulationSurface(sim::Surface input, const std::string &mesh_path,
+                      const sim::Preset &preset, uint64_t cells, bool simplify);
     const sim::Surface &surface() const {
         return m_simplified ? *m_simplified : *m_input;
     }

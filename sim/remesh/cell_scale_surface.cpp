@@ -2,7 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
+#include "sim/core/input_error.h"
 #include "sim/remesh/simplify.h"
 
 namespace pelage::sim {
@@ -33,6 +35,30 @@ TriangleMesh simplify_to_cell_scale(const TriangleMesh &mesh, CellScaleReport *p
     TriangleMesh out = simplify(mesh, {plan->edge_length, plan->max_deviation});
     plan->output_triangles = out.num_triangles();
     return out;
+}
+
+double neighbourhood_bytes(const CellScaleReport &plan) {
+    // A simplified surface holds about max_neighbourhood_entries; the input its estimate.
+    const double entries =
+        plan.simplified ? std::min(plan.neighbourhood_entries, max_neighbourhood_entries)
+                        : plan.neighbourhood_entries;
+    return 64.0 * entries;
+}
+
+void check_neighbourhood_memory(const CellScaleReport &plan, double budget,
+                                const std::string &mesh_path) {
+    const double need = neighbourhood_bytes(plan);
+    if (need <= budget) return;
+    char text[512];
+    std::snprintf(
+        text, sizeof text,
+        "the relaxation would need about %.1f GB for the neighbourhoods of its "
+        "%zu triangles (mean edge %.3g) at the initial repulsion radius, more than "
+        "the %.1f GB available: start from more cells (--cells, or "
+        "simulation.initial_cells / initial_spacing), a smaller w_r, or a coarser "
+        "mesh",
+        need / 1e9, plan.input_triangles, plan.input_mean_edge, budget / 1e9);
+    throw InputError(mesh_path, 0, "simulation.initial_cells", text);
 }
 
 }  // namespace pelage::sim

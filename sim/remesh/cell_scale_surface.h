@@ -15,6 +15,7 @@
 #pragma once
 
 #include <cstddef>
+#include <string>
 
 #include "sim/mesh/mesh.h"
 
@@ -47,5 +48,14 @@ CellScaleReport plan_cell_scale(const TriangleMesh &mesh,
                                 const CellScaleRequest &request);
 // The mesh to simulate on: the input simplified as planned, or unchanged.
 TriangleMesh simplify_to_cell_scale(const TriangleMesh &mesh, CellScaleReport *plan);
+
+// About what the relaxation's neighbourhoods of the planned surface take at the initial
+// radius, in bytes (the unfolded triangles the plan estimates, at about 64 bytes each
+// while they are built).
+double neighbourhood_bytes(const CellScaleReport &plan);
+// InputError (field simulation.initial_cells) naming the mesh, the memory the
+// neighbourhoods would take and what to change, when that is more than `budget` bytes.
+void check_neighbourhood_memory(const CellScaleReport &plan, double budget,
+                                const std::string &mesh_path);
 
 }  // namespace pelage::sim

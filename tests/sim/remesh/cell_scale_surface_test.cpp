@@ -14,6 +14,7 @@
 #include <utility>
 
 #include "shader/clonal_mosaic/surface_transfer.h"
+#include "sim/core/input_error.h"
 #include "sim/crps/surface.h"
 #include "sim/crps/surface_sampling.h"
 #include "sim/mesh/mesh_load.h"
@@ -131,6 +132,34 @@ TEST(CellScaleSurface, ADenseCowStaysOnTheCowWithAboutTwoTrianglesPerCell) {
     // Same topology (a closed surface of the same genus) and nearly the same area.
     EXPECT_EQ(euler_and_open_edges(out), euler_and_open_edges(dense));
     EXPECT_NEAR(out.surface_area() / area, 1.0, 0.02);
+}
+
+TEST(CellScaleSurface, NeighbourhoodsThatWouldNotFitAreRefusedSayingWhatToChange) {
+    // bunny00 with giraffe-reticulata's start: 19 883 cells, w_r 4.5, triangles far
+    // larger than the final cells, so nothing is simplified.
+    const TriangleMesh bunny = load_mesh(test::sample_mesh("bunny00.off"));
+    const double area = bunny.surface_area();
+    const CellScaleReport plan =
+        plan_cell_scale(bunny, {area, 226662, 1.15 * 4.5 * std::sqrt(area / 19883)});
+    EXPECT_FALSE(plan.simplified);
+    // By the estimate's own formula, checked by hand: triangles × π(R + e)² / (√3/4·e²).
+    const double e = plan.input_mean_edge, R = 1.15 * 4.5 * std::sqrt(area / 19883);
+    EXPECT_NEAR(plan.neighbourhood_entries,
+                double(bunny.num_triangles()) * M_PI * (R + e) * (R + e) /
+                    (std::sqrt(3.0) / 4 * e * e),
+                1e-6 * plan.neighbourhood_entries);
+    EXPECT_GT(neighbourhood_bytes(plan), 1e9);
+    EXPECT_NO_THROW(check_neighbourhood_memory(plan, 16e9, "bunny00.off"));
+    try {
+        check_neighbourhood_memory(plan, 1e9, "bunny00.off");
+        ADD_FAILURE() << "a 1 GB budget was accepted";
+    } catch (const InputError &error) {
+        EXPECT_EQ(error.file(), "bunny00.off");
+        EXPECT_EQ(error.field(), "simulation.initial_cells");
+        const std::string what = error.what();
+        EXPECT_NE(what.find("more cells"), std::string::npos) << what;
+        EXPECT_NE(what.find("GB"), std::string::npos) << what;
+    }
 }
 
 }  // namespace
