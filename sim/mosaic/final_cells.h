@@ -2,12 +2,11 @@
 // surface's resolution is chosen from (sim/remesh/cell_scale_surface.h).
 //
 // A run stops at target_cells when one is set (scaled with the initial count as
-// CmSimulation::initialize does), else at end_time. Up to end_time each initial type
-// grows as a pure birth process with its own mean division time D (Walter 1998 §3.4):
-// by 2^(T/D) with Poisson-distributed delays (mean D, so about T/D generations), by
-// e^(T/D) with exponential delays (a Yule process of rate 1/D). Mutation is ignored: it
-// moves cells between types but each child still divides at its new type's rate, so the
-// estimate is of the right order, which is all a mesh resolution needs.
+// CmSimulation::initialize does), or at end_time. Up to then the counts by type follow
+// the mean of the division process (Walter 1998 §3.4): each type divides at its own
+// rate and its children take their types from its mutation row, so a type that only
+// arises by mutation and divides fast (walter-ocelot's) is counted. The estimate is of
+// the right order, which is all a mesh resolution needs.
 #pragma once
 
 #include <cstdint>

@@ -59,7 +59,6 @@ void Neighbourhoods::update(const Crps &crps, double r) {
         std::vector<Image> queue;
         std::optional<WindowPropagation> propagation;
         std::vector<GeodesicWindow> windows;
-        std::vector<uint32_t> window_row;  // per queue tri (sorted), windows by face
         std::vector<TriId> tris;
         size_t dropped = 0, replaced = 0;
     };
@@ -94,7 +93,7 @@ void Neighbourhoods::update(const Crps &crps, double r) {
                 // Whether every path to every triangle unfolds it to one place and no
                 // edge within reach is a boundary: then the unfolding is the surface
                 // laid flat without overlaps or gaps, and a straight segment in it is a
-                // shortest path on the surface.
+                // path on the surface.
                 bool consistent = true;
                 for (size_t head = 0; head < s.queue.size(); ++head) {
                     const Image parent = s.queue[head];
