@@ -16,7 +16,6 @@
 #include "shader/clonal_mosaic/spot_statistics.h"
 #include "sim/cells_io/cells_file.h"
 #include "sim/cells_io/pattern_stats.h"
-#include "sim/mesh/mesh_load.h"
 
 namespace pelage::renderer::cli {
 namespace {
@@ -64,8 +63,6 @@ void add_area_fractions(const StatsOptions &o, nlohmann::json *j) {
 
 int run_stats(const StatsOptions &o) {
     const sim::CellsData data = sim::read_cells_file(o.file);
-    if (!o.mesh.empty())
-        sim::check_cells_match_mesh(data, sim::load_mesh(o.mesh), o.file);
     const sim::PatternStats s = sim::compute_pattern_stats(data);
     nlohmann::json by_type = nlohmann::json::object();
     for (const auto &[name, n] : s.cells_by_type) by_type[name] = n;
@@ -124,8 +121,10 @@ Runner add_stats_command(CLI::App &app) {
     sub->add_option("file", o->file, ".cells file")->required();
     sub->add_flag("--json", o->json, "Print JSON on stdout");
     sub->add_option("--mesh", o->mesh,
-                    "The mesh the cells were grown on: checks it and adds the area each "
-                    "type covers (area_fraction_by_type, spot_fraction_by_area)");
+                    "The mesh the cells were grown on, or another of its shape (a "
+                    "simplified copy's input): adds the area each type covers "
+                    "(area_fraction_by_type, spot_fraction_by_area); another shape is "
+                    "refused");
     sub->add_option("--area-samples", o->area_samples,
                     "Surface points for the area fractions (standard error "
                     "sqrt(f(1-f)/n))")
