@@ -67,12 +67,6 @@ double process_cpu_seconds() {
            1e-6 * double(u.ru_utime.tv_usec + u.ru_stime.tv_usec);
 }
 
-double peak_rss_mb() {
-    rusage u{};
-    getrusage(RUSAGE_SELF, &u);
-    return double(u.ru_maxrss) / 1024.0;  // Linux: kilobytes
-}
-
 // One configuration, in this process: prints one JSON line.
 int run_child(const BenchFurOptions &o) {
     int width, height;

@@ -5,7 +5,6 @@
 // the relaxation's neighbours against exact geodesics (bench_sim_neighbours.h). Prints
 // one JSON object; the keys `runs`, `large`, `density` and `neighbours` are a contract.
 // Speed is reported here, never asserted in tests.
-#include <sys/resource.h>
 
 #include <filesystem>
 #include <iostream>
@@ -37,12 +36,6 @@ struct BenchSimOptions {
     int repeat = 3;
     ThreadOption threads;
 };
-
-double peak_rss_mb() {
-    rusage u{};
-    getrusage(RUSAGE_SELF, &u);
-    return double(u.ru_maxrss) / 1024.0;  // Linux reports KiB
-}
 
 struct RunResult {
     double seconds = 0;

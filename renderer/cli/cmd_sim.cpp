@@ -4,7 +4,6 @@
 // --stats-json are a contract: triangles, area, cells_by_type, spot_fraction,
 // divisions, relax_steps, seconds, peak_rss_mb.
 #include <fmt/core.h>
-#include <sys/resource.h>
 
 #include <algorithm>
 #include <cmath>
@@ -21,12 +20,6 @@
 
 namespace pelage::renderer::cli {
 namespace {
-
-double peak_rss_mb() {
-    rusage u{};
-    getrusage(RUSAGE_SELF, &u);
-    return double(u.ru_maxrss) / 1024.0;  // Linux reports KiB
-}
 
 struct SimOptions {
     std::string mesh, preset, output, stats_json, relax;
@@ -45,8 +38,8 @@ int run_sim(const SimOptions &o) {
     else if (o.relax == "global")
         preset.params.relax = sim::RelaxMode::global;
 
-    // --- The simulation surface: the input, or a copy at the cells' scale when its
-    //     triangles are much smaller than the cells ---
+    // --- The simulation surface: the input, or a copy at the cells' scale
+    //     (simulation_surface.h) ---
     const SimulationSurface chosen(sim::build_surface(o.mesh), o.mesh, preset, o.cells,
                                    o.surface == "auto");
     const sim::Surface &surface = chosen.surface();

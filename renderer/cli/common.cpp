@@ -1,5 +1,7 @@
 #include "renderer/cli/common.h"
 
+#include <sys/resource.h>
+
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -40,6 +42,12 @@ std::string data_path(const std::string &relative) {
     if (const char *dir = std::getenv("PELAGE_DATA_DIR"); dir && *dir)
         return (std::filesystem::path(dir) / relative).string();
     return (std::filesystem::path(PELAGE_SOURCE_DIR) / relative).string();
+}
+
+double peak_rss_mb() {
+    rusage u{};
+    getrusage(RUSAGE_SELF, &u);
+    return double(u.ru_maxrss) / 1024.0;  // Linux reports KiB
 }
 
 }  // namespace pelage::renderer::cli

@@ -49,6 +49,9 @@ void write_json_file(const std::string &path, const nlohmann::json &j);
 // the source tree this binary was built from.
 std::string data_path(const std::string &relative);
 
+// The process's peak resident memory so far, in MB.
+double peak_rss_mb();
+
 class Timer {
   public:
     Timer() : m_start(std::chrono::steady_clock::now()) {}
