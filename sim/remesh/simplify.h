@@ -3,15 +3,16 @@
 // so their cost grows with triangles per cell, while the pattern only needs the surface
 // resolved at the cells' scale.
 //
-// Edges are collapsed shortest first (Garland & Heckbert's framework as in CGAL's
-// Surface_mesh_simplification, Lindstrom & Turk's placement, "Fast and memory efficient
-// polygonal simplification", 1998) until every edge is at least `edge_length` long.
-// A collapse is refused when it would move the surface farther than `max_deviation`
-// from the input (the polyhedral envelope of Manzi et al. in CGAL, "Exact and Efficient
-// Polyhedral Envelope Containment Check", 2020) or turn a face's normal by more than
-// 90° (CGAL's bounded normal change filter), so thin parts, ears and horns stay where
-// they are at the price of keeping more triangles there. The topology is kept (link
-// condition); a vertex where two fans meet only at a point is split first.
+// Edges are collapsed shortest first (CGAL's Surface_mesh_simplification with Lindstrom
+// & Turk's placement, "Fast and memory efficient polygonal simplification", 1998) until
+// every edge is at least `edge_length` long. A collapse is refused when its new vertex
+// would lie farther than `max_deviation` from the input surface (CGAL's bounded-distance
+// placement; the bound is on vertices, not on whole faces) or when it would turn a
+// face's normal by more than 90° (CGAL's bounded normal change filter), so thin parts,
+// ears and horns stay where they are at the price of keeping more triangles there. The
+// topology is kept (link condition); a vertex where two fans meet only at a point is
+// split first. Plain double arithmetic: the exact-predicate kernel's fallbacks made the
+// distance tests ten times slower without changing the result on the sample meshes.
 #pragma once
 
 #include "sim/mesh/mesh.h"
