@@ -21,6 +21,7 @@ Runner add_bench_command(CLI::App &app) {
     add(add_bench_render);
     add(add_bench_hair);
     add(add_bench_fur);
+    add(add_bench_noise);
     return [children] {
         for (const auto &[sub, run] : children)
             if (sub->parsed()) return run();

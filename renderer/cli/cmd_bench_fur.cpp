@@ -58,14 +58,6 @@ std::string scene_text(const BenchFurOptions &o, double density, bool with_fur) 
     return s.str();
 }
 
-// CPU time of the whole process (all threads): unlike wall time, not inflated when other
-// jobs share the machine.
-double process_cpu_seconds() {
-    rusage u{};
-    getrusage(RUSAGE_SELF, &u);
-    return double(u.ru_utime.tv_sec + u.ru_stime.tv_sec) +
-           1e-6 * double(u.ru_utime.tv_usec + u.ru_stime.tv_usec);
-}
 
 // One configuration, in this process: prints one JSON line.
 int run_child(const BenchFurOptions &o) {

@@ -31,14 +31,6 @@ struct BenchRenderOptions {
     int spp = 4, repeat = 3;
 };
 
-// CPU time of the whole process (all threads). Rays per CPU-second is the throughput per
-// busy core: unlike wall time it is not inflated when other jobs share the machine.
-double process_cpu_seconds() {
-    rusage u{};
-    getrusage(RUSAGE_SELF, &u);
-    return double(u.ru_utime.tv_sec + u.ru_stime.tv_sec) +
-           1e-6 * double(u.ru_utime.tv_usec + u.ru_stime.tv_usec);
-}
 
 // Replays the recorded rays. Baseline: every ray through rtcIntersect1. Same calls: the
 // calls the tracer made, runs of consecutive camera rays (a tile row's packet, as they

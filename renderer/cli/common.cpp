@@ -50,4 +50,11 @@ double peak_rss_mb() {
     return double(u.ru_maxrss) / 1024.0;  // Linux reports KiB
 }
 
+double process_cpu_seconds() {
+    rusage u{};
+    getrusage(RUSAGE_SELF, &u);
+    return double(u.ru_utime.tv_sec + u.ru_stime.tv_sec) +
+           1e-6 * double(u.ru_utime.tv_usec + u.ru_stime.tv_usec);
+}
+
 }  // namespace pelage::renderer::cli

@@ -52,6 +52,10 @@ std::string data_path(const std::string &relative);
 // The process's peak resident memory so far, in MB.
 double peak_rss_mb();
 
+// CPU time of the whole process (all threads), seconds. Unlike wall time it is not
+// inflated when other jobs share the machine: benchmarks report work per busy core.
+double process_cpu_seconds();
+
 class Timer {
   public:
     Timer() : m_start(std::chrono::steady_clock::now()) {}

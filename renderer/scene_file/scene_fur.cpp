@@ -76,6 +76,14 @@ shader::fur::FurParams read_fur(const json &j, const std::string &field,
     p.clump = num(r, "clump", p.clump, 0, 1);
     p.clump_radius = num(r, "clump_radius", p.clump_radius, 0, 1e9, true);
     p.melanin_scale = num(r, "melanin_scale", p.melanin_scale, 0, 100);
+    if (const json *v = r.take("melanin")) {
+        if (!v->is_array() || v->size() != 2)
+            r.fail(r.field("melanin"), "expected [eumelanin, pheomelanin]");
+        p.own_melanin = true;
+        p.eumelanin = float(r.check_number((*v)[0], r.field("melanin") + "[0]", 0, 100));
+        p.pheomelanin =
+            float(r.check_number((*v)[1], r.field("melanin") + "[1]", 0, 100));
+    }
     p.melanin_jitter = num(r, "melanin_jitter", p.melanin_jitter, 0, 1);
     p.beta_m = num(r, "beta_m", p.beta_m, 0, 1, true);
     p.beta_n = num(r, "beta_n", p.beta_n, 0, 1, true);

@@ -133,10 +133,12 @@ Strands grow_fur(const FurParams &params, const SkinMesh &mesh,
             auto clean = [](float x) {
                 return std::isfinite(x) ? std::max(x, 0.0f) : 0.0f;
             };
-            out.melanin[2 * j] = clean(pg.eumelanin * params.melanin_scale *
-                                       (1 + params.melanin_jitter * j_eu));
-            out.melanin[2 * j + 1] = clean(pg.pheomelanin * params.melanin_scale *
-                                           (1 + params.melanin_jitter * j_ph));
+            const float eu = params.own_melanin ? params.eumelanin : pg.eumelanin;
+            const float ph = params.own_melanin ? params.pheomelanin : pg.pheomelanin;
+            out.melanin[2 * j] =
+                clean(eu * params.melanin_scale * (1 + params.melanin_jitter * j_eu));
+            out.melanin[2 * j + 1] =
+                clean(ph * params.melanin_scale * (1 + params.melanin_jitter * j_ph));
             out.roots[j] = root;
         }
     });

@@ -36,7 +36,12 @@ struct FurParams {
     float clump_radius = 0.01f;      // guide spacing: one guide per π·r² of skin
 
     // --- Pigment and look ---
-    float melanin_scale = 1;      // multiplies the skin's eumelanin and pheomelanin
+    float melanin_scale = 1;  // multiplies the skin's eumelanin and pheomelanin
+    // Every strand's eumelanin and pheomelanin instead of the skin's (then scaled and
+    // jittered as the skin's would be): one pigment for the whole coat, e.g. to match
+    // another renderer's melanin parameters (docs/guide/fur.md).
+    bool own_melanin = false;
+    float eumelanin = 0, pheomelanin = 0;
     float melanin_jitter = 0.1f;  // each strand's melanin × U[1 − j, 1 + j]
     float beta_m = 0.25f, beta_n = 0.3f, alpha_deg = 2;  // hair BSDF (shader/hair)
     enum class Curve { round, flat } curve = Curve::round;

@@ -25,7 +25,7 @@ TEST(SceneFur, EveryKeyReachesTheParameters) {
         "comb": [1, 0, 0], "comb_angle": 45, "comb_jitter": 3, "gravity": 0.7,
         "curl_radius": 0.1, "curl_turns": 3, "clump": 0.6, "clump_radius": 0.05,
         "melanin_scale": 2, "melanin_jitter": 0.25, "beta_m": 0.4, "beta_n": 0.5,
-        "alpha": -3, "curve": "flat"})");
+        "alpha": -3, "curve": "flat", "melanin": [0.25, 1.5]})");
     ASSERT_FALSE(s.objects[0].fur.has_value());
     ASSERT_TRUE(s.objects[1].fur.has_value());
     const shader::fur::FurParams &p = *s.objects[1].fur;
@@ -50,6 +50,9 @@ TEST(SceneFur, EveryKeyReachesTheParameters) {
     EXPECT_FLOAT_EQ(p.clump_radius, 0.05f);
     EXPECT_FLOAT_EQ(p.melanin_scale, 2);
     EXPECT_FLOAT_EQ(p.melanin_jitter, 0.25f);
+    EXPECT_TRUE(p.own_melanin);
+    EXPECT_FLOAT_EQ(p.eumelanin, 0.25f);
+    EXPECT_FLOAT_EQ(p.pheomelanin, 1.5f);
     EXPECT_FLOAT_EQ(p.beta_m, 0.4f);
     EXPECT_FLOAT_EQ(p.beta_n, 0.5f);
     EXPECT_FLOAT_EQ(p.alpha_deg, -3);
@@ -58,6 +61,7 @@ TEST(SceneFur, EveryKeyReachesTheParameters) {
     const shader::fur::FurParams d = *with_fur("{}").objects[1].fur;
     EXPECT_EQ(d.density, shader::fur::FurParams{}.density);
     EXPECT_EQ(d.curve, shader::fur::FurParams::Curve::round);
+    EXPECT_FALSE(d.own_melanin);
     EXPECT_EQ(with_fur(R"({"comb": "normal"})").objects[1].fur->comb,
               shader::fur::FurParams::Comb::normal);
 }
@@ -78,6 +82,8 @@ TEST(SceneFur, BadValuesNameTheirJsonPath) {
         {R"({"length_by_type": [1, 0]})", "objects[1].fur.length_by_type[1]"},
         {R"({"seed": -4})", "objects[1].fur.seed"},
         {R"({"max_strands": 100000000})", "objects[1].fur.max_strands"},
+        {R"({"melanin": [1]})", "objects[1].fur.melanin"},
+        {R"({"melanin": [1, -2]})", "objects[1].fur.melanin[1]"},
     };
     for (const auto &[fur, field] : cases) {
         try {

@@ -147,6 +147,16 @@ TEST(FurGrow, MelaninIsTheSkinsAtTheRoot) {
         moved += std::abs(j.melanin[2 * i] - skin) > 0.01f * skin;
     }
     EXPECT_GT(moved, j.size() / 2);
+    // The block's own melanin replaces the skin's, still scaled.
+    p.melanin_jitter = 0;
+    p.own_melanin = true;
+    p.eumelanin = 0.1f;
+    p.pheomelanin = 1.6f;
+    const Strands own = grow_fur(p, strip.mesh(), lookup);
+    for (size_t i = 0; i < own.size(); ++i) {
+        ASSERT_FLOAT_EQ(own.melanin[2 * i], 0.2f);
+        ASSERT_FLOAT_EQ(own.melanin[2 * i + 1], 3.2f);
+    }
 }
 
 TEST(FurGrow, StrandsStartAtTheRootWithTheCombAngleLengthAndRadii) {

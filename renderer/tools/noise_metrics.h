@@ -1,0 +1,37 @@
+// How far a render is from a converged reference of the same scene: the error a user
+// sees, measured over the pixels the scene's objects cover (`pelage bench noise`).
+//   * MSE: the mean over those pixels and the R, G, B channels of
+//     (image − reference)², in scene-linear values; RMSE its square root. For an
+//     unbiased renderer the MSE is the variance of the pixel estimates (plus the
+//     reference's own, smaller by the ratio of the sample counts).
+//   * Fireflies: object pixels whose 3×3 median (per channel) still exceeds the
+//     brightest value of the reference anywhere on the objects. A median removes
+//     isolated outliers of ordinary noise; what survives it is a cluster of samples
+//     brighter than anything the converged image holds.
+// A pixel belongs to the objects when the reference's coverage (alpha) is at least 1/2.
+#pragma once
+
+#include <cstddef>
+#include <vector>
+
+namespace pelage::renderer {
+
+struct NoiseMetrics {
+    double mse = 0, rmse = 0;
+    size_t pixels = 0;        // object pixels measured
+    size_t fireflies = 0;     // object pixels above the reference's maximum
+    float reference_max = 0;  // brightest channel value of the reference's objects
+    float median_max = 0;     // ... and of the image after the 3×3 median
+};
+
+// `image` and `reference`: width × height pixels of `stride` interleaved floats each,
+// R, G, B first; the reference's channel 3 is its coverage.
+NoiseMetrics measure_noise(const std::vector<float> &image,
+                           const std::vector<float> &reference, int width, int height,
+                           int stride);
+
+// The 3×3 median of channel `channel`, the border clamped (a test hook).
+std::vector<float> median3x3(const std::vector<float> &pixels, int width, int height,
+                             int stride, int channel);
+
+}  // namespace pelage::renderer
