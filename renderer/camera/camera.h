@@ -19,6 +19,8 @@ class Camera {
     // A ray through raster position (x, y); (u1, u2) pick the point on the lens.
     CameraRay generate(float x, float y, float u1, float u2) const;
     Vec3f forward() const { return m_w; }
+    // False for a pinhole: generate() then ignores (u1, u2).
+    bool has_lens() const { return m_lens_radius > 0; }
 
   private:
     Vec3f m_pos, m_u, m_v, m_w;  // right, up, forward

@@ -95,9 +95,11 @@ bool scatter_at_strand(const Scene &scene, const FurLayer &layer, const RTCRayHi
 
     const unsigned own_id = layer.strand_offset + strand + 1;
     const Vec3f wo_local = frame.to_local(wo);
-    const float u_light = sampler.get_1d(), ul1 = sampler.get_1d(),
-                ul2 = sampler.get_1d();
-    const float u_lobe = sampler.get_1d(), ub1 = sampler.get_1d(), ub2 = sampler.get_1d();
+    // Three 2D samples, as at a surface (integrator_path.cpp): light and lobe, the point
+    // on the light, the BSDF direction; each pair is stratified (sampler.h).
+    const auto [u_light, u_lobe] = sampler.get_2d();
+    const auto [ul1, ul2] = sampler.get_2d();
+    const auto [ub1, ub2] = sampler.get_2d();
     auto origin = [&](Vec3f w) { return offset_ray_origin(p, frame.z, w); };
 
     // --- Next-event estimation: one light, either side of the fibre ---

@@ -97,7 +97,10 @@ void PathIntegrator::render_tile(Film &film, Sampler &sampler, int x0, int y0, i
                     sp.start_pixel_sample(uint32_t(xs + i), uint32_t(y), uint32_t(s));
                     const auto [fu, fv] = sp.get_2d();
                     const float dx = m_filter.sample_1d(fu), dy = m_filter.sample_1d(fv);
-                    const auto [lu, lv] = sp.get_2d();
+                    // A pinhole draws no lens sample: one pair less per camera ray.
+                    const auto [lu, lv] = m_motion || m_camera.has_lens()
+                                              ? sp.get_2d()
+                                              : Sampler::Pair{0.5f, 0.5f};
                     const float px = float(xs + i) + 0.5f + dx, py = float(y) + 0.5f + dy;
                     cam[i] = m_motion ? m_motion->at(sp.get_1d(), m_width, m_height)
                                             .generate(px, py, lu, lv)

@@ -1,7 +1,7 @@
 // Next-event estimation at a path vertex (pbrt-v4 §13.4, SampleLd), shared by surface
-// and fur-strand vertices: one light, chosen by the scene's light selection, is sampled
-// and, when unoccluded, adds β·f·Li·|cos θ|·w / p to L, with the power heuristic weight
-// w against BSDF sampling (Veach 1997 §9.2).
+// and fur-strand vertices: every light, or one chosen by the scene's light selection, is
+// sampled and, when unoccluded, adds β·f·Li·|cos θ|·w / p to L, with the power heuristic
+// weight w against BSDF sampling (Veach 1997 §9.2).
 #pragma once
 
 #include <cmath>
@@ -26,15 +26,14 @@ constexpr float shadow_ray_shortening = 1e-4f;
 //   f(wi_local)  the BSDF value; then, only for a visible light that is not a delta,
 //   pdf(wi_local) the BSDF's sampling density of wi_local.
 // β multiplies first (β·f·Li·…): the product's order is part of the image.
+// One light's contribution: sampled with (u1, u2) and, when unoccluded, added to L
+// with its probability of being chosen, select_pdf.
 template <typename Vertex, typename Instr>
-void sample_ld(const Lights &lights, RTCScene rtc, const Vertex &vertex, float u_light,
-               float u1, float u2, Rgb beta, Rgb &L, RenderStats &stats,
-               const Instr &instr) {
+void sample_one_light(const Lights &lights, RTCScene rtc, const Vertex &vertex, int li,
+                      float select_pdf, float u1, float u2, Rgb beta, Rgb &L,
+                      RenderStats &stats, const Instr &instr) {
     LightSample ls;
-    float select_pdf = 0;
-    const int li = lights.count() > 0 ? lights.select(u_light, &select_pdf) : -1;
-    if (li < 0 || !lights.sample(li, vertex.p, vertex.n, u1, u2, &ls) ||
-        !vertex.accepts(ls.wi))
+    if (!lights.sample(li, vertex.p, vertex.n, u1, u2, &ls) || !vertex.accepts(ls.wi))
         return;
     const Vec3f wi_local = vertex.to_local(ls.wi);
     const Rgb f = vertex.f(wi_local);
@@ -55,6 +54,31 @@ void sample_ld(const Lights &lights, RTCScene rtc, const Vertex &vertex, float u
     const float light_pdf = select_pdf * ls.pdf;
     const float w = ls.delta ? 1.0f : power_heuristic(light_pdf, vertex.pdf(wi_local));
     L += beta * f * ls.Li * (std::abs(wi_local.z) * w / light_pdf);
+}
+
+// Every light (Lights::sample_all) or the one the selection picks with u_light. Light k
+// of all samples (u1, u2) shifted by k times the R2 sequence's step (1/g, 1/g²), g the
+// plastic number: a shifted (Cranley-Patterson rotated) stratified set stays
+// stratified, so each light keeps the sampler's stratification across a pixel's samples
+// without drawing more dimensions.
+template <typename Vertex, typename Instr>
+void sample_ld(const Lights &lights, RTCScene rtc, const Vertex &vertex, float u_light,
+               float u1, float u2, Rgb beta, Rgb &L, RenderStats &stats,
+               const Instr &instr) {
+    if (lights.nee_count() == 0) return;
+    if (lights.sample_all()) {
+        for (int k = 0; k < lights.count(); ++k) {
+            if (lights.select_pdf(k) == 0) continue;  // not a next-event light
+            float v1 = u1 + float(k) * 0.7548777f, v2 = u2 + float(k) * 0.5698403f;
+            v1 -= float(int(v1));
+            v2 -= float(int(v2));
+            sample_one_light(lights, rtc, vertex, k, 1.0f, v1, v2, beta, L, stats, instr);
+        }
+        return;
+    }
+    float select_pdf = 0;
+    const int li = lights.select(u_light, &select_pdf);
+    sample_one_light(lights, rtc, vertex, li, select_pdf, u1, u2, beta, L, stats, instr);
 }
 
 }  // namespace pelage::renderer

@@ -47,7 +47,11 @@ RenderResult render(const Scene &scene, const RenderOptions &opt) {
             tbb::blocked_range<int>(0, num_tiles, 1),
             [&](const tbb::blocked_range<int> &range) {
                 RenderStats &st = stats.local();
-                Sampler sampler(opt.seed, opt.frame);
+                Sampler sampler(opt.seed, opt.frame,
+                                scene.desc().integrator.sampler ==
+                                        IntegratorDesc::SamplerKind::independent
+                                    ? Sampler::Kind::independent
+                                    : Sampler::Kind::sobol);
                 auto render_tiles = [&](const auto &instr) {
                     for (int tile = range.begin(); tile != range.end(); ++tile) {
                         if (opt.cancel && opt.cancel->load(std::memory_order_relaxed)) {

@@ -76,18 +76,35 @@ Lights::Lights(const std::vector<LightDesc> &descs, float scene_radius,
         m_lights.push_back(std::move(l));
     }
     // --- Selection probabilities and their alias table ---
+    // A constant environment is never a next-event light: the direction NEE would draw
+    // for it (cosine-weighted about the normal) is what the BSDF's diffuse lobe draws for
+    // the continuation ray, which the path traces anyway and which, escaping, carries the
+    // environment with full MIS weight (its light density is 0). Sampled as a light, it
+    // costs a shadow ray per vertex and lowers the noise by less than that ray's cost.
+    std::vector<double> weight(m_lights.size());
     double total = 0;
-    for (float &p : m_power) {
+    for (size_t i = 0; i < m_lights.size(); ++i) {
+        float &p = m_power[i];
         if (!std::isfinite(p) || p < 0) p = 0;
-        total += p;
+        const bool nee = !(m_lights[i].env && m_lights[i].env->is_constant());
+        m_nee_count += nee;
+        weight[i] = nee ? p : 0.0;
+        total += weight[i];
     }
+    m_sample_all = selection == IntegratorDesc::LightSelection::all ||
+                   (selection == IntegratorDesc::LightSelection::automatic &&
+                    m_nee_count <= max_sample_all);
     const bool uniform = selection == IntegratorDesc::LightSelection::uniform ||
                          !(total > 0) || !std::isfinite(total);
-    for (size_t i = 0; i < m_lights.size(); ++i)
-        m_select_pdf.push_back(uniform ? 1.0f / float(m_lights.size())
-                                       : float(m_power[i] / total));
-    build_alias_table(uniform ? std::vector<double>(m_lights.size(), 1.0)
-                              : std::vector<double>(m_power.begin(), m_power.end()));
+    for (size_t i = 0; i < m_lights.size(); ++i) {
+        const bool nee = !(m_lights[i].env && m_lights[i].env->is_constant());
+        if (uniform) weight[i] = nee ? 1.0 : 0.0;
+        m_select_pdf.push_back(!nee           ? 0.0f
+                               : m_sample_all ? 1.0f
+                               : uniform      ? 1.0f / float(m_nee_count)
+                                              : float(weight[i] / total));
+    }
+    if (m_nee_count > 0) build_alias_table(weight);
 }
 
 void Lights::build_alias_table(const std::vector<double> &weights) {

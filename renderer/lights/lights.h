@@ -6,9 +6,14 @@
 // quad emits from its front side, towards edge_u × edge_v, unless `two_sided`; its back
 // is black but still occludes. Radiometry: `color × intensity` is radiance for the
 // environment, spheres and quads, and irradiance at normal incidence for distant lights.
-// Light selection for next-event estimation: in proportion to each light's estimated
-// power (luminance of its flux into the scene's bounding sphere, pbrt-v4's Light::Phi),
-// or uniformly; select_pdf(i) is the probability used in both the estimator and MIS.
+// Light selection for next-event estimation (which leaves a constant environment to
+// BSDF sampling, lights.cpp): every light at every vertex (select_pdf 1 each: the
+// estimator and MIS treat each light as always chosen), the default for scenes of up to
+// max_sample_all lights, where one shadow ray per light costs less than the
+// variance of choosing (a sun and a sky chosen between are ~10× noisier than both
+// sampled); or one light, in proportion to each light's estimated power (luminance of its
+// flux into the scene's bounding sphere, pbrt-v4's Light::Phi), or uniformly;
+// select_pdf(i) is the probability used in both the estimator and MIS.
 #pragma once
 
 #include <algorithm>
@@ -38,8 +43,15 @@ class Lights {
     Lights(const Lights &) = delete;
     Lights &operator=(const Lights &) = delete;
 
+    static constexpr int max_sample_all = 4;
+
     int count() const { return int(m_lights.size()); }
-    // The light next-event estimation uses for u in [0, 1), and its probability: O(1)
+    // The lights next-event estimation samples: all but a constant environment.
+    int nee_count() const { return m_nee_count; }
+    // True when next-event estimation samples every light (select() is then unused).
+    bool sample_all() const { return m_sample_all; }
+    // The light next-event estimation uses for u in [0, 1) (nee_count() > 0), and its
+    // probability: O(1)
     // by Walker's alias method (Vose 1991, "A Linear Algorithm for Generating Random
     // Numbers with a Given Distribution", IEEE TSE 17(9)): u picks a bin uniformly and
     // the rest of u chooses between the bin's own light and its alias.
@@ -106,6 +118,8 @@ class Lights {
         int other;   // the light it selects otherwise
     };
     std::vector<AliasBin> m_alias;  // one bin per light
+    bool m_sample_all = false;
+    int m_nee_count = 0;
 };
 
 }  // namespace pelage::renderer

@@ -399,8 +399,14 @@ IntegratorDesc read_integrator(Reader ir) {
     d.rr_depth = ir.integer("rr_depth", d.rr_depth, 1, 1024);
     d.light_selection = ir.choice<IntegratorDesc::LightSelection>(
         "light_selection", d.light_selection,
-        {{"power", IntegratorDesc::LightSelection::power},
+        {{"auto", IntegratorDesc::LightSelection::automatic},
+         {"all", IntegratorDesc::LightSelection::all},
+         {"power", IntegratorDesc::LightSelection::power},
          {"uniform", IntegratorDesc::LightSelection::uniform}});
+    d.sampler = ir.choice<IntegratorDesc::SamplerKind>(
+        "sampler", d.sampler,
+        {{"sobol", IntegratorDesc::SamplerKind::sobol},
+         {"independent", IntegratorDesc::SamplerKind::independent}});
     ir.finish();
     return d;
 }

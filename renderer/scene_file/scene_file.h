@@ -110,9 +110,17 @@ struct AnimationDesc {
 struct IntegratorDesc {
     int max_depth = 8;  // path vertices after the camera
     int rr_depth = 3;   // Russian roulette from this depth on
-    // Next-event estimation picks one light per vertex: in proportion to its estimated
-    // power, or uniformly.
-    enum class LightSelection { power, uniform } light_selection = LightSelection::power;
+    // Next-event estimation samples every light at every vertex (all; automatic for up
+    // to Lights::max_sample_all lights), or picks one: in proportion to its estimated
+    // power (automatic for more lights), or uniformly.
+    enum class LightSelection {
+        automatic,
+        all,
+        power,
+        uniform
+    } light_selection = LightSelection::automatic;
+    // The sampler's numbers (renderer/core/sampler.h): stratified or white noise.
+    enum class SamplerKind { sobol, independent } sampler = SamplerKind::sobol;
 };
 
 struct SceneDesc {
