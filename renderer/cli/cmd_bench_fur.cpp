@@ -58,7 +58,6 @@ std::string scene_text(const BenchFurOptions &o, double density, bool with_fur) 
     return s.str();
 }
 
-
 // One configuration, in this process: prints one JSON line.
 int run_child(const BenchFurOptions &o) {
     int width, height;

@@ -31,7 +31,6 @@ struct BenchRenderOptions {
     int spp = 4, repeat = 3;
 };
 
-
 // Replays the recorded rays. Baseline: every ray through rtcIntersect1. Same calls: the
 // calls the tracer made, runs of consecutive camera rays (a tile row's packet, as they
 // were recorded) through the same PacketIntersector and shadow rays through
