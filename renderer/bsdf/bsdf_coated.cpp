@@ -8,16 +8,64 @@
 
 namespace pelage::renderer {
 
-namespace {
-constexpr float min_alpha = 1e-3f;  // below this the lobe is a delta in float precision
-}
-
-BsdfCoated::BsdfCoated(Rgb rho, float roughness, float ior, float F_int)
-    : m_rho(rho), m_alpha(std::max(min_alpha, roughness * roughness)), m_eta(ior) {
+BsdfCoated::BsdfCoated(Rgb colour, float roughness, float ior, float F_int)
+    : m_colour(colour), m_alpha(std::max(min_alpha, roughness * roughness)), m_eta(ior) {
+    // The base albedo ρ whose BSDF reflects `colour` (file header): g from the colour,
+    // then ρ = g / (1 − F̄_int + g F̄_int), the inverse of g(ρ).
+    const float S = specular_albedo(roughness, ior);
+    const float F_ext = 1 - ior * ior * (1 - F_int);
+    auto base = [&](float c) {
+        const float g = std::clamp((c - S) / (1 - F_ext), 0.0f, 1.0f);
+        return g / (1 - F_int + g * F_int);
+    };
+    m_rho = {base(colour.x), base(colour.y), base(colour.z)};
     // The base seen through the coat, inter-reflection summed (file header).
     const float k = inv_pi / (ior * ior);
-    m_base_scale = {rho.x * k / (1 - rho.x * F_int), rho.y * k / (1 - rho.y * F_int),
-                    rho.z * k / (1 - rho.z * F_int)};
+    m_base_scale = {m_rho.x * k / (1 - m_rho.x * F_int),
+                    m_rho.y * k / (1 - m_rho.y * F_int),
+                    m_rho.z * k / (1 - m_rho.z * F_int)};
+}
+
+float BsdfCoated::specular_albedo(float roughness, float ior) {
+    // Rows: roughness 0, 1/32 ... 1; columns: u = √(ior − 1) from 0 to √2 in 16 steps
+    // (the albedo changes fastest just above ior 1).
+    constexpr int nr = 32, nu = 16, n_mu = 16, n_h = 8;
+    static const float u_max = std::sqrt(2.0f);
+    static const std::array<float, (nr + 1) * (nu + 1)> table = [] {
+        std::array<float, (nr + 1) * (nu + 1)> t{};
+        for (int i = 0; i <= nr; ++i)
+            for (int j = 0; j <= nu; ++j) {
+                const float u = u_max * float(j) / nu;
+                const BsdfCoated b(LobeOnly{}, float(i) / nr, 1 + u * u);
+                // S̄ = 2 ∫ E(μ) μ dμ, midpoint rule in μ; E(μ) by visible-normal
+                // sampling on an n_h × n_h grid, whose weight for the specular lobe is
+                // F(wo·h) G1(wi) (Heitz 2018 §2).
+                double S = 0;
+                for (int a = 0; a < n_mu; ++a) {
+                    const float mu = (float(a) + 0.5f) / n_mu;
+                    const Vec3f wo{std::sqrt(1 - mu * mu), 0, mu};
+                    double E = 0;
+                    for (int p = 0; p < n_h; ++p)
+                        for (int q = 0; q < n_h; ++q) {
+                            const Vec3f h = b.sample_visible_normal(
+                                wo, (float(p) + 0.5f) / n_h, (float(q) + 0.5f) / n_h);
+                            const Vec3f wi = h * (2 * dot(wo, h)) - wo;
+                            if (wi.z <= 0) continue;
+                            E += fresnel_dielectric(dot(wo, h), b.m_eta) * b.smith_g1(wi);
+                        }
+                    S += 2 * mu * E / (n_h * n_h) / n_mu;
+                }
+                t[size_t(i * (nu + 1) + j)] = float(S);
+            }
+        return t;
+    }();
+    const float x = std::clamp(roughness, 0.0f, 1.0f) * nr;
+    const float y = std::sqrt(std::clamp(ior, 1.0f, 3.0f) - 1) * (nu / u_max);
+    const int i = std::min(int(x), nr - 1), j = std::min(int(y), nu - 1);
+    const float fx = x - float(i), fy = y - float(j);
+    auto at = [&](int r, int c) { return table[size_t(r * (nu + 1) + c)]; };
+    return (at(i, j) * (1 - fx) + at(i + 1, j) * fx) * (1 - fy) +
+           (at(i, j + 1) * (1 - fx) + at(i + 1, j + 1) * fx) * fy;
 }
 
 float BsdfCoated::internal_diffuse_reflectance(float eta) {
@@ -115,28 +163,30 @@ float BsdfCoated::pdf(Vec3f wo, Vec3f wi) const {
     return o.p_spec * pdf_spec + (1 - o.p_spec) * wi.z * inv_pi;
 }
 
+Vec3f BsdfCoated::sample_visible_normal(Vec3f wo, float u1, float u2) const {
+    // Heitz 2018, listing 1: stretch wo, sample the projected disc, unstretch.
+    const Vec3f vh = normalize(Vec3f{m_alpha * wo.x, m_alpha * wo.y, wo.z});
+    const float len2 = vh.x * vh.x + vh.y * vh.y;
+    const Vec3f t1 = len2 > 0 ? Vec3f{-vh.y, vh.x, 0} / std::sqrt(len2) : Vec3f{1, 0, 0};
+    const Vec3f t2 = cross(vh, t1);
+    const float r = std::sqrt(u1);
+    float sin_phi, cos_phi;
+    sin_cos_turn(u2, &sin_phi, &cos_phi);  // φ = 2π u2
+    const float p1 = r * cos_phi;
+    float p2 = r * sin_phi;
+    const float s = 0.5f * (1 + vh.z);
+    p2 = (1 - s) * std::sqrt(std::max(0.0f, 1 - p1 * p1)) + s * p2;
+    const Vec3f nh =
+        t1 * p1 + t2 * p2 + vh * std::sqrt(std::max(0.0f, 1 - p1 * p1 - p2 * p2));
+    return normalize(Vec3f{m_alpha * nh.x, m_alpha * nh.y, std::max(1e-6f, nh.z)});
+}
+
 std::optional<BsdfSample> BsdfCoated::sample(Vec3f wo, float u_lobe, float u1,
                                              float u2) const {
     if (wo.z <= 0) return std::nullopt;
     Vec3f wi;
     if (u_lobe < specular_probability(wo)) {
-        // --- Sample a visible normal (Heitz 2018, listing 1) and reflect ---
-        const Vec3f vh = normalize(Vec3f{m_alpha * wo.x, m_alpha * wo.y, wo.z});
-        const float len2 = vh.x * vh.x + vh.y * vh.y;
-        const Vec3f t1 =
-            len2 > 0 ? Vec3f{-vh.y, vh.x, 0} / std::sqrt(len2) : Vec3f{1, 0, 0};
-        const Vec3f t2 = cross(vh, t1);
-        const float r = std::sqrt(u1);
-        float sin_phi, cos_phi;
-        sin_cos_turn(u2, &sin_phi, &cos_phi);  // φ = 2π u2
-        const float p1 = r * cos_phi;
-        float p2 = r * sin_phi;
-        const float s = 0.5f * (1 + vh.z);
-        p2 = (1 - s) * std::sqrt(std::max(0.0f, 1 - p1 * p1)) + s * p2;
-        const Vec3f nh =
-            t1 * p1 + t2 * p2 + vh * std::sqrt(std::max(0.0f, 1 - p1 * p1 - p2 * p2));
-        const Vec3f h =
-            normalize(Vec3f{m_alpha * nh.x, m_alpha * nh.y, std::max(1e-6f, nh.z)});
+        const Vec3f h = sample_visible_normal(wo, u1, u2);
         wi = h * (2 * dot(wo, h)) - wo;
     } else {
         wi = sample_cosine_hemisphere(u1, u2);
