@@ -12,9 +12,10 @@
 // converged images agree (an unbiased sampling change).
 //
 // Prints one JSON object: {scene, width, height, reference: {spp, seed, seconds,
-// cached, file}, object_pixels, runs: [{spp, seed, seconds, cpu_seconds, mse, rmse,
-// time_mse, fireflies, median_max}], by_spp: [{spp, seconds, cpu_seconds, mse, rmse,
-// time_mse, fireflies}] (means over the seeds)} (an output contract).
+// cached, file}, object_pixels, reference_mean, runs: [{spp, seed, seconds,
+// cpu_seconds, mse, rmse, relative_rmse, time_mse, fireflies, median_max}], by_spp:
+// [{spp, seconds, cpu_seconds, mse, rmse, time_mse, fireflies}] (means over the seeds)}
+// (an output contract).
 #include <unistd.h>
 
 #include <cstdlib>
@@ -183,6 +184,7 @@ int run(const BenchNoiseOptions &o) {
     // --- The runs, every sample count with every seed ---
     nlohmann::json runs = nlohmann::json::array(), by_spp = nlohmann::json::array();
     size_t object_pixels = 0;
+    double reference_mean = 0;
     for (int spp : o.spp) {
         desc.film.spp = spp;
         scene = std::make_unique<Scene>(desc, plugins);
@@ -192,12 +194,14 @@ int run(const BenchNoiseOptions &o) {
             const NoiseMetrics m = measure_noise(r.pixels, reference, desc.film.width,
                                                  desc.film.height, stride);
             object_pixels = m.pixels;
+            reference_mean = m.reference_mean;
             runs.push_back({{"spp", spp},
                             {"seed", s},
                             {"seconds", r.seconds},
                             {"cpu_seconds", r.cpu_seconds},
                             {"mse", m.mse},
                             {"rmse", m.rmse},
+                            {"relative_rmse", m.rmse / std::max(m.reference_mean, 1e-30)},
                             {"time_mse", r.cpu_seconds * m.mse},
                             {"fireflies", m.fireflies},
                             {"median_max", m.median_max}});
@@ -224,6 +228,7 @@ int run(const BenchNoiseOptions &o) {
                                 {"cached", cached},
                                 {"file", ref_file}}},
                               {"object_pixels", object_pixels},
+                              {"reference_mean", reference_mean},
                               {"runs", runs},
                               {"by_spp", by_spp}};
     std::cout << j.dump(2) << std::endl;

@@ -1,5 +1,7 @@
 // `pelage render SCENE.json`: render a scene file to a multi-layer EXR (and optionally a
 // display-referred PNG/JPEG preview through OpenColorIO).
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
@@ -28,6 +30,7 @@ constexpr int exit_interrupted = 128 + 2;
 struct RenderCliOptions {
     std::string scene, output, preview, stats_json, res, view;
     int spp = 0;
+    double noise_threshold = -1;  // < 0: the scene's film.noise_threshold
     unsigned long long seed = 0;
     bool quiet = false, resume = false;
     std::string frames;
@@ -90,6 +93,7 @@ struct RenderPlan {
 // folder or a bad name fails now, not after the render.
 RenderPlan plan_render(const RenderCliOptions &o, SceneDesc &desc) {
     if (o.spp > 0) desc.film.spp = o.spp;
+    if (o.noise_threshold >= 0) desc.film.noise_threshold = float(o.noise_threshold);
     if (!o.res.empty())
         parse_resolution(o.res, 65536, &desc.film.width, &desc.film.height);
     if (!o.view.empty()) desc.film.view = o.view;
@@ -220,6 +224,13 @@ FrameOutcome render_frame(const RenderCliOptions &o, const SceneDesc &desc,
     meta.seed = o.seed;
     meta.render_seconds = r.seconds;
     meta.interrupted = r.interrupted;
+    const double mean_spp =
+        double(r.stats.samples) / (double(fd.film.width) * fd.film.height);
+    if (fd.film.noise_threshold > 0) {
+        meta.noise_threshold = fd.film.noise_threshold;
+        meta.min_spp = fd.film.min_spp;
+        meta.mean_spp = mean_spp;
+    }
     if (plan.animated) {
         meta.frame = f;
         if (desc.animation.present) meta.fps = desc.animation.fps;
@@ -239,9 +250,12 @@ FrameOutcome render_frame(const RenderCliOptions &o, const SceneDesc &desc,
     const double rays_per_second =
         r.seconds > 0 ? double(r.stats.rays()) / r.seconds : 0.0;
     if (!o.quiet)
-        std::printf("%s: %dx%d, %d spp, %.2f s, %.2f Mrays/s%s\n", out_f.c_str(),
-                    fd.film.width, fd.film.height, r.spp_done, r.seconds,
-                    rays_per_second * 1e-6,
+        std::printf("%s: %dx%d, %d spp%s, %.2f s, %.2f Mrays/s%s\n", out_f.c_str(),
+                    fd.film.width, fd.film.height, r.spp_done,
+                    fd.film.noise_threshold > 0
+                        ? fmt::format(" (adaptive, mean {:.1f})", mean_spp).c_str()
+                        : "",
+                    r.seconds, rays_per_second * 1e-6,
                     r.stats.nonfinite_samples
                         ? (", " + std::to_string(r.stats.nonfinite_samples) +
                            " non-finite samples dropped")
@@ -331,6 +345,11 @@ Runner add_render_command(CLI::App &app) {
                     "Output EXR (default: the scene's film.output)");
     sub->add_option("--spp", o->spp, "Samples per pixel (overrides film.spp)")
         ->check(CLI::Range(1, 1 << 20));
+    sub->add_option("--noise-threshold", o->noise_threshold,
+                    "Adaptive sampling: a pixel stops once its noise is below this "
+                    "(0.01 clean, 0.1 preview; 0 = off; overrides "
+                    "film.noise_threshold); --spp is then the most a pixel takes")
+        ->check(CLI::Range(0.0, 1.0));
     sub->add_option("--res", o->res,
                     "Resolution WIDTHxHEIGHT (overrides film.width/height)");
     sub->add_option(

@@ -4,6 +4,8 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <cmath>
+#include <limits>
 #include <memory>
 #include <new>
 
@@ -68,6 +70,16 @@ std::vector<float> Film::resolve() const {
         for (int k = 0; k < PELAGE_SHADER_AOV_SLOTS; ++k) o[13 + k] = p.shader[k];
     }
     return out;
+}
+
+float Film::noise(int x, int y) const {
+    const float *a = &m_accum[size_t(y * m_width + x) * accum_stride];
+    const float n = a[10];
+    if (n < 2) return std::numeric_limits<float>::infinity();
+    const float mean = luminance(Rgb{a[0], a[1], a[2]}) / n;
+    // Unbiased sample variance of the luminance, then the variance of the mean.
+    const float var = std::max(0.0f, (a[11] / n - mean * mean) * n / (n - 1));
+    return std::sqrt(var / n) / std::sqrt(std::max(mean, 1e-4f));
 }
 
 std::vector<std::string> Film::channel_names(

@@ -53,10 +53,18 @@ class Film {
         a[8] += weight * s.normal.y;
         a[9] += weight * s.normal.z;
         a[10] += weight;
+        const float lum = luminance(s.L);
+        a[11] += weight * lum * lum;
     }
     void set_point_aovs(int x, int y, const FilmPointAovs &p) {
         m_point[size_t(y * m_width + x)] = p;
     }
+
+    // The pixel's noise for adaptive sampling: the standard error of its mean
+    // luminance over √(max(mean, 10⁻⁴)) — relative to the square root of the level, so
+    // that dark pixels, which tone mapping brightens, need a smaller absolute error
+    // (the normalisation of Cycles' adaptive sampling). Infinite below 2 samples.
+    float noise(int x, int y) const;
 
     static constexpr int num_channels = 4 + 3 + 3 + 1 + 2 + PELAGE_SHADER_AOV_SLOTS;
     // All layers as interleaved float channels in the order of channel_names().
@@ -65,7 +73,8 @@ class Film {
         const std::vector<std::string> &shader_aov_names);
 
   private:
-    static constexpr int accum_stride = 11;
+    // R G B A, albedo, normal, weight, weighted luminance²
+    static constexpr int accum_stride = 12;
     int m_width, m_height;
     // Raw storage from allocate_buffer (huge pages where the kernel grants them), filled
     // in parallel by the constructor.

@@ -210,6 +210,11 @@ void write_exr(const std::string &path, int width, int height,
     spec.attribute("pelage:scene", meta.scene);
     spec.attribute("pelage:spp", meta.spp);
     spec.attribute("pelage:seed", std::to_string(meta.seed));
+    if (meta.noise_threshold > 0) {
+        spec.attribute("pelage:noise_threshold", meta.noise_threshold);
+        spec.attribute("pelage:min_spp", meta.min_spp);
+        spec.attribute("pelage:mean_spp", float(meta.mean_spp));
+    }
     if (meta.record_time)
         spec.attribute("pelage:render_seconds", float(meta.render_seconds));
     spec.attribute("pelage:interrupted", int(meta.interrupted));

@@ -24,6 +24,11 @@ struct ImageMetadata {
     double render_seconds = 0;
     bool interrupted = false;
     int frame = -1;  // animation frame (pelage:frame), -1 = a still
+    // Adaptive sampling (pelage:noise_threshold, pelage:min_spp, pelage:mean_spp); 0 =
+    // off, nothing written.
+    float noise_threshold = 0;
+    int min_spp = 0;
+    double mean_spp = 0;
     double fps = 0;  // animation.fps (pelage:fps), 0 = none
     bool record_time =
         true;  // false: no pelage:render_seconds, so that the same frame

@@ -69,7 +69,7 @@ PathIntegrator::PathIntegrator(const Scene &scene, const Camera &camera,
 template <typename Instr>
 void PathIntegrator::render_tile(Film &film, Sampler &sampler, int x0, int y0, int x1,
                                  int y1, int s0, int s1, RenderStats &stats,
-                                 const Instr &instr) const {
+                                 const Instr &instr, const uint8_t *active) const {
     constexpr int K = PacketIntersector::max_rays;
     Sampler lane[K];
     CameraRay cam[K];
@@ -81,27 +81,37 @@ void PathIntegrator::render_tile(Film &film, Sampler &sampler, int x0, int y0, i
     // neighbours where one row ends and the next begins: shaders that reuse the previous
     // hit's work (the clonal mosaic's CoherentLookup) reuse it there too. Pixels are
     // independent (own sampler, own film pixel), so the order changes no result.
-    const int packets = (x1 - x0 + K - 1) / K;
+    // The row's pixels still sampling (all of them unless adaptive sampling stopped
+    // some), packed so packets stay full.
+    std::vector<int> row;
+    row.reserve(size_t(x1 - x0));
     int sweep = 0;
-    for (int y = y0; y < y1; ++y)
+    for (int y = y0; y < y1; ++y) {
+        row.clear();
+        for (int x = x0; x < x1; ++x)
+            if (!active || active[size_t(y) * size_t(m_width) + size_t(x)])
+                row.push_back(x);
+        const int count = int(row.size());
+        const int packets = (count + K - 1) / K;
         for (int s = s0; s < s1; ++s, ++sweep)
             for (int p = 0; p < packets; ++p) {
                 const bool backwards = sweep & 1;
-                const int xs = x0 + K * (backwards ? packets - 1 - p : p);
-                const int n = std::min(K, x1 - xs);
+                const int first_i = K * (backwards ? packets - 1 - p : p);
+                const int n = std::min(K, count - first_i);
+                const int *xs = &row[size_t(first_i)];
                 // --- Camera rays, offsets drawn from the filter (every sample has
                 // weight 1) ---
                 for (int i = 0; i < n; ++i) {
                     Sampler &sp = lane[i];
                     sp = sampler;
-                    sp.start_pixel_sample(uint32_t(xs + i), uint32_t(y), uint32_t(s));
+                    sp.start_pixel_sample(uint32_t(xs[i]), uint32_t(y), uint32_t(s));
                     const auto [fu, fv] = sp.get_2d();
                     const float dx = m_filter.sample_1d(fu), dy = m_filter.sample_1d(fv);
                     // A pinhole draws no lens sample: one pair less per camera ray.
                     const auto [lu, lv] = m_motion || m_camera.has_lens()
                                               ? sp.get_2d()
                                               : Sampler::Pair{0.5f, 0.5f};
-                    const float px = float(xs + i) + 0.5f + dx, py = float(y) + 0.5f + dy;
+                    const float px = float(xs[i]) + 0.5f + dx, py = float(y) + 0.5f + dy;
                     cam[i] = m_motion ? m_motion->at(sp.get_1d(), m_width, m_height)
                                             .generate(px, py, lu, lv)
                                       : m_camera.generate(px, py, lu, lv);
@@ -113,7 +123,7 @@ void PathIntegrator::render_tile(Film &film, Sampler &sampler, int x0, int y0, i
                 for (int i = 0; i < n; ++i) instr.ray(org[i], dir[i], inf, camera_ray);
                 // --- The paths, one pixel at a time ---
                 for (int j = 0; j < n; ++j) {
-                    const int i = backwards ? n - 1 - j : j, x = xs + i;
+                    const int i = backwards ? n - 1 - j : j, x = xs[i];
                     FilmSample fs;
                     FilmPointAovs aovs;
                     fs.L = radiance(cam[i], first[i], lane[i], fs,
@@ -129,6 +139,7 @@ void PathIntegrator::render_tile(Film &film, Sampler &sampler, int x0, int y0, i
                     film.add(x, y, 1.0f, fs);
                 }
             }
+    }
 }
 
 // --- The path ---
@@ -424,8 +435,10 @@ bool PathIntegrator::scatter(const Bsdf &bsdf, const SurfaceVertex &sv,
 }
 
 template void PathIntegrator::render_tile(Film &, Sampler &, int, int, int, int, int, int,
-                                          RenderStats &, const NoInstrumentation &) const;
+                                          RenderStats &, const NoInstrumentation &,
+                                          const uint8_t *) const;
 template void PathIntegrator::render_tile(Film &, Sampler &, int, int, int, int, int, int,
-                                          RenderStats &, const Instrumented &) const;
+                                          RenderStats &, const Instrumented &,
+                                          const uint8_t *) const;
 
 }  // namespace pelage::renderer

@@ -25,12 +25,14 @@ class PathIntegrator {
     PathIntegrator(const Scene &scene, const Camera &camera, const PixelFilter &filter,
                    int width, int height);
 
-    // Adds samples [s0, s1) of every pixel in [x0, x1) × [y0, y1) to the film. Sample 0
+    // Adds samples [s0, s1) of every pixel in [x0, x1) × [y0, y1) to the film, or only
+    // of those whose `active` flag (one byte per image pixel, row-major) is set. Sample 0
     // also sets the pixel's point AOVs. `instr`: NoInstrumentation or Instrumented
     // (instrumentation.h).
     template <typename Instr>
     void render_tile(Film &film, Sampler &sampler, int x0, int y0, int x1, int y1, int s0,
-                     int s1, RenderStats &stats, const Instr &instr) const;
+                     int s1, RenderStats &stats, const Instr &instr,
+                     const uint8_t *active = nullptr) const;
 
     // Camera motion blur: each sample draws a shutter position u in [0, 1) (one sampler
     // dimension after the lens) and traces from motion->at(u). Unset: the fixed camera.

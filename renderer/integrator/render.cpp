@@ -41,8 +41,39 @@ RenderResult render(const Scene &scene, const RenderOptions &opt) {
     Progress progress("render", uint64_t(num_tiles) * passes, opt.progress);
     std::atomic<bool> stopped{false};
 
+    // Adaptive sampling: after each pass from min_spp on, pixels whose noise is below the
+    // threshold stop, unless a neighbour goes on (a one-pixel dilation, so a noisy
+    // pixel's surroundings keep converging with it). The decision depends on the film
+    // alone, so it is the same at any thread count.
+    const bool adaptive = fd.noise_threshold > 0;
+    std::vector<uint8_t> active, noisy;
+    if (adaptive) active.assign(size_t(W) * H, 1);
+    auto update_active = [&] {
+        noisy.assign(size_t(W) * H, 0);
+        tbb::parallel_for(0, H, [&](int y) {
+            for (int x = 0; x < W; ++x)
+                noisy[size_t(y) * W + x] = active[size_t(y) * W + x] &&
+                                           result.film->noise(x, y) > fd.noise_threshold;
+        });
+        size_t n = 0;
+        for (int y = 0; y < H; ++y)
+            for (int x = 0; x < W; ++x) {
+                bool on = false;
+                for (int dy = -1; dy <= 1 && !on; ++dy)
+                    for (int dx = -1; dx <= 1 && !on; ++dx) {
+                        const int xx = x + dx, yy = y + dy;
+                        on = xx >= 0 && yy >= 0 && xx < W && yy < H &&
+                             noisy[size_t(yy) * W + xx];
+                    }
+                active[size_t(y) * W + x] = on;
+                n += on;
+            }
+        return n;
+    };
+
     for (int pass = 0; pass < passes && !stopped.load(); ++pass) {
         const int s0 = bounds[pass], s1 = bounds[pass + 1];
+        if (adaptive && s0 >= std::min(fd.min_spp, spp) && update_active() == 0) break;
         tbb::parallel_for(
             tbb::blocked_range<int>(0, num_tiles, 1),
             [&](const tbb::blocked_range<int> &range) {
@@ -60,9 +91,10 @@ RenderResult render(const Scene &scene, const RenderOptions &opt) {
                         }
                         const int tx = tile % tiles_x, ty = tile / tiles_x;
                         const int x0 = tx * tile_size, y0 = ty * tile_size;
-                        integrator.render_tile(
-                            *result.film, sampler, x0, y0, std::min(W, x0 + tile_size),
-                            std::min(H, y0 + tile_size), s0, s1, st, instr);
+                        integrator.render_tile(*result.film, sampler, x0, y0,
+                                               std::min(W, x0 + tile_size),
+                                               std::min(H, y0 + tile_size), s0, s1, st,
+                                               instr, adaptive ? active.data() : nullptr);
                         progress.advance();
                     }
                 };
@@ -74,7 +106,7 @@ RenderResult render(const Scene &scene, const RenderOptions &opt) {
                     render_tiles(NoInstrumentation{});
             });
         scene.geometry().check();  // an Embree error fails the run
-        if (!stopped.load()) result.spp_done = s1;
+        if (!stopped.load()) result.spp_done = adaptive ? std::min(s1, fd.spp) : s1;
     }
     progress.finish();
     result.interrupted = stopped.load();

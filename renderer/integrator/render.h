@@ -38,7 +38,9 @@ struct RenderOptions {
 struct RenderResult {
     std::unique_ptr<Film> film;
     RenderStats stats;
-    int spp_done = 0;  // samples every pixel received
+    // Samples of the last pass every (still sampling) pixel received: the spp asked
+    // for, unless interrupted or, with adaptive sampling, every pixel converged sooner.
+    int spp_done = 0;
     bool interrupted = false;
     double seconds = 0;
     std::vector<std::vector<RecordedRay>> rays;  // per thread, when record_rays

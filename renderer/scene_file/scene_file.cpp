@@ -333,6 +333,8 @@ FilmDesc read_film(Reader fr, const SceneDesc &scene) {
     f.preview = fr.path("preview");
     f.half = fr.choice<bool>("pixel_type", true, {{"half", true}, {"float", false}});
     f.view = fr.string("view", f.view);
+    f.noise_threshold = float(fr.number("noise_threshold", 0, 0, 1));
+    f.min_spp = fr.integer("min_spp", f.min_spp, 1, 1 << 20);
     fr.finish();
     return f;
 }

@@ -35,6 +35,10 @@ struct FilmDesc {
     std::string preview;         // absolute, "" = none
     bool half = true;  // beauty/albedo/normal as half; depth/ids/shader always float
     std::string view = "Standard";  // OCIO view of the preview
+    // Adaptive sampling (renderer/integrator/render.h): a pixel stops once its noise
+    // estimate is below this; 0 = every pixel takes spp samples.
+    float noise_threshold = 0;
+    int min_spp = 16;  // ... but never before this many samples
 };
 
 struct LightDesc {

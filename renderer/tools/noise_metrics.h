@@ -18,10 +18,11 @@ namespace pelage::renderer {
 
 struct NoiseMetrics {
     double mse = 0, rmse = 0;
-    size_t pixels = 0;        // object pixels measured
-    size_t fireflies = 0;     // object pixels above the reference's maximum
-    float reference_max = 0;  // brightest channel value of the reference's objects
-    float median_max = 0;     // ... and of the image after the 3×3 median
+    double reference_mean = 0;  // of the objects' R, G, B: rmse / it is a relative error
+    size_t pixels = 0;          // object pixels measured
+    size_t fireflies = 0;       // object pixels above the reference's maximum
+    float reference_max = 0;    // brightest channel value of the reference's objects
+    float median_max = 0;       // ... and of the image after the 3×3 median
 };
 
 // `image` and `reference`: width × height pixels of `stride` interleaved floats each,

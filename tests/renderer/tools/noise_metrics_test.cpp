@@ -30,6 +30,7 @@ TEST(NoiseMetrics, MseCountsObjectPixelsAndChannelsOnly) {
     EXPECT_NEAR(m.mse, 0.09 / (3.0 * 36), 1e-8);  // 0.3 in float
     EXPECT_NEAR(m.rmse, std::sqrt(0.09 / (3.0 * 36)), 1e-7);
     EXPECT_FLOAT_EQ(m.reference_max, 0.5f);
+    EXPECT_NEAR(m.reference_mean, 0.5, 1e-7);
 }
 
 TEST(NoiseMetrics, AnIsolatedSpikeIsNoFireflyAClusterIs) {
