@@ -226,6 +226,7 @@ FrameOutcome render_frame(const RenderCliOptions &o, const SceneDesc &desc,
     meta.interrupted = r.interrupted;
     const double mean_spp =
         double(r.stats.samples) / (double(fd.film.width) * fd.film.height);
+    meta.clamp_indirect = fd.integrator.clamp_indirect;
     if (fd.film.noise_threshold > 0) {
         meta.noise_threshold = fd.film.noise_threshold;
         meta.min_spp = fd.film.min_spp;

@@ -210,6 +210,8 @@ void write_exr(const std::string &path, int width, int height,
     spec.attribute("pelage:scene", meta.scene);
     spec.attribute("pelage:spp", meta.spp);
     spec.attribute("pelage:seed", std::to_string(meta.seed));
+    if (meta.clamp_indirect > 0)
+        spec.attribute("pelage:clamp_indirect", meta.clamp_indirect);
     if (meta.noise_threshold > 0) {
         spec.attribute("pelage:noise_threshold", meta.noise_threshold);
         spec.attribute("pelage:min_spp", meta.min_spp);

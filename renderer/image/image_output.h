@@ -27,6 +27,7 @@ struct ImageMetadata {
     // Adaptive sampling (pelage:noise_threshold, pelage:min_spp, pelage:mean_spp); 0 =
     // off, nothing written.
     float noise_threshold = 0;
+    float clamp_indirect = 0;  // pelage:clamp_indirect when on
     int min_spp = 0;
     double mean_spp = 0;
     double fps = 0;  // animation.fps (pelage:fps), 0 = none

@@ -61,6 +61,7 @@ PathIntegrator::PathIntegrator(const Scene &scene, const Camera &camera,
       m_height(height),
       m_max_depth(scene.desc().integrator.max_depth),
       m_rr_depth(scene.desc().integrator.rr_depth),
+      m_clamp_indirect(scene.desc().integrator.clamp_indirect),
       m_spp(scene.desc().film.spp) {
     m_pixel_spread = 2 * std::tan(0.5f * scene.desc().camera.fov_deg * pi / 180) /
                      float(height) * camera_spread_scale(m_spp);
@@ -177,9 +178,15 @@ Rgb PathIntegrator::radiance(const CameraRay &cam, const RTCRayHit &first,
                              Sampler &sampler, FilmSample &fs, FilmPointAovs *aovs,
                              RenderStats &stats, const Instr &instr) const {
     PathState path{.o = cam.o, .d = cam.d, .spread = m_pixel_spread};
+    // Direct light at the first hit: its light samples and what its BSDF sample reaches
+    // (clamp_indirect leaves it alone).
+    Rgb direct{};
+    bool clamp = false;
     for (int depth = 0;; ++depth) {
         const RTCRayHit rh = depth == 0 ? first : trace(path, stats, instr);
-        if (add_emission(rh, depth, cam, path, fs, aovs)) break;
+        const bool ends = add_emission(rh, depth, cam, path, fs, aovs);
+        if (depth == 1 && m_clamp_indirect > 0) direct = path.L, clamp = true;
+        if (ends) break;
         bool scattered;
         if (const FurLayer *layer =
                 m_scene.fur() ? m_scene.fur()->layer_of(rh.hit.geomID) : nullptr) {
@@ -198,6 +205,11 @@ Rgb PathIntegrator::radiance(const CameraRay &cam, const RTCRayHit &first,
                         scatter_at_surface(sv, sh, albedo, sampler, path, stats, instr);
         }
         if (!scattered || !continue_path(depth, sampler, path)) break;
+    }
+    if (clamp) {
+        const Rgb indirect = path.L - direct;
+        const float m = max_component(indirect);
+        if (m > m_clamp_indirect) return direct + indirect * (m_clamp_indirect / m);
     }
     return path.L;
 }

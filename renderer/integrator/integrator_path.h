@@ -78,9 +78,10 @@ class PathIntegrator {
     PacketIntersector m_packets;  // camera rays
     int m_width, m_height;
     int m_max_depth, m_rr_depth;
-    int m_spp;             // samples per pixel: how much a rough bounce widens a cone
-    float m_pixel_spread;  // the camera rays' cone, radians: a pixel's share per sample
-                           // (ray_cone.h)
+    float m_clamp_indirect;  // 0: off
+    int m_spp;               // samples per pixel: how much a rough bounce widens a cone
+    float m_pixel_spread;    // the camera rays' cone, radians: a pixel's share per sample
+                             // (ray_cone.h)
     const CameraMotion *m_motion = nullptr;
 };
 

@@ -114,6 +114,10 @@ struct AnimationDesc {
 struct IntegratorDesc {
     int max_depth = 8;  // path vertices after the camera
     int rr_depth = 3;   // Russian roulette from this depth on
+    // Firefly clamping, off at 0: the light a sample gathers after its first bounce
+    // (everything but direct light at the first hit) is scaled down to at most this in
+    // its brightest channel. Biased (it darkens), so recorded in the EXR.
+    float clamp_indirect = 0;
     // Next-event estimation samples every light at every vertex (all; automatic for up
     // to Lights::max_sample_all lights), or picks one: in proportion to its estimated
     // power (automatic for more lights), or uniformly.

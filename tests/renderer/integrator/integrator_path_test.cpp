@@ -410,3 +410,41 @@ TEST(PathIntegrator, AreaLightsOccludeAndTheirBackIsBlack) {
 
 }  // namespace
 }  // namespace pelage::test
+
+namespace pelage::test {
+namespace {
+
+// clamp_indirect leaves direct light alone and caps the rest: clamped to almost nothing,
+// a 4-bounce render is the direct-only render (sun and sky at the first hit); unclamped
+// it is brighter (light between the sphere and the ground).
+TEST(PathIntegrator, ClampIndirectCapsAllButDirectLight) {
+    TempDir tmp;
+    auto scene = [](int depth, const char *clamp) {
+        return std::string(R"({"camera": {"position": [0, 1, 4], "look_at": [0, 0, 0]},
+          "film": {"width": 24, "height": 24, "spp": 16},
+          "lights": [{"type": "environment", "color": [0.5, 0.6, 0.8]},
+                     {"type": "distant", "direction": [-1, -1, -1], "intensity": 3}],
+          "objects": [{"mesh": "procedural:icosphere:2",
+                       "material": {"shader": "diffuse", "params": {"albedo": 0.8}}},
+                      {"mesh": "procedural:plane:1x1",
+                       "transform": {"scale": 10, "translate": [0, -1, 0]},
+                       "material": {"shader": "diffuse", "params": {"albedo": 0.8}}}],
+          "integrator": {"max_depth": )") +
+               std::to_string(depth) + R"(, "clamp_indirect": )" + clamp + "}}";
+    };
+    const RenderedImage direct = render_json(scene(1, "0"), tmp);
+    const RenderedImage clamped = render_json(scene(4, "1e-9"), tmp);
+    const RenderedImage full = render_json(scene(4, "0"), tmp);
+    double d = 0, c = 0, f = 0;
+    for (int y = 0; y < 24; ++y)
+        for (int x = 0; x < 24; ++x) {
+            d += direct.at(x, y, 1);
+            c += clamped.at(x, y, 1);
+            f += full.at(x, y, 1);
+            EXPECT_NEAR(clamped.at(x, y, 1), direct.at(x, y, 1), 1e-5);
+        }
+    EXPECT_GT(f, 1.05 * c);
+}
+
+}  // namespace
+}  // namespace pelage::test
