@@ -37,7 +37,8 @@ struct FurLayer {
     float beta_m = 0.25f, beta_n = 0.3f, alpha = 0;  // alpha in radians
     shader::fur::Strands strands;
 
-    // Centre-line point and unit tangent of segment `prim` at curve parameter u.
+    // Centre-line point and unit tangent (root to tip: the hair BSDF's +x, which the
+    // cuticle tilt depends on) of segment `prim` at curve parameter u.
     void centre(unsigned prim, float u, Vec3f *c, Vec3f *tangent, float *radius) const;
 };
 

@@ -251,8 +251,14 @@ HairBsdf::HairBsdf(const HairParams &params, float h) : m_params(params), m_h(h)
 
 namespace {
 
-// θ_o rotated by the cuticle tilt for lobe p: R by −2α, TT by +α, TRT by +4α (as pbrt-v4;
-// the residual is not tilted). Returns {sin θ_o', |cos θ_o'|}.
+// θ_o rotated by the cuticle tilt for lobe p, so that M_p, which peaks at θ_i = −θ_o',
+// puts R at θ_i = −θ_o − 2α (towards the root), TT at −θ_o + α and TRT at −θ_o + 4α
+// (towards the tip), +x running from root to tip. That is the shift of Marschner et al.
+// 2003 §4.1 (the scales' free edges point to the tip, so their normals lean towards the
+// root) with Chiang et al. 2016's −2α, α, 4α, and what Cycles' Principled Hair does.
+// Deviates from pbrt-v3/v4, which rotate θ_o by −2α, +α, +4α and so shift every lobe
+// the other way (CuticleTiltShiftsRTowardsTheRootAndTtTrtTowardsTheTip). The residual
+// is not tilted. Returns {sin θ_o', |cos θ_o'|}.
 struct Tilted {
     float sin_theta, cos_theta;
 };
@@ -260,15 +266,15 @@ struct Tilted {
 Tilted tilt(int p, float sin_o, float cos_o, const std::array<float, 3> &sin_2k,
             const std::array<float, 3> &cos_2k) {
     float s = sin_o, c = cos_o;
-    if (p == 0) {
-        s = sin_o * cos_2k[1] - cos_o * sin_2k[1];
-        c = cos_o * cos_2k[1] + sin_o * sin_2k[1];
-    } else if (p == 1) {
-        s = sin_o * cos_2k[0] + cos_o * sin_2k[0];
-        c = cos_o * cos_2k[0] - sin_o * sin_2k[0];
-    } else if (p == 2) {
-        s = sin_o * cos_2k[2] + cos_o * sin_2k[2];
-        c = cos_o * cos_2k[2] - sin_o * sin_2k[2];
+    if (p == 0) {  // θ_o + 2α
+        s = sin_o * cos_2k[1] + cos_o * sin_2k[1];
+        c = cos_o * cos_2k[1] - sin_o * sin_2k[1];
+    } else if (p == 1) {  // θ_o − α
+        s = sin_o * cos_2k[0] - cos_o * sin_2k[0];
+        c = cos_o * cos_2k[0] + sin_o * sin_2k[0];
+    } else if (p == 2) {  // θ_o − 4α
+        s = sin_o * cos_2k[2] - cos_o * sin_2k[2];
+        c = cos_o * cos_2k[2] + sin_o * sin_2k[2];
     }
     return {s, std::abs(c)};
 }

@@ -6,8 +6,9 @@
 // (log-space) form; azimuthal scattering N_p a trimmed logistic; cuticle tilt α.
 //
 // Frame (pbrt's convention, stated once here):
-//   * +x runs along the fibre (the curve tangent). sin θ = w.x is the longitudinal angle,
-//     φ = atan2(w.z, w.y) the azimuth around the fibre.
+//   * +x runs along the fibre from root to tip (the curve tangent; the cuticle tilt α
+//     shifts R towards −x, TT and TRT towards +x). sin θ = w.x is the longitudinal
+//     angle, φ = atan2(w.z, w.y) the azimuth around the fibre.
 //   * +z is the curve's shading normal (facing the incoming ray for a ribbon / the
 //     direction from the axis to the hit for a round curve), y = z × x.
 //   * h ∈ [-1, 1] is the offset across the fibre where the ray hits it (h = sin γ_o):

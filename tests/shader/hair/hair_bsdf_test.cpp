@@ -304,6 +304,47 @@ TEST(HairBsdf, OffsetHPutsTheMirrorDirectionOnTheRLobe) {
     }
 }
 
+// The cuticle scales' free edges point to the tip, so a scale's surface leans out
+// towards the tip and its normal towards the root by α: a mirror reflection off it
+// leaves at θ_r = −θ_i − 2α. Marschner et al. 2003 ("Light Scattering from Human Hair
+// Fibers", SIGGRAPH, §4.1 and Table 1) shift R towards the root and TT, TRT towards the
+// tip; Chiang et al. 2016 §4 shift them by −2α, α and 4α. With +x from root to tip
+// (hair_bsdf.h), the longitudinal peaks are at θ_i = −θ_o − 2α (R), −θ_o + α (TT) and
+// −θ_o + 4α (TRT), as in Cycles' Principled Hair (Chiang); pbrt-v3/v4 rotate θ_o the
+// other way and put each peak 4α, 2α, 8α to the other side. Found as the argmax over θ_i
+// of S = f·|cos θ_i| at the lobe's own azimuth Φ(p, γ_o, γ_t): at h = 0.9 the lobes lie
+// >= 1.9 rad apart and β_n = 0.1 (logistic scale 0.024 rad) leaves the others ~e^-79
+// there. β_m = 0.05 (v = 0.0015; TRT 4v) keeps I0's 1/sqrt(x) factor from moving a peak
+// by more than v·tan θ_i / 2 < 0.1°. Grid 0.01°, tolerance 0.25° (old code: >= 10°).
+TEST(HairBsdf, CuticleTiltShiftsRTowardsTheRootAndTtTrtTowardsTheTip) {
+    HairParams p = HairParams::from_melanin(0, 0, 0.05f, 0.1f);
+    p.alpha = 5 * deg;
+    const float h = 0.9f;
+    const HairBsdf bsdf(p, h);
+    const float gamma_o = std::asin(h);
+    const float shift[3] = {-2 * p.alpha, p.alpha, 4 * p.alpha};
+    for (const float theta_o : {-10 * deg, 0.0f, 10 * deg}) {
+        const float phi_o = 0.3f;
+        const Vec3f wo{std::sin(theta_o), std::cos(theta_o) * std::cos(phi_o),
+                       std::cos(theta_o) * std::sin(phi_o)};
+        const float etap = std::sqrt(sqr(p.eta) - sqr(wo.x)) / std::cos(theta_o);
+        const float gamma_t = std::asin(h / etap);
+        for (int lobe = 0; lobe < 3; ++lobe) {
+            const float phi_i = phi_o + 2 * lobe * gamma_t - 2 * gamma_o + lobe * pi;
+            float best = -1, best_theta = 0;
+            for (int k = 0; k <= 17800; ++k) {
+                const float theta_i = (-89 + 0.01f * k) * deg;
+                const Vec3f wi{std::sin(theta_i), std::cos(theta_i) * std::cos(phi_i),
+                               std::cos(theta_i) * std::sin(phi_i)};
+                const float s = bsdf.eval(wo, wi).y * std::abs(wi.z);
+                if (s > best) best = s, best_theta = theta_i;
+            }
+            EXPECT_NEAR(best_theta / deg, (-theta_o + shift[lobe]) / deg, 0.25f)
+                << "lobe " << lobe << ", theta_o " << theta_o / deg << " degrees";
+        }
+    }
+}
+
 // Low roughness stays finite (the log-space M_p) and sampling still works.
 TEST(HairBsdf, LowRoughnessIsFinite) {
     Rng rng(31);
