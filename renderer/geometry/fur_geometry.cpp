@@ -16,11 +16,26 @@ double seconds_since(Clock::time_point t0) {
     return std::chrono::duration<double>(Clock::now() - t0).count();
 }
 
-// Rejects hits on the strand the ray left (its id is that strand's global index + 1).
+// Whether hit i of the packet leaves a round curve's tube: Embree's Ng there is the
+// tube's outward normal (RTC_GEOMETRY_TYPE_CURVE(3)), so the ray started inside it.
+bool leaves_tube(const RTCFilterFunctionNArguments *args, unsigned i) {
+    const unsigned N = args->N;
+    return RTCRayN_dir_x(args->ray, N, i) * RTCHitN_Ng_x(args->hit, N, i) +
+               RTCRayN_dir_y(args->ray, N, i) * RTCHitN_Ng_y(args->hit, N, i) +
+               RTCRayN_dir_z(args->ray, N, i) * RTCHitN_Ng_z(args->hit, N, i) >
+           0;
+}
+
+// Rejects hits on the strand the ray left (its id is that strand's global index + 1)
+// and, on round curves, hits on the inside of any tube (fur_geometry.h).
 void skip_own_strand(const RTCFilterFunctionNArguments *args) {
     const FurLayer &layer = *static_cast<const FurLayer *>(args->geometryUserPtr);
     for (unsigned i = 0; i < args->N; ++i) {
         if (args->valid[i] != -1) continue;
+        if (layer.round && leaves_tube(args, i)) {
+            args->valid[i] = 0;
+            continue;
+        }
         const unsigned id = RTCRayN_id(args->ray, args->N, i);
         if (id == 0) continue;
         const unsigned prim = RTCHitN_primID(args->hit, args->N, i);

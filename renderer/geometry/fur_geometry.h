@@ -10,6 +10,13 @@
 // Self-intersection: a ray leaving a strand carries (global strand index + 1) in its
 // `id`; the curves' filter function rejects hits on that strand, so transmitted (TT)
 // paths pass through their own fibre as the hair BSDF assumes. Other rays carry id 0.
+// Round curves also drop every hit on the inside of a tube. Strands whose roots lie
+// closer than the sum of their radii interpenetrate (with density ρ and root radius r,
+// a fraction 1 − exp(−4πρr²) of them: 47 % at ρ = 200 000, r = 0.0005), and a ray
+// leaving one of them inside another would hit that one's inner wall, where the hair
+// BSDF (a whole fibre, entered from outside) means nothing: bounces were scattered there
+// again and shadow rays blocked, which darkened dense fur (Cycles culls these hits on
+// its round curves too). Flat ribbons have no inside.
 #pragma once
 
 #include <embree3/rtcore.h>
