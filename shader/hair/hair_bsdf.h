@@ -94,7 +94,7 @@ class HairBsdf {
     // The model's pieces, exposed for tests.
     // Attenuation A_p (p = 0..p_max) for sin θ_o.
     std::array<Rgb, p_max + 1> attenuation(float sin_theta_o) const;
-    // Lobe selection probabilities: A_p luminance, normalised (all 0 if A is black).
+    // Lobe selection probabilities: A_p channel means, normalised (all 0 if A is black).
     std::array<float, p_max + 1> lobe_pdf(float sin_theta_o) const;
 
   private:
