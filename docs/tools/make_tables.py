@@ -293,6 +293,25 @@ def t_fur():
             f"{r0['segments']} segments per strand.\n")
 
 
+def t_noise():
+    rows = []
+    for name in ["bench_noise", "bench_noise_fur"]:
+        d = data(name)
+        for r in d["by_spp"]:
+            rows.append([f"`{os.path.basename(d['scene'])}`", r["spp"], num(r["cpu_seconds"]),
+                         f"{r['rmse']:.4f}", f"{r['rmse'] / d['reference_mean']:.3f}",
+                         f"{r['time_mse']:.2e}", f"{r['fireflies']:g}"])
+    d = data("bench_noise")
+    f = data("bench_noise_fur")
+    return (table(["scene", "spp", "CPU s", "RMSE", "RMSE / mean", "CPU s × MSE",
+                   "fireflies"], rows) +
+            f"\n{d['width']}×{d['height']} pixels; errors over the objects' pixels against "
+            f"{d['reference']['spp']}-spp (`{os.path.basename(d['scene'])}`) and "
+            f"{f['reference']['spp']}-spp (`{os.path.basename(f['scene'])}`) references; "
+            f"means over {len([r for r in d['runs'] if r['spp'] == d['runs'][0]['spp']])} "
+            f"seeds.\n")
+
+
 # --- validation.md --------------------------------------------------------------------
 
 def t_presets():
@@ -403,7 +422,7 @@ TABLES = {
     "machine": t_machine, "crps": t_crps, "sim": t_sim, "sim-density": t_sim_density, "sim-neighbours": t_sim_neighbours, "default-job": t_default_job,
     "lookup": t_lookup, "lookup-lanes": t_lookup_lanes,
     "lookup-density": t_lookup_density, "render": t_render,
-    "compare": t_compare, "hair": t_hair, "fur": t_fur, "presets": t_presets,
+    "compare": t_compare, "hair": t_hair, "fur": t_fur, "noise": t_noise, "presets": t_presets,
     "crps-errors": t_crps_errors, "lookup-quality": t_lookup_quality,
     "hair-furnace": t_hair_furnace, "gallery": t_gallery, "looks": t_looks,
 }
