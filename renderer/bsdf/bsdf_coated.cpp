@@ -8,22 +8,19 @@
 
 namespace pelage::renderer {
 
-BsdfCoated::BsdfCoated(Rgb colour, float roughness, float ior, float F_int)
+BsdfCoated::BsdfCoated(Rgb colour, float roughness, float ior, float F_int, float S)
     : m_colour(colour), m_alpha(std::max(min_alpha, roughness * roughness)), m_eta(ior) {
     // The base albedo ρ whose BSDF reflects `colour` (file header): g from the colour,
-    // then ρ = g / (1 − F̄_int + g F̄_int), the inverse of g(ρ).
-    const float S = specular_albedo(roughness, ior);
+    // then ρ = g / (1 − F̄_int + g F̄_int), the inverse of g(ρ). The base term's scale
+    // ρ / (π η² (1 − ρ F̄_int)) is then g / (π η² (1 − F̄_int)).
     const float F_ext = 1 - ior * ior * (1 - F_int);
-    auto base = [&](float c) {
-        const float g = std::clamp((c - S) / (1 - F_ext), 0.0f, 1.0f);
-        return g / (1 - F_int + g * F_int);
-    };
-    m_rho = {base(colour.x), base(colour.y), base(colour.z)};
-    // The base seen through the coat, inter-reflection summed (file header).
-    const float k = inv_pi / (ior * ior);
-    m_base_scale = {m_rho.x * k / (1 - m_rho.x * F_int),
-                    m_rho.y * k / (1 - m_rho.y * F_int),
-                    m_rho.z * k / (1 - m_rho.z * F_int)};
+    const float inv_T = 1 / (1 - F_ext);
+    const Rgb g{std::clamp((colour.x - S) * inv_T, 0.0f, 1.0f),
+                std::clamp((colour.y - S) * inv_T, 0.0f, 1.0f),
+                std::clamp((colour.z - S) * inv_T, 0.0f, 1.0f)};
+    m_rho = {g.x / (1 - F_int + g.x * F_int), g.y / (1 - F_int + g.y * F_int),
+             g.z / (1 - F_int + g.z * F_int)};
+    m_base_scale = g * (inv_pi / (ior * ior * (1 - F_int)));
 }
 
 float BsdfCoated::specular_albedo(float roughness, float ior) {

@@ -42,10 +42,12 @@ class BsdfCoated {
     // colour: the reflectance (bihemispherical albedo) the surface shows, in [0, 1].
     // roughness: perceptual, α = roughness²; clamped so the lobe stays samplable.
     // F_int: internal_diffuse_reflectance(ior), precomputed per material (the
-    // three-argument form computes it, for tests and one-off use).
-    BsdfCoated(Rgb colour, float roughness, float ior, float F_int);
+    // three-argument form computes it and S, for tests and one-off use).
+    // S: specular_albedo(roughness, ior), likewise precomputed per material.
+    BsdfCoated(Rgb colour, float roughness, float ior, float F_int, float S);
     BsdfCoated(Rgb colour, float roughness, float ior)
-        : BsdfCoated(colour, roughness, ior, internal_diffuse_reflectance(ior)) {}
+        : BsdfCoated(colour, roughness, ior, internal_diffuse_reflectance(ior),
+                     specular_albedo(roughness, ior)) {}
 
     Rgb eval(Vec3f wo, Vec3f wi) const;
     float pdf(Vec3f wo, Vec3f wi) const;
@@ -93,7 +95,7 @@ class BsdfCoated {
     mutable WoTerms m_wo;
 
     Rgb m_colour, m_rho;
-    Rgb m_base_scale;  // ρ / (π η² (1 − ρ F̄_int)), per channel
+    Rgb m_base_scale;  // ρ / (π η² (1 − ρ F̄_int)), per channel (the constructor)
     float m_alpha, m_eta;
 };
 

@@ -395,13 +395,17 @@ template <typename Instr>
     if (mat.bsdf != MaterialDesc::Bsdf::coated)
         return scatter(BsdfLambert(albedo), sv, u, path, stats, instr);
     // The plugin may override the coat's roughness and ior (per cell type, say).
-    const float roughness =
-        sh.roughness >= 0 ? std::min(sh.roughness, 1.0f) : mat.roughness;
+    // The material's precomputed coat terms unless the plugin overrides them.
+    const bool own_roughness = sh.roughness >= 0;
+    const float roughness = own_roughness ? std::min(sh.roughness, 1.0f) : mat.roughness;
     const bool own_ior = sh.ior >= 1 && sh.ior <= 3;
+    const float ior = own_ior ? sh.ior : mat.ior;
     return scatter(
-        BsdfCoated(albedo, roughness, own_ior ? sh.ior : mat.ior,
-                   own_ior ? BsdfCoated::internal_diffuse_reflectance_table(sh.ior)
-                           : mat.coat_F_int),
+        BsdfCoated(albedo, roughness, ior,
+                   own_ior ? BsdfCoated::internal_diffuse_reflectance_table(ior)
+                           : mat.coat_F_int,
+                   own_ior || own_roughness ? BsdfCoated::specular_albedo(roughness, ior)
+                                            : mat.coat_S),
         sv, u, path, stats, instr);
 }
 

@@ -72,8 +72,10 @@ void Scene::build(const SceneDesc &desc, const PluginRegistry &plugins) {
         m.bsdf = o.material.bsdf;
         m.roughness = o.material.roughness;
         m.ior = o.material.ior;
-        if (m.bsdf == MaterialDesc::Bsdf::coated)
+        if (m.bsdf == MaterialDesc::Bsdf::coated) {
             m.coat_F_int = BsdfCoated::internal_diffuse_reflectance(m.ior);
+            m.coat_S = BsdfCoated::specular_albedo(m.roughness, m.ior);
+        }
         if (m_aov_names.empty() && m.plugin->aov_names)
             for (int k = 0; k < PELAGE_SHADER_AOV_SLOTS && m.plugin->aov_names[k]; ++k)
                 m_aov_names.push_back(m.plugin->aov_names[k]);

@@ -22,6 +22,7 @@ struct Material {
     MaterialDesc::Bsdf bsdf = MaterialDesc::Bsdf::lambert;
     float roughness = 0.3f, ior = 1.5f;
     float coat_F_int = 0;  // BsdfCoated::internal_diffuse_reflectance(ior), coated only
+    float coat_S = 0;      // BsdfCoated::specular_albedo(roughness, ior), coated only
 };
 
 class Scene {
