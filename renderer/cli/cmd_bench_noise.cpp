@@ -6,10 +6,12 @@
 // comparable across sample counts, settings and renderers (lower is better).
 //
 // The reference (by default 4096 spp, seed 999 983, which no run uses) is cached under
-// --cache, keyed by the scene file, every file it names, the resolution, the reference's
-// spp and seed, and this executable and its plugins: another build or another input
-// renders a new one. --reference names the file instead, for comparing builds whose
-// converged images agree (an unbiased sampling change).
+// --cache, keyed by the scene file, its meshes, cells files and environment images, the
+// resolution, the reference's spp and seed, and this executable and its plugins:
+// another build or another input renders a new one. Files a plugin reads by a name in
+// its parameters (a texture's image) are not part of the key. --reference names the
+// file instead, for comparing builds whose converged images agree (an unbiased sampling
+// change).
 //
 // Prints one JSON object: {scene, width, height, reference: {spp, seed, seconds,
 // cached, file}, object_pixels, reference_mean, runs: [{spp, seed, seconds,
@@ -83,6 +85,8 @@ std::string reference_key(const BenchNoiseOptions &o, const SceneDesc &desc,
         hash_file(&state, obj.mesh);
         if (!obj.cells.empty()) hash_file(&state, obj.cells);
     }
+    for (const LightDesc &light : desc.lights)
+        if (!light.image.empty()) hash_file(&state, light.image);
     char self[4096];
     const ssize_t len = readlink("/proc/self/exe", self, sizeof(self) - 1);
     if (len > 0) hash_file(&state, std::string(self, size_t(len)));
