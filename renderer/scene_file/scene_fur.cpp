@@ -1,6 +1,7 @@
 #include "renderer/scene_file/scene_fur.h"
 
 #include <algorithm>
+#include <cmath>
 
 #include "renderer/scene_file/json_fields.h"
 
@@ -83,6 +84,22 @@ shader::fur::FurParams read_fur(const json &j, const std::string &field,
         p.eumelanin = float(r.check_number((*v)[0], r.field("melanin") + "[0]", 0, 100));
         p.pheomelanin =
             float(r.check_number((*v)[1], r.field("melanin") + "[1]", 0, 100));
+    }
+    if (const json *v = r.take("cycles_melanin")) {
+        // Cycles' Principled Hair: Melanin m and Melanin Redness r give concentrations
+        // q (1 − r) and q r with q = −ln(1 − m), times its own absorption coefficients,
+        // (0.506, 0.841, 1.653) and (0.343, 0.733, 1.924): 1.207 and 1.833 times
+        // d'Eon's, which shader/hair uses (within 0.1 % per channel).
+        const std::string f = r.field("cycles_melanin");
+        if (p.own_melanin) r.fail(f, "give either \"melanin\" or \"cycles_melanin\"");
+        if (!v->is_array() || v->size() != 2)
+            r.fail(f, "expected [melanin, redness], as Cycles' Principled Hair has them");
+        const double m = r.check_number((*v)[0], f + "[0]", 0, 0.9999);
+        const double red = r.check_number((*v)[1], f + "[1]", 0, 1);
+        const double q = -std::log(1 - m);
+        p.own_melanin = true;
+        p.eumelanin = float(1.207 * q * (1 - red));
+        p.pheomelanin = float(1.833 * q * red);
     }
     p.melanin_jitter = num(r, "melanin_jitter", p.melanin_jitter, 0, 1);
     p.beta_m = num(r, "beta_m", p.beta_m, 0, 1, true);

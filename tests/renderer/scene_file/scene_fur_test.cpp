@@ -3,6 +3,8 @@
 // tests/data/bad_scenes/fur_*.json).
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "renderer/plugins/plugin_loader.h"
 #include "renderer/scene/scene.h"
 #include "renderer/scene_file/scene_file.h"
@@ -62,6 +64,13 @@ TEST(SceneFur, EveryKeyReachesTheParameters) {
     EXPECT_EQ(d.density, shader::fur::FurParams{}.density);
     EXPECT_EQ(d.curve, shader::fur::FurParams::Curve::round);
     EXPECT_FALSE(d.own_melanin);
+    // Cycles' melanin 0.8, redness 1: q = ln 5, all pheomelanin, 1.833 q (Cycles'
+    // coefficient 0.343 over d'Eon's 0.187 on red).
+    const shader::fur::FurParams c =
+        *with_fur(R"({"cycles_melanin": [0.8, 1]})").objects[1].fur;
+    EXPECT_TRUE(c.own_melanin);
+    EXPECT_FLOAT_EQ(c.eumelanin, 0);
+    EXPECT_NEAR(c.pheomelanin, 0.343 / 0.187 * std::log(5.0), 0.005);
     EXPECT_EQ(with_fur(R"({"comb": "normal"})").objects[1].fur->comb,
               shader::fur::FurParams::Comb::normal);
 }
@@ -84,6 +93,9 @@ TEST(SceneFur, BadValuesNameTheirJsonPath) {
         {R"({"max_strands": 100000000})", "objects[1].fur.max_strands"},
         {R"({"melanin": [1]})", "objects[1].fur.melanin"},
         {R"({"melanin": [1, -2]})", "objects[1].fur.melanin[1]"},
+        {R"({"cycles_melanin": [1, 0]})", "objects[1].fur.cycles_melanin[0]"},
+        {R"({"melanin": [0, 1], "cycles_melanin": [0.5, 0]})",
+         "objects[1].fur.cycles_melanin"},
     };
     for (const auto &[fur, field] : cases) {
         try {
