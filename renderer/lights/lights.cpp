@@ -82,11 +82,12 @@ Lights::Lights(const std::vector<LightDesc> &descs, float scene_radius,
     // environment with full MIS weight (its light density is 0). Sampled as a light, it
     // costs a shadow ray per vertex and lowers the noise by less than that ray's cost.
     std::vector<double> weight(m_lights.size());
+    std::vector<bool> is_nee(m_lights.size());
     double total = 0;
     for (size_t i = 0; i < m_lights.size(); ++i) {
         float &p = m_power[i];
         if (!std::isfinite(p) || p < 0) p = 0;
-        const bool nee = !(m_lights[i].env && m_lights[i].env->is_constant());
+        const bool nee = is_nee[i] = !(m_lights[i].env && m_lights[i].env->is_constant());
         m_nee_count += nee;
         weight[i] = nee ? p : 0.0;
         total += weight[i];
@@ -97,7 +98,7 @@ Lights::Lights(const std::vector<LightDesc> &descs, float scene_radius,
     const bool uniform = selection == IntegratorDesc::LightSelection::uniform ||
                          !(total > 0) || !std::isfinite(total);
     for (size_t i = 0; i < m_lights.size(); ++i) {
-        const bool nee = !(m_lights[i].env && m_lights[i].env->is_constant());
+        const bool nee = is_nee[i];
         if (uniform) weight[i] = nee ? 1.0 : 0.0;
         m_select_pdf.push_back(!nee           ? 0.0f
                                : m_sample_all ? 1.0f
