@@ -23,9 +23,10 @@
 extern "C" {
 #endif
 
-#define PELAGE_SHADER_ABI 1u
+#define PELAGE_SHADER_ABI 2u
 #define PELAGE_SHADER_ENTRY "pelage_shader_plugin"
 #define PELAGE_SHADER_AOV_SLOTS 4
+#define PELAGE_SHADER_MATTE_SLOTS 3
 
 #if defined(_WIN32)
 #define PELAGE_EXPORT __declspec(dllexport)
@@ -78,6 +79,7 @@ typedef struct PelageParamSet {
     PelageMeshView mesh;
     const char *scene_dir; /* folder of the scene file: relative paths in STRING
                               parameters resolve against it; "" when unknown */
+    const char *object_name; /* the object's name in the scene (never NULL) */
 } PelageParamSet;
 
 typedef struct PelageError {
@@ -111,7 +113,11 @@ typedef struct PelageShade {
     float ior; /* coat index of refraction override in [1, 3]; 0 keeps the material's.
                   0 is a zeroed field's value, so a plugin that never sets it leaves
                   the coat alone. */
-    uint32_t reserved[4]; /* zero; room to grow without changing the size */
+    /* Ids in the plugin's matte layers (`matte_names`), for the Cryptomatte layers of
+       the image; bit k of `matte_written` set when matte[k] holds one. Read at camera
+       hits only. */
+    uint32_t matte[PELAGE_SHADER_MATTE_SLOTS];
+    uint32_t matte_written;
 } PelageShade;
 
 typedef struct PelageShaderPlugin {
@@ -123,6 +129,17 @@ typedef struct PelageShaderPlugin {
                     PelageError *err); /* NULL + err on failure */
     void (*shade)(const void *self, const PelageHit *hit, PelageShade *out);
     void (*destroy)(void *self);
+    /* Matte layers (Cryptomatte, docs/guide/compositing-outputs.md): NULL-terminated, at
+       most PELAGE_SHADER_MATTE_SLOTS names such as "type", or NULL. */
+    const char *const *matte_names;
+    /* The name of id `id` in matte layer `layer` of this instance, written
+       NUL-terminated into `buf` (`size` bytes); returns 0 when the id is unknown. Names
+       are global: the same name in two objects is one matte (a cell type shared by two
+       animals), so names of per-object things include the object's name. Called after
+       rendering, from one thread, once per id the image shows. NULL: every id is
+       named "<object> <layer> <id>". */
+    int (*matte_name)(const void *self, uint32_t layer, uint32_t id, char *buf,
+                      uint32_t size);
 } PelageShaderPlugin;
 
 typedef const PelageShaderPlugin *(*PelageShaderEntry)(void);

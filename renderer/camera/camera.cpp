@@ -32,4 +32,35 @@ CameraRay Camera::generate(float x, float y, float u1, float u2) const {
     return {m_pos + lens, normalize(focus - lens), m_w};
 }
 
+std::array<float, 16> Camera::world_to_camera() const {
+    const Vec3f axis[3] = {m_u, m_v, -m_w};
+    std::array<float, 16> m{};
+    for (int j = 0; j < 3; ++j) {
+        m[0 * 4 + j] = axis[j].x;
+        m[1 * 4 + j] = axis[j].y;
+        m[2 * 4 + j] = axis[j].z;
+        m[3 * 4 + j] = -dot(m_pos, axis[j]);
+    }
+    m[15] = 1;
+    return m;
+}
+
+std::array<float, 16> Camera::world_to_ndc() const {
+    // Camera → NDC: w' = depth = −z; x' = x / (2 tan(fov/2) aspect) + w'/2, and
+    // likewise y', so x'/w' runs 0 → 1 across the image; z' = 1.
+    std::array<float, 16> c{};
+    c[0 * 4 + 0] = 0.5f / (m_tan_half_h * m_aspect);
+    c[1 * 4 + 1] = 0.5f / m_tan_half_h;
+    c[2 * 4 + 0] = -0.5f;
+    c[2 * 4 + 1] = -0.5f;
+    c[2 * 4 + 3] = -1.0f;
+    c[3 * 4 + 2] = 1.0f;
+    const std::array<float, 16> w = world_to_camera();
+    std::array<float, 16> m{};
+    for (int i = 0; i < 4; ++i)
+        for (int j = 0; j < 4; ++j)
+            for (int k = 0; k < 4; ++k) m[i * 4 + j] += w[i * 4 + k] * c[k * 4 + j];
+    return m;
+}
+
 }  // namespace pelage::renderer

@@ -2,6 +2,8 @@
 // [i, i+1) × [j, j+1). The vertical field of view spans the image height.
 #pragma once
 
+#include <array>
+
 #include "renderer/core/math.h"
 #include "renderer/scene_file/scene_file.h"
 
@@ -21,6 +23,13 @@ class Camera {
     Vec3f forward() const { return m_w; }
     // False for a pinhole: generate() then ignores (u1, u2).
     bool has_lens() const { return m_lens_radius > 0; }
+
+    // 4×4 matrices as OpenEXR's worldToCamera and worldToNDC attributes store them
+    // (Imath's row vectors: p' = p · M, row-major). Camera space is right-handed, x
+    // right, y up, looking down −z. NDC is pbrt-v4's: x, y in [0, 1] across the image
+    // from its bottom-left corner, after the division by w, and z = 1 / depth.
+    std::array<float, 16> world_to_camera() const;
+    std::array<float, 16> world_to_ndc() const;
 
   private:
     Vec3f m_pos, m_u, m_v, m_w;  // right, up, forward

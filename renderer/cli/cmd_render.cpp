@@ -9,9 +9,11 @@
 #include <memory>
 #include <optional>
 
+#include "renderer/camera/camera.h"
 #include "renderer/cli/common.h"
 #include "renderer/core/progress.h"
 #include "renderer/image/color_management.h"
+#include "renderer/image/image_layers.h"
 #include "renderer/image/image_output.h"
 #include "renderer/integrator/render.h"
 #include "renderer/scene_file/scene_file.h"
@@ -173,6 +175,39 @@ enum class FrameOutcome {
     aborted,  // a range interrupted mid-frame: nothing written, --resume redoes it
 };
 
+// The scene's Cryptomatte layers, named through the scene.
+std::vector<CryptomatteSource> matte_sources(const Scene &scene) {
+    std::vector<CryptomatteSource> sources;
+    for (size_t l = 0; l < scene.matte_layers().size(); ++l)
+        sources.push_back({scene.matte_layers()[l], [&scene, l](uint64_t key) {
+                               return scene.matte_name(int(l), key);
+                           }});
+    return sources;
+}
+
+// What a compositor or a farm reads from the header besides the pixels: the camera,
+// the compression, and the settings that made the image.
+void describe_render(const SceneDesc &fd, ImageMetadata &meta) {
+    const Camera camera(fd.camera, fd.film.width, fd.film.height);
+    meta.world_to_camera = camera.world_to_camera();
+    meta.world_to_ndc = camera.world_to_ndc();
+    meta.compression = fd.film.compression;
+    if (fd.animation.present && meta.fps <= 0) meta.fps = fd.animation.fps;
+    const char *filters[] = {"box", "gaussian", "blackman_harris"};
+    meta.strings.emplace_back(
+        "pelage:filter",
+        fmt::format("{} {:g}", filters[int(fd.film.filter)], fd.film.filter_radius));
+    meta.strings.emplace_back("pelage:sampler",
+                              fd.integrator.sampler == IntegratorDesc::SamplerKind::sobol
+                                  ? "sobol"
+                                  : "independent");
+    const char *selection[] = {"auto", "all", "power", "uniform"};
+    meta.strings.emplace_back("pelage:light_selection",
+                              selection[int(fd.integrator.light_selection)]);
+    meta.ints.emplace_back("pelage:max_depth", fd.integrator.max_depth);
+    meta.ints.emplace_back("pelage:rr_depth", fd.integrator.rr_depth);
+}
+
 // Frame f: rendered (Ctrl-C stops at the next tile and keeps what is done), then its
 // EXR and preview written atomically.
 FrameOutcome render_frame(const RenderCliOptions &o, const SceneDesc &desc,
@@ -216,7 +251,11 @@ FrameOutcome render_frame(const RenderCliOptions &o, const SceneDesc &desc,
         return FrameOutcome::aborted;
     }
 
-    const std::vector<float> pixels = r.film->resolve();
+    const ImageLayers layers =
+        image_layers(*r.film, fd.film, scene.shader_aov_names(), matte_sources(scene),
+                     [](const std::string &w) {
+                         std::fprintf(stderr, "pelage render: %s\n", w.c_str());
+                     });
     ImageMetadata meta;
     meta.scene = fs::absolute(o.scene).lexically_normal().string();
     meta.software = "pelage " PELAGE_VERSION;
@@ -237,11 +276,11 @@ FrameOutcome render_frame(const RenderCliOptions &o, const SceneDesc &desc,
         if (desc.animation.present) meta.fps = desc.animation.fps;
         meta.record_time = false;  // frames are byte-identical wherever rendered
     }
-    write_exr(out_f, fd.film.width, fd.film.height, pixels,
-              Film::channel_names(scene.shader_aov_names()), fd.film.half, meta);
+    describe_render(fd, meta);
+    write_exr(out_f, layers, meta);
     if (plan.display)
-        write_preview(preview_f, fd.film.width, fd.film.height, pixels,
-                      Film::num_channels, *plan.display);
+        write_preview(preview_f, fd.film.width, fd.film.height, layers.pixels,
+                      layers.channels(), *plan.display);
     ++totals->rendered;
     totals->stats.add(r.stats);
     totals->seconds += r.seconds;

@@ -32,7 +32,7 @@ void *allocate_buffer(size_t bytes) {
 
 }  // namespace
 
-Film::Film(int width, int height)
+Film::Film(int width, int height, int cryptomatte_layers, int cryptomatte_slots)
     : m_width(width),
       m_height(height),
       m_accum(static_cast<float *>(
@@ -47,6 +47,9 @@ Film::Film(int width, int height)
         std::fill_n(&m_accum[row * accum_stride], size_t(width) * accum_stride, 0.0f);
         std::uninitialized_fill_n(&m_point[row], width, FilmPointAovs{});
     });
+    if (cryptomatte_layers > 0)
+        m_matte = std::make_unique<CryptomatteFilm>(width, height, cryptomatte_layers,
+                                                    cryptomatte_slots);
 }
 
 std::vector<float> Film::resolve() const {

@@ -4,37 +4,51 @@
 //   R G B A                      beauty, scene-linear; A = coverage by geometry
 //   albedo.R albedo.G albedo.B   first-hit albedo
 //   N.X N.Y N.Z                  first-hit world-space shading normal
-//   depth.Z                      camera-space depth of the first hit (0 = none)
+//   depth.Z                      camera-space depth of the first hit (+inf = none)
 //   id.object id.primitive       first-hit ids, -1 = none
-//   shader.<name> × 4            the material plugin's AOV slots
+//   shader.<name>                the material plugin's named AOV slots, -1 where no
+//                                plugin wrote them (background, other materials)
+// and, when asked for, Cryptomatte layers accumulated over every sample
+// (cryptomatte.h). Which layers are written, and as what, is image_layers.h's job.
 #pragma once
 
 #include <cstdint>
 #include <cstdlib>
+#include <limits>
 #include <memory>
 #include <string>
 #include <vector>
 
 #include "renderer/core/math.h"
+#include "renderer/image/cryptomatte.h"
 #include "shader/pelage_shader.h"
 
 namespace pelage::renderer {
+
+// The object layer and the material plugins' matte layers.
+inline constexpr int max_cryptomatte_layers = 1 + PELAGE_SHADER_MATTE_SLOTS;
 
 struct FilmSample {
     Rgb L;
     float alpha = 0;
     Rgb albedo, normal;
+    // The first hit's key in each of the film's Cryptomatte layers; no_key: none.
+    uint64_t matte[max_cryptomatte_layers] = {
+        CryptomatteFilm::no_key, CryptomatteFilm::no_key, CryptomatteFilm::no_key,
+        CryptomatteFilm::no_key};
 };
 
 struct FilmPointAovs {
-    float depth = 0;
+    float depth = std::numeric_limits<float>::infinity();
     float object_id = -1, primitive_id = -1;
-    float shader[PELAGE_SHADER_AOV_SLOTS] = {0, 0, 0, 0};
+    float shader[PELAGE_SHADER_AOV_SLOTS] = {-1, -1, -1, -1};
 };
 
 class Film {
   public:
-    Film(int width, int height);
+    // `cryptomatte_layers` > 0: also accumulate that many Cryptomatte layers, keeping
+    // `cryptomatte_slots` ids per pixel and layer.
+    Film(int width, int height, int cryptomatte_layers = 0, int cryptomatte_slots = 0);
 
     int width() const { return m_width; }
     int height() const { return m_height; }
@@ -55,6 +69,10 @@ class Film {
         a[10] += weight;
         const float lum = luminance(s.L);
         a[11] += weight * lum * lum;
+        if (m_matte)
+            for (int l = 0; l < m_matte->layers(); ++l)
+                if (s.matte[l] != CryptomatteFilm::no_key)
+                    m_matte->add(x, y, l, s.matte[l], weight);
     }
     void set_point_aovs(int x, int y, const FilmPointAovs &p) {
         m_point[size_t(y * m_width + x)] = p;
@@ -65,6 +83,12 @@ class Film {
     // that dark pixels, which tone mapping brightens, need a smaller absolute error
     // (the normalisation of Cycles' adaptive sampling). Infinite below 2 samples.
     float noise(int x, int y) const;
+    // The pixel's summed sample weight (the Cryptomatte coverage's denominator).
+    float weight(int x, int y) const {
+        return m_accum[size_t(y * m_width + x) * accum_stride + 10];
+    }
+    // The Cryptomatte accumulation, or null when none was asked for.
+    const CryptomatteFilm *cryptomatte() const { return m_matte.get(); }
 
     static constexpr int num_channels = 4 + 3 + 3 + 1 + 2 + PELAGE_SHADER_AOV_SLOTS;
     // All layers as interleaved float channels in the order of channel_names().
@@ -83,6 +107,7 @@ class Film {
     };
     std::unique_ptr<float[], FreeBuffer> m_accum;
     std::unique_ptr<FilmPointAovs[], FreeBuffer> m_point;
+    std::unique_ptr<CryptomatteFilm> m_matte;
 };
 
 }  // namespace pelage::renderer

@@ -189,23 +189,36 @@ bool exr_is_complete(const std::string &path, std::string *why) {
 void write_exr(const std::string &path, int width, int height,
                const std::vector<float> &pixels, const std::vector<std::string> &names,
                bool half, const ImageMetadata &meta) {
+    ImageLayers layers;
+    layers.width = width;
+    layers.height = height;
+    layers.names = names;
+    for (const std::string &n : names) {
+        // Depth, ids and plugin values need float precision (ids above 2048 are not exact
+        // in half); colour layers use the requested type.
+        const bool exact = n.rfind("depth.", 0) == 0 || n.rfind("id.", 0) == 0 ||
+                           n.rfind("shader.", 0) == 0;
+        layers.half.push_back(half && !exact);
+    }
+    layers.pixels = pixels;
+    write_exr(path, layers, meta);
+}
+
+void write_exr(const std::string &path, const ImageLayers &layers,
+               const ImageMetadata &meta) {
+    const int width = layers.width, height = layers.height;
+    const std::vector<std::string> &names = layers.names;
+    const std::vector<float> &pixels = layers.pixels;
     const int nc = int(names.size());
-    OIIO::ImageSpec spec(width, height, nc,
-                         half ? OIIO::TypeDesc::HALF : OIIO::TypeDesc::FLOAT);
+    OIIO::ImageSpec spec(width, height, nc, OIIO::TypeDesc::FLOAT);
     spec.channelnames = names;
     spec.alpha_channel = 3;
     spec.z_channel = -1;
     spec.channelformats.resize(nc);
-    for (int c = 0; c < nc; ++c) {
-        // Depth, ids and plugin values need float precision (ids above 2048 are not exact
-        // in half); colour layers use the requested type.
-        const bool exact = names[c].rfind("depth.", 0) == 0 ||
-                           names[c].rfind("id.", 0) == 0 ||
-                           names[c].rfind("shader.", 0) == 0;
+    for (int c = 0; c < nc; ++c)
         spec.channelformats[c] =
-            exact || !half ? OIIO::TypeDesc::FLOAT : OIIO::TypeDesc::HALF;
-    }
-    spec.attribute("compression", "zip");
+            layers.half[size_t(c)] ? OIIO::TypeDesc::HALF : OIIO::TypeDesc::FLOAT;
+    spec.attribute("compression", meta.compression);
     spec.attribute("Software", meta.software);
     spec.attribute("pelage:scene", meta.scene);
     spec.attribute("pelage:spp", meta.spp);
@@ -221,7 +234,20 @@ void write_exr(const std::string &path, int width, int height,
         spec.attribute("pelage:render_seconds", float(meta.render_seconds));
     spec.attribute("pelage:interrupted", int(meta.interrupted));
     if (meta.frame >= 0) spec.attribute("pelage:frame", meta.frame);
-    if (meta.fps > 0) spec.attribute("pelage:fps", float(meta.fps));
+    if (meta.fps > 0) {
+        spec.attribute("pelage:fps", float(meta.fps));
+        // OpenEXR's framesPerSecond, a rational: 24 → 24/1, 29.97 → 2997/100.
+        const int den = std::abs(meta.fps - std::round(meta.fps)) < 1e-6 ? 1 : 1000;
+        const int rational[2] = {int(std::lround(meta.fps * den)), den};
+        spec.attribute("FramesPerSecond", OIIO::TypeRational, rational);
+    }
+    if (meta.world_to_camera)
+        spec.attribute("worldtocamera", OIIO::TypeMatrix, meta.world_to_camera->data());
+    if (meta.world_to_ndc)
+        spec.attribute("worldtoNDC", OIIO::TypeMatrix, meta.world_to_ndc->data());
+    for (const auto &[k, v] : meta.strings) spec.attribute(k, v);
+    for (const auto &[k, v] : layers.attributes) spec.attribute(k, v);
+    for (const auto &[k, v] : meta.ints) spec.attribute(k, v);
     if (!meta.record_time) spec.attribute("DateTime", "");  // no capDate: same bytes
     // --- Convert to the stored per-channel types here, so the hash is of those bytes ---
     std::vector<unsigned char> native(spec.image_bytes(true));

@@ -8,12 +8,16 @@
 //   * PNG/JPEG preview: the beauty through an OCIO display transform, 8 bits per channel.
 #pragma once
 
+#include <array>
 #include <cstdint>
+#include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "renderer/image/color_management.h"
 #include "renderer/image/film.h"
+#include "renderer/image/image_layers.h"
 
 namespace pelage::renderer {
 
@@ -34,6 +38,13 @@ struct ImageMetadata {
     bool record_time =
         true;  // false: no pelage:render_seconds, so that the same frame
                // rendered twice (another machine, --resume) is the same file
+    // OpenEXR's standard worldToCamera and worldToNDC (Camera::world_to_camera()).
+    std::optional<std::array<float, 16>> world_to_camera, world_to_ndc;
+    std::string compression = "zip";  // OpenEXR compression (OIIO's name)
+    // Further attributes: render settings (pelage:*) and the layers' own
+    // (cryptomatte/<key>/...).
+    std::vector<std::pair<std::string, std::string>> strings;
+    std::vector<std::pair<std::string, int>> ints;
 };
 
 // A checksum of the pixels as the EXR stores them (`data`: packed pixels, each channel
@@ -49,7 +60,12 @@ uint64_t pixel_hash(const void *data, size_t pixels,
 // pelage:pixel_hash, FNV-1a). Otherwise false with the reason.
 bool exr_is_complete(const std::string &path, std::string *why = nullptr);
 
-// `pixels`: Film::num_channels interleaved floats per pixel (Film::resolve()).
+// The layers as image_layers() chose them, each channel half or float as it says.
+void write_exr(const std::string &path, const ImageLayers &layers,
+               const ImageMetadata &meta);
+
+// `pixels`: interleaved floats, one per name; colour layers half when `half`, depth,
+// ids and shader values float.
 void write_exr(const std::string &path, int width, int height,
                const std::vector<float> &pixels,
                const std::vector<std::string> &channel_names, bool half,

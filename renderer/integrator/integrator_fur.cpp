@@ -85,6 +85,10 @@ bool scatter_at_strand(const Scene &scene, const FurLayer &layer, const RTCRayHi
         fs.alpha = 1;
         fs.albedo = bsdf.albedo();
         fs.normal = frame.z;
+        // Strands belong to their object's matte; the pattern's mattes cover the skin.
+        for (size_t l = 0; l < scene.matte_layers().size(); ++l)
+            if (scene.matte_slot(layer.object, int(l)) == Scene::object_layer)
+                fs.matte[l] = layer.object;
         if (aovs) {
             aovs->depth = rh.ray.tfar * dot(st.d, cam.forward);
             aovs->object_id = float(layer.object);

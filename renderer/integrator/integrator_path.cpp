@@ -374,6 +374,14 @@ template <typename Instr>
     fs.alpha = 1;
     fs.albedo = albedo;
     fs.normal = sv.ns;
+    const std::vector<std::string> &mattes = m_scene.matte_layers();
+    for (size_t l = 0; l < mattes.size(); ++l) {
+        const int slot = m_scene.matte_slot(sv.object, int(l));
+        if (slot == Scene::object_layer)
+            fs.matte[l] = sv.object;
+        else if (slot >= 0 && (sh.matte_written >> slot & 1u))
+            fs.matte[l] = uint64_t(sv.object) << 32 | sh.matte[slot];
+    }
     if (!aovs) return;
     aovs->depth =
         sv.t_hit * dot(cam.d, cam.forward);  // motion blur: this sample's camera

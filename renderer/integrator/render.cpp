@@ -26,7 +26,11 @@ RenderResult render(const Scene &scene, const RenderOptions &opt) {
     const double timer_overhead = instrumented ? timer_overhead_seconds() : 0.0;
 
     RenderResult result;
-    result.film = std::make_unique<Film>(W, H);
+    // Cryptomatte keeps two ids per pixel more than it writes ranks. A sample whose id
+    // finds every slot taken is not counted, so only pixels that see more ids than
+    // that lose part of a matte.
+    result.film = std::make_unique<Film>(W, H, int(scene.matte_layers().size()),
+                                         fd.cryptomatte_ranks + 2);
     const int tiles_x = (W + tile_size - 1) / tile_size,
               tiles_y = (H + tile_size - 1) / tile_size;
     const int num_tiles = tiles_x * tiles_y;

@@ -1,5 +1,6 @@
 #include "renderer/scene/scene.h"
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <stdexcept>
@@ -58,6 +59,7 @@ void Scene::build(const SceneDesc &desc, const PluginRegistry &plugins) {
         ps.mesh.cells_path = o.cells.empty() ? nullptr : o.cells.c_str();
         ps.mesh.mesh_path = o.mesh.c_str();
         ps.scene_dir = desc.dir.c_str();
+        ps.object_name = o.name.c_str();
         PelageError err{};
         Material &m = m_materials[i];
         m.plugin = chosen[i]->desc;
@@ -80,6 +82,7 @@ void Scene::build(const SceneDesc &desc, const PluginRegistry &plugins) {
             for (int k = 0; k < PELAGE_SHADER_AOV_SLOTS && m.plugin->aov_names[k]; ++k)
                 m_aov_names.push_back(m.plugin->aov_names[k]);
     }
+    choose_matte_layers(desc);
     // --- Fur: strands grown from each furry object's skin, added to the Embree scene ---
     for (const ObjectDesc &o : desc.objects)
         if (o.fur) {
@@ -114,6 +117,70 @@ void Scene::build(const SceneDesc &desc, const PluginRegistry &plugins) {
             if (m_fur->layers().empty()) m_fur.reset();
             break;
         }
+}
+
+void Scene::choose_matte_layers(const SceneDesc &desc) {
+    // Every matte layer some object's plugin offers, in the order first offered.
+    std::vector<std::string> offered = {"object"};
+    for (const Material &m : m_materials)
+        for (int k = 0; m.plugin->matte_names && k < PELAGE_SHADER_MATTE_SLOTS &&
+                        m.plugin->matte_names[k];
+             ++k)
+            if (std::find(offered.begin(), offered.end(), m.plugin->matte_names[k]) ==
+                offered.end())
+                offered.push_back(m.plugin->matte_names[k]);
+    const std::vector<std::string> &asked = desc.film.cryptomatte;
+    if (asked.size() == 1 && asked[0] == "*") {
+        m_matte_layers = offered;
+    } else {
+        for (size_t i = 0; i < asked.size(); ++i) {
+            if (std::find(offered.begin(), offered.end(), asked[i]) == offered.end()) {
+                std::string all;
+                for (const std::string &o : offered) all += (all.empty() ? "" : ", ") + o;
+                throw InputError(desc.path, 0,
+                                 "film.cryptomatte[" + std::to_string(i) + "]",
+                                 "no object's material offers a \"" + asked[i] +
+                                     "\" matte; this scene offers: " + all);
+            }
+        }
+        m_matte_layers = asked;
+    }
+    if (m_matte_layers.size() > size_t(1 + PELAGE_SHADER_MATTE_SLOTS))
+        throw InputError(desc.path, 0, "film.cryptomatte",
+                         "at most " + std::to_string(1 + PELAGE_SHADER_MATTE_SLOTS) +
+                             " Cryptomatte layers");
+    m_matte_slot.assign(m_materials.size(), {});
+    for (size_t o = 0; o < m_materials.size(); ++o)
+        for (size_t l = 0; l < m_matte_layers.size(); ++l) {
+            int slot = -1;
+            if (m_matte_layers[l] == "object") slot = object_layer;
+            const PelageShaderPlugin &p = *m_materials[o].plugin;
+            for (int k = 0; slot == -1 && p.matte_names &&
+                            k < PELAGE_SHADER_MATTE_SLOTS && p.matte_names[k];
+                 ++k)
+                if (m_matte_layers[l] == p.matte_names[k]) slot = k;
+            m_matte_slot[o][l] = int8_t(slot);
+        }
+}
+
+std::string Scene::matte_name(int layer, uint64_t key) const {
+    const size_t object = size_t(key >> 32);
+    if (m_matte_slot.empty() || size_t(layer) >= m_matte_layers.size()) return "";
+    if (m_matte_layers[size_t(layer)] == "object") {
+        const size_t o = size_t(key);
+        return o < m_desc.objects.size() ? m_desc.objects[o].name : "";
+    }
+    if (object >= m_materials.size()) return "";
+    const Material &m = m_materials[object];
+    const int slot = m_matte_slot[object][size_t(layer)];
+    const uint32_t id = uint32_t(key);
+    if (m.plugin->matte_name) {
+        char buf[512];
+        if (m.plugin->matte_name(m.instance, uint32_t(slot), id, buf, sizeof buf))
+            return buf;
+    }
+    return m_desc.objects[object].name + " " + m_matte_layers[size_t(layer)] + " " +
+           std::to_string(id);
 }
 
 Scene::~Scene() { destroy_instances(); }

@@ -3,6 +3,8 @@
 // validated SceneDesc; plugin parameters are validated here, against each plugin's table.
 #pragma once
 
+#include <array>
+#include <cstdint>
 #include <memory>
 #include <string>
 #include <vector>
@@ -41,8 +43,22 @@ class Scene {
     // The scene's fur (renderer/geometry/fur_geometry.h), or null when no object has any.
     const FurGeometry *fur() const { return m_fur.get(); }
 
+    // Cryptomatte: the film's matte layers ("object", then plugin layers such as
+    // "type"), at most 1 + PELAGE_SHADER_MATTE_SLOTS, as film.cryptomatte asks.
+    const std::vector<std::string> &matte_layers() const { return m_matte_layers; }
+    // The slot of `layer` in object `object`'s plugin matte ids (PelageShade::matte),
+    // or -1 when its plugin has no such layer; -2 for the object layer itself.
+    int matte_slot(uint32_t object, int layer) const {
+        return m_matte_slot[object][size_t(layer)];
+    }
+    static constexpr int object_layer = -2;
+    // The name of a Cryptomatte key of `layer` (Film: object index, or object << 32 |
+    // the plugin's id).
+    std::string matte_name(int layer, uint64_t key) const;
+
   private:
     void build(const SceneDesc &desc, const PluginRegistry &plugins);
+    void choose_matte_layers(const SceneDesc &desc);
     void destroy_instances();
 
     SceneDesc m_desc;
@@ -51,6 +67,8 @@ class Scene {
     std::vector<Material> m_materials;
     std::vector<std::string> m_aov_names;
     std::unique_ptr<FurGeometry> m_fur;
+    std::vector<std::string> m_matte_layers;
+    std::vector<std::array<int8_t, 1 + PELAGE_SHADER_MATTE_SLOTS>> m_matte_slot;
 };
 
 }  // namespace pelage::renderer

@@ -311,6 +311,80 @@ json parse_json(const std::string &text, const std::string &path) {
     }
 }
 
+// film.layers, film.compression, film.cryptomatte and film.cryptomatte_ranks.
+void read_film_layers(Reader &fr, const SceneDesc &scene, FilmDesc *f) {
+    using LT = FilmDesc::LayerType;
+    const LT colour = f->half ? LT::half : LT::single;
+    f->albedo = f->normal = colour;
+    if (const json *lv = fr.take("layers")) {
+        if (!lv->is_object())
+            fr.fail(fr.field("layers"),
+                    std::string("expected an object such as {\"depth\": "
+                                "false}, got ") +
+                        json_type_name(*lv));
+        Reader lr(*lv, "film.layers", scene);
+        // "half", "float", or false (not written).
+        auto layer = [&](const char *key, LT def, bool exact) {
+            const json *v = lr.take(key);
+            if (!v) return def;
+            if (v->is_boolean() && !v->get<bool>()) return LT::off;
+            if (v->is_string() && v->get<std::string>() == "float") return LT::single;
+            if (v->is_string() && v->get<std::string>() == "half") {
+                if (exact)
+                    lr.fail(lr.field(key),
+                            "\"half\" cannot hold ids above 2048 exactly: use "
+                            "\"float\" or false");
+                return LT::half;
+            }
+            lr.fail(lr.field(key),
+                    "expected \"half\", \"float\" or false, got " + v->dump());
+        };
+        f->albedo = layer("albedo", f->albedo, false);
+        f->normal = layer("N", f->normal, false);
+        f->depth = layer("depth", f->depth, false);
+        f->id = layer("id", f->id, true);
+        f->shader = layer("shader", f->shader, true);
+        lr.finish();
+    }
+    f->compression = fr.choice<std::string>("compression", f->compression,
+                                            {{"none", "none"},
+                                             {"rle", "rle"},
+                                             {"zips", "zips"},
+                                             {"zip", "zip"},
+                                             {"piz", "piz"},
+                                             {"pxr24", "pxr24"},
+                                             {"b44", "b44"},
+                                             {"b44a", "b44a"},
+                                             {"dwaa", "dwaa"},
+                                             {"dwab", "dwab"}});
+    if (const json *cv = fr.take("cryptomatte")) {
+        if (cv->is_boolean()) {
+            // true: the object layer and every matte layer the materials offer
+            // (resolved by the scene, which knows the plugins).
+            if (cv->get<bool>()) f->cryptomatte = {"*"};
+        } else if (cv->is_array()) {
+            for (size_t i = 0; i < cv->size(); ++i) {
+                const json &e = (*cv)[i];
+                const std::string at = "film.cryptomatte[" + std::to_string(i) + "]";
+                if (!e.is_string() || e.get<std::string>().empty())
+                    fr.fail(at,
+                            "expected a layer name such as \"object\", got " + e.dump());
+                const std::string name = e.get<std::string>();
+                if (std::find(f->cryptomatte.begin(), f->cryptomatte.end(), name) !=
+                    f->cryptomatte.end())
+                    fr.fail(at, "\"" + name + "\" is listed twice");
+                f->cryptomatte.push_back(name);
+            }
+        } else {
+            fr.fail(fr.field("cryptomatte"),
+                    std::string("expected true, false or a list such as [\"object\", "
+                                "\"type\"], got ") +
+                        json_type_name(*cv));
+        }
+    }
+    f->cryptomatte_ranks = fr.integer("cryptomatte_ranks", f->cryptomatte_ranks, 1, 16);
+}
+
 FilmDesc read_film(Reader fr, const SceneDesc &scene) {
     FilmDesc f;
     f.width = fr.integer("width", f.width, 1, 65536);
@@ -335,6 +409,7 @@ FilmDesc read_film(Reader fr, const SceneDesc &scene) {
     f.view = fr.string("view", f.view);
     f.noise_threshold = float(fr.number("noise_threshold", 0, 0, 1));
     f.min_spp = fr.integer("min_spp", f.min_spp, 1, 1 << 20);
+    read_film_layers(fr, scene, &f);
     fr.finish();
     return f;
 }

@@ -39,6 +39,18 @@ struct FilmDesc {
     // estimate is below this; 0 = every pixel takes spp samples.
     float noise_threshold = 0;
     int min_spp = 16;  // ... but never before this many samples
+    // The EXR's layers beyond the beauty (docs/guide/compositing-outputs.md): each
+    // written as half or float, or not at all. Colour layers default to `half`'s type;
+    // depth, ids and the shader's values to float (ids are not exact in half).
+    enum class LayerType { off, half, single };
+    LayerType albedo = LayerType::half, normal = LayerType::half,
+              depth = LayerType::single, id = LayerType::single,
+              shader = LayerType::single;
+    std::string compression = "zip";  // OpenEXR's compression, as OIIO names it
+    // Cryptomatte layers: "object" and the material plugins' matte layers ("type",
+    // "cell", ...), each with `cryptomatte_ranks` (id, coverage) pairs per pixel.
+    std::vector<std::string> cryptomatte;
+    int cryptomatte_ranks = 6;
 };
 
 struct LightDesc {

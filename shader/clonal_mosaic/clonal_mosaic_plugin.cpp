@@ -44,6 +44,7 @@ struct CellLook {
     float rgb[3];
     uint32_t type;
     float aov_id;
+    uint32_t id;  // the stable cell id (the "cell" matte)
 };
 
 struct ClonalMosaic {
@@ -63,7 +64,8 @@ struct ClonalMosaic {
     // or antialiasing off).
     float camera_reuse_up_to = -1;
     uint32_t num_triangles = 0;
-    uint64_t serial = 0;  // this instance among all ever created (never 0)
+    uint64_t serial = 0;      // this instance among all ever created (never 0)
+    std::string object_name;  // names the cells' mattes
 };
 
 std::atomic<uint64_t> instances_created{0};
@@ -142,6 +144,10 @@ const PelageParamSpec params[] = {
 };
 
 const char *const aov_names[] = {"cell_id", "cell_type", "f1", nullptr};
+// Cryptomatte layers: a cell type is one matte across objects (its name); a cell is
+// "<object>/cell <id>".
+enum MatteLayer : uint32_t { matte_type = 0, matte_cell = 1 };
+const char *const matte_names[] = {"type", "cell", nullptr};
 
 // "F=0.35,B=0.5" -> one value per named type, each in [lo, hi], handed to `set`; throws
 // std::invalid_argument naming the parameter and the problem.
@@ -209,6 +215,7 @@ void cell_look(const ClonalMosaic &cm, uint32_t cell, CellLook &look) {
     for (int c = 0; c < 3; ++c) look.rgb[c] = std::clamp(t.colour[c] * scale, 0.0f, 1.0f);
     look.type = type;
     look.aov_id = float(cm.cells_ptr->id[cell]);  // exact below 2^24 cells
+    look.id = cm.cells_ptr->id[cell];
 }
 
 std::unique_ptr<ClonalMosaic> make(const PelageParamSet &ps) {
@@ -223,6 +230,7 @@ std::unique_ptr<ClonalMosaic> make(const PelageParamSet &ps) {
     cm->antialias = p.get_bool("antialias");
     cm->coherence = p.get_bool("coherence");
     cm->serial = ++instances_created;
+    cm->object_name = ps.object_name ? ps.object_name : "";
     const std::string neighbourhood = p.get_string("neighbourhood");
     if (neighbourhood != "geodesic" && neighbourhood != "edges" && neighbourhood != "teo")
         throw std::invalid_argument("neighbourhood: \"" + neighbourhood +
@@ -303,6 +311,9 @@ void shade_as(const ClonalMosaic &cm, const CellLook &cell, float f1, PelageShad
     out->aov[1] = type.aov_type;
     out->aov[2] = f1;
     out->aov_written = 1;
+    out->matte[matte_type] = cell.type;
+    out->matte[matte_cell] = cell.id;
+    out->matte_written = 1u << matte_type | 1u << matte_cell;
 }
 
 // Blend the (up to) three nearest cells of n, nearest first, with weights
@@ -408,6 +419,9 @@ void shade_cells(const ClonalMosaic &cm, const PelageHit *hit, PelageShade *out,
                 out->aov[1] = cm.types[cell.type].aov_type;
                 out->aov[2] = c.f1;
                 out->aov_written = 1;
+                out->matte[matte_type] = cell.type;
+                out->matte[matte_cell] = cell.id;
+                out->matte_written = 1u << matte_type | 1u << matte_cell;
             }
         }
         const shader::clonal_mosaic::FilteredLook f = cm.lod->at(t, hit->b1, hit->b2);
@@ -454,6 +468,22 @@ void shade(const void *self, const PelageHit *render_hit, PelageShade *out) {
     shade_any(cm, hit, out, nullptr);
 }
 
+int matte_name(const void *self, uint32_t layer, uint32_t id, char *buf, uint32_t size) {
+    const ClonalMosaic &cm = *static_cast<const ClonalMosaic *>(self);
+    std::string name;
+    if (layer == matte_type && id < cm.types.size())
+        name = cm.pattern->types()[id].name;
+    else if (layer == matte_cell)
+        name = cm.object_name + "/cell " + std::to_string(id);
+    else
+        return 0;
+    if (size == 0) return 0;
+    const size_t n = std::min<size_t>(name.size(), size - 1);
+    std::memcpy(buf, name.data(), n);
+    buf[n] = 0;
+    return 1;
+}
+
 const PelageShaderPlugin plugin = {
     PELAGE_SHADER_ABI,
     "clonal_mosaic",
@@ -464,6 +494,8 @@ const PelageShaderPlugin plugin = {
     shader::sdk::guarded_create<make>,
     shade,
     shader::sdk::destroy_instance<ClonalMosaic>,
+    matte_names,
+    matte_name,
 };
 
 }  // namespace

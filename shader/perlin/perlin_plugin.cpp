@@ -123,6 +123,8 @@ const PelageShaderPlugin plugin = {
     guarded_create<make>,
     shade,
     destroy_instance<Perlin>,
+    nullptr,
+    nullptr,
 };
 
 }  // namespace

@@ -103,6 +103,8 @@ const PelageShaderPlugin plugin = {
     guarded_create<make>,
     shade,
     destroy_instance<Texture>,
+    nullptr,
+    nullptr,
 };
 
 }  // namespace

@@ -127,6 +127,8 @@ const PelageShaderPlugin plugin = {
     guarded_create<make>,
     shade,
     destroy_instance<Worley>,
+    nullptr,
+    nullptr,
 };
 
 }  // namespace

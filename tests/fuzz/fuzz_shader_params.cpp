@@ -24,7 +24,8 @@ const PelageParamSpec specs[] = {
 };
 
 const PelageShaderPlugin plugin = {PELAGE_SHADER_ABI, "fuzz",  "fuzz target", specs,
-                                   nullptr,           nullptr, nullptr,       nullptr};
+                                   nullptr,           nullptr, nullptr,       nullptr,
+                                   nullptr,           nullptr};
 
 }  // namespace
 

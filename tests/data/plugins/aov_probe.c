@@ -38,6 +38,6 @@ static void probe_destroy(void *self) { free(self); }
 
 static const PelageShaderPlugin probe = {
     PELAGE_SHADER_ABI, "aov_probe",  "test: ids into AOVs", probe_params,
-    probe_aovs,        probe_create, probe_shade,           probe_destroy};
+    probe_aovs,        probe_create, probe_shade,           probe_destroy, NULL, NULL};
 
 PELAGE_EXPORT const PelageShaderPlugin *pelage_shader_plugin(void) { return &probe; }

@@ -3,6 +3,6 @@
 
 static const PelageParamSpec no_params[] = {{0}};
 static const PelageShaderPlugin bad = {
-    999u, "bad_abi", "wrong ABI on purpose", no_params, 0, 0, 0, 0};
+    999u, "bad_abi", "wrong ABI on purpose", no_params, 0, 0, 0, 0, 0, 0};
 
 PELAGE_EXPORT const PelageShaderPlugin *pelage_shader_plugin(void) { return &bad; }

@@ -28,7 +28,12 @@ TEST(ImageOutput, ExrRoundTripKeepsLayersChannelNamesAndMetadata) {
     std::vector<float> px(size_t(W) * H * nc);
     for (size_t i = 0; i < px.size(); ++i) px[i] = float(i % 97) * 0.25f;
     const auto names = Film::channel_names({"cell_id", "cell_type"});
-    ImageMetadata meta{"/scenes/x.json", "pelage test", 64, 12345678901ull, 1.5, false};
+    ImageMetadata meta;
+    meta.scene = "/scenes/x.json";
+    meta.software = "pelage test";
+    meta.spp = 64;
+    meta.seed = 12345678901ull;
+    meta.render_seconds = 1.5;
     const std::string path = tmp.file("out.exr");
     write_exr(path, W, H, px, names, true, meta);
 
@@ -104,7 +109,12 @@ TEST(ImageOutput, PixelChecksumMarksCompleteFramesAndLegacyFnvStillVerifies) {
     std::vector<float> px(size_t(W) * H * nc);
     for (size_t i = 0; i < px.size(); ++i) px[i] = float(i % 89) * 0.125f;
     const auto names = Film::channel_names({"cell_id"});
-    ImageMetadata meta{"/scenes/x.json", "pelage test", 4, 7, 0.5, false};
+    ImageMetadata meta;
+    meta.scene = "/scenes/x.json";
+    meta.software = "pelage test";
+    meta.spp = 4;
+    meta.seed = 7;
+    meta.render_seconds = 0.5;
     const std::string path = tmp.file("frame.exr");
     write_exr(path, W, H, px, names, true, meta);
     std::string why;
