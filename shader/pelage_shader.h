@@ -77,8 +77,8 @@ typedef struct PelageParamSet {
     const PelageParamValue *values; /* the plugin's table order */
     uint32_t object_id;
     PelageMeshView mesh;
-    const char *scene_dir; /* folder of the scene file: relative paths in STRING
-                              parameters resolve against it; "" when unknown */
+    const char *scene_dir;   /* folder of the scene file: relative paths in STRING
+                                parameters resolve against it; "" when unknown */
     const char *object_name; /* the object's name in the scene (never NULL) */
 } PelageParamSet;
 

@@ -174,8 +174,12 @@ PluginParams validate_plugin_params(const PelageShaderPlugin &plugin,
                     }
                     break;
                 case PELAGE_PARAM_STRING:
-                    if (!x.is_string()) fail(s->name, "expected a string");
-                    out.strings.push_back(x.get<std::string>());
+                    // An object goes to the plugin as its JSON text (e.g.
+                    // clonal_mosaic's "types").
+                    if (!x.is_string() && !x.is_object())
+                        fail(s->name, "expected a string");
+                    out.strings.push_back(x.is_string() ? x.get<std::string>()
+                                                        : x.dump());
                     v.s = out.strings.back().c_str();
                     break;
             }

@@ -12,6 +12,7 @@
 #include <cstring>
 #include <limits>
 #include <memory>
+#include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -116,6 +117,15 @@ const PelageParamSpec params[] = {
      0.0f,
      "per-type coat reflectance at normal incidence (F0, 0…0.25; 0.04 = ior 1.5), e.g. "
      "\"F=0.02,B=0.05\"; empty keeps the material's ior"},
+    {"types",
+     PELAGE_PARAM_STRING,
+     {0, 0, 0},
+     "",
+     0.0f,
+     0.0f,
+     "per-type look without simulating again, as a JSON object: {\"F\": {\"colour\": "
+     "[r, g, b], \"eumelanin\": e, \"pheomelanin\": p, \"roughness\": r, "
+     "\"specular\": f0}}; each key optional"},
     {"neighbourhood",
      PELAGE_PARAM_STRING,
      {0, 0, 0},
@@ -179,6 +189,88 @@ void parse_per_type(const char *param, const std::string &spec, float lo, float 
                                         name + " is not in " + range.str());
         }
         set(size_t(it - types.begin()), v);
+    }
+}
+
+// F0 = ((η - 1) / (η + 1))², so η = (1 + √F0) / (1 - √F0): F0 0.25 is η = 3.
+float ior_of_f0(float f0) {
+    const float r = std::sqrt(f0);
+    return std::min((1 + r) / (1 - r), 3.0f);
+}
+
+// The "types" parameter: each named type's look replaced, key by key. Throws
+// std::invalid_argument naming the field ("types.F.colour[1]") and the problem.
+void apply_type_looks(const std::string &text, const std::vector<sim::CellType> &types,
+                      std::vector<TypeLook> &looks, std::vector<bool> &set_roughness,
+                      std::vector<bool> &set_specular) {
+    if (text.empty()) return;
+    const nlohmann::json j = nlohmann::json::parse(text, nullptr, false);
+    if (!j.is_object())
+        throw std::invalid_argument(
+            "types: expected an object such as {\"F\": {\"colour\": [0.1, 0.05, "
+            "0.02]}}");
+    for (const auto &[name, look] : j.items()) {
+        const std::string at = "types." + name;
+        auto it = std::find_if(types.begin(), types.end(),
+                               [&](const auto &t) { return t.name == name; });
+        if (it == types.end()) {
+            std::string all;
+            for (const auto &t : types) all += (all.empty() ? "" : ", ") + t.name;
+            throw std::invalid_argument(at + ": the .cells file has no cell type \"" +
+                                        name + "\" (it has " + all + ")");
+        }
+        if (!look.is_object())
+            throw std::invalid_argument(at +
+                                        ": expected an object of colour, eumelanin, "
+                                        "pheomelanin, roughness, specular");
+        TypeLook &t = looks[size_t(it - types.begin())];
+        const size_t k = size_t(it - types.begin());
+        auto number = [&](const nlohmann::json &v, const std::string &field, float lo,
+                          float hi) {
+            if (!v.is_number() || !(v.get<double>() >= lo && v.get<double>() <= hi))
+                throw std::invalid_argument(field + ": " + v.dump() +
+                                            " is not a number in [" +
+                                            std::to_string(lo).substr(0, 4) + ", " +
+                                            std::to_string(hi).substr(0, 4) + "]");
+            return v.get<float>();
+        };
+        for (const auto &[key, v] : look.items()) {
+            const std::string f = at + "." + key;
+            if (key == "colour" || key == "color") {
+                if (look.contains("colour") && look.contains("color"))
+                    throw std::invalid_argument(at +
+                                                ": give \"colour\" or \"color\", "
+                                                "not both");
+                if (!v.is_array() || v.size() != 3)
+                    throw std::invalid_argument(f + ": expected [r, g, b] (linear)");
+                for (int c = 0; c < 3; ++c)
+                    t.colour[c] =
+                        number(v[size_t(c)], f + "[" + std::to_string(c) + "]", 0, 1);
+            } else if (key == "eumelanin") {
+                t.eumelanin = number(v, f, 0, 50);
+            } else if (key == "pheomelanin") {
+                t.pheomelanin = number(v, f, 0, 50);
+            } else if (key == "roughness") {
+                if (set_roughness[k])
+                    throw std::invalid_argument(f +
+                                                ": the \"roughness\" parameter "
+                                                "already sets " +
+                                                name);
+                t.roughness = number(v, f, 0, 1);
+            } else if (key == "specular") {
+                if (set_specular[k])
+                    throw std::invalid_argument(f +
+                                                ": the \"specular\" parameter "
+                                                "already sets " +
+                                                name);
+                t.ior = ior_of_f0(number(v, f, 0, 0.25f));
+            } else {
+                throw std::invalid_argument(f +
+                                            ": unknown key (expected colour, "
+                                            "eumelanin, pheomelanin, roughness, "
+                                            "specular)");
+            }
+        }
     }
 }
 
@@ -269,14 +361,19 @@ std::unique_ptr<ClonalMosaic> make(const PelageParamSet &ps) {
                              0.0f,
                              float(k)});
     }
+    std::vector<bool> set_roughness(types.size()), set_specular(types.size());
     parse_per_type("roughness", p.get_string("roughness"), 0, 1, types,
-                   [&](size_t k, float r) { cm->types[k].roughness = r; });
-    // F0 = ((η - 1) / (η + 1))², so η = (1 + √F0) / (1 - √F0): F0 0.25 is η = 3.
+                   [&](size_t k, float r) {
+                       cm->types[k].roughness = r;
+                       set_roughness[k] = true;
+                   });
     parse_per_type("specular", p.get_string("specular"), 0, 0.25f, types,
                    [&](size_t k, float f0) {
-                       const float r = std::sqrt(f0);
-                       cm->types[k].ior = std::min((1 + r) / (1 - r), 3.0f);
+                       cm->types[k].ior = ior_of_f0(f0);
+                       set_specular[k] = true;
                    });
+    apply_type_looks(p.get_string("types"), types, cm->types, set_roughness,
+                     set_specular);
     cm->looks.resize(cm->cells_ptr->size());
     for (uint32_t k = 0; k < cm->looks.size(); ++k) cell_look(*cm, k, cm->looks[k]);
     if (p.get_bool("lod"))

@@ -43,7 +43,7 @@ static void diffuse_destroy(void *self) { free(self); }
 
 static const PelageShaderPlugin diffuse_plugin = {
     PELAGE_SHADER_ABI, "diffuse",     "constant diffuse albedo", diffuse_params, NULL,
-    diffuse_create,    diffuse_shade, diffuse_destroy, NULL, NULL,
+    diffuse_create,    diffuse_shade, diffuse_destroy,           NULL,           NULL,
 };
 
 PELAGE_EXPORT const PelageShaderPlugin *pelage_shader_plugin(void) {

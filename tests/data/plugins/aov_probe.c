@@ -37,7 +37,7 @@ static void probe_shade(const void *self, const PelageHit *hit, PelageShade *out
 static void probe_destroy(void *self) { free(self); }
 
 static const PelageShaderPlugin probe = {
-    PELAGE_SHADER_ABI, "aov_probe",  "test: ids into AOVs", probe_params,
-    probe_aovs,        probe_create, probe_shade,           probe_destroy, NULL, NULL};
+    PELAGE_SHADER_ABI, "aov_probe", "test: ids into AOVs", probe_params, probe_aovs,
+    probe_create,      probe_shade, probe_destroy,         NULL,         NULL};
 
 PELAGE_EXPORT const PelageShaderPlugin *pelage_shader_plugin(void) { return &probe; }

@@ -332,6 +332,70 @@ TEST(ClonalMosaicPlugin, PerTypeSpecularSetsTheCoatIor) {
     }
 }
 
+// A scene's "types" restyles a pattern without simulating again: each listed key
+// replaces the .cells file's value for that type, the other type is untouched, and
+// mistakes name their field.
+TEST(ClonalMosaicPlugin, TypesOverrideColourPigmentsRoughnessAndSpecular) {
+    TempDir tmp;
+    const std::string cells = simulate_two_type_cells(tmp, mesh_spec, 600);
+    const nlohmann::json types = {{"F",
+                                   {{"colour", {0.7, 0.2, 0.1}},
+                                    {"eumelanin", 0.1},
+                                    {"pheomelanin", 2.5},
+                                    {"roughness", 0.6},
+                                    {"specular", 0.04}}}};
+    // As the scene file gives it: an object where the table says string.
+    const Instance inst({{"antialias", 0}, {"types", types}}, cells.c_str());
+    ASSERT_NE(inst.self, nullptr) << inst.error;
+    int f = 0, b = 0;
+    for (uint32_t prim = 0; prim < 1280; ++prim) {
+        const PelageShade sh = inst.shade(prim, 0.3f, 0.3f);
+        if (sh.aov[1] == 0.0f) {
+            EXPECT_FLOAT_EQ(sh.albedo[0], 0.7f);
+            EXPECT_FLOAT_EQ(sh.albedo[1], 0.2f);
+            EXPECT_FLOAT_EQ(sh.albedo[2], 0.1f);
+            EXPECT_FLOAT_EQ(sh.eumelanin, 0.1f);
+            EXPECT_FLOAT_EQ(sh.pheomelanin, 2.5f);
+            EXPECT_FLOAT_EQ(sh.roughness, 0.6f);
+            EXPECT_NEAR(sh.ior, 1.5f, 1e-5f);
+            ++f;
+        } else {
+            // B as simulate_two_type_cells made it (test_paths.h).
+            EXPECT_FLOAT_EQ(sh.albedo[0], 0.9f);
+            EXPECT_FLOAT_EQ(sh.albedo[1], 0.6f);
+            EXPECT_FLOAT_EQ(sh.albedo[2], 0.3f);
+            EXPECT_FLOAT_EQ(sh.pheomelanin, 0.5f);
+            EXPECT_FLOAT_EQ(sh.roughness, -1.0f);
+            EXPECT_EQ(sh.ior, 0.0f);
+            ++b;
+        }
+    }
+    EXPECT_GT(f, 50);
+    EXPECT_GT(b, 50);
+    // "color" is accepted too.
+    const Instance us({{"types", {{"B", {{"color", {0, 0, 1}}}}}}}, cells.c_str());
+    EXPECT_NE(us.self, nullptr) << us.error;
+    const std::pair<nlohmann::json, std::string> refused[] = {
+        {{{"Q", {{"colour", {0, 0, 0}}}}}, "types.Q"},
+        {{{"F", {{"colour", {0, 2, 0}}}}}, "types.F.colour[1]"},
+        {{{"F", {{"colour", 0.5}}}}, "types.F.colour"},
+        {{{"F", {{"shine", 1}}}}, "types.F.shine"},
+        {{{"F", {{"specular", 0.5}}}}, "types.F.specular"},
+        {{{"F", 3}}, "types.F"},
+    };
+    for (const auto &[bad, field] : refused) {
+        const Instance r({{"types", bad}}, cells.c_str());
+        EXPECT_EQ(r.self, nullptr) << bad.dump();
+        EXPECT_NE(r.error.find(field), std::string::npos) << r.error;
+    }
+    // One type's roughness from two places is ambiguous.
+    const Instance twice(
+        {{"roughness", "F=0.2"}, {"types", {{"F", {{"roughness", 0.3}}}}}},
+        cells.c_str());
+    EXPECT_EQ(twice.self, nullptr);
+    EXPECT_NE(twice.error.find("types.F.roughness"), std::string::npos) << twice.error;
+}
+
 }  // namespace
 }  // namespace pelage::test
 
