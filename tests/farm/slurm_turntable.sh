@@ -78,7 +78,7 @@ scene="$src/scenes/cow_turntable.json"
 [ -f "$src/scenes/meshes/cow.off" ] || fail "no sample meshes: run scenes/fetch_meshes.sh"
 
 work=$(mktemp -d "${TMPDIR:-/tmp}/pelage-slurm.XXXXXX")
-chmod 700 "$work"
+chmod 711 "$work" # munged needs its socket folder searchable by all
 munged_pid="" ctld_pid="" slurmd_pid=""
 
 # --- The cluster ----------------------------------------------------------------------
@@ -180,17 +180,18 @@ stop() {
     wait "$pid" 2>/dev/null || true
 }
 
-# The pelage processes started by this cluster's jobs: their environment names its
-# configuration file.
-our_pelage_pids() {
+# our_pids NAME: the processes called NAME that belong to this cluster (pelage in its
+# jobs, slurmstepd): their environment names its configuration file.
+our_pids() {
     local p
     for p in /proc/[0-9]*; do
-        [ "$(cat "$p/comm" 2>/dev/null)" = pelage ] || continue
-        tr '\0' '\n' <"$p/environ" 2>/dev/null | grep -qxF "SLURM_CONF=$SLURM_CONF" &&
+        [ "$(cat "$p/comm" 2>/dev/null)" = "$1" ] || continue
+        tr '\0' '\n' 2>/dev/null <"$p/environ" | grep -qxF "SLURM_CONF=$SLURM_CONF" &&
             echo "${p#/proc/}"
     done
     return 0
 }
+no_step_left() { [ -z "$(our_pids slurmstepd)" ]; }
 
 queue_empty() { [ -z "$(squeue -h -o %i 2>/dev/null)" ]; }
 
@@ -202,10 +203,14 @@ cleanup() {
         scancel --full $(squeue -h -o %A 2>/dev/null) 2>/dev/null
         wait_for 20 queue_empty
         local p
-        for p in $(our_pelage_pids); do kill -KILL "$p" 2>/dev/null; done
+        for p in $(our_pids pelage); do kill -KILL "$p" 2>/dev/null; done
     fi
     stop "$slurmd_pid"
     stop "$ctld_pid"
+    # A job's slurmstepd finishes on its own once its job is over.
+    if [ -n "$slurmd_pid" ] && ! wait_for 15 no_step_left; then
+        for p in $(our_pids slurmstepd); do kill -KILL "$p" 2>/dev/null; done
+    fi
     stop "$munged_pid"
     if [ $status -ne 0 ] && [ $status -ne 77 ]; then
         local f
@@ -226,12 +231,11 @@ state() { scontrol show job "$1" 2>/dev/null | sed -n 's/.*JobState=\([A-Z_]*\).
 
 # The pid of the pelage process rendering task TASK of array JOB, if it runs.
 task_pid() {
-    local p
-    for p in $(our_pelage_pids); do
-        tr '\0' '\n' <"/proc/$p/environ" 2>/dev/null |
-            grep -qxF "SLURM_ARRAY_TASK_ID=$2" &&
-            tr '\0' '\n' <"/proc/$p/environ" 2>/dev/null |
-            grep -qxF "SLURM_ARRAY_JOB_ID=$1" && echo "$p"
+    local p env
+    for p in $(our_pids pelage); do
+        env=$(tr '\0' '\n' 2>/dev/null <"/proc/$p/environ") || continue
+        grep -qxF "SLURM_ARRAY_JOB_ID=$1" <<<"$env" &&
+            grep -qxF "SLURM_ARRAY_TASK_ID=$2" <<<"$env" && echo "$p"
     done
     return 0
 }
@@ -271,15 +275,17 @@ stage_turntable() {
     movie=$(submit movie.sbatch --dependency=afterok:"$job")
     echo "turntable array: job $job, frames $array; movie: job $movie"
 
-    # Cancel the first task caught while its pelage renders.
+    # Cancel the first task caught while its pelage renders. Slurm suspends it first
+    # (SIGSTOP), so that the frame cannot finish while scancel is on its way; a task
+    # that finishes before is left alone and the next one is tried.
     local k pid killed=""
     for ((k = 0; k < nframes; ++k)); do
         wait_for 120 started_or_done "$job" "$k" ||
             fail "task ${job}_$k neither ran nor wrote its frame"
         pid=$(task_pid "$job" "$k")
         [ -n "$pid" ] || continue
-        sleep 0.5
-        gone "$pid" && continue
+        sleep 0.5 # past loading the scene (about 0.3 s), into the frame's samples
+        scontrol suspend "${job}_$k" || continue # it has just finished
         scancel "${job}_$k"
         wait_for 30 gone "$pid" || fail "scancel left pelage running"
         [ -f "$(frame "$OUT" $k)" ] && continue # finished before the signal came
