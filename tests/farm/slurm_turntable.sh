@@ -337,8 +337,9 @@ stage_turntable() {
     turntable_job=$job
 }
 
-# A later stage renders a still as an array of tiles and merges them; it goes here,
-# between the turntable and the movie, on the same cluster.
+# A stage for a still rendered as tiles fits here, on the same cluster: an sbatch file
+# in scenes/farm/ whose array tasks each render one tile, a merge job behind
+# afterok on it (submit FILE --dependency=afterok:JOB), and cmp against a local render.
 
 # The movie job behind afterok on the complete array.
 stage_movie() {
