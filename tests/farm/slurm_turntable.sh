@@ -100,8 +100,7 @@ write_slurm_conf() {
     cpus=$(nproc)
     mkdir -p "$work/state" "$work/spool"
     # No cgroups, no accounting, no systemd: the plugins that work in any container.
-    # cred_expire=5: a requeued job becomes eligible after the credential lifetime
-    # (120 s by default).
+    # MinJobAge keeps finished jobs in scontrol's view for the checks.
     cat >"$work/slurm.conf" <<EOF
 ClusterName=pelagetest
 SlurmctldHost=localhost(127.0.0.1)
@@ -110,7 +109,7 @@ SlurmdPort=$slurmd_port
 SlurmUser=$user
 SlurmdUser=$user
 AuthType=auth/munge
-AuthInfo=socket=$work/munge.socket,cred_expire=5
+AuthInfo=socket=$work/munge.socket
 CredType=cred/munge
 StateSaveLocation=$work/state
 SlurmdSpoolDir=$work/spool
