@@ -199,9 +199,10 @@ cleanup() {
     trap - EXIT
     set +e
     if [ -n "$ctld_pid" ]; then
-        scancel --full $(squeue -h -o %A 2>/dev/null) 2>/dev/null
+        local ids p
+        mapfile -t ids < <(squeue -h -o %A 2>/dev/null)
+        [ ${#ids[@]} -eq 0 ] || scancel --full "${ids[@]}" 2>/dev/null
         wait_for 20 queue_empty
-        local p
         for p in $(our_pids pelage); do kill -KILL "$p" 2>/dev/null; done
     fi
     stop "$slurmd_pid"
