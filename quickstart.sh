@@ -20,6 +20,7 @@ packages=(
     libcgal-dev          # tests: the exact-geodesic oracle (tests/oracle)
     ffmpeg               # pelage movie (encodes EXR sequences)
     fonts-dejavu-core    # labels of `pelage compare` contact sheets
+    slurm-wlm munge      # tests: the farm recipe on a private Slurm cluster (tests/farm)
 )
 missing=()
 for p in "${packages[@]}"; do
