@@ -45,7 +45,8 @@ struct CellLook {
     float rgb[3];
     uint32_t type;
     float aov_id;
-    uint32_t id;  // the stable cell id (the "cell" matte)
+    uint32_t id;       // the stable cell id (the "cell" matte)
+    uint32_t founder;  // the founder of its clone (the "lineage" matte)
 };
 
 struct ClonalMosaic {
@@ -67,6 +68,7 @@ struct ClonalMosaic {
     uint32_t num_triangles = 0;
     uint64_t serial = 0;      // this instance among all ever created (never 0)
     std::string object_name;  // names the cells' mattes
+    uint32_t matte_bits = 0;  // the matte layers this instance fills
 };
 
 std::atomic<uint64_t> instances_created{0};
@@ -155,9 +157,10 @@ const PelageParamSpec params[] = {
 
 const char *const aov_names[] = {"cell_id", "cell_type", "f1", nullptr};
 // Cryptomatte layers: a cell type is one matte across objects (its name); a cell is
-// "<object>/cell <id>".
-enum MatteLayer : uint32_t { matte_type = 0, matte_cell = 1 };
-const char *const matte_names[] = {"type", "cell", nullptr};
+// "<object>/cell <id>"; a clone, every descendant of one initial cell whatever its
+// type, is "<object>/clone <founder id>" (files from before lineage have none).
+enum MatteLayer : uint32_t { matte_type = 0, matte_cell = 1, matte_lineage = 2 };
+const char *const matte_names[] = {"type", "cell", "lineage", nullptr};
 
 // "F=0.35,B=0.5" -> one value per named type, each in [lo, hi], handed to `set`; throws
 // std::invalid_argument naming the parameter and the problem.
@@ -308,6 +311,7 @@ void cell_look(const ClonalMosaic &cm, uint32_t cell, CellLook &look) {
     look.type = type;
     look.aov_id = float(cm.cells_ptr->id[cell]);  // exact below 2^24 cells
     look.id = cm.cells_ptr->id[cell];
+    look.founder = look.id;
 }
 
 std::unique_ptr<ClonalMosaic> make(const PelageParamSet &ps) {
@@ -376,6 +380,16 @@ std::unique_ptr<ClonalMosaic> make(const PelageParamSet &ps) {
                      set_specular);
     cm->looks.resize(cm->cells_ptr->size());
     for (uint32_t k = 0; k < cm->looks.size(); ++k) cell_look(*cm, k, cm->looks[k]);
+    cm->matte_bits = 1u << matte_type | 1u << matte_cell;
+    if (const sim::CellsData &d = cm->pattern->data(); !d.founder.empty()) {
+        // Ids are dense (cells are never destroyed): the file's founders by id.
+        std::vector<uint32_t> founder_of(d.id.size(), 0);
+        for (size_t k = 0; k < d.id.size(); ++k)
+            if (d.id[k] < founder_of.size()) founder_of[d.id[k]] = d.founder[k];
+        for (CellLook &look : cm->looks)
+            if (look.id < founder_of.size()) look.founder = founder_of[look.id];
+        cm->matte_bits |= 1u << matte_lineage;
+    }
     if (p.get_bool("lod"))
         cm->lod = std::make_unique<shader::clonal_mosaic::MosaicLod>(
             *cm->pattern,
@@ -410,7 +424,8 @@ void shade_as(const ClonalMosaic &cm, const CellLook &cell, float f1, PelageShad
     out->aov_written = 1;
     out->matte[matte_type] = cell.type;
     out->matte[matte_cell] = cell.id;
-    out->matte_written = 1u << matte_type | 1u << matte_cell;
+    out->matte[matte_lineage] = cell.founder;
+    out->matte_written = cm.matte_bits;
 }
 
 // Blend the (up to) three nearest cells of n, nearest first, with weights
@@ -518,7 +533,8 @@ void shade_cells(const ClonalMosaic &cm, const PelageHit *hit, PelageShade *out,
                 out->aov_written = 1;
                 out->matte[matte_type] = cell.type;
                 out->matte[matte_cell] = cell.id;
-                out->matte_written = 1u << matte_type | 1u << matte_cell;
+                out->matte[matte_lineage] = cell.founder;
+                out->matte_written = cm.matte_bits;
             }
         }
         const shader::clonal_mosaic::FilteredLook f = cm.lod->at(t, hit->b1, hit->b2);
@@ -572,6 +588,8 @@ int matte_name(const void *self, uint32_t layer, uint32_t id, char *buf, uint32_
         name = cm.pattern->types()[id].name;
     else if (layer == matte_cell)
         name = cm.object_name + "/cell " + std::to_string(id);
+    else if (layer == matte_lineage)
+        name = cm.object_name + "/clone " + std::to_string(id);
     else
         return 0;
     if (size == 0) return 0;

@@ -137,6 +137,7 @@ CellsData make_cells_data(const TriangleMesh &mesh, const Crps &crps,
     d.z.reserve(n);
     d.type.reserve(n);
     d.id.reserve(n);
+    d.founder.reserve(n);
     std::vector<CellId> ids;
     for (TriId t = 0; t < nt; ++t) {
         ids = cells.on(t);
@@ -146,6 +147,7 @@ CellsData make_cells_data(const TriangleMesh &mesh, const Crps &crps,
             d.z.push_back(cells.pos(c).y);
             d.type.push_back(cells.type(c));
             d.id.push_back(c);
+            d.founder.push_back(cells.founder(c));
         }
         d.cell_row[t + 1] = static_cast<uint32_t>(d.x.size());
     }
@@ -205,6 +207,9 @@ std::vector<uint8_t> serialize_cells(const CellsData &d) {
     w.put_array(d.z);
     w.put_array(d.type);
     w.put_array(d.id);
+    std::vector<uint32_t> founder = d.founder;
+    if (founder.empty()) founder = d.id;  // no lineage known: each cell its own clone
+    w.put_array(founder);
     const uint64_t payload = w.bytes().size() - header_bytes;
     std::memcpy(w.bytes().data() + payload_at, &payload, sizeof payload);
     w.put<uint64_t>(fnv1a(w.bytes().data(), w.bytes().size()));
@@ -220,7 +225,7 @@ CellsData parse_cells(const std::vector<uint8_t> &b, const std::string &name) {
     Reader r(b, b.size(), name);
     r.seek(8);
     const uint32_t version = r.get<uint32_t>("version");
-    if (version != cells_file_version)
+    if (version != cells_file_version && version != 1)
         r.fail("version", "unsupported version " + std::to_string(version) +
                               " (this build reads " + std::to_string(cells_file_version) +
                               ")");
@@ -245,7 +250,7 @@ CellsData parse_cells(const std::vector<uint8_t> &b, const std::string &name) {
                "file size " + std::to_string(b.size()) +
                    " does not match the header (truncated or padded file)");
     const uint64_t fixed = params_bytes + nt * (frame_doubles * 8 + 8) + 8 +
-                           nm * (4 + 32) + nc * (8 + 8 + 1 + 4);
+                           nm * (4 + 32) + nc * (8 + 8 + 1 + 4 + (version >= 2 ? 4 : 0));
     if (fixed > payload)
         r.fail("payload_bytes", "counts in the header exceed the file size");
 
@@ -302,6 +307,7 @@ CellsData parse_cells(const std::vector<uint8_t> &b, const std::string &name) {
     p.get_array(d.z, nc, "z");
     p.get_array(d.type, nc, "type");
     p.get_array(d.id, nc, "id");
+    if (version >= 2) p.get_array(d.founder, nc, "founder");
     if (p.pos() != b.size() - 8) p.fail("payload", "trailing bytes after the cells");
 
     // --- Structure ---
@@ -325,6 +331,10 @@ CellsData parse_cells(const std::vector<uint8_t> &b, const std::string &name) {
                                std::to_string(num_types));
         if (!std::isfinite(d.x[c]) || !std::isfinite(d.z[c]))
             p.fail("x", "non-finite cell position");
+        // A clone's founder exists before its descendants.
+        if (!d.founder.empty() && d.founder[c] > d.id[c])
+            p.fail("founder", "cell " + std::to_string(d.id[c]) + " names founder " +
+                                  std::to_string(d.founder[c]) + ", created after it");
     }
     return d;
 }

@@ -2,7 +2,7 @@
 // preview` read. Self-contained: it carries the CRPS frames and neighbour maps, so tools
 // need no mesh, and the mesh identity, so a renderer refuses cells made for another mesh.
 //
-// Layout, version 1, all little-endian, no padding:
+// Layout, version 2, all little-endian, no padding:
 //   fixed header (80 bytes)
 //     char[8] magic "PELCELLS"   u32 version (1)        u32 num_types (1..8)
 //     u64 mesh_hash              u64 num_triangles      u64 num_cells
@@ -19,7 +19,9 @@
 //         maps F[j→i] as 4 × f64 (cos, sin, ax, ay) [num_maps]  (sim/crps/crps.h)
 //     cells sorted by (triangle, id): u32 cell_row[num_triangles + 1],
 //         f64 x[num_cells], f64 z[num_cells] (2D CRPS, the triangle's local frame),
-//         u8 type[num_cells], u32 id[num_cells] (stable id = creation order)
+//         u8 type[num_cells], u32 id[num_cells] (stable id = creation order),
+//         u32 founder[num_cells] (the id of the initial cell whose clone it is)
+// Version 1 files, identical but without `founder`, are still read (no lineage).
 //   u64 checksum: FNV-1a 64 of the header and payload bytes
 // Readers check the counts against the file size before allocating, then the checksum,
 // then the structure (monotone rows, indices in range); any failure is an InputError.
@@ -35,7 +37,7 @@
 
 namespace pelage::sim {
 
-inline constexpr uint32_t cells_file_version = 1;
+inline constexpr uint32_t cells_file_version = 2;
 
 struct CellsData {
     uint64_t mesh_hash = 0;
@@ -50,6 +52,7 @@ struct CellsData {
     std::vector<double> x, z;
     std::vector<uint8_t> type;
     std::vector<uint32_t> id;
+    std::vector<uint32_t> founder;  // parallel to id; empty when read from version 1
 
     size_t num_triangles() const { return frames.size(); }
     size_t num_cells() const { return x.size(); }

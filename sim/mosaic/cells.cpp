@@ -4,8 +4,9 @@
 
 namespace pelage::sim {
 
-CellId Cells::add(SurfacePoint at, uint8_t type) {
+CellId Cells::add(SurfacePoint at, uint8_t type, CellId founder) {
     const CellId id = static_cast<CellId>(m_tri.size());
+    m_founder.push_back(founder == none ? id : founder);
     m_tri.push_back(at.tri);
     m_x.push_back(at.p.x);
     m_z.push_back(at.p.y);
@@ -30,6 +31,7 @@ void Cells::reserve(size_t n) {
     m_x.reserve(n);
     m_z.reserve(n);
     m_type.reserve(n);
+    m_founder.reserve(n);
 }
 
 }  // namespace pelage::sim

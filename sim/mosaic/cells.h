@@ -20,13 +20,17 @@ class Cells {
     size_t size() const { return m_tri.size(); }
     size_t num_triangles() const { return m_buckets.size(); }
 
-    CellId add(SurfacePoint at, uint8_t type);
+    // `founder`: the initial cell whose clone this cell belongs to (the founder of the
+    // dividing parent); none: this cell is a founder itself.
+    static constexpr CellId none = ~CellId(0);
+    CellId add(SurfacePoint at, uint8_t type, CellId founder = none);
     // Moves cell c to `to`, keeping buckets consistent (appends to the new bucket).
     void move(CellId c, SurfacePoint to);
 
     TriId tri(CellId c) const { return m_tri[c]; }
     Vec2d pos(CellId c) const { return {m_x[c], m_z[c]}; }
     uint8_t type(CellId c) const { return m_type[c]; }
+    CellId founder(CellId c) const { return m_founder[c]; }
     const std::vector<CellId> &on(TriId t) const { return m_buckets[t]; }
 
     const std::vector<double> &x() const { return m_x; }
@@ -40,6 +44,7 @@ class Cells {
     std::vector<TriId> m_tri;
     std::vector<double> m_x, m_z;
     std::vector<uint8_t> m_type;
+    std::vector<CellId> m_founder;
     std::vector<std::vector<CellId>> m_buckets;
 };
 

@@ -221,7 +221,10 @@ void CmSimulation::divide(Event e) {
     const double angle = 6.283185307179586 * rng.uniform();
     const SurfacePoint at = walk(m_crps, {m_cells.tri(parent), m_cells.pos(parent)},
                                  {rad * std::cos(angle), rad * std::sin(angle)});
-    const CellId child = m_cells.add(at, static_cast<uint8_t>(child_type));
+    // The child belongs to its parent's clone (Walter 1998 §3: a clone is every
+    // descendant of one initial cell, whatever types mutation gave them).
+    const CellId child =
+        m_cells.add(at, static_cast<uint8_t>(child_type), m_cells.founder(parent));
     // Both are rescheduled: parent and child divide again after their own delays.
     if (m_types[parent_type].divides()) {
         m_heap.push_back({e.time + division_delay(parent_type, rng), parent});

@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstring>
 #include <fstream>
 
@@ -54,6 +55,64 @@ TEST(CellsFile, RoundTripIsBitExact) {
             ASSERT_FALSE(seen[d.id[c]]);
             seen[d.id[c]] = true;
         }
+}
+
+// FNV-1a 64 as the file format defines its checksum (cells_file.h).
+uint64_t fnv1a_64(const uint8_t *p, size_t n) {
+    uint64_t h = 0xcbf29ce484222325ull;
+    for (size_t i = 0; i < n; ++i) h = (h ^ p[i]) * 0x100000001b3ull;
+    return h;
+}
+
+// Clones (Walter 1998 §3): every cell descends from one initial cell, its founder.
+TEST(CellsFile, LineageNamesEachCellsInitialAncestor) {
+    const Surface s = build_surface("procedural:sphere:10x10");
+    const CellsData d = small_cells(s);
+    const uint64_t initial = 2000;
+    ASSERT_GT(d.num_cells(), initial);
+    ASSERT_EQ(d.founder.size(), d.num_cells());
+    std::vector<size_t> clone_size(initial, 0);
+    for (size_t c = 0; c < d.num_cells(); ++c) {
+        if (d.id[c] < initial) {
+            EXPECT_EQ(d.founder[c], d.id[c]);  // an initial cell founds its own clone
+        }
+        ASSERT_LT(d.founder[c], initial) << "cell " << d.id[c];
+        ++clone_size[d.founder[c]];
+    }
+    // Divisions made clones of more than one cell.
+    EXPECT_GT(*std::max_element(clone_size.begin(), clone_size.end()), 1u);
+    test::TempDir tmp;
+    write_cells_file(tmp.file("a.cells"), d);
+    EXPECT_EQ(read_cells_file(tmp.file("a.cells")).founder, d.founder);
+
+    // A version-1 file (no founders) is still read, without lineage.
+    std::vector<uint8_t> v1 = serialize_cells(d);
+    const size_t founders_at = v1.size() - 8 - 4 * d.num_cells();
+    v1.erase(v1.begin() + long(founders_at), v1.end() - 8);
+    const uint32_t one = 1;
+    std::memcpy(v1.data() + 8, &one, 4);
+    uint64_t payload;
+    std::memcpy(&payload, v1.data() + 64, 8);
+    payload -= 4 * d.num_cells();
+    std::memcpy(v1.data() + 64, &payload, 8);
+    const uint64_t sum = fnv1a_64(v1.data(), v1.size() - 8);
+    std::memcpy(v1.data() + v1.size() - 8, &sum, 8);
+    const CellsData old = parse_cells(v1, "v1.cells");
+    EXPECT_TRUE(old.founder.empty());
+    EXPECT_EQ(old.id, d.id);
+
+    // A founder created after its descendant is refused.
+    std::vector<uint8_t> bad = serialize_cells(d);
+    const uint32_t late = uint32_t(d.num_cells());
+    std::memcpy(bad.data() + founders_at, &late, 4);
+    const uint64_t bad_sum = fnv1a_64(bad.data(), bad.size() - 8);
+    std::memcpy(bad.data() + bad.size() - 8, &bad_sum, 8);
+    try {
+        parse_cells(bad, "bad.cells");
+        ADD_FAILURE() << "accepted";
+    } catch (const InputError &e) {
+        EXPECT_NE(std::string(e.what()).find("founder"), std::string::npos) << e.what();
+    }
 }
 
 void expect_rejected(const std::vector<uint8_t> &bytes, const std::string &what) {
