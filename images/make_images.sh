@@ -37,6 +37,20 @@ $pelage render scenes/fur_cow_giraffe.json -q -o "$tmp/fur_cow.exr" \
     --preview images/fur_cow_giraffe.png
 $pelage render scenes/cow_giraffe.json --res 480x270 --spp 16 -q -o "$tmp/bare_cow.exr" \
     --preview images/fur_cow_giraffe_bare.png
+# Cryptomatte: the beauty, the matte of the spot type, and the mattes of the clones whose
+# founder ids start with 1, pulled out of the EXR by `pelage matte`.
+$pelage render scenes/cow_giraffe.json --res 480x270 --spp 32 --cryptomatte -q \
+    -o "$tmp/mattes.exr" --preview "$tmp/mattes_beauty.png"
+$pelage matte "$tmp/mattes.exr" --layer type --name F -q -o "$tmp/mattes_type.png"
+$pelage matte "$tmp/mattes.exr" --layer lineage --name 'cow/clone 1*' -q \
+    -o "$tmp/mattes_clones.png"
+font=/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf
+oiiotool "$tmp/mattes_beauty.png" --text:x=10:y=24:size=18:font=$font "beauty" \
+    "$tmp/mattes_type.png" --text:x=10:y=24:size=18:font=$font:color=1,0.3,0.2 \
+    "CryptoType: F" \
+    "$tmp/mattes_clones.png" --text:x=10:y=24:size=18:font=$font:color=1,0.3,0.2 \
+    "CryptoLineage: cow/clone 1*" \
+    --mosaic:pad=4 3x1 -o images/cryptomatte_cow.png
 # The simulation alone: every cell a dot (pelage preview).
 $pelage sim --mesh scenes/meshes/cow.off --preset giraffe-reticulata --cells 3000 --seed 1 \
     -o "$tmp/cow3000.cells"

@@ -34,7 +34,7 @@ struct RenderCliOptions {
     int spp = 0;
     double noise_threshold = -1;  // < 0: the scene's film.noise_threshold
     unsigned long long seed = 0;
-    bool quiet = false, resume = false;
+    bool quiet = false, resume = false, cryptomatte = false;
     std::string frames;
     int step = 1;
     ThreadOption threads;
@@ -99,6 +99,7 @@ RenderPlan plan_render(const RenderCliOptions &o, SceneDesc &desc) {
     if (!o.res.empty())
         parse_resolution(o.res, 65536, &desc.film.width, &desc.film.height);
     if (!o.view.empty()) desc.film.view = o.view;
+    if (o.cryptomatte) desc.film.cryptomatte = {"*"};
     RenderPlan plan;
     plan.output = !o.output.empty() ? o.output : desc.film.output;
     const std::string &output = plan.output;
@@ -400,6 +401,8 @@ Runner add_render_command(CLI::App &app) {
     sub->add_option("--view", o->view,
                     "OpenColorIO view of the preview (default: film.view, \"Standard\")");
     sub->add_option("--stats-json", o->stats_json, "Write timing and ray counts as JSON");
+    sub->add_flag("--cryptomatte", o->cryptomatte,
+                  "Write every Cryptomatte layer the materials offer (film.cryptomatte)");
     sub->add_option("--frames", o->frames,
                     "Frame range FIRST-LAST (or one frame); -o then names a sequence, "
                     "out.####.exr");

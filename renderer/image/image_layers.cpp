@@ -42,6 +42,10 @@ ImageLayers image_layers(const Film &film, const FilmDesc &desc,
                 *cf, l, name, desc.cryptomatte_ranks, W, H,
                 [&](int x, int y) { return film.weight(x, y); },
                 cryptomatte[size_t(l)].name_of, warn));
+            if (mattes.back().manifest == "{}")
+                warn("Cryptomatte " + name +
+                     " is empty: no visible surface has an id in " +
+                     "it (clones need .cells files from this version of pelage sim)");
             const std::string prefix = "cryptomatte/" + cryptomatte_key(name) + "/";
             out.attributes.emplace_back(prefix + "name", name);
             out.attributes.emplace_back(prefix + "hash", "MurmurHash3_32");
