@@ -224,6 +224,7 @@ FrameOutcome render_frame(const RenderCliOptions &o, const SceneDesc &desc,
     meta.seed = o.seed;
     meta.render_seconds = r.seconds;
     meta.interrupted = r.interrupted;
+    meta.view = fd.film.view;  // `pelage movie` displays the frames through it
     const double mean_spp =
         double(r.stats.samples) / (double(fd.film.width) * fd.film.height);
     meta.clamp_indirect = fd.integrator.clamp_indirect;
