@@ -313,6 +313,7 @@ void write_stats_json(const RenderCliOptions &o, const SceneDesc &desc,
 
 int run(const RenderCliOptions &o) {
     const auto control = o.threads.apply();
+    SetupPhase::show("render", !o.quiet && Progress::stderr_is_tty());
     SceneDesc desc = load_scene_file(o.scene);
     const RenderPlan plan = plan_render(o, desc);
     const PluginRegistry plugins;
