@@ -62,7 +62,7 @@ int run_sim(const SimOptions &o) {
 
     sim::CmSimulation simulation(surface.crps, preset.types, preset.params, o.seed);
     {
-        // The bar starts with the growth it measures; before, the line names the step.
+        // The line names this step; the bar that follows measures the growth alone.
         const renderer::SetupPhase phase("placing and relaxing the initial cells");
         simulation.initialize(initial);
     }

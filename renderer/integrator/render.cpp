@@ -38,8 +38,8 @@ RenderResult render(const Scene &scene, const RenderOptions &opt) {
 
     tbb::enumerable_thread_specific<RenderStats> stats;
     tbb::enumerable_thread_specific<std::vector<RecordedRay>> logs;
-    // Progress in pixel-samples, not passes: passes double in size, so counting them
-    // equally showed 50 % after an eighth of the work.
+    // Progress in pixel-samples, not passes: passes double in size, so a count of
+    // passes would show 50 % after an eighth of the work.
     const uint64_t budget = uint64_t(W) * uint64_t(H) * uint64_t(std::max(spp, 0));
     Progress progress("render", budget, opt.progress);
     std::atomic<bool> stopped{false};

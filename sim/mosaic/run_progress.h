@@ -1,12 +1,11 @@
-// How much of a simulation run is done, for a progress bar. A relaxation step costs
-// about one unit per cell (every cell moves under global relaxation; under local
-// relaxation the marked cells, which follow the divisions, which follow the count), and
-// the count grows about exponentially, so counting steps shows most of the bar early:
-// the last tenth of the steps holds a large share of the work. The fraction here is the
-// cells summed over the steps done over that sum plus an estimate of the rest: the
-// count extrapolated at its recent growth rate (over the last eighth of the steps done;
-// types that divide faster take over, so the rate rises) to the last step (end_time)
-// or to target_cells, whichever comes first.
+// How much of a simulation run is done, for a progress bar. A step's cost grows about
+// in proportion to the cell count (the relaxation, the divisions and the neighbourhood
+// rebuilds all scale with it), and the count grows about exponentially, so a count of
+// steps shows most of the bar early: the last tenth of the steps holds a large share
+// of the work. The fraction here is the cells summed over the steps done over that
+// sum plus an estimate of the rest: the count extrapolated at its recent growth rate
+// (over the last eighth of the steps done; types that divide faster take over, so the
+// rate rises) to the last step (end_time) or to target_cells, whichever comes first.
 #pragma once
 
 #include <cstdint>

@@ -41,7 +41,7 @@ TEST(RunProgress, ExponentialGrowthToEndTimeFollowsTheWork) {
         worst_by_steps = std::max(worst_by_steps, std::abs((s + 1) / 100.0 - exact[s]));
     }
     EXPECT_LT(worst, 0.01);
-    EXPECT_GT(worst_by_steps, 0.4);  // what counting steps showed
+    EXPECT_GT(worst_by_steps, 0.4);  // what a count of steps shows
     // Half the steps are about a twelfth of the work.
     RunProgress half(100, 0, 100);
     double f = 0;
