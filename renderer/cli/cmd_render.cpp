@@ -264,6 +264,7 @@ FrameOutcome render_frame(const RenderCliOptions &o, const SceneDesc &desc,
     meta.seed = o.seed;
     meta.render_seconds = r.seconds;
     meta.interrupted = r.interrupted;
+    meta.view = fd.film.view;  // `pelage movie` displays the frames through it
     const double mean_spp =
         double(r.stats.samples) / (double(fd.film.width) * fd.film.height);
     meta.clamp_indirect = fd.integrator.clamp_indirect;
@@ -352,6 +353,7 @@ void write_stats_json(const RenderCliOptions &o, const SceneDesc &desc,
 
 int run(const RenderCliOptions &o) {
     const auto control = o.threads.apply();
+    SetupPhase::show("render", !o.quiet && Progress::stderr_is_tty());
     SceneDesc desc = load_scene_file(o.scene);
     const RenderPlan plan = plan_render(o, desc);
     const PluginRegistry plugins;

@@ -40,8 +40,13 @@ int run_sim(const SimOptions &o) {
 
     // --- The simulation surface: the input, or a copy at the cells' scale
     //     (simulation_surface.h) ---
-    const SimulationSurface chosen(sim::build_surface(o.mesh), o.mesh, preset, o.cells,
-                                   o.surface == "auto");
+    renderer::SetupPhase::show("pelage sim", renderer::Progress::stderr_is_tty());
+    const SimulationSurface chosen(
+        [&] {
+            const renderer::SetupPhase phase("loading the mesh, building its CRPS");
+            return sim::build_surface(o.mesh);
+        }(),
+        o.mesh, preset, o.cells, o.surface == "auto");
     const sim::Surface &surface = chosen.surface();
     const sim::CellScaleReport &cell_scale = chosen.report();
     const uint64_t initial = chosen.initial_cells();
@@ -57,9 +62,13 @@ int run_sim(const SimOptions &o) {
 
     sim::CmSimulation simulation(surface.crps, preset.types, preset.params, o.seed);
     {
+        // The line names this step; the bar that follows measures the growth alone.
+        const renderer::SetupPhase phase("placing and relaxing the initial cells");
+        simulation.initialize(initial);
+    }
+    {
         renderer::Progress progress("pelage sim", 1000,
                                     renderer::Progress::stderr_is_tty());
-        simulation.initialize(initial);
         uint64_t shown = 0;
         simulation.run([&](double f) {
             const uint64_t now = static_cast<uint64_t>(std::clamp(f, 0.0, 1.0) * 1000);

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "renderer/core/setup_phase.h"
 #include "sim/mosaic/cm_simulation.h"
 #include "sim/mosaic/final_cells.h"
 
@@ -42,6 +43,7 @@ SimulationSurface::SimulationSurface(sim::Surface input_surface,
         sim::check_neighbourhood_memory(m_report, 0.75 * available, mesh_path);
     if (!m_report.simplified) return;
     // The input's CRPS and topology go before the simplification's own structures come.
+    const renderer::SetupPhase phase("remeshing to the cells' scale");
     const sim::TriangleMesh mesh = std::move(m_input->mesh);
     m_input.reset();
     m_simplified.emplace(

@@ -2,6 +2,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <csignal>
 #include <cstdio>
 
@@ -42,21 +43,28 @@ void Progress::finish() {
     draw(true);
 }
 
+double Progress::fraction() const {
+    return std::min(1.0, double(done()) / double(m_total));
+}
+
+std::string Progress::line(const std::string &label, double f, double seconds) {
+    constexpr int width = 30;
+    std::string bar(width, ' ');
+    for (int i = 0; i < width && i < int(f * width); ++i) bar[size_t(i)] = '#';
+    char tail[64];
+    if (f > 0 && f < 1)
+        std::snprintf(tail, sizeof tail, "%3d%%  ETA %.0f s   ", int(100 * f),
+                      seconds * (1 - f) / f);
+    else
+        std::snprintf(tail, sizeof tail, "%3d%%  %.1f s        ", int(100 * f), seconds);
+    return label + " [" + bar + "] " + tail;
+}
+
 void Progress::draw(bool final) {
-    const double f = std::min(1.0, double(m_done.load()) / double(m_total));
     const double t =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - m_start).count();
-    constexpr int width = 30;
-    char bar[width + 1];
-    for (int i = 0; i < width; ++i) bar[i] = i < int(f * width) ? '#' : ' ';
-    bar[width] = 0;
-    if (f > 0 && f < 1)
-        std::fprintf(stderr, "\r%s [%s] %3d%%  ETA %.0f s   ", m_label.c_str(), bar,
-                     int(100 * f), t * (1 - f) / f);
-    else
-        std::fprintf(stderr, "\r%s [%s] %3d%%  %.1f s        ", m_label.c_str(), bar,
-                     int(100 * f), t);
-    if (final) std::fprintf(stderr, "\n");
+    std::fprintf(stderr, "\r%s%s", line(m_label, fraction(), t).c_str(),
+                 final ? "\n" : "");
     std::fflush(stderr);
 }
 

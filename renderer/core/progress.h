@@ -7,10 +7,14 @@
 #include <string>
 #include <thread>
 
+#include "renderer/core/setup_phase.h"  // the steps before a Progress has work to count
+
 namespace pelage::renderer {
 
-// Draws "label [#####     ] 47%  ETA 12 s" on stderr about 4 times a second, only when
-// stderr is a TTY (or `force`). advance() is thread-safe and cheap (one atomic add).
+// Draws "label [#####     ] 47%  ETA 12 s" on stderr about 4 times a second when
+// `enabled` (callers pass a TTY check). The fraction is work done over `total` in units
+// of equal cost (the renderer counts pixel-samples), so the ETA, elapsed × (1 − f) / f,
+// holds as long as the units do. advance() is thread-safe and cheap (one atomic add).
 class Progress {
   public:
     Progress(std::string label, uint64_t total, bool enabled);
@@ -20,7 +24,13 @@ class Progress {
 
     void advance(uint64_t n = 1) { m_done.fetch_add(n, std::memory_order_relaxed); }
     void finish();
+    uint64_t done() const { return m_done.load(std::memory_order_relaxed); }
+    uint64_t total() const { return m_total; }
+    double fraction() const;
     static bool stderr_is_tty();
+
+    // The line drawn for `fraction` of the work done after `seconds`.
+    static std::string line(const std::string &label, double fraction, double seconds);
 
   private:
     void draw(bool final);

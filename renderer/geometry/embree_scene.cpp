@@ -2,9 +2,11 @@
 
 #include <cmath>
 #include <map>
+#include <optional>
 #include <stdexcept>
 #include <tuple>
 
+#include "renderer/core/setup_phase.h"
 #include "renderer/geometry/deform.h"
 #include "sim/core/input_error.h"
 #include "sim/mesh/mesh_load.h"
@@ -159,6 +161,7 @@ EmbreeScene::EmbreeScene(const SceneDesc &scene) {
     for (const auto &o : scene.objects) ++users[key_of(o)];
     std::map<Key, RTCScene> child_of;
     m_objects.resize(scene.objects.size());
+    std::optional<SetupPhase> phase(std::in_place, "loading meshes");
     for (size_t i = 0; i < scene.objects.size(); ++i) {
         const ObjectDesc &o = scene.objects[i];
         const Key key = key_of(o);
@@ -204,6 +207,8 @@ EmbreeScene::EmbreeScene(const SceneDesc &scene) {
         }
     }
     attach_area_lights(scene.lights);
+    phase.reset();
+    phase.emplace("building the BVH");
     rtcCommitScene(m_scene);
     check();
     RTCBounds b;

@@ -1,8 +1,10 @@
 #include "renderer/geometry/fur_geometry.h"
 
 #include <chrono>
+#include <optional>
 #include <stdexcept>
 
+#include "renderer/core/setup_phase.h"
 #include "renderer/geometry/embree_scene.h"
 #include "shader/hair/hair_bsdf.h"
 #include "sim/core/input_error.h"
@@ -111,6 +113,7 @@ FurGeometry::FurGeometry(const SceneDesc &desc, EmbreeScene &scene,
     for (const ObjectDesc &o : desc.objects) count += o.fur.has_value();
     m_layers.reserve(count);  // layers never move: Embree holds pointers into them
     uint64_t offset = 0;
+    std::optional<SetupPhase> phase(std::in_place, "growing fur");
     for (size_t i = 0; i < desc.objects.size(); ++i) {
         if (!desc.objects[i].fur) continue;
         // The comb is in object space, so the coat turns with its object (turntables);
@@ -166,6 +169,8 @@ FurGeometry::FurGeometry(const SceneDesc &desc, EmbreeScene &scene,
     }
 
     // --- Curves into the top-level scene, then rebuild it ---
+    phase.reset();
+    phase.emplace("building the BVH with the fur");
     const auto t1 = Clock::now();
     for (size_t li = 0; li < m_layers.size(); ++li) {
         FurLayer &layer = m_layers[li];

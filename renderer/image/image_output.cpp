@@ -236,7 +236,7 @@ void write_exr(const std::string &path, const ImageLayers &layers,
     if (meta.frame >= 0) spec.attribute("pelage:frame", meta.frame);
     if (meta.fps > 0) {
         spec.attribute("pelage:fps", float(meta.fps));
-        // OpenEXR's framesPerSecond, a rational: 24 → 24/1, 29.97 → 2997/100.
+        // OpenEXR's framesPerSecond, a rational: 24 → 24/1, 29.97 → 29970/1000.
         const int den = std::abs(meta.fps - std::round(meta.fps)) < 1e-6 ? 1 : 1000;
         const int rational[2] = {int(std::lround(meta.fps * den)), den};
         spec.attribute("FramesPerSecond", OIIO::TypeRational, rational);
@@ -248,6 +248,7 @@ void write_exr(const std::string &path, const ImageLayers &layers,
     for (const auto &[k, v] : meta.strings) spec.attribute(k, v);
     for (const auto &[k, v] : layers.attributes) spec.attribute(k, v);
     for (const auto &[k, v] : meta.ints) spec.attribute(k, v);
+    if (!meta.view.empty()) spec.attribute("pelage:view", meta.view);
     if (!meta.record_time) spec.attribute("DateTime", "");  // no capDate: same bytes
     // --- Convert to the stored per-channel types here, so the hash is of those bytes ---
     std::vector<unsigned char> native(spec.image_bytes(true));

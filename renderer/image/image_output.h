@@ -4,7 +4,8 @@
 //   N.*,
 //     depth.Z, id.*, shader.*), colour layers half or float, depth/ids/shader always
 //     float, ZIP compression, metadata pelage:scene, pelage:spp, pelage:seed,
-//     pelage:render_seconds, pelage:interrupted, Software = "pelage <version>".
+//     pelage:render_seconds, pelage:interrupted, pelage:view, Software = "pelage
+//     <version>".
 //   * PNG/JPEG preview: the beauty through an OCIO display transform, 8 bits per channel.
 #pragma once
 
@@ -35,6 +36,8 @@ struct ImageMetadata {
     int min_spp = 0;
     double mean_spp = 0;
     double fps = 0;  // animation.fps (pelage:fps), 0 = none
+    // The OpenColorIO view the render is meant for (pelage:view), "" = none.
+    std::string view{};
     bool record_time =
         true;  // false: no pelage:render_seconds, so that the same frame
                // rendered twice (another machine, --resume) is the same file

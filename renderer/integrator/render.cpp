@@ -42,7 +42,10 @@ RenderResult render(const Scene &scene, const RenderOptions &opt) {
 
     tbb::enumerable_thread_specific<RenderStats> stats;
     tbb::enumerable_thread_specific<std::vector<RecordedRay>> logs;
-    Progress progress("render", uint64_t(num_tiles) * passes, opt.progress);
+    // Progress in pixel-samples, not passes: passes double in size, so a count of
+    // passes would show 50 % after an eighth of the work.
+    const uint64_t budget = uint64_t(W) * uint64_t(H) * uint64_t(std::max(spp, 0));
+    Progress progress("render", budget, opt.progress);
     std::atomic<bool> stopped{false};
 
     // Adaptive sampling: after each pass from min_spp on, pixels whose noise is below the
@@ -52,6 +55,7 @@ RenderResult render(const Scene &scene, const RenderOptions &opt) {
     const bool adaptive = fd.noise_threshold > 0;
     std::vector<uint8_t> active, noisy;
     if (adaptive) active.assign(size_t(W) * H, 1);
+    size_t num_active = size_t(W) * H;
     auto update_active = [&] {
         noisy.assign(size_t(W) * H, 0);
         tbb::parallel_for(0, H, [&](int y) {
@@ -77,7 +81,14 @@ RenderResult render(const Scene &scene, const RenderOptions &opt) {
 
     for (int pass = 0; pass < passes && !stopped.load(); ++pass) {
         const int s0 = bounds[pass], s1 = bounds[pass + 1];
-        if (adaptive && s0 >= std::min(fd.min_spp, spp) && update_active() == 0) break;
+        if (adaptive && s0 >= std::min(fd.min_spp, spp)) {
+            // A pixel that stops has its remaining budget done: the total stays the
+            // budget, so the ETA is for the pixels still sampling.
+            const size_t now_active = update_active();
+            progress.advance(uint64_t(num_active - now_active) * uint64_t(spp - s0));
+            num_active = now_active;
+            if (num_active == 0) break;
+        }
         tbb::parallel_for(
             tbb::blocked_range<int>(0, num_tiles, 1),
             [&](const tbb::blocked_range<int> &range) {
@@ -95,11 +106,12 @@ RenderResult render(const Scene &scene, const RenderOptions &opt) {
                         }
                         const int tx = tile % tiles_x, ty = tile / tiles_x;
                         const int x0 = tx * tile_size, y0 = ty * tile_size;
+                        const uint64_t samples_before = st.samples;
                         integrator.render_tile(*result.film, sampler, x0, y0,
                                                std::min(W, x0 + tile_size),
                                                std::min(H, y0 + tile_size), s0, s1, st,
                                                instr, adaptive ? active.data() : nullptr);
-                        progress.advance();
+                        progress.advance(st.samples - samples_before);
                     }
                 };
                 if (instrumented)
@@ -113,6 +125,8 @@ RenderResult render(const Scene &scene, const RenderOptions &opt) {
         if (!stopped.load()) result.spp_done = adaptive ? std::min(s1, fd.spp) : s1;
     }
     progress.finish();
+    result.work_done = progress.done();
+    result.work_total = progress.total();
     result.interrupted = stopped.load();
     for (const RenderStats &s : stats) result.stats.add(s);
     if (opt.record_rays)

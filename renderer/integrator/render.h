@@ -21,7 +21,8 @@ struct RenderOptions {
     uint64_t seed = 0;
     uint32_t frame = 0;
     const std::atomic<bool> *cancel = nullptr;
-    bool progress = false;  // draw a progress bar (the caller checks for a TTY)
+    // Draw a progress bar of pixel-samples (the caller checks for a TTY).
+    bool progress = false;
     // Instrumentation (`pelage bench render`, `pelage render --stats-json`): when set,
     // the integrator's instrumented instantiation runs, timing 1 plugin call in
     // `plugin_timing_stride` (plugin_seconds) and, with record_rays, keeping every ray
@@ -43,6 +44,10 @@ struct RenderResult {
     int spp_done = 0;
     bool interrupted = false;
     double seconds = 0;
+    // The progress bar's accounting, in pixel-samples: `work_total` is width × height ×
+    // spp; `work_done` counts the samples taken plus, with adaptive sampling, the
+    // samples a pixel no longer needs once it converges. Equal when complete.
+    uint64_t work_done = 0, work_total = 0;
     std::vector<std::vector<RecordedRay>> rays;  // per thread, when record_rays
 };
 

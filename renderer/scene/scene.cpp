@@ -3,9 +3,11 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <optional>
 #include <stdexcept>
 
 #include "renderer/bsdf/bsdf_coated.h"
+#include "renderer/core/setup_phase.h"
 #include "sim/core/input_error.h"
 
 namespace pelage::renderer {
@@ -44,6 +46,8 @@ void Scene::build(const SceneDesc &desc, const PluginRegistry &plugins) {
                                         desc.integrator.light_selection);
 
     m_materials.resize(desc.objects.size());
+    // The mosaic plugin loads its .cells file and builds its index here.
+    std::optional<SetupPhase> phase(std::in_place, "setting up shaders");
     for (size_t i = 0; i < desc.objects.size(); ++i) {
         const ObjectDesc &o = desc.objects[i];
         const MeshData &mesh = *m_geometry->objects()[i].mesh;
@@ -83,6 +87,7 @@ void Scene::build(const SceneDesc &desc, const PluginRegistry &plugins) {
                 m_aov_names.push_back(m.plugin->aov_names[k]);
     }
     choose_matte_layers(desc);
+    phase.reset();
     // --- Fur: strands grown from each furry object's skin, added to the Embree scene ---
     for (const ObjectDesc &o : desc.objects)
         if (o.fur) {

@@ -7,6 +7,7 @@
 
 #include "sim/core/input_error.h"
 #include "sim/crps/body_length.h"
+#include "sim/mosaic/run_progress.h"
 
 namespace pelage::sim {
 
@@ -244,7 +245,8 @@ void CmSimulation::run(const std::function<void(double)> &progress) {
         static_cast<uint64_t>(std::ceil(m_params.end_time * m_params.rho - 1e-9));
     const uint64_t target = m_params.target_cells;
     const bool open_ended = n_steps == 0 && target > 0;
-    constexpr uint64_t max_open_steps = 10'000'000;  // same cap as the preset checker
+    constexpr uint64_t max_open_steps = 10'000'000;     // same cap as the preset checker
+    RunProgress work(n_steps, target, m_cells.size());  // by cells relaxed, not by steps
     for (uint64_t step = 0; open_ended ? step < max_open_steps : step < n_steps; ++step) {
         const double t_next = double(step + 1) * dt;
         bool reached = false;
@@ -264,11 +266,7 @@ void CmSimulation::run(const std::function<void(double)> &progress) {
         if (!active.empty()) relax(active, false);
         ++m_stats.relax_steps;
         m_stats.final_time = t_next;
-        if (progress) {
-            double f = n_steps > 0 ? double(step + 1) / double(n_steps) : 0.0;
-            if (target > 0) f = std::max(f, double(m_cells.size()) / double(target));
-            progress(std::min(f, 1.0));
-        }
+        if (progress) progress(work.after_step(step, m_cells.size()));
         if (reached) break;
         if (open_ended && m_heap.empty()) break;
     }

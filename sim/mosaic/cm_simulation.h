@@ -59,7 +59,8 @@ class CmSimulation {
     // Places the initial cells (count from params, or `override_cells` when > 0), draws
     // their types, relaxes them with one α for all pairs, schedules first divisions.
     void initialize(uint64_t override_cells = 0);
-    // Runs to the end. `progress(fraction)` is called once per relaxation step.
+    // Runs to the end. `progress(fraction)` is called once per relaxation step with the
+    // fraction of the work done (sim/mosaic/run_progress.h).
     void run(const std::function<void(double)> &progress = {});
 
     // One relaxation step over `active` triangles (tests drive this directly).

@@ -58,6 +58,7 @@ TEST(ImageOutput, ExrRoundTripKeepsLayersChannelNamesAndMetadata) {
     EXPECT_EQ(spec.get_string_attribute("pelage:scene"), "/scenes/x.json");
     EXPECT_EQ(spec.get_string_attribute("Software"), "pelage test");
     EXPECT_FLOAT_EQ(spec.get_float_attribute("pelage:render_seconds"), 1.5f);
+    EXPECT_EQ(spec.find_attribute("pelage:view"), nullptr);  // none given, none written
     // Ids are float (exact), colours half.
     std::vector<float> back(px.size());
     ASSERT_TRUE(in->read_image(0, 0, 0, nc, OIIO::TypeDesc::FLOAT, back.data()));
@@ -80,6 +81,13 @@ TEST(ImageOutput, ExrRoundTripKeepsLayersChannelNamesAndMetadata) {
         ++files;
     }
     EXPECT_EQ(files, 1u);
+
+    // The view the render is meant for, for `pelage movie`.
+    meta.view = "Filmic";
+    write_exr(path, W, H, px, names, true, meta);
+    auto with_view = OIIO::ImageInput::open(path);
+    ASSERT_TRUE(with_view);
+    EXPECT_EQ(with_view->spec().get_string_attribute("pelage:view"), "Filmic");
 }
 
 // The stored bytes of an EXR, channel formats as written, and its spec.
