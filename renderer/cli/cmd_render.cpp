@@ -10,6 +10,7 @@
 #include <optional>
 
 #include "renderer/cli/common.h"
+#include "renderer/cli/frame_list.h"
 #include "renderer/core/progress.h"
 #include "renderer/image/color_management.h"
 #include "renderer/image/image_output.h"
@@ -44,46 +45,27 @@ std::string lower_extension(const std::string &path) {
     return e;
 }
 
-// --frames A-B or A: the inclusive range, every `step`-th frame from A.
-std::vector<int> parse_frames(const std::string &spec, int step,
-                              const AnimationDesc &anim, const std::string &scene_path) {
-    int a = 0, b = 0;
-    char extra = 0;
-    const int n = std::sscanf(spec.c_str(), "%d-%d%c", &a, &b, &extra);
-    if (n == 1 && spec.find('-') == std::string::npos)
-        b = a;
-    else if (n != 2)
+// The frames --frames (and --step) ask for, each inside the animation.
+std::vector<int> requested_frames(const RenderCliOptions &o, const AnimationDesc &anim,
+                                  const std::string &scene_path) {
+    if (!anim.present)
         throw InputError(
-            "", 0, "--frames",
-            "\"" + spec + "\": expected FIRST-LAST or one frame, e.g. 0-119");
-    if (a < 0 || b < a)
-        throw InputError("", 0, "--frames",
-                         "\"" + spec + "\": frames are >= 0 and FIRST <= LAST");
-    if (anim.present && b >= anim.frames)
-        throw InputError(scene_path, 0, "animation.frames",
-                         "--frames " + spec + " goes past the last frame (" +
-                             std::to_string(anim.frames - 1) + ")");
-    std::vector<int> frames;
-    for (int f = a; f <= b; f += step) frames.push_back(f);
-    return frames;
-}
-
-// out.####.exr → out.0007.exr: the last run of '#' becomes the zero-padded frame number.
-std::string frame_path(const std::string &pattern, int frame) {
-    const size_t last = pattern.find_last_of('#');
-    if (last == std::string::npos) return pattern;
-    size_t first = last;
-    while (first > 0 && pattern[first - 1] == '#') --first;
-    const std::string num = std::to_string(frame);
-    const size_t width = last - first + 1;
-    const std::string padded =
-        num.size() >= width ? num : std::string(width - num.size(), '0') + num;
-    return pattern.substr(0, first) + padded + pattern.substr(last + 1);
+            scene_path, 0, "--frames",
+            "\"" + o.frames + "\": the scene is a still (it has no \"animation\" block)");
+    const long long first = anim.first_frame, last = first + anim.frames - 1;
+    const std::vector<FrameRange> ranges = parse_frame_ranges(o.frames, o.step);
+    for (const FrameRange &r : ranges)
+        if (r.first < first || r.last > last)
+            throw InputError(scene_path, 0, "animation.frames",
+                             "--frames " + r.text +
+                                 " is outside the animation's frames " +
+                                 std::to_string(first) + "-" + std::to_string(last));
+    return expand_frames(ranges);
 }
 
 // What the command line asks for, checked before any work starts.
 struct RenderPlan {
-    std::string output, preview;  // file names, with #### where a range puts frames
+    std::string output, preview;  // file names, with a frame token (####) for a range
     std::optional<DisplayTransform> display;
     bool animated = false;  // --frames given
     std::vector<int> frames;
@@ -116,19 +98,20 @@ RenderPlan plan_render(const RenderCliOptions &o, SceneDesc &desc) {
         plan.display.emplace(desc.film.view, "");  // checks the view now
     }
 
-    // --frames A-B [--step N], or the still (frame 0 of an animation).
+    // --frames LIST [--step N], or the still (an animation's first frame).
     plan.animated = !o.frames.empty();
-    plan.frames = plan.animated ? parse_frames(o.frames, o.step, desc.animation, o.scene)
-                                : std::vector<int>{0};
-    if (plan.frames.size() > 1 && output.find('#') == std::string::npos)
+    plan.frames = plan.animated ? requested_frames(o, desc.animation, o.scene)
+                                : std::vector<int>{desc.animation.first_frame};
+    if (plan.frames.size() > 1 && !has_frame_token(output))
         throw InputError("", 0, "-o",
                          "\"" + output +
-                             "\": several frames need a #### in the file name "
-                             "(replaced by the zero-padded frame number)");
-    if (plan.frames.size() > 1 && !preview.empty() &&
-        preview.find('#') == std::string::npos)
+                             "\": several frames need a frame number in the file name: "
+                             "#### (4 digits), %04d or $F4");
+    if (plan.frames.size() > 1 && !preview.empty() && !has_frame_token(preview))
         throw InputError("", 0, "--preview",
-                         "\"" + preview + "\": several frames need a #### in the name");
+                         "\"" + preview +
+                             "\": several frames need a frame number in the name: "
+                             "####, %04d or $F4");
     if (o.resume && !plan.animated)
         throw InputError("", 0, "--resume", "resumes a frame range: give --frames too");
 
@@ -178,8 +161,9 @@ enum class FrameOutcome {
 FrameOutcome render_frame(const RenderCliOptions &o, const SceneDesc &desc,
                           const RenderPlan &plan, const PluginRegistry &plugins,
                           const Scene *shared_scene, int f, RunTotals *totals) {
-    const std::string out_f = frame_path(plan.output, f);
-    const std::string preview_f = plan.preview.empty() ? "" : frame_path(plan.preview, f);
+    const std::string out_f = substitute_frame(plan.output, f);
+    const std::string preview_f =
+        plan.preview.empty() ? "" : substitute_frame(plan.preview, f);
     if (o.resume) {
         std::string why;
         if (exr_is_complete(out_f, &why)) {
@@ -190,21 +174,24 @@ FrameOutcome render_frame(const RenderCliOptions &o, const SceneDesc &desc,
         if (!o.quiet && why != "no file")
             std::printf("%s: %s, rendering again\n", out_f.c_str(), why.c_str());
     }
-    const SceneDesc fd = desc.animation.present ? scene_at_frame(desc, f) : desc;
+    // Motion, poses and random numbers follow the frame's place in the animation, so
+    // animation.first_frame renumbers the frames without changing them.
+    const int local = f - desc.animation.first_frame;
+    const SceneDesc fd = desc.animation.present ? scene_at_frame(desc, local) : desc;
     std::unique_ptr<Scene> own;
     if (!shared_scene) own = std::make_unique<Scene>(fd, plugins);
     const Scene &scene = shared_scene ? *shared_scene : *own;
 
     RenderOptions ro;
     ro.seed = o.seed;
-    ro.frame = uint32_t(f);
+    ro.frame = uint32_t(local);
     ro.cancel = &InterruptGuard::flag();
     ro.progress = !o.quiet && Progress::stderr_is_tty();
     ro.camera = fd.camera;
     ro.instrument = !o.stats_json.empty();  // plugin_seconds
     const auto &tt = desc.animation.turntable;
     if (tt && tt->motion_blur()) {
-        const double open = f + double(tt->shutter_open),
+        const double open = local + double(tt->shutter_open),
                      span = double(tt->shutter_close - tt->shutter_open);
         ro.camera_motion = CameraMotion{&desc, open, span};
     }
@@ -295,7 +282,7 @@ void write_stats_json(const RenderCliOptions &o, const SceneDesc &desc,
                         {"seed", o.seed},
                         {"threads", o.threads.threads},
                         {"interrupted", totals.interrupted},
-                        {"output", frame_path(plan.output, plan.frames.front())}};
+                        {"output", substitute_frame(plan.output, plan.frames.front())}};
     if (shared_scene) j["triangles"] = shared_scene->geometry().num_triangles();
     if (shared_scene && shared_scene->fur()) {  // fur (docs/guide/fur.md)
         j["fur_strands"] = shared_scene->fur()->num_strands();
@@ -362,9 +349,10 @@ Runner add_render_command(CLI::App &app) {
                     "OpenColorIO view of the preview (default: film.view, \"Standard\")");
     sub->add_option("--stats-json", o->stats_json, "Write timing and ray counts as JSON");
     sub->add_option("--frames", o->frames,
-                    "Frame range FIRST-LAST (or one frame); -o then names a sequence, "
-                    "out.####.exr");
-    sub->add_option("--step", o->step, "Every N-th frame of --frames")
+                    "Frames: 1001-1120, 1,5,9, 1-100x5 (every 5th), 0-20x5,33; -o then "
+                    "names a sequence, out.####.exr, out.%04d.exr or out.$F4.exr");
+    sub->add_option("--step", o->step,
+                    "Every N-th frame of each --frames range without its own xSTEP")
         ->check(CLI::Range(1, 1000000));
     sub->add_flag("--resume", o->resume,
                   "Skip frames whose EXR is complete (header and pixel checksum)");

@@ -1,0 +1,163 @@
+// Render-farm conventions end to end: frame lists and padding tokens as farm managers
+// write them, animation.first_frame numbering, and exit 2 for every bad list.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "tests/test_paths.h"
+
+namespace pelage::test {
+namespace {
+
+namespace fs = std::filesystem;
+
+// A small camera turntable; `animation_extra` adds keys to the animation block.
+std::string farm_scene(const std::string &animation_extra = "",
+                       const std::string &film_extra = "") {
+    return R"({"camera": {"position": [0, 0.5, 4], "look_at": [0, 0, 0], "fov": 40},
+      "film": {"width": 24, "height": 16, "spp": 2)" +
+           film_extra + R"(},
+      "lights": [{"type": "environment", "color": [0.6, 0.7, 0.9]},
+                 {"type": "distant", "direction": [-1, -1, -0.5], "intensity": 3}],
+      "objects": [{"mesh": "procedural:icosphere:2", "transform": {"scale": [1.3, 0.8, 0.9]}},
+                  {"mesh": "procedural:plane:1x1", "transform": {"scale": 8, "translate": [0, -1, 0]}}],
+      "animation": {"frames": 12, "turntable": {"degrees": 360})" +
+           animation_extra + "}}";
+}
+
+// The pelage:pixel_xxh3 attribute (16 hex digits) of an EXR, read from its header bytes.
+std::string pixel_hash_of(const std::string &exr) {
+    const std::string bytes = slurp(exr),
+                      key = std::string("pelage:pixel_xxh3\0string\0", 25);
+    const size_t at = bytes.find(key);
+    return at == std::string::npos ? "" : bytes.substr(at + key.size() + 4, 16);
+}
+
+std::vector<std::string> files_in(const std::string &dir) {
+    std::vector<std::string> names;
+    for (const auto &e : fs::directory_iterator(dir))
+        names.push_back(e.path().filename().string());
+    std::sort(names.begin(), names.end());
+    return names;
+}
+
+TEST(FarmCli, FrameListsRenderExactlyTheFramesNamed) {
+    TempDir tmp;
+    const std::string scene = tmp.write("s.json", farm_scene());
+    const std::vector<std::pair<std::string, std::vector<std::string>>> cases = {
+        {"1,5,9", {"f.0001.exr", "f.0005.exr", "f.0009.exr"}},
+        {"0-11x5", {"f.0000.exr", "f.0005.exr", "f.0010.exr"}},
+        {"0-4x4,7", {"f.0000.exr", "f.0004.exr", "f.0007.exr"}},
+    };
+    int n = 0;
+    for (const auto &[spec, want] : cases) {
+        const std::string dir = tmp.file("list" + std::to_string(n++));
+        fs::create_directories(dir);
+        std::string err;
+        ASSERT_EQ(run_pelage("render " + scene + " -q --frames " + spec + " -o " + dir +
+                                 "/f.####.exr",
+                             nullptr, &err),
+                  0)
+            << spec << ": " << err;
+        EXPECT_EQ(files_in(dir), want) << spec;
+    }
+}
+
+TEST(FarmCli, PaddingTokensOfEveryFormNameTheFrames) {
+    TempDir tmp;
+    const std::string scene = tmp.write("s.json", farm_scene());
+    for (const std::string pattern : {"a.%04d.exr", "a.$F4.exr", "a.###.exr"}) {
+        const std::string dir = tmp.file(pattern[2] == '%'   ? "printf"
+                                         : pattern[2] == '$' ? "houdini"
+                                                             : "hash");
+        fs::create_directories(dir);
+        // Single quotes: the shell must not expand $F4.
+        ASSERT_EQ(run_pelage("render " + scene + " -q --frames 2-3 -o '" + dir + "/" +
+                             pattern + "'"),
+                  0)
+            << pattern;
+        const std::string w = pattern == "a.###.exr" ? "00" : "000";
+        EXPECT_EQ(files_in(dir),
+                  std::vector<std::string>({"a." + w + "2.exr", "a." + w + "3.exr"}))
+            << pattern;
+    }
+}
+
+TEST(FarmCli, FirstFrameRenumbersWithoutChangingPixels) {
+    TempDir tmp;
+    const std::string zero = tmp.write("zero.json", farm_scene()),
+                      vfx = tmp.write("vfx.json", farm_scene(R"(, "first_frame": 1001)"));
+    fs::create_directories(tmp.file("z"));
+    fs::create_directories(tmp.file("v"));
+    ASSERT_EQ(
+        run_pelage("render " + zero + " -q --frames 0-2 -o " + tmp.file("z/f.####.exr")),
+        0);
+    std::string err;
+    ASSERT_EQ(run_pelage("render " + vfx + " -q --frames 1001-1003 -o " +
+                             tmp.file("v/f.####.exr"),
+                         nullptr, &err),
+              0)
+        << err;
+    EXPECT_EQ(files_in(tmp.file("v")),
+              std::vector<std::string>({"f.1001.exr", "f.1002.exr", "f.1003.exr"}));
+    for (int f = 0; f < 3; ++f) {
+        const std::string a =
+            pixel_hash_of(tmp.file("z/f.000" + std::to_string(f) + ".exr"));
+        EXPECT_EQ(a.size(), 16u);
+        EXPECT_EQ(a, pixel_hash_of(tmp.file("v/f.100" + std::to_string(f + 1) + ".exr")))
+            << "frame " << f;
+    }
+    // Frames outside 1001-1012 are refused, naming the field and the item.
+    for (const std::string spec : {"0-2", "1000", "1005,1013", "1010-1020x5"}) {
+        EXPECT_EQ(run_pelage("render " + vfx + " -q --frames " + spec + " -o " +
+                                 tmp.file("v/g.####.exr"),
+                             nullptr, &err),
+                  2)
+            << spec;
+        EXPECT_NE(err.find("animation.frames"), std::string::npos) << err;
+        EXPECT_NE(err.find("1001-1012"), std::string::npos) << err;
+    }
+}
+
+TEST(FarmCli, BadFrameListsAreExit2NamingTheItem) {
+    TempDir tmp;
+    const std::string scene = tmp.write("s.json", farm_scene());
+    const std::string out = " -o " + tmp.file("f.####.exr");
+    const std::vector<std::pair<std::string, std::string>> cases = {
+        {"'5 9'", "\"5 9\""}, {"7abc", "\"7abc\""},         {"1,,3", "empty item"},
+        {"5-2", "backwards"}, {"0-10x0", "step"},           {"-1", "\"-1\""},
+        {"1,5x", "\"5x\""},   {"99999999999", "too large"},
+    };
+    for (const auto &[spec, why] : cases) {
+        std::string err;
+        EXPECT_EQ(
+            run_pelage("render " + scene + " -q --frames " + spec + out, nullptr, &err),
+            2)
+            << spec;
+        EXPECT_NE(err.find("--frames"), std::string::npos) << spec << ": " << err;
+        EXPECT_NE(err.find(why), std::string::npos) << spec << ": " << err;
+    }
+    // Several frames without a padding token, and --frames on a still.
+    std::string err;
+    EXPECT_EQ(run_pelage("render " + scene + " -q --frames 1,2 -o " + tmp.file("f.exr"),
+                         nullptr, &err),
+              2);
+    EXPECT_NE(err.find("-o"), std::string::npos) << err;
+    const std::string still = tmp.write(
+        "still.json", R"({"camera": {}, "film": {"width": 8, "height": 8, "spp": 1},
+                          "objects": [{"mesh": "procedural:icosphere:1"}]})");
+    EXPECT_EQ(
+        run_pelage("render " + still + " -q --frames 0-3 -o " + tmp.file("s.####.exr"),
+                   nullptr, &err),
+        2);
+    EXPECT_NE(err.find("still"), std::string::npos) << err;
+    EXPECT_NE(err.find("--frames"), std::string::npos) << err;
+    for (const auto &name : files_in(tmp.path().string()))
+        EXPECT_EQ(name.rfind(".json"), name.size() - 5) << name << " was written";
+}
+
+}  // namespace
+}  // namespace pelage::test
