@@ -11,6 +11,7 @@
 
 #include "renderer/cli/common.h"
 #include "renderer/cli/frame_list.h"
+#include "renderer/cli/input_hash.h"
 #include "renderer/core/progress.h"
 #include "renderer/image/color_management.h"
 #include "renderer/image/image_output.h"
@@ -69,6 +70,7 @@ struct RenderPlan {
     std::optional<DisplayTransform> display;
     bool animated = false;  // --frames given
     std::vector<int> frames;
+    std::string settings;  // settings_hash() of the run; per frame, frame_settings_hash
 };
 
 // Applies the command-line overrides to `desc`, then checks every output: a missing
@@ -164,12 +166,20 @@ FrameOutcome render_frame(const RenderCliOptions &o, const SceneDesc &desc,
     const std::string out_f = substitute_frame(plan.output, f);
     const std::string preview_f =
         plan.preview.empty() ? "" : substitute_frame(plan.preview, f);
+    const std::string settings = frame_settings_hash(plan.settings, f);
     if (o.resume) {
         std::string why;
         if (exr_is_complete(out_f, &why)) {
-            ++totals->skipped;
-            if (!o.quiet) std::printf("%s: complete, skipped\n", out_f.c_str());
-            return FrameOutcome::skipped;
+            // Complete is not enough: a frame of another resolution, spp or scene would
+            // make a mixed sequence.
+            const std::string recorded = recorded_settings_hash(out_f);
+            if (recorded == settings) {
+                ++totals->skipped;
+                if (!o.quiet) std::printf("%s: complete, skipped\n", out_f.c_str());
+                return FrameOutcome::skipped;
+            }
+            why = recorded.empty() ? "complete but without pelage:settings_xxh3"
+                                   : "rendered with other settings";
         }
         if (!o.quiet && why != "no file")
             std::printf("%s: %s, rendering again\n", out_f.c_str(), why.c_str());
@@ -211,6 +221,7 @@ FrameOutcome render_frame(const RenderCliOptions &o, const SceneDesc &desc,
     meta.seed = o.seed;
     meta.render_seconds = r.seconds;
     meta.interrupted = r.interrupted;
+    meta.settings_xxh3 = settings;
     const double mean_spp =
         double(r.stats.samples) / (double(fd.film.width) * fd.film.height);
     meta.clamp_indirect = fd.integrator.clamp_indirect;
@@ -300,8 +311,9 @@ void write_stats_json(const RenderCliOptions &o, const SceneDesc &desc,
 int run(const RenderCliOptions &o) {
     const auto control = o.threads.apply();
     SceneDesc desc = load_scene_file(o.scene);
-    const RenderPlan plan = plan_render(o, desc);
+    RenderPlan plan = plan_render(o, desc);
     const PluginRegistry plugins;
+    plan.settings = settings_hash(desc, plugins, o.seed, PELAGE_VERSION);
     const std::unique_ptr<Scene> shared_scene = shared_scene_for(desc, plugins);
 
     InterruptGuard guard;
@@ -355,7 +367,8 @@ Runner add_render_command(CLI::App &app) {
                     "Every N-th frame of each --frames range without its own xSTEP")
         ->check(CLI::Range(1, 1000000));
     sub->add_flag("--resume", o->resume,
-                  "Skip frames whose EXR is complete (header and pixel checksum)");
+                  "Skip frames whose EXR is complete (header and pixel checksum) and "
+                  "was rendered with the same settings (pelage:settings_xxh3)");
     sub->add_flag("-q,--quiet", o->quiet, "No progress bar, no summary line");
     o->threads.add_to(*sub);
     return [o] { return run(*o); };

@@ -222,6 +222,8 @@ void write_exr(const std::string &path, int width, int height,
     spec.attribute("pelage:interrupted", int(meta.interrupted));
     if (meta.frame >= 0) spec.attribute("pelage:frame", meta.frame);
     if (meta.fps > 0) spec.attribute("pelage:fps", float(meta.fps));
+    if (!meta.settings_xxh3.empty())
+        spec.attribute("pelage:settings_xxh3", meta.settings_xxh3);
     if (!meta.record_time) spec.attribute("DateTime", "");  // no capDate: same bytes
     // --- Convert to the stored per-channel types here, so the hash is of those bytes ---
     std::vector<unsigned char> native(spec.image_bytes(true));

@@ -31,6 +31,9 @@ struct ImageMetadata {
     int min_spp = 0;
     double mean_spp = 0;
     double fps = 0;  // animation.fps (pelage:fps), 0 = none
+    // pelage:settings_xxh3: the hash of everything that determines the pixels, so that
+    // --resume and `pelage merge` trust only output of the same settings; "" = none.
+    std::string settings_xxh3;
     bool record_time =
         true;  // false: no pelage:render_seconds, so that the same frame
                // rendered twice (another machine, --resume) is the same file

@@ -1,5 +1,6 @@
 // Render-farm conventions end to end: frame lists and padding tokens as farm managers
-// write them, animation.first_frame numbering, and exit 2 for every bad list.
+// write them, animation.first_frame numbering, exit 2 for every bad list; --resume
+// trusting only frames of the same settings.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -157,6 +158,61 @@ TEST(FarmCli, BadFrameListsAreExit2NamingTheItem) {
     EXPECT_NE(err.find("--frames"), std::string::npos) << err;
     for (const auto &name : files_in(tmp.path().string()))
         EXPECT_EQ(name.rfind(".json"), name.size() - 5) << name << " was written";
+}
+
+// Occurrences of `needle` in `text`.
+int count_of(const std::string &text, const std::string &needle) {
+    int n = 0;
+    for (size_t at = text.find(needle); at != std::string::npos;
+         at = text.find(needle, at + 1))
+        ++n;
+    return n;
+}
+
+// A quad, as an OBJ a test can change.
+std::string quad_obj(float lift) {
+    return "v -1 0 -1\nv 1 0 -1\nv 1 " + std::to_string(lift) +
+           " 1\nv -1 0 1\nf 1 2 3\nf 1 3 4\n";
+}
+
+TEST(FarmCli, ResumeSkipsOnlyFramesOfTheSameSettings) {
+    TempDir tmp;
+    tmp.write("quad.obj", quad_obj(0));
+    const std::string scene =
+        tmp.write("s.json",
+                  R"({"camera": {"position": [0, 1.5, 4], "look_at": [0, 0, 0]},
+            "film": {"width": 16, "height": 12, "spp": 2},
+            "lights": [{"type": "environment", "color": [0.8, 0.8, 0.9]}],
+            "objects": [{"mesh": "quad.obj"}],
+            "animation": {"frames": 3, "turntable": {"degrees": 90}}})");
+    const std::string out = " -o " + tmp.file("f.####.exr");
+    ASSERT_EQ(run_pelage("render " + scene + " -q --frames 0-2" + out), 0);
+    const std::string first = slurp(tmp.file("f.0001.exr"));
+    EXPECT_EQ(pixel_hash_of(tmp.file("f.0001.exr")).size(), 16u);
+    EXPECT_NE(first.find("pelage:settings_xxh3"), std::string::npos);
+    // The same settings, one of them now given on the command line: all skipped.
+    std::string log;
+    ASSERT_EQ(
+        run_pelage("render " + scene + " --spp 2 --frames 0-2 --resume" + out, &log), 0);
+    EXPECT_EQ(count_of(log, "complete, skipped"), 3) << log;
+    EXPECT_TRUE(slurp(tmp.file("f.0001.exr")) == first);
+    // Another spp, then also another resolution, seed and mesh: every frame again,
+    // saying why; then skipped again.
+    std::string args;
+    for (const std::string change : {" --spp 4", " --res 12x12", " --seed 3", "mesh"}) {
+        if (change == "mesh")
+            tmp.write("quad.obj", quad_obj(0.5f));
+        else
+            args += change;
+        const std::string cmd = "render " + scene + args + " --frames 0-2 --resume" + out;
+        ASSERT_EQ(run_pelage(cmd, &log), 0) << change;
+        EXPECT_EQ(count_of(log, "rendered with other settings, rendering again"), 3)
+            << change << ": " << log;
+        EXPECT_EQ(count_of(log, "skipped"), 1) << change << ": " << log;  // the summary
+        ASSERT_EQ(run_pelage(cmd, &log), 0);
+        EXPECT_EQ(count_of(log, "complete, skipped"), 3) << change << ": " << log;
+    }
+    EXPECT_FALSE(slurp(tmp.file("f.0001.exr")) == first);
 }
 
 }  // namespace
