@@ -12,6 +12,7 @@
 #include "renderer/cli/common.h"
 #include "renderer/cli/frame_list.h"
 #include "renderer/cli/input_hash.h"
+#include "renderer/cli/render_tiles.h"
 #include "renderer/core/progress.h"
 #include "renderer/image/color_management.h"
 #include "renderer/image/image_output.h"
@@ -35,7 +36,7 @@ struct RenderCliOptions {
     double noise_threshold = -1;  // < 0: the scene's film.noise_threshold
     unsigned long long seed = 0;
     bool quiet = false, resume = false;
-    std::string frames;
+    std::string frames, tile;
     int step = 1;
     ThreadOption threads;
 };
@@ -71,6 +72,8 @@ struct RenderPlan {
     bool animated = false;  // --frames given
     std::vector<int> frames;
     std::string settings;  // settings_hash() of the run; per frame, frame_settings_hash
+    std::optional<TileSpec> tile;  // --tile: rows [tile_y0, tile_y1) of a still
+    int tile_y0 = 0, tile_y1 = 0;
 };
 
 // Applies the command-line overrides to `desc`, then checks every output: a missing
@@ -90,7 +93,20 @@ RenderPlan plan_render(const RenderCliOptions &o, SceneDesc &desc) {
     if (lower_extension(output) != ".exr")
         throw InputError("", 0, "-o",
                          "\"" + output + "\": the render is written as OpenEXR (.exr)");
-    plan.preview = !o.preview.empty() ? o.preview : desc.film.preview;
+    if (!o.tile.empty()) {
+        plan.tile = parse_tile(o.tile);
+        tile_rows(*plan.tile, desc.film.height, &plan.tile_y0, &plan.tile_y1);
+        if (!o.frames.empty())
+            throw InputError("", 0, "--tile",
+                             "tiles split a still: give --tile or --frames, not both");
+        if (o.output.empty())
+            throw InputError("", 0, "--tile",
+                             "give -o naming this tile's file (pelage merge joins them)");
+        if (!o.preview.empty())
+            throw InputError("", 0, "--preview",
+                             "a tile has no preview: preview the merged image");
+    }
+    plan.preview = plan.tile ? "" : !o.preview.empty() ? o.preview : desc.film.preview;
     const std::string &preview = plan.preview;
     if (!preview.empty()) {
         const std::string e = lower_extension(preview);
@@ -114,8 +130,9 @@ RenderPlan plan_render(const RenderCliOptions &o, SceneDesc &desc) {
                          "\"" + preview +
                              "\": several frames need a frame number in the name: "
                              "####, %04d or $F4");
-    if (o.resume && !plan.animated)
-        throw InputError("", 0, "--resume", "resumes a frame range: give --frames too");
+    if (o.resume && !plan.animated && !plan.tile)
+        throw InputError("", 0, "--resume",
+                         "resumes a frame range or a tile: give --frames or --tile too");
 
     for (const auto &[flag, file] : {std::pair<std::string, std::string>{"-o", output},
                                      {"--preview", preview},
@@ -173,13 +190,17 @@ FrameOutcome render_frame(const RenderCliOptions &o, const SceneDesc &desc,
             // Complete is not enough: a frame of another resolution, spp or scene would
             // make a mixed sequence.
             const std::string recorded = recorded_settings_hash(out_f);
-            if (recorded == settings) {
+            const bool same_tile =
+                !plan.tile ||
+                exr_string_attribute(out_f, tile_attribute) == plan.tile->label();
+            if (recorded == settings && same_tile) {
                 ++totals->skipped;
                 if (!o.quiet) std::printf("%s: complete, skipped\n", out_f.c_str());
                 return FrameOutcome::skipped;
             }
-            why = recorded.empty() ? "complete but without pelage:settings_xxh3"
-                                   : "rendered with other settings";
+            why = recorded.empty()       ? "complete but without pelage:settings_xxh3"
+                  : recorded != settings ? "rendered with other settings"
+                                         : "another tile";
         }
         if (!o.quiet && why != "no file")
             std::printf("%s: %s, rendering again\n", out_f.c_str(), why.c_str());
@@ -205,6 +226,8 @@ FrameOutcome render_frame(const RenderCliOptions &o, const SceneDesc &desc,
                      span = double(tt->shutter_close - tt->shutter_open);
         ro.camera_motion = CameraMotion{&desc, open, span};
     }
+    if (plan.tile)
+        ro.region = RenderOptions::Region{0, plan.tile_y0, fd.film.width, plan.tile_y1};
     const RenderResult r = render(scene, ro);
     if (r.interrupted && plan.animated) {
         std::fprintf(stderr,
@@ -213,7 +236,7 @@ FrameOutcome render_frame(const RenderCliOptions &o, const SceneDesc &desc,
         return FrameOutcome::aborted;
     }
 
-    const std::vector<float> pixels = r.film->resolve();
+    std::vector<float> pixels = r.film->resolve();
     ImageMetadata meta;
     meta.scene = fs::absolute(o.scene).lexically_normal().string();
     meta.software = "pelage " PELAGE_VERSION;
@@ -233,9 +256,18 @@ FrameOutcome render_frame(const RenderCliOptions &o, const SceneDesc &desc,
     if (plan.animated) {
         meta.frame = f;
         if (desc.animation.present) meta.fps = desc.animation.fps;
-        meta.record_time = false;  // frames are byte-identical wherever rendered
     }
-    write_exr(out_f, fd.film.width, fd.film.height, pixels,
+    // No render time in the file: a frame or still rendered again, on another machine
+    // or as merged tiles, is the same file byte for byte (the time is in --stats-json).
+    meta.record_time = false;
+    int rows = fd.film.height;
+    if (plan.tile) {
+        pixels = tile_pixels(pixels, fd.film.height, plan.tile_y0, plan.tile_y1);
+        describe_tile(*plan.tile, fd.film.width, fd.film.height, plan.tile_y0,
+                      plan.tile_y1, r.region_samples, r.region_spp_done, &meta);
+        rows = plan.tile_y1 - plan.tile_y0;
+    }
+    write_exr(out_f, fd.film.width, rows, pixels,
               Film::channel_names(scene.shader_aov_names()), fd.film.half, meta);
     if (plan.display)
         write_preview(preview_f, fd.film.width, fd.film.height, pixels,
@@ -249,10 +281,11 @@ FrameOutcome render_frame(const RenderCliOptions &o, const SceneDesc &desc,
     const double rays_per_second =
         r.seconds > 0 ? double(r.stats.rays()) / r.seconds : 0.0;
     if (!o.quiet)
-        std::printf("%s: %dx%d, %d spp%s, %.2f s, %.2f Mrays/s%s\n", out_f.c_str(),
-                    fd.film.width, fd.film.height, r.spp_done,
+        std::printf("%s: %dx%d%s, %d spp%s, %.2f s, %.2f Mrays/s%s\n", out_f.c_str(),
+                    fd.film.width, fd.film.height,
+                    plan.tile ? (" tile " + plan.tile->label()).c_str() : "", meta.spp,
                     fd.film.noise_threshold > 0
-                        ? fmt::format(" (adaptive, mean {:.1f})", mean_spp).c_str()
+                        ? fmt::format(" (adaptive, mean {:.1f})", meta.mean_spp).c_str()
                         : "",
                     r.seconds, rays_per_second * 1e-6,
                     r.stats.nonfinite_samples
@@ -300,6 +333,7 @@ void write_stats_json(const RenderCliOptions &o, const SceneDesc &desc,
         j["fur_grow_seconds"] = shared_scene->fur()->grow_seconds();
         j["fur_embree_seconds"] = shared_scene->fur()->embree_seconds();
     }
+    if (plan.tile) j["tile"] = plan.tile->label();
     if (plan.animated) {
         j["frames"] = totals.frame_stats;
         j["frames_rendered"] = totals.rendered;
@@ -366,6 +400,9 @@ Runner add_render_command(CLI::App &app) {
     sub->add_option("--step", o->step,
                     "Every N-th frame of each --frames range without its own xSTEP")
         ->check(CLI::Range(1, 1000000));
+    sub->add_option("--tile", o->tile,
+                    "Render tile I of N (1-based) of a still, rows (I-1)*H/N to I*H/N-1, "
+                    "into -o; `pelage merge` joins the tiles");
     sub->add_flag("--resume", o->resume,
                   "Skip frames whose EXR is complete (header and pixel checksum) and "
                   "was rendered with the same settings (pelage:settings_xxh3)");

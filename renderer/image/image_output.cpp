@@ -224,6 +224,13 @@ void write_exr(const std::string &path, int width, int height,
     if (meta.fps > 0) spec.attribute("pelage:fps", float(meta.fps));
     if (!meta.settings_xxh3.empty())
         spec.attribute("pelage:settings_xxh3", meta.settings_xxh3);
+    if (meta.full_width > 0) {
+        spec.x = meta.x;
+        spec.y = meta.y;
+        spec.full_width = meta.full_width;
+        spec.full_height = meta.full_height;
+    }
+    for (const auto &[name, value] : meta.extra) spec.attribute(name, value);
     if (!meta.record_time) spec.attribute("DateTime", "");  // no capDate: same bytes
     // --- Convert to the stored per-channel types here, so the hash is of those bytes ---
     std::vector<unsigned char> native(spec.image_bytes(true));

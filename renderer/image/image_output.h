@@ -10,6 +10,7 @@
 
 #include <cstdint>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "renderer/image/color_management.h"
@@ -34,6 +35,10 @@ struct ImageMetadata {
     // pelage:settings_xxh3: the hash of everything that determines the pixels, so that
     // --resume and `pelage merge` trust only output of the same settings; "" = none.
     std::string settings_xxh3;
+    // A tile (`pelage render --tile`): the pixels are the data window at (x, y) of a
+    // display window full_width × full_height (OpenEXR's convention); 0 = the image.
+    int x = 0, y = 0, full_width = 0, full_height = 0;
+    std::vector<std::pair<std::string, std::string>> extra;  // more string attributes
     bool record_time =
         true;  // false: no pelage:render_seconds, so that the same frame
                // rendered twice (another machine, --resume) is the same file

@@ -1,6 +1,7 @@
 // Render-farm conventions end to end: frame lists and padding tokens as farm managers
 // write them, animation.first_frame numbering, exit 2 for every bad list; --resume
-// trusting only frames of the same settings.
+// trusting only frames of the same settings; tiled stills merged into the whole
+// render's exact bytes.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -213,6 +214,123 @@ TEST(FarmCli, ResumeSkipsOnlyFramesOfTheSameSettings) {
         EXPECT_EQ(count_of(log, "complete, skipped"), 3) << change << ": " << log;
     }
     EXPECT_FALSE(slurp(tmp.file("f.0001.exr")) == first);
+}
+
+// A still of a sphere on a floor, `width` × `height`, with `film_extra` film keys.
+std::string still_scene(int width, int height, const std::string &film_extra) {
+    return R"({"camera": {"position": [0, 0.5, 4], "look_at": [0, 0, 0], "fov": 40},
+      "film": {"width": )" +
+           std::to_string(width) + R"(, "height": )" + std::to_string(height) +
+           film_extra + R"(},
+      "lights": [{"type": "environment", "color": [0.6, 0.7, 0.9]},
+                 {"type": "distant", "direction": [-1, -1, -0.5], "intensity": 3}],
+      "objects": [{"mesh": "procedural:icosphere:2", "transform": {"scale": [1.3, 0.8, 0.9]}},
+                  {"mesh": "procedural:plane:1x1", "transform": {"scale": 8, "translate": [0, -1, 0]}}]})";
+}
+
+TEST(FarmCli, MergedTilesAreTheWholeRenderByteForByte) {
+    TempDir tmp;
+    // Fixed spp, and adaptive sampling stopping pixels early (a band's edge depends on
+    // its neighbours' noise).
+    const std::vector<std::pair<std::string, std::string>> looks = {
+        {"fixed", R"(, "spp": 4)"},
+        {"adaptive", R"(, "spp": 64, "noise_threshold": 0.05, "min_spp": 2)"}};
+    for (const auto &[look, film] : looks) {
+        const std::string scene = tmp.write(look + ".json", still_scene(40, 37, film));
+        const std::string whole = tmp.file(look + "_whole.exr");
+        std::string log, err;
+        ASSERT_EQ(run_pelage("render " + scene + " -o " + whole, &log, &err), 0) << err;
+        if (look == "adaptive") {  // the pixels did stop at different counts
+            const size_t at = log.find("adaptive, mean ");
+            ASSERT_NE(at, std::string::npos) << log;
+            const double mean = std::stod(log.substr(at + 15));
+            EXPECT_GT(mean, 2.0) << log;
+            EXPECT_LT(mean, 60.0) << log;
+        }
+        for (const int n : {1, 3, 16}) {
+            const std::string dir = tmp.file(look + std::to_string(n));
+            fs::create_directories(dir);
+            std::string tiles;
+            for (int i = n; i >= 1; --i) {  // any order, and one thread for some
+                const std::string tile = dir + "/t" + std::to_string(i) + ".exr";
+                ASSERT_EQ(run_pelage("render " + scene + " -q --tile " +
+                                         std::to_string(i) + "/" + std::to_string(n) +
+                                         " -o " + tile + (i % 2 ? " --threads 1" : ""),
+                                     nullptr, &err),
+                          0)
+                    << look << " " << i << "/" << n << ": " << err;
+                tiles += " " + tile;
+            }
+            const std::string merged = dir + "/merged.exr";
+            ASSERT_EQ(run_pelage("merge" + tiles + " -o " + merged, &log, &err), 0)
+                << err;
+            const std::string a = slurp(whole), b = slurp(merged);
+            ASSERT_GT(a.size(), 1000u);
+            EXPECT_TRUE(a == b)
+                << look << ", " << n << " tiles: the merged EXR differs "
+                << "from the whole render (cmp " << whole << " " << merged << ")";
+        }
+    }
+}
+
+TEST(FarmCli, MergeRefusesTilesThatDoNotBelongTogether) {
+    TempDir tmp;
+    const std::string scene = tmp.write("s.json", still_scene(24, 20, R"(, "spp": 2)"));
+    auto tile = [&](int i, const std::string &name, const std::string &extra = "") {
+        return run_pelage("render " + scene + " -q --tile " + std::to_string(i) +
+                          "/4 -o " + tmp.file(name) + extra);
+    };
+    for (int i = 1; i <= 4; ++i) ASSERT_EQ(tile(i, "t" + std::to_string(i) + ".exr"), 0);
+    ASSERT_EQ(tile(3, "other3.exr", " --spp 4"), 0);
+    const std::string out = " -o " + tmp.file("m.exr");
+    std::string err;
+    // A missing tile.
+    EXPECT_EQ(run_pelage("merge " + tmp.file("t1.exr") + " " + tmp.file("t2.exr") + " " +
+                             tmp.file("t4.exr") + out,
+                         nullptr, &err),
+              2);
+    EXPECT_NE(err.find("tile(s) 3 of 4 missing"), std::string::npos) << err;
+    // A tile of other settings, named.
+    EXPECT_EQ(run_pelage("merge " + tmp.file("t1.exr") + " " + tmp.file("t2.exr") + " " +
+                             tmp.file("other3.exr") + " " + tmp.file("t4.exr") + out,
+                         nullptr, &err),
+              2);
+    EXPECT_NE(err.find("other3.exr"), std::string::npos) << err;
+    EXPECT_NE(err.find("other settings"), std::string::npos) << err;
+    // The same tile twice.
+    EXPECT_EQ(run_pelage("merge " + tmp.file("t1.exr") + " " + tmp.file("t2.exr") + " " +
+                             tmp.file("t2.exr") + " " + tmp.file("t4.exr") + out,
+                         nullptr, &err),
+              2);
+    EXPECT_NE(err.find("again"), std::string::npos) << err;
+    // A whole render is not a tile.
+    ASSERT_EQ(run_pelage("render " + scene + " -q -o " + tmp.file("whole.exr")), 0);
+    EXPECT_EQ(run_pelage("merge " + tmp.file("whole.exr") + out, nullptr, &err), 2);
+    EXPECT_NE(err.find("pelage:tile"), std::string::npos) << err;
+    EXPECT_FALSE(fs::exists(tmp.file("m.exr")));
+    // Bad --tile values, and --tile without -o.
+    for (const std::string bad : {"0/4", "5/4", "3", "a/4", "1/0", " 1/4", "1/21"}) {
+        EXPECT_EQ(run_pelage("render " + scene + " -q --tile '" + bad + "'" + out,
+                             nullptr, &err),
+                  2)
+            << bad;
+        EXPECT_NE(err.find("--tile"), std::string::npos) << bad << ": " << err;
+    }
+    EXPECT_EQ(run_pelage("render " + scene + " -q --tile 1/4", nullptr, &err), 2);
+    EXPECT_NE(err.find("-o"), std::string::npos) << err;
+    // --resume skips a complete tile of the same settings, and redoes one of others.
+    std::string log;
+    ASSERT_EQ(tile(2, "t2.exr", " --resume"), 0);
+    ASSERT_EQ(
+        run_pelage("render " + scene + " --tile 2/4 --resume -o " + tmp.file("t2.exr"),
+                   &log),
+        0);
+    EXPECT_NE(log.find("complete, skipped"), std::string::npos) << log;
+    ASSERT_EQ(run_pelage(
+                  "render " + scene + " --tile 2/4 --resume -o " + tmp.file("other3.exr"),
+                  &log),
+              0);
+    EXPECT_NE(log.find("rendered with other settings"), std::string::npos) << log;
 }
 
 }  // namespace
