@@ -6,10 +6,10 @@
 // comparable across sample counts, settings and renderers (lower is better).
 //
 // The reference (by default 4096 spp, seed 999 983, which no run uses) is cached under
-// --cache, keyed by the scene file, its meshes, cells files and environment images, the
-// resolution, the reference's spp and seed, and this executable and its plugins:
-// another build or another input renders a new one. Files a plugin reads by a name in
-// its parameters (a texture's image) are not part of the key. --reference names the
+// --cache, keyed by the scene file, the files it reads (input_hash.h: meshes, cells
+// files, environment images, files named in material parameters), the resolution, the
+// reference's spp and seed, and this executable and its plugins: another build or
+// another input renders a new one. --reference names the
 // file instead, for comparing builds whose converged images agree (an unbiased sampling
 // change).
 //
@@ -27,10 +27,8 @@
 #include <iostream>
 #include <sstream>
 
-#define XXH_INLINE_ALL
-#include <xxhash.h>
-
 #include "renderer/cli/bench.h"
+#include "renderer/cli/input_hash.h"
 #include "renderer/integrator/render.h"
 #include "renderer/plugins/plugin_loader.h"
 #include "renderer/scene/scene.h"
@@ -65,40 +63,18 @@ std::string default_cache_dir() {
     return (fs::temp_directory_path() / "pelage-noise").string();
 }
 
-// XXH3 of a file's bytes, mixed into `state`; a missing file mixes its name only.
-void hash_file(XXH3_state_t *state, const std::string &path) {
-    XXH3_64bits_update(state, path.data(), path.size());
-    std::ifstream in(path, std::ios::binary);
-    std::vector<char> buf(1 << 16);
-    while (in) {
-        in.read(buf.data(), std::streamsize(buf.size()));
-        XXH3_64bits_update(state, buf.data(), size_t(in.gcount()));
-    }
-}
-
 std::string reference_key(const BenchNoiseOptions &o, const SceneDesc &desc,
                           const PluginRegistry &plugins) {
-    XXH3_state_t state;
-    XXH3_64bits_reset(&state);
-    hash_file(&state, desc.path);
-    for (const ObjectDesc &obj : desc.objects) {
-        hash_file(&state, obj.mesh);
-        if (!obj.cells.empty()) hash_file(&state, obj.cells);
-    }
-    for (const LightDesc &light : desc.lights)
-        if (!light.image.empty()) hash_file(&state, light.image);
+    InputHash h;
+    h.add_file(desc.path);
+    for (const std::string &f : scene_input_files(desc)) h.add_file(f);
     char self[4096];
     const ssize_t len = readlink("/proc/self/exe", self, sizeof(self) - 1);
-    if (len > 0) hash_file(&state, std::string(self, size_t(len)));
-    for (const auto &[name, plugin] : plugins.plugins()) hash_file(&state, plugin.file);
-    const std::string settings =
-        std::to_string(desc.film.width) + "x" + std::to_string(desc.film.height) + " " +
-        std::to_string(o.reference_spp) + " " + std::to_string(o.reference_seed);
-    XXH3_64bits_update(&state, settings.data(), settings.size());
-    char hex[17];
-    std::snprintf(hex, sizeof(hex), "%016llx",
-                  static_cast<unsigned long long>(XXH3_64bits_digest(&state)));
-    return hex;
+    if (len > 0) h.add_file(std::string(self, size_t(len)));
+    for (const auto &[name, plugin] : plugins.plugins()) h.add_file(plugin.file);
+    h.add(std::to_string(desc.film.width) + "x" + std::to_string(desc.film.height) + " " +
+          std::to_string(o.reference_spp) + " " + std::to_string(o.reference_seed));
+    return h.hex();
 }
 
 // RGB and coverage of a film, `stride` floats per pixel.

@@ -11,6 +11,9 @@
 
 #include "renderer/camera/camera.h"
 #include "renderer/cli/common.h"
+#include "renderer/cli/frame_list.h"
+#include "renderer/cli/input_hash.h"
+#include "renderer/cli/render_tiles.h"
 #include "renderer/core/progress.h"
 #include "renderer/image/color_management.h"
 #include "renderer/image/image_layers.h"
@@ -35,7 +38,7 @@ struct RenderCliOptions {
     double noise_threshold = -1;  // < 0: the scene's film.noise_threshold
     unsigned long long seed = 0;
     bool quiet = false, resume = false, cryptomatte = false;
-    std::string frames;
+    std::string frames, tile;
     int step = 1;
     ThreadOption threads;
 };
@@ -46,49 +49,33 @@ std::string lower_extension(const std::string &path) {
     return e;
 }
 
-// --frames A-B or A: the inclusive range, every `step`-th frame from A.
-std::vector<int> parse_frames(const std::string &spec, int step,
-                              const AnimationDesc &anim, const std::string &scene_path) {
-    int a = 0, b = 0;
-    char extra = 0;
-    const int n = std::sscanf(spec.c_str(), "%d-%d%c", &a, &b, &extra);
-    if (n == 1 && spec.find('-') == std::string::npos)
-        b = a;
-    else if (n != 2)
+// The frames --frames (and --step) ask for, each inside the animation.
+std::vector<int> requested_frames(const RenderCliOptions &o, const AnimationDesc &anim,
+                                  const std::string &scene_path) {
+    if (!anim.present)
         throw InputError(
-            "", 0, "--frames",
-            "\"" + spec + "\": expected FIRST-LAST or one frame, e.g. 0-119");
-    if (a < 0 || b < a)
-        throw InputError("", 0, "--frames",
-                         "\"" + spec + "\": frames are >= 0 and FIRST <= LAST");
-    if (anim.present && b >= anim.frames)
-        throw InputError(scene_path, 0, "animation.frames",
-                         "--frames " + spec + " goes past the last frame (" +
-                             std::to_string(anim.frames - 1) + ")");
-    std::vector<int> frames;
-    for (int f = a; f <= b; f += step) frames.push_back(f);
-    return frames;
-}
-
-// out.####.exr → out.0007.exr: the last run of '#' becomes the zero-padded frame number.
-std::string frame_path(const std::string &pattern, int frame) {
-    const size_t last = pattern.find_last_of('#');
-    if (last == std::string::npos) return pattern;
-    size_t first = last;
-    while (first > 0 && pattern[first - 1] == '#') --first;
-    const std::string num = std::to_string(frame);
-    const size_t width = last - first + 1;
-    const std::string padded =
-        num.size() >= width ? num : std::string(width - num.size(), '0') + num;
-    return pattern.substr(0, first) + padded + pattern.substr(last + 1);
+            scene_path, 0, "--frames",
+            "\"" + o.frames + "\": the scene is a still (it has no \"animation\" block)");
+    const long long first = anim.first_frame, last = first + anim.frames - 1;
+    const std::vector<FrameRange> ranges = parse_frame_ranges(o.frames, o.step);
+    for (const FrameRange &r : ranges)
+        if (r.first < first || r.last > last)
+            throw InputError(scene_path, 0, "animation.frames",
+                             "--frames " + r.text +
+                                 " is outside the animation's frames " +
+                                 std::to_string(first) + "-" + std::to_string(last));
+    return expand_frames(ranges);
 }
 
 // What the command line asks for, checked before any work starts.
 struct RenderPlan {
-    std::string output, preview;  // file names, with #### where a range puts frames
+    std::string output, preview;  // file names, with a frame token (####) for a range
     std::optional<DisplayTransform> display;
     bool animated = false;  // --frames given
     std::vector<int> frames;
+    std::string settings;  // settings_hash() of the run; per frame, frame_settings_hash
+    std::optional<TileSpec> tile;  // --tile: rows [tile_y0, tile_y1) of a still
+    int tile_y0 = 0, tile_y1 = 0;
 };
 
 // Applies the command-line overrides to `desc`, then checks every output: a missing
@@ -109,7 +96,20 @@ RenderPlan plan_render(const RenderCliOptions &o, SceneDesc &desc) {
     if (lower_extension(output) != ".exr")
         throw InputError("", 0, "-o",
                          "\"" + output + "\": the render is written as OpenEXR (.exr)");
-    plan.preview = !o.preview.empty() ? o.preview : desc.film.preview;
+    if (!o.tile.empty()) {
+        plan.tile = parse_tile(o.tile);
+        tile_rows(*plan.tile, desc.film.height, &plan.tile_y0, &plan.tile_y1);
+        if (!o.frames.empty())
+            throw InputError("", 0, "--tile",
+                             "tiles split a still: give --tile or --frames, not both");
+        if (o.output.empty())
+            throw InputError("", 0, "--tile",
+                             "give -o naming this tile's file (pelage merge joins them)");
+        if (!o.preview.empty())
+            throw InputError("", 0, "--preview",
+                             "a tile has no preview: preview the merged image");
+    }
+    plan.preview = plan.tile ? "" : !o.preview.empty() ? o.preview : desc.film.preview;
     const std::string &preview = plan.preview;
     if (!preview.empty()) {
         const std::string e = lower_extension(preview);
@@ -119,21 +119,23 @@ RenderPlan plan_render(const RenderCliOptions &o, SceneDesc &desc) {
         plan.display.emplace(desc.film.view, "");  // checks the view now
     }
 
-    // --frames A-B [--step N], or the still (frame 0 of an animation).
+    // --frames LIST [--step N], or the still (an animation's first frame).
     plan.animated = !o.frames.empty();
-    plan.frames = plan.animated ? parse_frames(o.frames, o.step, desc.animation, o.scene)
-                                : std::vector<int>{0};
-    if (plan.frames.size() > 1 && output.find('#') == std::string::npos)
+    plan.frames = plan.animated ? requested_frames(o, desc.animation, o.scene)
+                                : std::vector<int>{desc.animation.first_frame};
+    if (plan.frames.size() > 1 && !has_frame_token(output))
         throw InputError("", 0, "-o",
                          "\"" + output +
-                             "\": several frames need a #### in the file name "
-                             "(replaced by the zero-padded frame number)");
-    if (plan.frames.size() > 1 && !preview.empty() &&
-        preview.find('#') == std::string::npos)
+                             "\": several frames need a frame number in the file name: "
+                             "#### (4 digits), %04d or $F4");
+    if (plan.frames.size() > 1 && !preview.empty() && !has_frame_token(preview))
         throw InputError("", 0, "--preview",
-                         "\"" + preview + "\": several frames need a #### in the name");
-    if (o.resume && !plan.animated)
-        throw InputError("", 0, "--resume", "resumes a frame range: give --frames too");
+                         "\"" + preview +
+                             "\": several frames need a frame number in the name: "
+                             "####, %04d or $F4");
+    if (o.resume && !plan.animated && !plan.tile)
+        throw InputError("", 0, "--resume",
+                         "resumes a frame range or a tile: give --frames or --tile too");
 
     for (const auto &[flag, file] : {std::pair<std::string, std::string>{"-o", output},
                                      {"--preview", preview},
@@ -214,36 +216,54 @@ void describe_render(const SceneDesc &fd, ImageMetadata &meta) {
 FrameOutcome render_frame(const RenderCliOptions &o, const SceneDesc &desc,
                           const RenderPlan &plan, const PluginRegistry &plugins,
                           const Scene *shared_scene, int f, RunTotals *totals) {
-    const std::string out_f = frame_path(plan.output, f);
-    const std::string preview_f = plan.preview.empty() ? "" : frame_path(plan.preview, f);
+    const std::string out_f = substitute_frame(plan.output, f);
+    const std::string preview_f =
+        plan.preview.empty() ? "" : substitute_frame(plan.preview, f);
+    const std::string settings = frame_settings_hash(plan.settings, f);
     if (o.resume) {
         std::string why;
         if (exr_is_complete(out_f, &why)) {
-            ++totals->skipped;
-            if (!o.quiet) std::printf("%s: complete, skipped\n", out_f.c_str());
-            return FrameOutcome::skipped;
+            // Complete is not enough: a frame of another resolution, spp or scene would
+            // make a mixed sequence.
+            const std::string recorded = recorded_settings_hash(out_f);
+            const bool same_tile =
+                !plan.tile ||
+                exr_string_attribute(out_f, tile_attribute) == plan.tile->label();
+            if (recorded == settings && same_tile) {
+                ++totals->skipped;
+                if (!o.quiet) std::printf("%s: complete, skipped\n", out_f.c_str());
+                return FrameOutcome::skipped;
+            }
+            why = recorded.empty()       ? "complete but without pelage:settings_xxh3"
+                  : recorded != settings ? "rendered with other settings"
+                                         : "another tile";
         }
         if (!o.quiet && why != "no file")
             std::printf("%s: %s, rendering again\n", out_f.c_str(), why.c_str());
     }
-    const SceneDesc fd = desc.animation.present ? scene_at_frame(desc, f) : desc;
+    // Motion, poses and random numbers follow the frame's place in the animation, so
+    // animation.first_frame renumbers the frames without changing them.
+    const int local = f - desc.animation.first_frame;
+    const SceneDesc fd = desc.animation.present ? scene_at_frame(desc, local) : desc;
     std::unique_ptr<Scene> own;
     if (!shared_scene) own = std::make_unique<Scene>(fd, plugins);
     const Scene &scene = shared_scene ? *shared_scene : *own;
 
     RenderOptions ro;
     ro.seed = o.seed;
-    ro.frame = uint32_t(f);
+    ro.frame = uint32_t(local);
     ro.cancel = &InterruptGuard::flag();
     ro.progress = !o.quiet && Progress::stderr_is_tty();
     ro.camera = fd.camera;
     ro.instrument = !o.stats_json.empty();  // plugin_seconds
     const auto &tt = desc.animation.turntable;
     if (tt && tt->motion_blur()) {
-        const double open = f + double(tt->shutter_open),
+        const double open = local + double(tt->shutter_open),
                      span = double(tt->shutter_close - tt->shutter_open);
         ro.camera_motion = CameraMotion{&desc, open, span};
     }
+    if (plan.tile)
+        ro.region = RenderOptions::Region{0, plan.tile_y0, fd.film.width, plan.tile_y1};
     const RenderResult r = render(scene, ro);
     if (r.interrupted && plan.animated) {
         std::fprintf(stderr,
@@ -252,7 +272,7 @@ FrameOutcome render_frame(const RenderCliOptions &o, const SceneDesc &desc,
         return FrameOutcome::aborted;
     }
 
-    const ImageLayers layers =
+    ImageLayers layers =
         image_layers(*r.film, fd.film, scene.shader_aov_names(), matte_sources(scene),
                      [](const std::string &w) {
                          std::fprintf(stderr, "pelage render: %s\n", w.c_str());
@@ -265,6 +285,7 @@ FrameOutcome render_frame(const RenderCliOptions &o, const SceneDesc &desc,
     meta.render_seconds = r.seconds;
     meta.interrupted = r.interrupted;
     meta.view = fd.film.view;  // `pelage movie` displays the frames through it
+    meta.settings_xxh3 = settings;
     const double mean_spp =
         double(r.stats.samples) / (double(fd.film.width) * fd.film.height);
     meta.clamp_indirect = fd.integrator.clamp_indirect;
@@ -276,9 +297,18 @@ FrameOutcome render_frame(const RenderCliOptions &o, const SceneDesc &desc,
     if (plan.animated) {
         meta.frame = f;
         if (desc.animation.present) meta.fps = desc.animation.fps;
-        meta.record_time = false;  // frames are byte-identical wherever rendered
     }
     describe_render(fd, meta);
+    // No render time in the file: a frame or still rendered again, on another machine
+    // or as merged tiles, is the same file byte for byte (the time is in --stats-json).
+    meta.record_time = false;
+    if (plan.tile) {
+        layers.pixels =
+            tile_pixels(layers.pixels, fd.film.height, plan.tile_y0, plan.tile_y1);
+        layers.height = plan.tile_y1 - plan.tile_y0;
+        describe_tile(*plan.tile, fd.film.width, fd.film.height, plan.tile_y0,
+                      plan.tile_y1, r.region_samples, r.region_spp_done, &meta);
+    }
     write_exr(out_f, layers, meta);
     if (plan.display)
         write_preview(preview_f, fd.film.width, fd.film.height, layers.pixels,
@@ -292,10 +322,11 @@ FrameOutcome render_frame(const RenderCliOptions &o, const SceneDesc &desc,
     const double rays_per_second =
         r.seconds > 0 ? double(r.stats.rays()) / r.seconds : 0.0;
     if (!o.quiet)
-        std::printf("%s: %dx%d, %d spp%s, %.2f s, %.2f Mrays/s%s\n", out_f.c_str(),
-                    fd.film.width, fd.film.height, r.spp_done,
+        std::printf("%s: %dx%d%s, %d spp%s, %.2f s, %.2f Mrays/s%s\n", out_f.c_str(),
+                    fd.film.width, fd.film.height,
+                    plan.tile ? (" tile " + plan.tile->label()).c_str() : "", meta.spp,
                     fd.film.noise_threshold > 0
-                        ? fmt::format(" (adaptive, mean {:.1f})", mean_spp).c_str()
+                        ? fmt::format(" (adaptive, mean {:.1f})", meta.mean_spp).c_str()
                         : "",
                     r.seconds, rays_per_second * 1e-6,
                     r.stats.nonfinite_samples
@@ -336,13 +367,14 @@ void write_stats_json(const RenderCliOptions &o, const SceneDesc &desc,
                         {"seed", o.seed},
                         {"threads", o.threads.threads},
                         {"interrupted", totals.interrupted},
-                        {"output", frame_path(plan.output, plan.frames.front())}};
+                        {"output", substitute_frame(plan.output, plan.frames.front())}};
     if (shared_scene) j["triangles"] = shared_scene->geometry().num_triangles();
     if (shared_scene && shared_scene->fur()) {  // fur (docs/guide/fur.md)
         j["fur_strands"] = shared_scene->fur()->num_strands();
         j["fur_grow_seconds"] = shared_scene->fur()->grow_seconds();
         j["fur_embree_seconds"] = shared_scene->fur()->embree_seconds();
     }
+    if (plan.tile) j["tile"] = plan.tile->label();
     if (plan.animated) {
         j["frames"] = totals.frame_stats;
         j["frames_rendered"] = totals.rendered;
@@ -355,8 +387,9 @@ int run(const RenderCliOptions &o) {
     const auto control = o.threads.apply();
     SetupPhase::show("render", !o.quiet && Progress::stderr_is_tty());
     SceneDesc desc = load_scene_file(o.scene);
-    const RenderPlan plan = plan_render(o, desc);
+    RenderPlan plan = plan_render(o, desc);
     const PluginRegistry plugins;
+    plan.settings = settings_hash(desc, plugins, o.seed, PELAGE_VERSION);
     const std::unique_ptr<Scene> shared_scene = shared_scene_for(desc, plugins);
 
     InterruptGuard guard;
@@ -406,12 +439,17 @@ Runner add_render_command(CLI::App &app) {
     sub->add_flag("--cryptomatte", o->cryptomatte,
                   "Write every Cryptomatte layer the materials offer (film.cryptomatte)");
     sub->add_option("--frames", o->frames,
-                    "Frame range FIRST-LAST (or one frame); -o then names a sequence, "
-                    "out.####.exr");
-    sub->add_option("--step", o->step, "Every N-th frame of --frames")
+                    "Frames: 1001-1120, 1,5,9, 1-100x5 (every 5th), 0-20x5,33; -o then "
+                    "names a sequence, out.####.exr, out.%04d.exr or out.$F4.exr");
+    sub->add_option("--step", o->step,
+                    "Every N-th frame of each --frames range without its own xSTEP")
         ->check(CLI::Range(1, 1000000));
+    sub->add_option("--tile", o->tile,
+                    "Render tile I of N (1-based) of a still, rows (I-1)*H/N to I*H/N-1, "
+                    "into -o; `pelage merge` joins the tiles");
     sub->add_flag("--resume", o->resume,
-                  "Skip frames whose EXR is complete (header and pixel checksum)");
+                  "Skip frames whose EXR is complete (header and pixel checksum) and "
+                  "was rendered with the same settings (pelage:settings_xxh3)");
     sub->add_flag("-q,--quiet", o->quiet, "No progress bar, no summary line");
     o->threads.add_to(*sub);
     return [o] { return run(*o); };

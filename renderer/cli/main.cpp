@@ -35,6 +35,7 @@ int main(int argc, char **argv) {
     add(renderer::cli::add_bake_command);
     add(renderer::cli::add_movie_command);
     add(renderer::cli::add_matte_command);
+    add(renderer::cli::add_merge_command);
     add(renderer::cli::add_bench_command);
 
     try {

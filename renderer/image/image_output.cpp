@@ -249,6 +249,14 @@ void write_exr(const std::string &path, const ImageLayers &layers,
     for (const auto &[k, v] : layers.attributes) spec.attribute(k, v);
     for (const auto &[k, v] : meta.ints) spec.attribute(k, v);
     if (!meta.view.empty()) spec.attribute("pelage:view", meta.view);
+    if (!meta.settings_xxh3.empty())
+        spec.attribute("pelage:settings_xxh3", meta.settings_xxh3);
+    if (meta.full_width > 0) {
+        spec.x = meta.x;
+        spec.y = meta.y;
+        spec.full_width = meta.full_width;
+        spec.full_height = meta.full_height;
+    }
     if (!meta.record_time) spec.attribute("DateTime", "");  // no capDate: same bytes
     // --- Convert to the stored per-channel types here, so the hash is of those bytes ---
     std::vector<unsigned char> native(spec.image_bytes(true));

@@ -38,6 +38,12 @@ struct ImageMetadata {
     double fps = 0;  // animation.fps (pelage:fps), 0 = none
     // The OpenColorIO view the render is meant for (pelage:view), "" = none.
     std::string view{};
+    // pelage:settings_xxh3: the hash of everything that determines the pixels, so that
+    // --resume and `pelage merge` trust only output of the same settings; "" = none.
+    std::string settings_xxh3;
+    // A tile (`pelage render --tile`): the pixels are the data window at (x, y) of a
+    // display window full_width × full_height (OpenEXR's convention); 0 = the image.
+    int x = 0, y = 0, full_width = 0, full_height = 0;
     bool record_time =
         true;  // false: no pelage:render_seconds, so that the same frame
                // rendered twice (another machine, --resume) is the same file

@@ -31,41 +31,54 @@ RenderResult render(const Scene &scene, const RenderOptions &opt) {
     // that lose part of a matte.
     result.film = std::make_unique<Film>(W, H, int(scene.matte_layers().size()),
                                          fd.cryptomatte_ranks + 2);
-    const int tiles_x = (W + tile_size - 1) / tile_size,
-              tiles_y = (H + tile_size - 1) / tile_size;
-    const int num_tiles = tiles_x * tiles_y;
     // Passes of 1, 1, 2, 4, 8 ... samples: an early stop still has a whole image.
     std::vector<int> bounds = {0};
     while (bounds.back() < spp)
         bounds.push_back(std::min(spp, std::max(1, 2 * bounds.back())));
     const int passes = int(bounds.size()) - 1;
+    const bool adaptive = fd.noise_threshold > 0;
+    // The pixels rendered, [rx0, rx1) × [ry0, ry1): all, or the region and `margin`
+    // pixels around it, in the tiles [tx0, tx1) × [ty0, ty1) of the grid. Columns
+    // extend to whole tiles, since a camera packet is a run of a tile's row and must
+    // hold the pixels it holds in a whole render; rows need no rounding.
+    const RenderOptions::Region region =
+        opt.region ? *opt.region : RenderOptions::Region{0, 0, W, H};
+    const int margin = opt.region && adaptive ? passes : 0;
+    const int ry0 = std::max(0, region.y0 - margin),
+              ry1 = std::min(H, region.y1 + margin);
+    const int tx0 = std::max(0, region.x0 - margin) / tile_size,
+              tx1 = (std::min(W, region.x1 + margin) + tile_size - 1) / tile_size,
+              ty0 = ry0 / tile_size, ty1 = (ry1 + tile_size - 1) / tile_size;
+    const int num_tiles = (tx1 - tx0) * (ty1 - ty0);
+    const int rx0 = tx0 * tile_size, rx1 = std::min(W, tx1 * tile_size);
 
     tbb::enumerable_thread_specific<RenderStats> stats;
     tbb::enumerable_thread_specific<std::vector<RecordedRay>> logs;
     // Progress in pixel-samples, not passes: passes double in size, so a count of
     // passes would show 50 % after an eighth of the work.
-    const uint64_t budget = uint64_t(W) * uint64_t(H) * uint64_t(std::max(spp, 0));
-    Progress progress("render", budget, opt.progress);
+    const uint64_t rendered_pixels = uint64_t(rx1 - rx0) * uint64_t(ry1 - ry0);
+    Progress progress("render", rendered_pixels * uint64_t(std::max(spp, 0)),
+                      opt.progress);
     std::atomic<bool> stopped{false};
 
     // Adaptive sampling: after each pass from min_spp on, pixels whose noise is below the
     // threshold stop, unless a neighbour goes on (a one-pixel dilation, so a noisy
     // pixel's surroundings keep converging with it). The decision depends on the film
-    // alone, so it is the same at any thread count.
-    const bool adaptive = fd.noise_threshold > 0;
+    // alone, so it is the same at any thread count. Pixels outside the tiles rendered
+    // count as converged; the margin keeps that guess from reaching the region.
     std::vector<uint8_t> active, noisy;
     if (adaptive) active.assign(size_t(W) * H, 1);
-    size_t num_active = size_t(W) * H;
+    uint64_t num_active = rendered_pixels;
     auto update_active = [&] {
         noisy.assign(size_t(W) * H, 0);
-        tbb::parallel_for(0, H, [&](int y) {
-            for (int x = 0; x < W; ++x)
+        tbb::parallel_for(ry0, ry1, [&](int y) {
+            for (int x = rx0; x < rx1; ++x)
                 noisy[size_t(y) * W + x] = active[size_t(y) * W + x] &&
                                            result.film->noise(x, y) > fd.noise_threshold;
         });
         size_t n = 0;
-        for (int y = 0; y < H; ++y)
-            for (int x = 0; x < W; ++x) {
+        for (int y = ry0; y < ry1; ++y)
+            for (int x = rx0; x < rx1; ++x) {
                 bool on = false;
                 for (int dy = -1; dy <= 1 && !on; ++dy)
                     for (int dx = -1; dx <= 1 && !on; ++dx) {
@@ -79,16 +92,25 @@ RenderResult render(const Scene &scene, const RenderOptions &opt) {
         return n;
     };
 
+    // The region's pixels still sampling in the coming pass.
+    auto region_active = [&] {
+        if (!adaptive) return uint64_t(region.x1 - region.x0) * (region.y1 - region.y0);
+        uint64_t n = 0;
+        for (int y = region.y0; y < region.y1; ++y)
+            for (int x = region.x0; x < region.x1; ++x) n += active[size_t(y) * W + x];
+        return n;
+    };
     for (int pass = 0; pass < passes && !stopped.load(); ++pass) {
         const int s0 = bounds[pass], s1 = bounds[pass + 1];
         if (adaptive && s0 >= std::min(fd.min_spp, spp)) {
             // A pixel that stops has its remaining budget done: the total stays the
             // budget, so the ETA is for the pixels still sampling.
-            const size_t now_active = update_active();
-            progress.advance(uint64_t(num_active - now_active) * uint64_t(spp - s0));
+            const uint64_t now_active = update_active();
+            progress.advance((num_active - now_active) * uint64_t(spp - s0));
             num_active = now_active;
             if (num_active == 0) break;
         }
+        const uint64_t in_region = opt.region ? region_active() : 0;
         tbb::parallel_for(
             tbb::blocked_range<int>(0, num_tiles, 1),
             [&](const tbb::blocked_range<int> &range) {
@@ -104,13 +126,14 @@ RenderResult render(const Scene &scene, const RenderOptions &opt) {
                             stopped.store(true);
                             return;
                         }
-                        const int tx = tile % tiles_x, ty = tile / tiles_x;
+                        const int tx = tx0 + tile % (tx1 - tx0),
+                                  ty = ty0 + tile / (tx1 - tx0);
                         const int x0 = tx * tile_size, y0 = ty * tile_size;
                         const uint64_t samples_before = st.samples;
-                        integrator.render_tile(*result.film, sampler, x0, y0,
-                                               std::min(W, x0 + tile_size),
-                                               std::min(H, y0 + tile_size), s0, s1, st,
-                                               instr, adaptive ? active.data() : nullptr);
+                        integrator.render_tile(
+                            *result.film, sampler, x0, std::max(ry0, y0),
+                            std::min(W, x0 + tile_size), std::min(ry1, y0 + tile_size),
+                            s0, s1, st, instr, adaptive ? active.data() : nullptr);
                         progress.advance(st.samples - samples_before);
                     }
                 };
@@ -123,6 +146,10 @@ RenderResult render(const Scene &scene, const RenderOptions &opt) {
             });
         scene.geometry().check();  // an Embree error fails the run
         if (!stopped.load()) result.spp_done = adaptive ? std::min(s1, fd.spp) : s1;
+        if (!stopped.load() && in_region > 0) {
+            result.region_samples += in_region * uint64_t(s1 - s0);
+            result.region_spp_done = result.spp_done;
+        }
     }
     progress.finish();
     result.work_done = progress.done();

@@ -34,6 +34,15 @@ struct RenderOptions {
     // optional.
     std::optional<CameraDesc> camera;
     std::optional<CameraMotion> camera_motion;
+    // Only this part of the image, [x0, x1) × [y0, y1) (a tile of a still split over a
+    // farm): its pixels come out exactly as in a whole render, since samples depend on
+    // the pixel alone and camera packets on the tile grid's columns (so columns extend
+    // to whole 16-pixel tiles). Adaptive sampling's decisions spread one pixel per
+    // pass, so that many pixels around the region are rendered too.
+    struct Region {
+        int x0 = 0, y0 = 0, x1 = 0, y1 = 0;
+    };
+    std::optional<Region> region;
 };
 
 struct RenderResult {
@@ -48,6 +57,10 @@ struct RenderResult {
     // spp; `work_done` counts the samples taken plus, with adaptive sampling, the
     // samples a pixel no longer needs once it converges. Equal when complete.
     uint64_t work_done = 0, work_total = 0;
+    // With a region: the samples its pixels took, and the spp_done a whole render would
+    // report were the region the whole image (the last pass any of its pixels took).
+    uint64_t region_samples = 0;
+    int region_spp_done = 0;
     std::vector<std::vector<RecordedRay>> rays;  // per thread, when record_rays
 };
 

@@ -246,6 +246,7 @@ AnimationDesc read_animation(Reader r) {
     AnimationDesc a;
     a.present = true;
     a.frames = r.integer("frames", a.frames, 1, 1000000);
+    a.first_frame = r.integer("first_frame", a.first_frame, 0, 100000000);
     a.fps = r.number("fps", a.fps, 0.001, 1000);
     if (const json *v = r.take("turntable"))
         a.turntable =

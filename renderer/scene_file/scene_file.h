@@ -101,12 +101,12 @@ struct ObjectDesc {
         fur;  // strands on this object (renderer/scene_file/scene_fur.h)
 };
 
-// "animation": {"frames", "fps", "turntable": {...}}. A turntable turns the camera about
-// the axis through `center` (target camera; the scene turns the other way in the image)
-// or every object (target object) by `degrees` over the whole animation: frame f at
-// degrees·f/frames, so a 360° loop does not repeat its first frame. The shutter is in
-// frames, [open, close] ⊂ [0, 1]; an open shutter blurs the camera's motion (camera
-// target only).
+// "animation": {"frames", "first_frame", "fps", "turntable": {...}}. A turntable turns
+// the camera about the axis through `center` (target camera; the scene turns the other
+// way in the image) or every object (target object) by `degrees` over the whole
+// animation: frame f at degrees·f/frames, so a 360° loop does not repeat its first frame.
+// The shutter is in frames, [open, close] ⊂ [0, 1]; an open shutter blurs the camera's
+// motion (camera target only).
 struct TurntableDesc {
     Vec3f axis{0, 1, 0}, center{0, 0, 0};
     float degrees = 360;
@@ -119,6 +119,9 @@ struct TurntableDesc {
 struct AnimationDesc {
     bool present = false;
     int frames = 1;
+    // The number of the first frame (1001 in VFX): frames are first_frame ..
+    // first_frame + frames - 1, and motion is computed from frame - first_frame.
+    int first_frame = 0;
     double fps = 24;
     std::optional<TurntableDesc> turntable;
 };

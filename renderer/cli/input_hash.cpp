@@ -1,0 +1,137 @@
+#include "renderer/cli/input_hash.h"
+
+#define XXH_INLINE_ALL
+#include <OpenImageIO/imageio.h>
+#include <xxhash.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <set>
+#include <sstream>
+
+namespace pelage::renderer::cli {
+
+namespace fs = std::filesystem;
+
+struct InputHash::State {
+    XXH3_state_t xxh;
+};
+
+InputHash::InputHash() : m_state(std::make_unique<State>()) {
+    XXH3_64bits_reset(&m_state->xxh);
+}
+
+InputHash::~InputHash() = default;
+
+void InputHash::add(const std::string &text) {
+    XXH3_64bits_update(&m_state->xxh, text.c_str(), text.size() + 1);
+}
+
+void InputHash::add_file(const std::string &path) {
+    add(path);
+    std::ifstream in(path, std::ios::binary);
+    std::vector<char> buf(1 << 16);
+    while (in) {
+        in.read(buf.data(), std::streamsize(buf.size()));
+        XXH3_64bits_update(&m_state->xxh, buf.data(), size_t(in.gcount()));
+    }
+}
+
+uint64_t InputHash::digest() const { return XXH3_64bits_digest(&m_state->xxh); }
+
+std::string InputHash::hex() const {
+    char buf[17];
+    std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(digest()));
+    return buf;
+}
+
+namespace {
+
+void add_param_files(const nlohmann::json &v, const std::string &dir,
+                     std::vector<std::string> *files) {
+    if (v.is_string()) {
+        const std::string s = v.get<std::string>();
+        if (s.empty() || s.size() > 4096) return;
+        fs::path p(s);
+        if (p.is_relative() && !dir.empty()) p = fs::path(dir) / p;
+        std::error_code ec;
+        if (fs::is_regular_file(p, ec)) files->push_back(p.lexically_normal().string());
+    } else if (v.is_structured()) {
+        for (const auto &item : v) add_param_files(item, dir, files);
+    }
+}
+
+}  // namespace
+
+std::vector<std::string> scene_input_files(const SceneDesc &desc) {
+    std::vector<std::string> files;
+    for (const ObjectDesc &obj : desc.objects) {
+        if (obj.mesh.rfind("procedural:", 0) != 0) files.push_back(obj.mesh);
+        for (const std::string &d : obj.deform) files.push_back(d);
+        if (!obj.cells.empty()) files.push_back(obj.cells);
+        add_param_files(obj.material.params, desc.dir, &files);
+    }
+    for (const LightDesc &light : desc.lights)
+        if (!light.image.empty()) files.push_back(light.image);
+    return files;
+}
+
+std::string settings_hash(const SceneDesc &desc, const PluginRegistry &plugins,
+                          uint64_t seed, const std::string &version) {
+    InputHash h;
+    std::ifstream in(desc.path, std::ios::binary);
+    std::ostringstream text;
+    text << in.rdbuf();
+    // The scene as parsed JSON: whitespace and key order do not count, and std::map
+    // objects dump with sorted keys. The film carries the values rendered.
+    nlohmann::json j = nlohmann::json::parse(text.str(), nullptr, false, true);
+    if (j.is_object()) {
+        nlohmann::json &film = j["film"];
+        if (!film.is_object()) film = nlohmann::json::object();
+        film.erase("output");
+        film.erase("preview");
+        film["width"] = desc.film.width;
+        film["height"] = desc.film.height;
+        film["spp"] = desc.film.spp;
+        film["noise_threshold"] = desc.film.noise_threshold;
+        film["view"] = desc.film.view;
+        h.add(j.dump());
+    } else {
+        h.add(text.str());  // load_scene_file accepted it, so this does not happen
+    }
+    h.add("seed " + std::to_string(seed));
+    for (const std::string &f : scene_input_files(desc)) h.add_file(f);
+    std::set<std::string> shaders;
+    for (const ObjectDesc &obj : desc.objects) shaders.insert(obj.material.shader);
+    for (const std::string &name : shaders) {
+        const auto it = plugins.plugins().find(name);
+        h.add(name);
+        if (it != plugins.plugins().end()) h.add_file(it->second.file);
+    }
+    h.add("pelage " + version);
+    return h.hex();
+}
+
+std::string frame_settings_hash(const std::string &settings, int frame) {
+    InputHash h;
+    h.add(settings);
+    h.add("frame " + std::to_string(frame));
+    return h.hex();
+}
+
+std::string exr_string_attribute(const std::string &exr, const std::string &name) {
+    auto in = OIIO::ImageInput::open(exr);
+    if (!in) {
+        OIIO::geterror();  // clears the message this failure left
+        return "";
+    }
+    return in->spec().get_string_attribute(name);
+}
+
+std::string recorded_settings_hash(const std::string &exr) {
+    return exr_string_attribute(exr, "pelage:settings_xxh3");
+}
+
+}  // namespace pelage::renderer::cli
