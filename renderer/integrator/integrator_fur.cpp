@@ -85,10 +85,18 @@ bool scatter_at_strand(const Scene &scene, const FurLayer &layer, const RTCRayHi
         fs.alpha = 1;
         fs.albedo = bsdf.albedo();
         fs.normal = frame.z;
-        // Strands belong to their object's matte; the pattern's mattes cover the skin.
-        for (size_t l = 0; l < scene.matte_layers().size(); ++l)
-            if (scene.matte_slot(layer.object, int(l)) == Scene::object_layer)
+        // A strand is in its object's matte, and in the skin's mattes at its root (a
+        // spot's hairs are the spot's).
+        const uint32_t *root_matte = layer.strands.matte.empty()
+                                         ? nullptr
+                                         : &layer.strands.matte[4 * size_t(strand)];
+        for (size_t l = 0; l < scene.matte_layers().size(); ++l) {
+            const int slot = scene.matte_slot(layer.object, int(l));
+            if (slot == Scene::object_layer)
                 fs.matte[l] = layer.object;
+            else if (slot >= 0 && root_matte && (root_matte[3] >> slot & 1u))
+                fs.matte[l] = uint64_t(layer.object) << 32 | root_matte[slot];
+        }
         if (aovs) {
             aovs->depth = rh.ray.tfar * dot(st.d, cam.forward);
             aovs->object_id = float(layer.object);

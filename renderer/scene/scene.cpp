@@ -109,6 +109,12 @@ void Scene::build(const SceneDesc &desc, const PluginRegistry &plugins) {
                 sh.roughness = -1;
                 mat.plugin->shade(mat.instance, &hit, &sh);
                 shader::fur::RootPigment rp{sh.eumelanin, sh.pheomelanin, -1};
+                // Matte ids only when the film keeps Cryptomatte (16 bytes a strand).
+                if (!m_desc.film.cryptomatte.empty()) {
+                    for (int k = 0; k < PELAGE_SHADER_MATTE_SLOTS; ++k)
+                        rp.matte[k] = sh.matte[k];
+                    rp.matte_written = sh.matte_written;
+                }
                 // The cell type, when the plugin names an AOV slot "cell_type".
                 if (sh.aov_written && mat.plugin->aov_names)
                     for (int k = 0;

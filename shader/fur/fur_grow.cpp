@@ -86,6 +86,9 @@ Strands grow_fur(const FurParams &params, const SkinMesh &mesh,
     out.points.resize(m * out.points_per_strand * 4);
     out.melanin.resize(2 * m);
     out.roots.resize(m);
+    bool any_matte = false;
+    for (const uint64_t i : index) any_matte = any_matte || pigment[i].matte_written;
+    if (any_matte) out.matte.resize(4 * m);
 
     const ClumpGuides guides(params, sampler);
     // --- Grow every kept strand ---
@@ -140,6 +143,10 @@ Strands grow_fur(const FurParams &params, const SkinMesh &mesh,
             out.melanin[2 * j + 1] =
                 clean(ph * params.melanin_scale * (1 + params.melanin_jitter * j_ph));
             out.roots[j] = root;
+            if (any_matte) {
+                for (int k = 0; k < 3; ++k) out.matte[4 * j + k] = pg.matte[k];
+                out.matte[4 * j + 3] = pg.matte_written;
+            }
         }
     });
     return out;

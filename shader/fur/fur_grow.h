@@ -18,10 +18,13 @@
 
 namespace pelage::shader::fur {
 
-// What the skin says at a root: its pigment and its cell type (−1 when unknown).
+// What the skin says at a root: its pigment, its cell type (−1 when unknown), and its
+// matte ids (PelageShade::matte; bit k of matte_written set when matte[k] holds one).
 struct RootPigment {
     float eumelanin = 0, pheomelanin = 0;
     int cell_type = -1;
+    uint32_t matte[3] = {0, 0, 0};
+    uint32_t matte_written = 0;
 };
 using PigmentLookup = std::function<RootPigment(const SurfacePoint &, Vec3f p, Vec3f n)>;
 
@@ -35,6 +38,9 @@ struct Strands {
     std::vector<float> points;
     std::vector<float> melanin;  // eumelanin, pheomelanin per strand (jittered, scaled)
     std::vector<SurfacePoint> roots;
+    // The root's matte ids and their bits, 4 per strand, so a strand shows in the
+    // skin's Cryptomatte layers; empty when no root had any.
+    std::vector<uint32_t> matte;
     uint64_t candidates = 0;  // roots drawn before per-type thinning
 
     size_t size() const { return roots.size(); }

@@ -109,5 +109,44 @@ TEST(CryptomatteCli, TypeMattesPartitionTheObjectAndAgreeWithTheShaderLayer) {
     EXPECT_NE(err.find("film.cryptomatte[1]"), std::string::npos) << err;
 }
 
+// With fur over the skin, each strand carries its root's type: the type mattes still
+// partition the object's (the camera sees mostly hair), so "the spots" selects the
+// spots' hair too.
+TEST(CryptomatteCli, FurStrandsAreInTheirRootsTypeMatte) {
+    TempDir tmp;
+    const std::string mesh = "procedural:icosphere:3";
+    const std::string cells = simulate_two_type_cells(tmp, mesh, 300);
+    const std::string scene = tmp.write("s.json", R"({
+      "camera": {"position": [0, 0, 3.2], "look_at": [0, 0, 0], "fov": 42},
+      "film": {"width": 40, "height": 40, "spp": 16, "cryptomatte": ["object", "type"]},
+      "lights": [{"type": "environment", "color": 1}],
+      "objects": [{"name": "ball", "mesh": ")" + mesh +
+                                                      R"(", "cells": ")" + cells +
+                                                      R"(",
+                   "material": {"shader": "clonal_mosaic"},
+                   "fur": {"density": 3000, "length": 0.15, "root_radius": 0.004,
+                           "tip_radius": 0.001, "seed": 3}}]
+    })");
+    const std::string exr = tmp.file("o.exr");
+    ASSERT_EQ(run_pelage("render " + scene + " -q -o " + exr), 0);
+    for (const char *name : {"ball", "F", "B"})
+        ASSERT_EQ(
+            run_pelage("matte " + exr + " -q --layer " + (name[1] ? "object" : "type") +
+                       " --name " + name + " -o " + tmp.file(std::string(name) + ".exr")),
+            0)
+            << name;
+    const auto ball = read_channel(tmp.file("ball.exr"), "A");
+    const auto f = read_channel(tmp.file("F.exr"), "A");
+    const auto b = read_channel(tmp.file("B.exr"), "A");
+    double covered = 0, typed = 0;
+    for (size_t i = 0; i < ball.size(); ++i) {
+        EXPECT_NEAR(f[i] + b[i], ball[i], 1e-5) << i;
+        covered += ball[i];
+        typed += f[i];
+    }
+    EXPECT_GT(covered, 200);  // the ball and its hair fill much of the frame
+    EXPECT_GT(typed, 10);     // and some of it is the spots'
+}
+
 }  // namespace
 }  // namespace pelage::test
