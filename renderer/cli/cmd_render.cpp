@@ -164,7 +164,10 @@ std::unique_ptr<Scene> shared_scene_for(const SceneDesc &desc,
 struct RunTotals {
     nlohmann::json frame_stats = nlohmann::json::array();
     RenderStats stats;
-    double seconds = 0;
+    double seconds = 0;  // rendering
+    // Loading the scene and building meshes, fur and the BVH; writing the EXRs and
+    // previews. With `seconds` they are most of the wall time.
+    double setup_seconds = 0, write_seconds = 0;
     int rendered = 0, skipped = 0, spp_done = 0;
     bool interrupted = false;
 };
@@ -210,7 +213,11 @@ FrameOutcome render_frame(const RenderCliOptions &o, const SceneDesc &desc,
     const int local = f - desc.animation.first_frame;
     const SceneDesc fd = desc.animation.present ? scene_at_frame(desc, local) : desc;
     std::unique_ptr<Scene> own;
-    if (!shared_scene) own = std::make_unique<Scene>(fd, plugins);
+    if (!shared_scene) {
+        const Timer setup;
+        own = std::make_unique<Scene>(fd, plugins);
+        totals->setup_seconds += setup.seconds();
+    }
     const Scene &scene = shared_scene ? *shared_scene : *own;
 
     RenderOptions ro;
@@ -267,11 +274,13 @@ FrameOutcome render_frame(const RenderCliOptions &o, const SceneDesc &desc,
                       plan.tile_y1, r.region_samples, r.region_spp_done, &meta);
         rows = plan.tile_y1 - plan.tile_y0;
     }
+    const Timer writing;
     write_exr(out_f, fd.film.width, rows, pixels,
               Film::channel_names(scene.shader_aov_names()), fd.film.half, meta);
     if (plan.display)
         write_preview(preview_f, fd.film.width, fd.film.height, pixels,
                       Film::num_channels, *plan.display);
+    totals->write_seconds += writing.seconds();
     ++totals->rendered;
     totals->stats.add(r.stats);
     totals->seconds += r.seconds;
@@ -307,10 +316,13 @@ FrameOutcome render_frame(const RenderCliOptions &o, const SceneDesc &desc,
 // The run's summary for --stats-json: the keys are a contract with scripts.
 void write_stats_json(const RenderCliOptions &o, const SceneDesc &desc,
                       const RenderPlan &plan, const Scene *shared_scene,
-                      const RunTotals &totals) {
+                      const RunTotals &totals, double wall_seconds) {
     const double rays_per_second =
         totals.seconds > 0 ? double(totals.stats.rays()) / totals.seconds : 0.0;
     nlohmann::json j = {{"seconds", totals.seconds},
+                        {"wall_seconds", wall_seconds},
+                        {"setup_seconds", totals.setup_seconds},
+                        {"write_seconds", totals.write_seconds},
                         {"spp", totals.spp_done},
                         {"width", desc.film.width},
                         {"height", desc.film.height},
@@ -343,6 +355,7 @@ void write_stats_json(const RenderCliOptions &o, const SceneDesc &desc,
 }
 
 int run(const RenderCliOptions &o) {
+    const Timer wall;
     const auto control = o.threads.apply();
     SceneDesc desc = load_scene_file(o.scene);
     RenderPlan plan = plan_render(o, desc);
@@ -352,6 +365,7 @@ int run(const RenderCliOptions &o) {
 
     InterruptGuard guard;
     RunTotals totals;
+    totals.setup_seconds = wall.seconds();
     totals.spp_done = desc.film.spp;
     for (const int f : plan.frames) {
         const FrameOutcome done =
@@ -360,10 +374,14 @@ int run(const RenderCliOptions &o) {
         if (totals.interrupted) break;
     }
     if (!o.stats_json.empty())
-        write_stats_json(o, desc, plan, shared_scene.get(), totals);
+        write_stats_json(o, desc, plan, shared_scene.get(), totals, wall.seconds());
     if (plan.animated && !o.quiet)
         std::printf("%d frame(s) rendered, %d skipped (complete), %.2f s\n",
                     totals.rendered, totals.skipped, totals.seconds);
+    if (!o.quiet)
+        std::printf("wall %.2f s: set-up %.2f s, render %.2f s, writing %.2f s\n",
+                    wall.seconds(), totals.setup_seconds, totals.seconds,
+                    totals.write_seconds);
     return totals.interrupted ? exit_interrupted : 0;
 }
 
