@@ -13,6 +13,7 @@
 #include "renderer/cli/common.h"
 #include "renderer/cli/frame_list.h"
 #include "renderer/cli/input_hash.h"
+#include "renderer/cli/render_plan.h"
 #include "renderer/cli/render_tiles.h"
 #include "renderer/core/progress.h"
 #include "renderer/image/color_management.h"
@@ -32,124 +33,6 @@ using namespace pelage::renderer;
 // interrupted render (whose EXR is whole but marked pelage:interrupted) from a failure.
 constexpr int exit_interrupted = 128 + 2;
 
-struct RenderCliOptions {
-    std::string scene, output, preview, stats_json, res, view;
-    int spp = 0;
-    double noise_threshold = -1;  // < 0: the scene's film.noise_threshold
-    unsigned long long seed = 0;
-    bool quiet = false, resume = false, cryptomatte = false;
-    std::string frames, tile;
-    int step = 1;
-    ThreadOption threads;
-};
-
-std::string lower_extension(const std::string &path) {
-    std::string e = fs::path(path).extension().string();
-    for (char &c : e) c = char(std::tolower(static_cast<unsigned char>(c)));
-    return e;
-}
-
-// The frames --frames (and --step) ask for, each inside the animation.
-std::vector<int> requested_frames(const RenderCliOptions &o, const AnimationDesc &anim,
-                                  const std::string &scene_path) {
-    if (!anim.present)
-        throw InputError(
-            scene_path, 0, "--frames",
-            "\"" + o.frames + "\": the scene is a still (it has no \"animation\" block)");
-    const long long first = anim.first_frame, last = first + anim.frames - 1;
-    const std::vector<FrameRange> ranges = parse_frame_ranges(o.frames, o.step);
-    for (const FrameRange &r : ranges)
-        if (r.first < first || r.last > last)
-            throw InputError(scene_path, 0, "animation.frames",
-                             "--frames " + r.text +
-                                 " is outside the animation's frames " +
-                                 std::to_string(first) + "-" + std::to_string(last));
-    return expand_frames(ranges);
-}
-
-// What the command line asks for, checked before any work starts.
-struct RenderPlan {
-    std::string output, preview;  // file names, with a frame token (####) for a range
-    std::optional<DisplayTransform> display;
-    bool animated = false;  // --frames given
-    std::vector<int> frames;
-    std::string settings;  // settings_hash() of the run; per frame, frame_settings_hash
-    std::optional<TileSpec> tile;  // --tile: rows [tile_y0, tile_y1) of a still
-    int tile_y0 = 0, tile_y1 = 0;
-};
-
-// Applies the command-line overrides to `desc`, then checks every output: a missing
-// folder or a bad name fails now, not after the render.
-RenderPlan plan_render(const RenderCliOptions &o, SceneDesc &desc) {
-    if (o.spp > 0) desc.film.spp = o.spp;
-    if (o.noise_threshold >= 0) desc.film.noise_threshold = float(o.noise_threshold);
-    if (!o.res.empty())
-        parse_resolution(o.res, 65536, &desc.film.width, &desc.film.height);
-    if (!o.view.empty()) desc.film.view = o.view;
-    if (o.cryptomatte) desc.film.cryptomatte = {"*"};
-    RenderPlan plan;
-    plan.output = !o.output.empty() ? o.output : desc.film.output;
-    const std::string &output = plan.output;
-    if (output.empty())
-        throw InputError(o.scene, 0, "film.output",
-                         "no output file: give -o OUT.exr or set film.output");
-    if (lower_extension(output) != ".exr")
-        throw InputError("", 0, "-o",
-                         "\"" + output + "\": the render is written as OpenEXR (.exr)");
-    if (!o.tile.empty()) {
-        plan.tile = parse_tile(o.tile);
-        tile_rows(*plan.tile, desc.film.height, &plan.tile_y0, &plan.tile_y1);
-        if (!o.frames.empty())
-            throw InputError("", 0, "--tile",
-                             "tiles split a still: give --tile or --frames, not both");
-        if (o.output.empty())
-            throw InputError("", 0, "--tile",
-                             "give -o naming this tile's file (pelage merge joins them)");
-        if (!o.preview.empty())
-            throw InputError("", 0, "--preview",
-                             "a tile has no preview: preview the merged image");
-    }
-    plan.preview = plan.tile ? "" : !o.preview.empty() ? o.preview : desc.film.preview;
-    const std::string &preview = plan.preview;
-    if (!preview.empty()) {
-        const std::string e = lower_extension(preview);
-        if (e != ".png" && e != ".jpg" && e != ".jpeg")
-            throw InputError("", 0, "--preview",
-                             "\"" + preview + "\": expected a .png or .jpg file");
-        plan.display.emplace(desc.film.view, "");  // checks the view now
-    }
-
-    // --frames LIST [--step N], or the still (an animation's first frame).
-    plan.animated = !o.frames.empty();
-    plan.frames = plan.animated ? requested_frames(o, desc.animation, o.scene)
-                                : std::vector<int>{desc.animation.first_frame};
-    if (plan.frames.size() > 1 && !has_frame_token(output))
-        throw InputError("", 0, "-o",
-                         "\"" + output +
-                             "\": several frames need a frame number in the file name: "
-                             "#### (4 digits), %04d or $F4");
-    if (plan.frames.size() > 1 && !preview.empty() && !has_frame_token(preview))
-        throw InputError("", 0, "--preview",
-                         "\"" + preview +
-                             "\": several frames need a frame number in the name: "
-                             "####, %04d or $F4");
-    if (o.resume && !plan.animated && !plan.tile)
-        throw InputError("", 0, "--resume",
-                         "resumes a frame range or a tile: give --frames or --tile too");
-
-    for (const auto &[flag, file] : {std::pair<std::string, std::string>{"-o", output},
-                                     {"--preview", preview},
-                                     {"--stats-json", o.stats_json}}) {
-        if (file.empty()) continue;
-        const fs::path dir = fs::absolute(fs::path(file)).parent_path();
-        if (!fs::is_directory(dir))
-            throw InputError(
-                "", 0, flag,
-                "\"" + file + "\": folder " + dir.string() + " does not exist");
-    }
-    return plan;
-}
-
 // One scene for every frame when only the camera moves (and for a still); null when an
 // object turns or deforms, and each frame builds its own.
 std::unique_ptr<Scene> shared_scene_for(const SceneDesc &desc,
@@ -167,7 +50,10 @@ std::unique_ptr<Scene> shared_scene_for(const SceneDesc &desc,
 struct RunTotals {
     nlohmann::json frame_stats = nlohmann::json::array();
     RenderStats stats;
-    double seconds = 0;
+    double seconds = 0;  // rendering
+    // Loading the scene and building meshes, fur and the BVH; writing the EXRs and
+    // previews. With `seconds` they are most of the wall time.
+    double setup_seconds = 0, write_seconds = 0;
     int rendered = 0, skipped = 0, spp_done = 0;
     bool interrupted = false;
 };
@@ -246,7 +132,11 @@ FrameOutcome render_frame(const RenderCliOptions &o, const SceneDesc &desc,
     const int local = f - desc.animation.first_frame;
     const SceneDesc fd = desc.animation.present ? scene_at_frame(desc, local) : desc;
     std::unique_ptr<Scene> own;
-    if (!shared_scene) own = std::make_unique<Scene>(fd, plugins);
+    if (!shared_scene) {
+        const Timer setup;
+        own = std::make_unique<Scene>(fd, plugins);
+        totals->setup_seconds += setup.seconds();
+    }
     const Scene &scene = shared_scene ? *shared_scene : *own;
 
     RenderOptions ro;
@@ -272,6 +162,7 @@ FrameOutcome render_frame(const RenderCliOptions &o, const SceneDesc &desc,
         return FrameOutcome::aborted;
     }
 
+    const Timer writing;  // output: the layers resolved (Cryptomatte names), then written
     ImageLayers layers =
         image_layers(*r.film, fd.film, scene.shader_aov_names(), matte_sources(scene),
                      [](const std::string &w) {
@@ -313,6 +204,7 @@ FrameOutcome render_frame(const RenderCliOptions &o, const SceneDesc &desc,
     if (plan.display)
         write_preview(preview_f, fd.film.width, fd.film.height, layers.pixels,
                       layers.channels(), *plan.display);
+    totals->write_seconds += writing.seconds();
     ++totals->rendered;
     totals->stats.add(r.stats);
     totals->seconds += r.seconds;
@@ -348,10 +240,13 @@ FrameOutcome render_frame(const RenderCliOptions &o, const SceneDesc &desc,
 // The run's summary for --stats-json: the keys are a contract with scripts.
 void write_stats_json(const RenderCliOptions &o, const SceneDesc &desc,
                       const RenderPlan &plan, const Scene *shared_scene,
-                      const RunTotals &totals) {
+                      const RunTotals &totals, double wall_seconds) {
     const double rays_per_second =
         totals.seconds > 0 ? double(totals.stats.rays()) / totals.seconds : 0.0;
     nlohmann::json j = {{"seconds", totals.seconds},
+                        {"wall_seconds", wall_seconds},
+                        {"setup_seconds", totals.setup_seconds},
+                        {"write_seconds", totals.write_seconds},
                         {"spp", totals.spp_done},
                         {"width", desc.film.width},
                         {"height", desc.film.height},
@@ -384,6 +279,7 @@ void write_stats_json(const RenderCliOptions &o, const SceneDesc &desc,
 }
 
 int run(const RenderCliOptions &o) {
+    const Timer wall;
     const auto control = o.threads.apply();
     SetupPhase::show("render", !o.quiet && Progress::stderr_is_tty());
     SceneDesc desc = load_scene_file(o.scene);
@@ -394,6 +290,7 @@ int run(const RenderCliOptions &o) {
 
     InterruptGuard guard;
     RunTotals totals;
+    totals.setup_seconds = wall.seconds();
     totals.spp_done = desc.film.spp;
     for (const int f : plan.frames) {
         const FrameOutcome done =
@@ -402,10 +299,14 @@ int run(const RenderCliOptions &o) {
         if (totals.interrupted) break;
     }
     if (!o.stats_json.empty())
-        write_stats_json(o, desc, plan, shared_scene.get(), totals);
+        write_stats_json(o, desc, plan, shared_scene.get(), totals, wall.seconds());
     if (plan.animated && !o.quiet)
         std::printf("%d frame(s) rendered, %d skipped (complete), %.2f s\n",
                     totals.rendered, totals.skipped, totals.seconds);
+    if (!o.quiet)
+        std::printf("wall %.2f s: set-up %.2f s, render %.2f s, writing %.2f s\n",
+                    wall.seconds(), totals.setup_seconds, totals.seconds,
+                    totals.write_seconds);
     return totals.interrupted ? exit_interrupted : 0;
 }
 

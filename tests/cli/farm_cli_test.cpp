@@ -1,11 +1,13 @@
 // Render-farm conventions end to end: frame lists and padding tokens as farm managers
 // write them, animation.first_frame numbering, exit 2 for every bad list; --resume
 // trusting only frames of the same settings; tiled stills merged into the whole
-// render's exact bytes.
+// render's exact bytes; wall, set-up and write times in --stats-json.
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
@@ -335,6 +337,30 @@ TEST(FarmCli, MergeRefusesTilesThatDoNotBelongTogether) {
                   &log),
               0);
     EXPECT_NE(log.find("rendered with other settings"), std::string::npos) << log;
+}
+
+TEST(FarmCli, StatsJsonHasWallSetupAndWriteTimes) {
+    TempDir tmp;
+    const std::string scene = tmp.write("s.json", farm_scene());
+    for (const std::string frames : {"", " --frames 0-1"}) {
+        std::string log;
+        ASSERT_EQ(
+            run_pelage("render " + scene + frames + " -o " + tmp.file("f.####.exr") +
+                           " --stats-json " + tmp.file("st.json"),
+                       &log),
+            0);
+        const auto s = nlohmann::json::parse(std::ifstream(tmp.file("st.json")));
+        for (const char *k :
+             {"seconds", "wall_seconds", "setup_seconds", "write_seconds"})
+            ASSERT_TRUE(s.contains(k) && s[k].is_number()) << k << frames;
+        const double wall = s["wall_seconds"], setup = s["setup_seconds"],
+                     render = s["seconds"], write = s["write_seconds"];
+        EXPECT_GT(setup, 0.0);
+        EXPECT_GT(write, 0.0);
+        EXPECT_GE(wall, setup + render + write) << frames;
+        EXPECT_NE(log.find("wall "), std::string::npos) << log;
+        EXPECT_NE(log.find("writing "), std::string::npos) << log;
+    }
 }
 
 }  // namespace
