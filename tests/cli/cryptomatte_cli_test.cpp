@@ -34,7 +34,8 @@ TEST(CryptomatteCli, TypeMattesPartitionTheObjectAndAgreeWithTheShaderLayer) {
     const std::string cells = simulate_two_type_cells(tmp, mesh, 300);
     const std::string scene = tmp.write("s.json", R"({
       "camera": {"position": [0, 0, 3], "look_at": [0, 0, 0], "fov": 45},
-      "film": {"width": 48, "height": 48, "spp": 32, "cryptomatte": true},
+      "film": {"width": 48, "height": 48, "spp": 32, "cryptomatte": true,
+               "compression": "piz"},
       "lights": [{"type": "environment", "color": 1}],
       "objects": [{"name": "ball", "mesh": ")" + mesh +
                                                       R"(", "cells": ")" + cells +
@@ -43,6 +44,8 @@ TEST(CryptomatteCli, TypeMattesPartitionTheObjectAndAgreeWithTheShaderLayer) {
     })");
     const std::string exr = tmp.file("o.exr");
     ASSERT_EQ(run_pelage("render " + scene + " -q -o " + exr), 0);
+    EXPECT_EQ(OIIO::ImageInput::open(exr)->spec().get_string_attribute("compression"),
+              "piz");
     std::string out;
     ASSERT_EQ(run_pelage("matte " + exr + " --list", &out), 0);
     for (const char *want : {"CryptoObject", "CryptoType", "CryptoCell", "CryptoLineage",

@@ -12,11 +12,13 @@
 #include <cstring>
 #include <limits>
 #include <nlohmann/json.hpp>
+#include <tuple>
 
 #include "renderer/image/image_layers.h"
 #include "renderer/image/image_output.h"
 #include "renderer/integrator/render.h"
 #include "renderer/scene/scene.h"
+#include "sim/core/input_error.h"
 #include "tests/test_paths.h"
 
 namespace pelage::test {
@@ -111,6 +113,7 @@ ReadBack render_to_exr(const TempDir &tmp, const std::string &json) {
     const Camera camera(desc.camera, desc.film.width, desc.film.height);
     meta.world_to_camera = camera.world_to_camera();
     meta.world_to_ndc = camera.world_to_ndc();
+    meta.compression = desc.film.compression;
     const std::string path = tmp.file("out.exr");
     write_exr(path, layers, meta);
     auto in = OIIO::ImageInput::open(path);
@@ -236,6 +239,59 @@ TEST(HonestAovs, CameraMatricesProjectAPixelsPointBackOntoIt) {
     EXPECT_NEAR(n[0] / n[3], 5.5f / W, 1e-5);
     EXPECT_NEAR(n[1] / n[3], 1 - 5.5f / H, 1e-5);
     EXPECT_NEAR(n[2] / n[3], 0.1f, 1e-5);
+}
+
+TEST(HonestAovs, LayersAreWrittenAsAskedWithTheChosenCompression) {
+    TempDir tmp;
+    std::string json = two_quads;
+    const std::string film = R"("cryptomatte": ["object"], "cryptomatte_ranks": 3},)";
+    json.replace(json.find(film), film.size(),
+                 R"("cryptomatte": ["object"], "cryptomatte_ranks": 3,
+                    "layers": {"albedo": false, "depth": "half", "N": "float"},
+                    "compression": "piz"},)");
+    const ReadBack b = render_to_exr(tmp, json);
+    EXPECT_LT(b.spec.channelindex("albedo.R"), 0);
+    const auto format = [&](const char *c) {
+        return b.spec.channelformat(b.spec.channelindex(c));
+    };
+    EXPECT_EQ(format("depth.Z"), OIIO::TypeDesc::HALF);
+    EXPECT_EQ(format("N.X"), OIIO::TypeDesc::FLOAT);
+    EXPECT_EQ(format("R"), OIIO::TypeDesc::HALF);
+    EXPECT_EQ(format("id.object"), OIIO::TypeDesc::FLOAT);
+    EXPECT_EQ(format("CryptoObject00.R"), OIIO::TypeDesc::FLOAT);
+    EXPECT_EQ(b.spec.get_string_attribute("compression"), "piz");
+    // Ids in half would not be exact: refused, naming the field.
+    std::string bad = two_quads;
+    bad.replace(bad.find(film), film.size(), R"("layers": {"id": "half"}},)");
+    try {
+        load_scene_file(tmp.write("bad.json", bad));
+        ADD_FAILURE() << "accepted";
+    } catch (const InputError &e) {
+        EXPECT_NE(std::string(e.what()).find("film.layers.id"), std::string::npos)
+            << e.what();
+    }
+}
+
+TEST(HonestAovs, FrameRateIsOpenExrsRational) {
+    TempDir tmp;
+    for (const auto &[fps, num, den] :
+         {std::tuple{24.0, 24, 1}, std::tuple{29.97, 29970, 1000}}) {
+        ImageLayers l;
+        l.width = l.height = 2;
+        l.names = {"R", "G", "B", "A"};
+        l.half = {1, 1, 1, 1};
+        l.pixels.assign(16, 0.5f);
+        ImageMetadata meta;
+        meta.fps = fps;
+        const std::string path = tmp.file("f.exr");
+        write_exr(path, l, meta);
+        auto in = OIIO::ImageInput::open(path);
+        ASSERT_TRUE(in);
+        int r[2] = {0, 0};
+        ASSERT_TRUE(in->spec().getattribute("FramesPerSecond", OIIO::TypeRational, r));
+        EXPECT_EQ(r[0], num);
+        EXPECT_EQ(r[1], den);
+    }
 }
 
 }  // namespace
