@@ -10,7 +10,10 @@
 # while its frame renders: the movie must then never start. Submitted again, the array
 # must skip every complete frame (--resume) and render the missing one, every frame must
 # equal, byte for byte, a render of the same frames outside Slurm, and the movie job
-# behind the new array must encode every frame. The guide must show both files verbatim.
+# behind the new array must encode every frame. scenes/farm/still_tiles.sbatch renders a
+# still as an array of tiles and scenes/farm/merge.sbatch, behind afterok on it, joins
+# them: the same file, byte for byte, as the still rendered whole outside Slurm. The
+# guide must show all four files verbatim.
 #
 # Exit 77 (CTest's "skipped") only when Slurm or munge is not installed or the daemons
 # cannot start. Every wait is bounded, and the daemons and jobs are stopped on any exit.
@@ -29,6 +32,10 @@ array=0-5
 nframes=6
 spp=96
 res=320x180
+# The tiled still: a few bands of a small still, quick next to the turntable.
+ntiles=4
+still_spp=64
+still_res=320x180
 
 fail() {
     echo "FAIL: $*" >&2
@@ -57,7 +64,7 @@ wait_for() {
 # --- What users read is what runs: the guide shows each recipe file verbatim ---------
 check_guide_shows_recipe() {
     local f
-    for f in turntable.sbatch movie.sbatch; do
+    for f in turntable.sbatch movie.sbatch still_tiles.sbatch merge.sbatch; do
         python3 - "$guide" "$recipe/$f" <<'EOF' ||
 import re, sys
 guide, recipe = (open(p, encoding="utf-8").read() for p in sys.argv[1:3])
@@ -337,9 +344,42 @@ stage_turntable() {
     turntable_job=$job
 }
 
-# A stage for a still rendered as tiles fits here, on the same cluster: an sbatch file
-# in scenes/farm/ whose array tasks each render one tile, a merge job behind
-# afterok on it (submit FILE --dependency=afterok:JOB), and cmp against a local render.
+# The guide's tiled still with fewer tiles: scenes/farm/still_tiles.sbatch as an array of
+# $ntiles tasks, each rendering one band of a small still, and scenes/farm/merge.sbatch
+# behind afterok on it. The merged EXR must equal, byte for byte, a whole render of the
+# same still outside Slurm, and each task's log must show its tile rendered.
+stage_tiles() {
+    local dir="$work/tiles" still="$work/still.exr" scene="$src/scenes/cow.json"
+    mkdir -p "$dir" "$work/local"
+    # The still's settings go to these two jobs alone: the movie stage still reads the
+    # turntable's OUT.
+    local job merge
+    job=$(TILES=$ntiles OUT="$dir" SCENE="$scene" SPP=$still_spp RES=$still_res \
+        submit still_tiles.sbatch --array=0-$((ntiles - 1)) --cpus-per-task=1)
+    merge=$(TILES=$ntiles OUT="$dir" STILL="$still" \
+        submit merge.sbatch --dependency=afterok:"$job")
+    echo "still tiles: job $job, $ntiles tiles; merge: job $merge"
+    wait_for 180 done_ "$merge" || fail "the tiles and merge do not finish: $(squeue)"
+    local i log
+    for ((i = 0; i < ntiles; ++i)); do
+        [ "$(state "${job}_$i")" = COMPLETED ] ||
+            fail "tile task ${job}_$i is $(state "${job}_$i")"
+        log="$work/logs/still-${job}_$i.log"
+        grep -qF "$dir/cow.tile$((i + 1)).exr: $still_res tile $((i + 1))/$ntiles," \
+            "$log" || fail "$log does not show tile $((i + 1))/$ntiles rendered"
+    done
+    [ "$(state "$merge")" = COMPLETED ] || fail "merge job $merge is $(state "$merge")"
+    grep -qF "$still: $still_res from $ntiles tiles" "$work/logs/merge-$merge.log" ||
+        fail "the merge log does not show $ntiles tiles joined"
+
+    # The same still outside Slurm, whole, with every core; its preview (film.preview)
+    # goes to the test's folder, not next to the scene.
+    "$pelage" render "$scene" --threads "$(nproc)" -q --seed 1 --spp "$still_spp" \
+        --res "$still_res" --preview "$work/local/still.png" -o "$work/local/still.exr"
+    cmp "$still" "$work/local/still.exr" ||
+        fail "the still merged from Slurm's tiles differs from a whole local render"
+    echo "still merged from $ntiles tiles identical to a whole local render"
+}
 
 # The movie job behind afterok on the complete array.
 stage_movie() {
@@ -361,5 +401,6 @@ write_slurm_conf
 start_munged
 start_slurm
 stage_turntable
+stage_tiles
 stage_movie
 echo "PASS"
