@@ -189,9 +189,12 @@ stop() {
 # our_pids NAME: the processes called NAME that belong to this cluster (pelage in its
 # jobs, slurmstepd): their environment names its configuration file.
 our_pids() {
-    local p
+    local p comm
     for p in /proc/[0-9]*; do
-        [ "$(cat "$p/comm" 2>/dev/null)" = "$1" ] || continue
+        # `read`, not `cat`: a fork per process made a scan take seconds on a busy
+        # machine, longer than the frame it looks for takes to render.
+        { read -r comm <"$p/comm"; } 2>/dev/null || continue
+        [ "$comm" = "$1" ] || continue
         tr '\0' '\n' 2>/dev/null <"$p/environ" | grep -qxF "SLURM_CONF=$SLURM_CONF" &&
             echo "${p#/proc/}"
     done
