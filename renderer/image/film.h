@@ -32,10 +32,10 @@ struct FilmSample {
     Rgb L;
     float alpha = 0;
     Rgb albedo, normal;
-    // The first hit's key in each of the film's Cryptomatte layers; no_key: none.
-    uint64_t matte[max_cryptomatte_layers] = {
-        CryptomatteFilm::no_key, CryptomatteFilm::no_key, CryptomatteFilm::no_key,
-        CryptomatteFilm::no_key};
+    // The first hit's key in each of the film's Cryptomatte layers, valid where bit l
+    // of `matte_set` is set (one byte to clear per sample, not the keys).
+    uint64_t matte[max_cryptomatte_layers];
+    uint8_t matte_set = 0;
 };
 
 struct FilmPointAovs {
@@ -69,10 +69,9 @@ class Film {
         a[10] += weight;
         const float lum = luminance(s.L);
         a[11] += weight * lum * lum;
-        if (m_matte)
+        if (s.matte_set)
             for (int l = 0; l < m_matte->layers(); ++l)
-                if (s.matte[l] != CryptomatteFilm::no_key)
-                    m_matte->add(x, y, l, s.matte[l], weight);
+                if (s.matte_set >> l & 1) m_matte->add(x, y, l, s.matte[l], weight);
     }
     void set_point_aovs(int x, int y, const FilmPointAovs &p) {
         m_point[size_t(y * m_width + x)] = p;

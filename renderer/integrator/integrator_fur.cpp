@@ -92,10 +92,13 @@ bool scatter_at_strand(const Scene &scene, const FurLayer &layer, const RTCRayHi
                                          : &layer.strands.matte[4 * size_t(strand)];
         for (size_t l = 0; l < scene.matte_layers().size(); ++l) {
             const int slot = scene.matte_slot(layer.object, int(l));
-            if (slot == Scene::object_layer)
+            if (slot == Scene::object_layer) {
                 fs.matte[l] = layer.object;
-            else if (slot >= 0 && root_matte && (root_matte[3] >> slot & 1u))
+                fs.matte_set |= uint8_t(1u << l);
+            } else if (slot >= 0 && root_matte && (root_matte[3] >> slot & 1u)) {
                 fs.matte[l] = uint64_t(layer.object) << 32 | root_matte[slot];
+                fs.matte_set |= uint8_t(1u << l);
+            }
         }
         if (aovs) {
             aovs->depth = rh.ray.tfar * dot(st.d, cam.forward);

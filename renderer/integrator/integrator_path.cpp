@@ -377,10 +377,13 @@ template <typename Instr>
     const std::vector<std::string> &mattes = m_scene.matte_layers();
     for (size_t l = 0; l < mattes.size(); ++l) {
         const int slot = m_scene.matte_slot(sv.object, int(l));
-        if (slot == Scene::object_layer)
+        if (slot == Scene::object_layer) {
             fs.matte[l] = sv.object;
-        else if (slot >= 0 && (sh.matte_written >> slot & 1u))
+            fs.matte_set |= uint8_t(1u << l);
+        } else if (slot >= 0 && (sh.matte_written >> slot & 1u)) {
             fs.matte[l] = uint64_t(sv.object) << 32 | sh.matte[slot];
+            fs.matte_set |= uint8_t(1u << l);
+        }
     }
     if (!aovs) return;
     aovs->depth =
