@@ -62,7 +62,8 @@ PathIntegrator::PathIntegrator(const Scene &scene, const Camera &camera,
       m_max_depth(scene.desc().integrator.max_depth),
       m_rr_depth(scene.desc().integrator.rr_depth),
       m_clamp_indirect(scene.desc().integrator.clamp_indirect),
-      m_spp(scene.desc().film.spp) {
+      m_spp(scene.desc().film.spp),
+      m_mattes(int(scene.matte_layers().size())) {
     m_pixel_spread = 2 * std::tan(0.5f * scene.desc().camera.fov_deg * pi / 180) /
                      float(height) * camera_spread_scale(m_spp);
 }
@@ -374,17 +375,7 @@ template <typename Instr>
     fs.alpha = 1;
     fs.albedo = albedo;
     fs.normal = sv.ns;
-    const std::vector<std::string> &mattes = m_scene.matte_layers();
-    for (size_t l = 0; l < mattes.size(); ++l) {
-        const int slot = m_scene.matte_slot(sv.object, int(l));
-        if (slot == Scene::object_layer) {
-            fs.matte[l] = sv.object;
-            fs.matte_set |= uint8_t(1u << l);
-        } else if (slot >= 0 && (sh.matte_written >> slot & 1u)) {
-            fs.matte[l] = uint64_t(sv.object) << 32 | sh.matte[slot];
-            fs.matte_set |= uint8_t(1u << l);
-        }
-    }
+    if (m_mattes) set_matte_keys(sv, sh, fs);
     if (!aovs) return;
     aovs->depth =
         sv.t_hit * dot(cam.d, cam.forward);  // motion blur: this sample's camera
@@ -393,6 +384,23 @@ template <typename Instr>
     if (sh.aov_written)
         for (int k = 0; k < PELAGE_SHADER_AOV_SLOTS; ++k)
             aovs->shader[k] = std::isfinite(sh.aov[k]) ? sh.aov[k] : 0.0f;
+}
+
+// The first hit's Cryptomatte keys, out of line: most renders keep none, and the path's
+// hot code stays as short as without them.
+[[gnu::noinline]] void PathIntegrator::set_matte_keys(const SurfaceVertex &sv,
+                                                      const PelageShade &sh,
+                                                      FilmSample &fs) const {
+    for (int l = 0; l < m_mattes; ++l) {
+        const int slot = m_scene.matte_slot(sv.object, l);
+        if (slot == Scene::object_layer) {
+            fs.matte[l] = sv.object;
+            fs.matte_set |= uint8_t(1u << l);
+        } else if (slot >= 0 && (sh.matte_written >> slot & 1u)) {
+            fs.matte[l] = uint64_t(sv.object) << 32 | sh.matte[slot];
+            fs.matte_set |= uint8_t(1u << l);
+        }
+    }
 }
 
 // Builds the material's BSDF from the plugin's inputs and scatters with it.

@@ -70,6 +70,8 @@ class PathIntegrator {
     bool scatter(const Bsdf &bsdf, const SurfaceVertex &sv, const VertexSamples &u,
                  PathState &path, RenderStats &stats, const Instr &instr) const;
     bool continue_path(int depth, Sampler &sampler, PathState &path) const;
+    void set_matte_keys(const SurfaceVertex &sv, const PelageShade &sh,
+                        FilmSample &fs) const;
 
     const Scene &m_scene;
     const Camera &m_camera;
@@ -83,6 +85,7 @@ class PathIntegrator {
     float m_pixel_spread;    // the camera rays' cone, radians: a pixel's share per sample
                              // (ray_cone.h)
     const CameraMotion *m_motion = nullptr;
+    int m_mattes;  // the film's Cryptomatte layers (Scene::matte_layers())
 };
 
 }  // namespace pelage::renderer
