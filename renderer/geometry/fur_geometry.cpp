@@ -1,6 +1,8 @@
 #include "renderer/geometry/fur_geometry.h"
 
+#include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <optional>
 #include <stdexcept>
 
@@ -74,6 +76,27 @@ WorldMesh world_mesh(const ObjectGeometry &og) {
     return w;
 }
 
+// The object's size, which the fur's unset defaults scale with
+// (FurParams::scale_defaults_to): the largest distance of a vertex from the vertices'
+// mean, which does not change as a turntable turns the object.
+double object_radius(const WorldMesh &w) {
+    const size_t n = w.positions.size() / 3;
+    if (n == 0) return 1.0;
+    double mean[3] = {0, 0, 0};
+    for (size_t i = 0; i < 3 * n; ++i) mean[i % 3] += w.positions[i];
+    for (double &m : mean) m /= double(n);
+    double r2 = 0;
+    for (size_t v = 0; v < n; ++v) {
+        double d2 = 0;
+        for (int k = 0; k < 3; ++k) {
+            const double d = w.positions[3 * v + k] - mean[k];
+            d2 += d * d;
+        }
+        r2 = std::max(r2, d2);
+    }
+    return r2 > 0 ? std::sqrt(r2) : 1.0;
+}
+
 }  // namespace
 
 void FurLayer::centre(unsigned prim, float u, Vec3f *c, Vec3f *tangent,
@@ -126,6 +149,7 @@ FurGeometry::FurGeometry(const SceneDesc &desc, EmbreeScene &scene,
         const std::string field = "objects[" + std::to_string(i) + "].fur";
         const ObjectGeometry &og = scene.objects()[i];
         const WorldMesh wm = world_mesh(og);
+        params.scale_defaults_to(object_radius(wm));
         shader::fur::SkinMesh skin;
         skin.positions = wm.positions.data();
         skin.triangles = og.mesh->triangles.data();

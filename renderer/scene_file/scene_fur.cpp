@@ -36,6 +36,14 @@ shader::fur::FurParams read_fur(const json &j, const std::string &field,
                                 const std::string &scene_path) {
     JsonFields r(j, field, scene_path);
     shader::fur::FurParams p;
+    using F = shader::fur::FurParams;
+    for (const auto &[key, bit] :
+         {std::pair<const char *, uint32_t>{"density", F::given_density},
+          {"length", F::given_length},
+          {"root_radius", F::given_root_radius},
+          {"tip_radius", F::given_tip_radius},
+          {"clump_radius", F::given_clump_radius}})
+        if (j.is_object() && j.contains(key)) p.given |= bit;
     if (const json *v = r.take("density"))
         p.density = r.check_number(*v, r.field("density"), 0, 1e12);
     p.density_by_type = per_type(r, "density_by_type", true);

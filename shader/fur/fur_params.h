@@ -45,6 +45,28 @@ struct FurParams {
     float melanin_jitter = 0.1f;  // each strand's melanin × U[1 − j, 1 + j]
     float beta_m = 0.25f, beta_n = 0.3f, alpha_deg = 2;  // hair BSDF (shader/hair)
     enum class Curve { round, flat } curve = Curve::round;
+
+    // The defaults above are for an object of bounding radius 1. Lengths and radii not
+    // given scale with the object's radius r and a density not given with 1 / r², so
+    // an object in millimetres or in hundreds of units gets the same coat, and the same
+    // strand count, as one of unit size.
+    enum Given : uint32_t {
+        given_density = 1,
+        given_length = 2,
+        given_root_radius = 4,
+        given_tip_radius = 8,
+        given_clump_radius = 16
+    };
+    uint32_t given = 0;  // Given bits: the values the scene file sets
+    void scale_defaults_to(double radius) {
+        const float k = float(radius);
+        if (!(given & given_density)) density /= double(radius) * double(radius);
+        if (!(given & given_length)) length *= k;
+        if (!(given & given_root_radius)) root_radius *= k;
+        if (!(given & given_tip_radius)) tip_radius *= k;
+        if (!(given & given_clump_radius)) clump_radius *= k;
+        given = ~0u;  // scaled once
+    }
 };
 
 }  // namespace pelage::shader::fur

@@ -103,6 +103,44 @@ TEST(FurRender, WhiteFurnaceReturnsTheEnvironment) {
     EXPECT_LT(mean_channel(grey, 1), 0.95);
 }
 
+// Defaults not given scale with the object (FurParams::scale_defaults_to): the same
+// sphere at 1/1000 and at 200 times unit size grows the same number of strands, each
+// as long relative to the sphere; values given are kept as they are.
+TEST(FurRender, UnsetDefaultsScaleWithTheObjectsSize) {
+    struct Coat {
+        size_t strands;
+        double length;  // first strand's root-to-tip distance over the object's radius
+    };
+    auto coat = [](double scale, const std::string &fur) {
+        const std::string scene =
+            R"({"camera": {}, "objects": [{"mesh": "procedural:sphere:16x16",
+            "transform": {"scale": )" +
+            std::to_string(scale) + R"(}, "fur": )" + fur + "}]}";
+        const renderer::SceneDesc desc = renderer::parse_scene(scene, "/tmp/s.json");
+        const renderer::PluginRegistry plugins;
+        const renderer::Scene s(desc, plugins);
+        const shader::fur::Strands &st = s.fur()->layers().at(0).strands;
+        const float *p = st.points.data();
+        const size_t last = 4 * (st.points_per_strand - 2);  // the tip (no phantom)
+        const double dx = p[last] - p[4], dy = p[last + 1] - p[5],
+                     dz = p[last + 2] - p[6];
+        return Coat{st.size(), std::sqrt(dx * dx + dy * dy + dz * dz) / scale};
+    };
+    const Coat unit = coat(1, R"({"segments": 4, "length_variation": 0})");
+    // The unit sphere (radius 1) has the documented defaults: 20000 strands per unit
+    // area over about 4π.
+    EXPECT_NEAR(double(unit.strands), 20000 * 4 * 3.14159 * 0.99, 20000 * 0.5);
+    for (const double scale : {0.001, 200.0}) {
+        const Coat c = coat(scale, R"({"segments": 4, "length_variation": 0})");
+        EXPECT_NEAR(double(c.strands), double(unit.strands), 0.01 * unit.strands)
+            << scale;
+        EXPECT_NEAR(c.length, unit.length, 0.02 * unit.length) << scale;
+    }
+    // A density given is strands per unit area of the scene, whatever the size.
+    const Coat given = coat(10, R"({"segments": 4, "density": 10})");
+    EXPECT_NEAR(double(given.strands), 10 * 4 * 3.14159 * 100 * 0.98, 400);
+}
+
 TEST(FurRender, EachStrandTakesTheMosaicsMelaninAtItsRoot) {
     TempDir tmp;
     const std::string mesh = "procedural:icosphere:3";
