@@ -12,13 +12,7 @@ fi
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 
-# The mosaics the scenes read.
-$pelage sim --mesh scenes/meshes/cow.off --preset giraffe-reticulata --seed 1 \
-    -o build/cow_giraffe.cells
-$pelage sim --mesh procedural:sphere:20x20 --preset teo-cheetah -o build/sphere_cheetah.cells
-$pelage sim --mesh scenes/meshes/triceratops.off --preset teo-leopard \
-    -o build/triceratops_leopard.cells
-
+# The scenes grow their mosaics (their "pattern" blocks) into scenes/*.cells on first use.
 # The default job (960×540, 64 spp), shown at 640×360.
 $pelage render scenes/cow_giraffe.json -q -o "$tmp/cow_giraffe.exr" \
     --preview "$tmp/cow_giraffe.png"
@@ -75,8 +69,8 @@ print(round(100/f["initial_probability"]) if "initial_spacing" in s else 0)' "$p
         extra=()
         [ $kind = sphere ] && [ "$cells" != 0 ] && extra=(--cells "$cells")
         $pelage sim --mesh "$mesh" --preset "$preset" --seed 1 "${extra[@]}" \
-            -o build/gallery_$kind.cells >/dev/null
-        $pelage stats build/gallery_$kind.cells --mesh "$mesh" --json >"$tmp/$name.$kind.json"
+            -o scenes/gallery_$kind.cells >/dev/null
+        $pelage stats scenes/gallery_$kind.cells --mesh "$mesh" --json >"$tmp/$name.$kind.json"
         $pelage render scenes/gallery_$kind.json -q -o "$tmp/g.exr" --preview "$tmp/g.png"
         oiiotool --create 240x202 3 \
             --text:x=6:y=196:size=14:color=1,1,1:font=$font "$name" -o "$tmp/label.png"
@@ -110,5 +104,5 @@ for name, g in d.items():
                  "cow": {k: g["cow"][k] for k in keep}}
 print(json.dumps({"gallery": out, "seed": 1}, indent=2, sort_keys=True))
 PY
-rm -f build/gallery_sphere.cells build/gallery_cow.cells
+rm -f scenes/gallery_sphere.cells scenes/gallery_cow.cells
 echo "make_images.sh: images/*.png regenerated"

@@ -57,14 +57,14 @@ run bench_fur     "$pelage" bench fur --strands 20000 100000 --res 320x240 --spp
 # Noise against a converged reference, cached in build/noise_refs (keyed by the binary
 # and the inputs): the first run after a build renders the references (a few minutes).
 run sim_walter_cheetah "$pelage" sim --mesh scenes/meshes/cow.off --preset walter-cheetah \
-                      --seed 1 --threads 1 -o build/cow_walter_cheetah.cells
+                      --seed 1 --threads 1 -o scenes/cow_walter_cheetah.cells
 run bench_noise   "$pelage" bench noise scenes/bench_cow_sun_sky.json --spp 16 64 256 \
                       --seeds 2 --cache build/noise_refs >"$out/bench_noise.json"
 run bench_noise_fur "$pelage" bench noise scenes/bench_cow_sun_sky_fur.json --spp 16 64 \
                       --seeds 2 --reference-spp 1024 --cache build/noise_refs \
                       >"$out/bench_noise_fur.json"
 run sim_cheetah   "$pelage" sim --mesh procedural:sphere:20x20 --preset teo-cheetah --seed 1 \
-                      --threads 1 -o build/sphere_cheetah.cells
+                      --threads 1 -o scenes/sphere_cheetah.cells
 run compare       "$pelage" compare scenes/sphere_cheetah.json --res 500x500 --spp 2 \
                       --shaders clonal_mosaic,worley,perlin,texture,diffuse --repeat 3 \
                       --atlas-res 1024 --lookups 100000 --threads 1 \

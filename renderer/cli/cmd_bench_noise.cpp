@@ -28,6 +28,7 @@
 #include <sstream>
 
 #include "renderer/cli/bench.h"
+#include "renderer/cli/grow_cells.h"
 #include "renderer/cli/input_hash.h"
 #include "renderer/integrator/render.h"
 #include "renderer/plugins/plugin_loader.h"
@@ -130,6 +131,7 @@ TimedRender timed_render(const Scene &scene, uint64_t seed) {
 
 int run(const BenchNoiseOptions &o) {
     SceneDesc desc = load_scene_file(o.scene);
+    grow_scene_patterns(desc, false);
     if (desc.animation.present)
         throw InputError(o.scene, 0, "animation",
                          "bench noise measures a still; remove the animation block");

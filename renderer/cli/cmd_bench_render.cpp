@@ -16,6 +16,7 @@
 #include <thread>
 
 #include "renderer/cli/bench.h"
+#include "renderer/cli/grow_cells.h"
 #include "renderer/geometry/packet_intersect.h"
 #include "renderer/integrator/render.h"
 #include "renderer/scene_file/scene_file.h"
@@ -93,6 +94,7 @@ double replay(RTCScene scene, const PacketIntersector &packets,
 int run(const BenchRenderOptions &o) {
     const std::string path = o.scene.empty() ? data_path("scenes/cow.json") : o.scene;
     SceneDesc desc = load_scene_file(path);
+    grow_scene_patterns(desc, false);
     parse_resolution(o.res, 16384, &desc.film.width, &desc.film.height);
     desc.film.spp = o.spp;
     const PluginRegistry plugins;

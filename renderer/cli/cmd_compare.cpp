@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "renderer/cli/common.h"
+#include "renderer/cli/grow_cells.h"
 #include "renderer/image/contact_sheet.h"
 #include "renderer/image/image_output.h"
 #include "renderer/plugins/plugin_loader.h"
@@ -88,6 +89,7 @@ void bake_atlas_for_texture(const renderer::SceneDesc &desc, int res, TempDir &d
 int run(const CompareCliOptions &o) {
     const auto control = o.threads.apply();
     renderer::SceneDesc desc = renderer::load_scene_file(o.scene);
+    grow_scene_patterns(desc, false);
     if (o.spp > 0) desc.film.spp = o.spp;
     if (!o.res.empty())
         parse_resolution(o.res, 16384, &desc.film.width, &desc.film.height);

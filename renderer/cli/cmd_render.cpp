@@ -12,6 +12,7 @@
 #include "renderer/camera/camera.h"
 #include "renderer/cli/common.h"
 #include "renderer/cli/frame_list.h"
+#include "renderer/cli/grow_cells.h"
 #include "renderer/cli/input_hash.h"
 #include "renderer/cli/render_plan.h"
 #include "renderer/cli/render_tiles.h"
@@ -278,12 +279,15 @@ void write_stats_json(const RenderCliOptions &o, const SceneDesc &desc,
     write_json_file(o.stats_json, j);
 }
 
-int run(const RenderCliOptions &o) {
+}  // namespace
+
+int run_render(const RenderCliOptions &o) {
     const Timer wall;
     const auto control = o.threads.apply();
     SetupPhase::show("render", !o.quiet && Progress::stderr_is_tty());
     SceneDesc desc = load_scene_file(o.scene);
     RenderPlan plan = plan_render(o, desc);
+    grow_scene_patterns(desc, o.quiet);  // after the outputs are checked
     const PluginRegistry plugins;
     plan.settings = settings_hash(desc, plugins, o.seed, PELAGE_VERSION);
     const std::unique_ptr<Scene> shared_scene = shared_scene_for(desc, plugins);
@@ -309,8 +313,6 @@ int run(const RenderCliOptions &o) {
                     totals.write_seconds);
     return totals.interrupted ? exit_interrupted : 0;
 }
-
-}  // namespace
 
 Runner add_render_command(CLI::App &app) {
     auto o = std::make_shared<RenderCliOptions>();
@@ -353,7 +355,7 @@ Runner add_render_command(CLI::App &app) {
                   "was rendered with the same settings (pelage:settings_xxh3)");
     sub->add_flag("-q,--quiet", o->quiet, "No progress bar, no summary line");
     o->threads.add_to(*sub);
-    return [o] { return run(*o); };
+    return [o] { return run_render(*o); };
 }
 
 }  // namespace pelage::renderer::cli

@@ -7,16 +7,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 #include "renderer/cli/common.h"
-#include "renderer/cli/simulation_surface.h"
-#include "renderer/core/progress.h"
+#include "renderer/cli/grow_cells.h"
 #include "sim/cells_io/cells_file.h"
 #include "sim/cells_io/pattern_stats.h"
 #include "sim/core/input_error.h"
-#include "sim/crps/body_length.h"
-#include "sim/crps/surface.h"
-#include "sim/mosaic/cm_simulation.h"
 
 namespace pelage::renderer::cli {
 namespace {
@@ -31,71 +28,28 @@ struct SimOptions {
 
 int run_sim(const SimOptions &o) {
     const auto control = o.threads.apply();
-    // --- Inputs first: nothing is written unless every input is good ---
-    sim::Preset preset = sim::load_preset(o.preset, data_path("scenes/presets"));
-    if (o.relax == "local")
-        preset.params.relax = sim::RelaxMode::local;
-    else if (o.relax == "global")
-        preset.params.relax = sim::RelaxMode::global;
-
-    // --- The simulation surface: the input, or a copy at the cells' scale
-    //     (simulation_surface.h) ---
-    renderer::SetupPhase::show("pelage sim", renderer::Progress::stderr_is_tty());
-    const SimulationSurface chosen(
-        [&] {
-            const renderer::SetupPhase phase("loading the mesh, building its CRPS");
-            return sim::build_surface(o.mesh);
-        }(),
-        o.mesh, preset, o.cells, o.surface == "auto");
-    const sim::Surface &surface = chosen.surface();
-    const sim::CellScaleReport &cell_scale = chosen.report();
-    const uint64_t initial = chosen.initial_cells();
-    if (cell_scale.simplified)
-        fmt::print(
-            "pelage sim: simulating on {} of the input's {} triangles (edges under "
-            "{:.3g} collapsed, surface kept within {:.3g} of the input, final cell "
-            "spacing about {:.3g}); the .cells file renders on {} through closest "
-            "points, or use --surface input\n",
-            cell_scale.output_triangles, cell_scale.input_triangles,
-            cell_scale.edge_length, cell_scale.max_deviation, cell_scale.cell_spacing,
-            o.mesh);
-
-    sim::CmSimulation simulation(surface.crps, preset.types, preset.params, o.seed);
-    {
-        // The line names this step; the bar that follows measures the growth alone.
-        const renderer::SetupPhase phase("placing and relaxing the initial cells");
-        simulation.initialize(initial);
-    }
-    {
-        renderer::Progress progress("pelage sim", 1000,
-                                    renderer::Progress::stderr_is_tty());
-        uint64_t shown = 0;
-        simulation.run([&](double f) {
-            const uint64_t now = static_cast<uint64_t>(std::clamp(f, 0.0, 1.0) * 1000);
-            if (now > shown) progress.advance(now - shown);
-            shown = std::max(shown, now);
-        });
-        progress.finish();
-    }
-    const sim::SimStats &st = simulation.stats();
-    nlohmann::json params = {
-        {"preset", nlohmann::json::parse(preset.json_text)},
-        {"mesh", o.mesh},
-        {"seed", o.seed},
-        {"initial_cells", st.initial_cells},
-        {"relax", preset.params.relax == sim::RelaxMode::local ? "local" : "global"},
-    };
-    nlohmann::json surface_json = {{"input_triangles", cell_scale.input_triangles},
-                                   {"triangles", surface.mesh.num_triangles()},
-                                   {"simplified", cell_scale.simplified}};
-    if (cell_scale.simplified) {
-        surface_json["edge_length"] = cell_scale.edge_length;
-        surface_json["max_deviation"] = cell_scale.max_deviation;
-    }
-    params["simulation_surface"] = surface_json;
-    const sim::CellsData data =
-        sim::make_cells_data(surface.mesh, surface.crps, simulation.types(),
-                             simulation.cells(), params.dump(), o.seed);
+    if (o.output.empty())
+        std::fprintf(stderr,
+                     "pelage sim: warning: no -o given, the cells will not be saved "
+                     "(only the summary%s is written)\n",
+                     o.stats_json.empty() ? "" : " and --stats-json");
+    GrowRequest request;
+    request.mesh = o.mesh;
+    request.preset = o.preset;
+    request.seed = o.seed;
+    request.initial_cells = o.cells;
+    request.relax = o.relax;
+    request.simplify = o.surface == "auto";
+    request.progress = true;
+    request.note = [](const std::string &text) { fmt::print("pelage sim: {}\n", text); };
+    // Inputs first: grow_cells() reads and checks them all before simulating, and
+    // nothing is written unless the run succeeds.
+    const GrownCells grown = grow_cells(request);
+    const sim::Preset &preset = grown.preset;
+    const sim::SimStats &st = grown.stats;
+    const sim::CellScaleReport &cell_scale = grown.cell_scale;
+    const nlohmann::json &params = grown.params;
+    const sim::CellsData &data = grown.data;
     if (!o.output.empty()) sim::write_cells_file(o.output, data);
 
     const sim::PatternStats ps = sim::compute_pattern_stats(data);
@@ -103,8 +57,8 @@ int run_sim(const SimOptions &o) {
     for (const auto &[name, n] : ps.cells_by_type) by_type[name] = n;
     const double seconds = st.seconds_total;
     fmt::print("pelage sim: {} on {} ({} triangles, area {:.6g}), seed {}\n", preset.name,
-               o.mesh, surface.mesh.num_triangles(), ps.area, o.seed);
-    const double body_length = sim::body_axis(surface.crps).length;
+               o.mesh, grown.triangles, ps.area, o.seed);
+    const double body_length = grown.body_length;
     fmt::print("  body length   {:.4g}   initial cell spacing {:.3g} x body length\n",
                body_length,
                std::sqrt(2 * ps.area / (std::sqrt(3.0) * double(st.initial_cells))) /
@@ -128,7 +82,7 @@ int run_sim(const SimOptions &o) {
                             {"mesh", o.mesh},
                             {"seed", o.seed},
                             {"relax", params["relax"]},
-                            {"triangles", surface.mesh.num_triangles()},
+                            {"triangles", grown.triangles},
                             {"input_triangles", cell_scale.input_triangles},
                             {"simplified", cell_scale.simplified},
                             {"area", ps.area},

@@ -18,6 +18,20 @@ std::string lower_extension(const std::string &path) {
     return e;
 }
 
+// The scene's preview when -o moves the render: beside it, named after it, so that
+// outputs never land where the scene file says while the EXR goes elsewhere.
+// "out.exr" → "out_preview.png"; "out.####.exr" → "out_preview.####.png".
+std::string preview_beside(const std::string &output, const std::string &extension) {
+    const fs::path out(output);
+    std::string stem = out.stem().string(), token;
+    if (const size_t dot = stem.rfind('.');
+        dot != std::string::npos && has_frame_token(stem.substr(dot + 1))) {
+        token = stem.substr(dot);
+        stem.resize(dot);
+    }
+    return (out.parent_path() / (stem + "_preview" + token + extension)).string();
+}
+
 // The frames --frames (and --step) ask for, each inside the animation.
 std::vector<int> requested_frames(const RenderCliOptions &o, const AnimationDesc &anim,
                                   const std::string &scene_path) {
@@ -67,7 +81,11 @@ RenderPlan plan_render(const RenderCliOptions &o, SceneDesc &desc) {
             throw InputError("", 0, "--preview",
                              "a tile has no preview: preview the merged image");
     }
-    plan.preview = plan.tile ? "" : !o.preview.empty() ? o.preview : desc.film.preview;
+    plan.preview = plan.tile            ? ""
+                   : !o.preview.empty() ? o.preview
+                   : !o.output.empty() && !desc.film.preview.empty()
+                       ? preview_beside(o.output, lower_extension(desc.film.preview))
+                       : desc.film.preview;
     const std::string &preview = plan.preview;
     if (!preview.empty()) {
         const std::string e = lower_extension(preview);

@@ -37,6 +37,9 @@ struct RenderPlan {
     int tile_y0 = 0, tile_y1 = 0;
 };
 
+// Runs `pelage render` with these options; returns its exit code.
+int run_render(const RenderCliOptions &o);
+
 // Applies the command-line overrides to `desc`, then checks every output: a missing
 // folder or a bad name fails now, not after the render. Throws pelage::InputError.
 RenderPlan plan_render(const RenderCliOptions &o, SceneDesc &desc);

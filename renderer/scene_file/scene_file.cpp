@@ -255,6 +255,26 @@ AnimationDesc read_animation(Reader r) {
     return a;
 }
 
+// "pattern": {"preset": NAME or file, "seed": N}, grown into the object's "cells" file.
+PatternDesc read_pattern(Reader &object, const json &v, const std::string &cells) {
+    const std::string f = object.field("pattern");
+    if (cells.empty())
+        object.fail(f,
+                    "needs \"cells\": the file the pattern is grown into (e.g. "
+                    "\"cells\": \"coat.cells\", next to the scene)");
+    Reader r(v, f, Reader::scene_of(object));
+    PatternDesc p;
+    p.preset = r.string("preset", "", true);
+    if (p.preset.empty()) r.fail(r.field("preset"), "empty preset name");
+    // A preset file is found next to the scene; a name is one of pelage's presets.
+    if (p.preset.find('/') != std::string::npos ||
+        (p.preset.size() > 5 && p.preset.substr(p.preset.size() - 5) == ".json"))
+        p.preset = r.resolve(p.preset);
+    p.seed = r.unsigned_integer("seed", p.seed, 0, UINT64_MAX);
+    r.finish();
+    return p;
+}
+
 ObjectDesc read_object(Reader r, size_t index) {
     ObjectDesc o;
     o.name = r.string("name", "object" + std::to_string(index));
@@ -262,6 +282,7 @@ ObjectDesc read_object(Reader r, size_t index) {
     if (mesh.empty()) r.fail(r.field("mesh"), "empty mesh path");
     o.mesh = mesh.rfind("procedural:", 0) == 0 ? mesh : r.resolve(mesh);
     o.cells = r.path("cells");
+    if (const json *v = r.take("pattern")) o.pattern = read_pattern(r, *v, o.cells);
     o.normals = r.choice<ObjectDesc::Normals>("normals", o.normals,
                                               {{"auto", ObjectDesc::Normals::automatic},
                                                {"flat", ObjectDesc::Normals::flat},

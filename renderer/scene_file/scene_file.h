@@ -84,12 +84,20 @@ struct MaterialDesc {
     float roughness = 0.3f, ior = 1.5f;
 };
 
+// How an object's cells are grown: `pelage render` grows them into the object's `cells`
+// file when it is missing or was grown from another preset, seed or mesh.
+struct PatternDesc {
+    std::string preset;  // a preset name, or the absolute path of a preset file
+    uint64_t seed = 1;
+};
+
 struct ObjectDesc {
     std::string name;
     std::string mesh;  // absolute path or "procedural:..."
     Affine transform;
     MaterialDesc material;
     std::string cells;  // absolute path or ""
+    std::optional<PatternDesc> pattern;
     enum class Normals { automatic, flat, smooth } normals = Normals::automatic;
     // Deformation (same topology as `mesh`): one pose, or one mesh per animation frame.
     std::vector<std::string> deform;  // absolute paths; empty = rigid

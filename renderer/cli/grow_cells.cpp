@@ -1,0 +1,168 @@
+#include "renderer/cli/grow_cells.h"
+
+#include <fmt/core.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <fstream>
+#include <iterator>
+#include <sstream>
+
+#include "renderer/cli/common.h"
+#include "renderer/cli/input_hash.h"
+#include "renderer/cli/simulation_surface.h"
+#include "renderer/core/progress.h"
+#include "renderer/core/setup_phase.h"
+#include "renderer/scene_file/scene_file.h"
+#include "sim/cells_io/cells_file.h"
+#include "sim/core/input_error.h"
+#include "sim/crps/body_length.h"
+#include "sim/crps/surface.h"
+
+namespace pelage::renderer::cli {
+namespace {
+
+// The mesh's identity for a cached pattern: its content, not its name, so a scene and
+// its files can move together.
+std::string mesh_content_hash(const std::string &mesh) {
+    InputHash h;
+    if (mesh.rfind("procedural:", 0) == 0) {
+        h.add(mesh);
+    } else {
+        std::ifstream in(mesh, std::ios::binary);
+        if (!in) return "";
+        h.add(std::string(std::istreambuf_iterator<char>(in), {}));
+    }
+    return h.hex();
+}
+
+sim::Preset read_preset(const GrowRequest &r) {
+    sim::Preset preset = sim::load_preset(r.preset, data_path("scenes/presets"));
+    if (r.relax == "local")
+        preset.params.relax = sim::RelaxMode::local;
+    else if (r.relax == "global")
+        preset.params.relax = sim::RelaxMode::global;
+    return preset;
+}
+
+}  // namespace
+
+GrownCells grow_cells(const GrowRequest &r) {
+    GrownCells g;
+    g.preset = read_preset(r);
+    const bool tty = r.progress && Progress::stderr_is_tty();
+    SetupPhase::show(r.label, tty);
+    const SimulationSurface chosen(
+        [&] {
+            const SetupPhase phase("loading the mesh, building its CRPS");
+            return sim::build_surface(r.mesh);
+        }(),
+        r.mesh, g.preset, r.initial_cells, r.simplify);
+    const sim::Surface &surface = chosen.surface();
+    g.cell_scale = chosen.report();
+    g.triangles = surface.mesh.num_triangles();
+    if (g.cell_scale.simplified && r.note)
+        r.note(fmt::format(
+            "simulating on {} of the input's {} triangles (edges under {:.3g} collapsed, "
+            "surface kept within {:.3g} of the input, final cell spacing about {:.3g}); "
+            "the .cells file renders on {} through closest points, or use --surface "
+            "input",
+            g.cell_scale.output_triangles, g.cell_scale.input_triangles,
+            g.cell_scale.edge_length, g.cell_scale.max_deviation,
+            g.cell_scale.cell_spacing, r.mesh));
+
+    sim::CmSimulation simulation(surface.crps, g.preset.types, g.preset.params, r.seed);
+    {
+        // The line names this step; the bar that follows measures the growth alone.
+        const SetupPhase phase("placing and relaxing the initial cells");
+        simulation.initialize(chosen.initial_cells());
+    }
+    {
+        Progress progress(r.label, 1000, tty);
+        uint64_t shown = 0;
+        simulation.run([&](double f) {
+            const uint64_t now = static_cast<uint64_t>(std::clamp(f, 0.0, 1.0) * 1000);
+            if (now > shown) progress.advance(now - shown);
+            shown = std::max(shown, now);
+        });
+        progress.finish();
+    }
+    g.stats = simulation.stats();
+    g.params = {
+        {"preset", nlohmann::json::parse(g.preset.json_text)},
+        {"mesh", r.mesh},
+        {"mesh_xxh3", mesh_content_hash(r.mesh)},
+        {"seed", r.seed},
+        {"initial_cells", g.stats.initial_cells},
+        {"relax", g.preset.params.relax == sim::RelaxMode::local ? "local" : "global"},
+    };
+    nlohmann::json surface_json = {{"input_triangles", g.cell_scale.input_triangles},
+                                   {"triangles", g.triangles},
+                                   {"simplified", g.cell_scale.simplified}};
+    if (g.cell_scale.simplified) {
+        surface_json["edge_length"] = g.cell_scale.edge_length;
+        surface_json["max_deviation"] = g.cell_scale.max_deviation;
+    }
+    g.params["simulation_surface"] = surface_json;
+    g.data = sim::make_cells_data(surface.mesh, surface.crps, simulation.types(),
+                                  simulation.cells(), g.params.dump(), r.seed);
+    g.body_length = sim::body_axis(surface.crps).length;
+    return g;
+}
+
+bool cells_match(const std::string &path, const GrowRequest &r, std::string *why) {
+    auto differs = [&](const std::string &what) {
+        if (why) *why = what;
+        return false;
+    };
+    std::ifstream probe(path, std::ios::binary);
+    if (!probe) return differs("no file");
+    nlohmann::json params;
+    try {
+        params = nlohmann::json::parse(sim::read_cells_file(path).params_json);
+    } catch (const std::exception &) {
+        return differs("unreadable");
+    }
+    const sim::Preset preset = read_preset(r);
+    if (!params.contains("preset") ||
+        params["preset"] != nlohmann::json::parse(preset.json_text))
+        return differs("grown from another preset");
+    if (params.value("seed", uint64_t(0)) != r.seed)
+        return differs("grown with another seed");
+    if (params.value("mesh_xxh3", std::string()) != mesh_content_hash(r.mesh))
+        return differs("grown on another mesh");
+    const std::string relax =
+        preset.params.relax == sim::RelaxMode::local ? "local" : "global";
+    if (params.value("relax", std::string()) != relax)
+        return differs("grown with another relaxation");
+    if (r.initial_cells > 0 &&
+        params.value("initial_cells", uint64_t(0)) != r.initial_cells)
+        return differs("grown from another cell count");
+    return true;
+}
+
+void grow_scene_patterns(const SceneDesc &scene, bool quiet) {
+    for (const ObjectDesc &o : scene.objects) {
+        if (!o.pattern) continue;
+        GrowRequest request;
+        request.mesh = o.mesh;
+        request.preset = o.pattern->preset;
+        request.seed = o.pattern->seed;
+        request.progress = !quiet;
+        request.label = "pattern of " + o.name;
+        std::string why;
+        if (cells_match(o.cells, request, &why)) continue;
+        if (!quiet)
+            std::printf("%s: %s, growing %s (seed %llu) on %s\n", o.cells.c_str(),
+                        why.c_str(), o.pattern->preset.c_str(),
+                        static_cast<unsigned long long>(o.pattern->seed), o.mesh.c_str());
+        const Timer timer;
+        const GrownCells grown = grow_cells(request);
+        sim::write_cells_file(o.cells, grown.data);
+        if (!quiet)
+            std::printf("%s: %zu cells, %.1f s\n", o.cells.c_str(),
+                        grown.data.num_cells(), timer.seconds());
+    }
+}
+
+}  // namespace pelage::renderer::cli
