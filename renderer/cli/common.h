@@ -33,6 +33,7 @@ Runner add_bake_command(CLI::App &app);
 Runner add_movie_command(CLI::App &app);
 Runner add_matte_command(CLI::App &app);
 Runner add_merge_command(CLI::App &app);
+Runner add_look_command(CLI::App &app);
 
 // --threads N (0 = all cores). Keep the returned control alive while working.
 struct ThreadOption {

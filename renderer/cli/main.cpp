@@ -23,6 +23,7 @@ int main(int argc, char **argv) {
         renderer::cli::Runner run = fn(app);
         commands.emplace_back(app.get_subcommands({})[before], std::move(run));
     };
+    add(renderer::cli::add_look_command);
     add(renderer::cli::add_crps_command);
     add(renderer::cli::add_sim_command);
     add(renderer::cli::add_stats_command);

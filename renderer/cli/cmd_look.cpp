@@ -1,0 +1,151 @@
+// `pelage look MESH`: from a mesh to a picture in one command. Grows a preset's pattern
+// on the mesh, frames it (three-quarter view, ground, sun and sky), writes the scene
+// file next to the output and renders it, so the user continues from that scene.
+#include <fmt/core.h>
+
+#include <filesystem>
+
+#include "renderer/camera/auto_frame.h"
+#include "renderer/cli/common.h"
+#include "renderer/cli/look_scene.h"
+#include "renderer/cli/render_plan.h"
+#include "sim/core/input_error.h"
+#include "sim/mesh/mesh_load.h"
+#include "sim/mosaic/cell_types.h"
+
+namespace pelage::renderer::cli {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct LookOptions {
+    std::string mesh, preset = "giraffe-reticulata", output, res = "960x540", up = "y",
+                      view = "Filmic", stats_json;
+    uint64_t seed = 1;
+    int spp = 64;
+    bool fur = false, quiet = false;
+    ThreadOption threads;
+};
+
+Vec3f parse_up(const std::string &text) {
+    const std::pair<const char *, Vec3f> axes[] = {
+        {"x", {1, 0, 0}},   {"y", {0, 1, 0}},   {"z", {0, 0, 1}},
+        {"-x", {-1, 0, 0}}, {"-y", {0, -1, 0}}, {"-z", {0, 0, -1}}};
+    for (const auto &[name, v] : axes)
+        if (text == name) return v;
+    throw InputError("", 0, "--up", "\"" + text + "\": expected x, y, z, -x, -y or -z");
+}
+
+// The mesh's path as the scene names it: relative when it sits in the scene's folder
+// (the two move together), absolute otherwise.
+std::string mesh_reference(const std::string &mesh, const fs::path &scene_dir) {
+    if (mesh.rfind("procedural:", 0) == 0) return mesh;
+    const fs::path abs = fs::absolute(mesh).lexically_normal();
+    const fs::path rel = abs.lexically_relative(scene_dir);
+    if (!rel.empty() && *rel.begin() != "..") return rel.generic_string();
+    return abs.string();
+}
+
+int run(const LookOptions &o) {
+    // --- Everything checked before anything is written ---
+    fs::path output = o.output;
+    if (output.empty()) {
+        const std::string stem = o.mesh.rfind("procedural:", 0) == 0
+                                     ? "procedural"
+                                     : fs::path(o.mesh).stem().string();
+        output = stem + ".exr";
+    }
+    if (output.extension() != ".exr")
+        throw InputError("", 0, "-o",
+                         "\"" + output.string() +
+                             "\": the render is written as OpenEXR "
+                             "(.exr)");
+    const fs::path dir = fs::absolute(output).parent_path().lexically_normal();
+    if (!fs::is_directory(dir))
+        throw InputError(
+            "", 0, "-o",
+            "\"" + output.string() + "\": folder " + dir.string() + " does not exist");
+    int width = 0, height = 0;
+    parse_resolution(o.res, 65536, &width, &height);
+    const Vec3f up = parse_up(o.up);
+    sim::load_preset(o.preset, data_path("scenes/presets"));  // a bad preset fails now
+    const sim::TriangleMesh mesh = sim::load_mesh(o.mesh);
+    std::vector<Vec3f> points;
+    points.reserve(mesh.positions.size());
+    for (const sim::Vec3d &p : mesh.positions)
+        points.push_back({float(p.x), float(p.y), float(p.z)});
+
+    FramingRequest framing;
+    framing.up = up;
+    framing.aspect = float(width) / float(height);
+    LookSetup setup;
+    setup.framing = frame_points(points, framing);
+    setup.up = up;
+    const std::string stem = output.stem().string();
+    setup.mesh = mesh_reference(o.mesh, dir);
+    setup.cells = stem + ".cells";
+    setup.output = output.filename().string();
+    setup.preview = stem + "_preview.png";
+    if (o.mesh.rfind("procedural:", 0) != 0)
+        setup.object_name = fs::path(o.mesh).stem().string();
+    setup.preset = o.preset;
+    setup.seed = o.seed;
+    setup.width = width;
+    setup.height = height;
+    setup.spp = o.spp;
+    setup.view = o.view;
+    setup.fur = o.fur;
+
+    const fs::path scene_path = dir / (stem + ".json");
+    write_json_file(scene_path.string(), look_scene(setup));
+    if (!o.quiet)
+        fmt::print(
+            "pelage look: wrote {} (radius {:.4g}, camera at {:.4g} radii); "
+            "edit it and run `pelage render {}`\n",
+            scene_path.string(), setup.framing.radius,
+            length(setup.framing.camera.position - setup.framing.center) /
+                setup.framing.radius,
+            scene_path.string());
+
+    RenderCliOptions ro;
+    ro.scene = scene_path.string();
+    ro.quiet = o.quiet;
+    ro.threads = o.threads;
+    ro.stats_json = o.stats_json;
+    return run_render(ro);
+}
+
+}  // namespace
+
+Runner add_look_command(CLI::App &app) {
+    auto o = std::make_shared<LookOptions>();
+    CLI::App *sub = app.add_subcommand(
+        "look",
+        "Grow a preset on a mesh, frame it and render it; writes the scene next to the "
+        "output to continue from");
+    sub->add_option("mesh", o->mesh, "Mesh file (.off, .obj, ...) or procedural:...")
+        ->required();
+    sub->add_option("--preset", o->preset,
+                    "Preset name (`pelage sim --help` lists where) or a preset file")
+        ->capture_default_str();
+    sub->add_option("--seed", o->seed, "Seed of the pattern")->capture_default_str();
+    sub->add_option("-o,--output", o->output,
+                    "Output EXR; the scene (.json), the cells (.cells) and the preview "
+                    "(_preview.png) are written beside it (default: MESH_NAME.exr here)");
+    sub->add_option("--res", o->res, "Resolution WIDTHxHEIGHT")->capture_default_str();
+    sub->add_option("--spp", o->spp, "Samples per pixel")
+        ->check(CLI::Range(1, 1 << 20))
+        ->capture_default_str();
+    sub->add_option("--up", o->up, "The mesh's up axis: x, y, z, -x, -y or -z")
+        ->capture_default_str();
+    sub->add_option("--view", o->view, "OpenColorIO view of the preview")
+        ->capture_default_str();
+    sub->add_flag("--fur", o->fur, "Grow fur on the animal, scaled to its size");
+    sub->add_option("--stats-json", o->stats_json,
+                    "Write the render's statistics as JSON");
+    sub->add_flag("-q,--quiet", o->quiet, "No progress, no summary");
+    o->threads.add_to(*sub);
+    return [o] { return run(*o); };
+}
+
+}  // namespace pelage::renderer::cli

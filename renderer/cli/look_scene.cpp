@@ -1,0 +1,109 @@
+#include "renderer/cli/look_scene.h"
+
+#include <fmt/core.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace pelage::renderer::cli {
+namespace {
+
+using nlohmann::json;
+
+// Six significant digits: the file reads well and the framing moves far less than a
+// pixel.
+double round6(double x) { return std::stod(fmt::format("{:.6g}", x)); }
+
+json vec(Vec3f v) { return json::array({round6(v.x), round6(v.y), round6(v.z)}); }
+
+// The ground: a plane through the object's lowest point, perpendicular to `up`, large
+// enough to reach the horizon in the framed view.
+json ground_object(const LookSetup &s) {
+    const Framing &f = s.framing;
+    const Vec3f y{0, 1, 0};
+    json transform = {{"scale", round6(40 * f.radius)}};
+    // procedural:plane lies in the xz-plane, facing +y: turn it to face `up`.
+    const Vec3f axis = cross(y, s.up);
+    const float c = dot(y, s.up);
+    if (length(axis) > 1e-6f)
+        transform["rotate"] = {
+            round6(std::acos(std::clamp(c, -1.0f, 1.0f)) * 180 / 3.14159265358979),
+            round6(axis.x), round6(axis.y), round6(axis.z)};
+    else if (c < 0)
+        transform["rotate"] = {180, 1, 0, 0};
+    const Vec3f centre_on_ground = f.center + s.up * (f.ground - dot(f.center, s.up));
+    transform["translate"] = vec(centre_on_ground);
+    return {{"name", "ground"},
+            {"mesh", "procedural:plane:1x1"},
+            {"transform", transform},
+            {"material", {{"shader", "diffuse"}, {"params", {{"albedo", 0.35}}}}}};
+}
+
+// Fur at the scale of the body: the coat of scenes/fur_cow_giraffe.json (the cow's
+// bounding radius is 0.608) with every length scaled by the object's bounding radius,
+// so the strand count stays near 300 000 whatever the mesh's units.
+json fur_block(const LookSetup &s) {
+    const double k = s.framing.radius / 0.608;
+    const Vec3f comb = -s.up + s.framing.long_axis * 0.3f;
+    return {{"density", round6(300000 / (k * k))},
+            {"density_by_type", {1.2, 1.0}},
+            {"length", round6(0.012 * k)},
+            {"length_variation", 0.3},
+            {"root_radius", round6(0.0004 * k)},
+            {"tip_radius", round6(0.0001 * k)},
+            {"segments", 6},
+            {"comb", vec(comb)},
+            {"comb_angle", 20},
+            {"comb_jitter", 12},
+            {"gravity", 0.2},
+            {"clump", 0.2},
+            {"clump_radius", round6(0.004 * k)},
+            {"melanin_scale", 2.5},
+            {"seed", s.seed}};
+}
+
+}  // namespace
+
+json look_scene(const LookSetup &s) {
+    const Framing &f = s.framing;
+    // The sun comes from above, over the camera's left shoulder.
+    const Vec3f right = normalize(cross(-f.view, s.up));
+    const Vec3f towards_sun = normalize(s.up * 1.2f - right * 0.6f + f.view * 0.5f);
+    json animal = {{"name", s.object_name},
+                   {"mesh", s.mesh},
+                   {"cells", s.cells},
+                   {"pattern", {{"preset", s.preset}, {"seed", s.seed}}},
+                   {"normals", "smooth"},
+                   {"material",
+                    {{"shader", "clonal_mosaic"},
+                     {"params", {{"jitter", 0.15}}},
+                     {"bsdf", "coated"},
+                     {"roughness", 0.45},
+                     {"ior", 1.5}}}};
+    if (s.fur) animal["fur"] = fur_block(s);
+    return {{"camera",
+             {{"type", "pinhole"},
+              {"position", vec(f.camera.position)},
+              {"look_at", vec(f.camera.look_at)},
+              {"up", vec(f.camera.up)},
+              {"fov", round6(f.camera.fov_deg)}}},
+            {"film",
+             {{"width", s.width},
+              {"height", s.height},
+              {"spp", s.spp},
+              {"filter", {{"type", "gaussian"}, {"radius", 1.5}}},
+              {"output", s.output},
+              {"preview", s.preview},
+              {"view", s.view}}},
+            {"lights",
+             {{{"type", "environment"}, {"color", {0.55, 0.68, 0.9}}, {"intensity", 0.8}},
+              {{"type", "distant"},
+               {"direction", vec(-towards_sun)},
+               {"angle", 0.53},
+               {"color", {1.0, 0.93, 0.82}},
+               {"intensity", 4.0}}}},
+            {"objects", {animal, ground_object(s)}},
+            {"integrator", {{"max_depth", 6}, {"rr_depth", 3}}}};
+}
+
+}  // namespace pelage::renderer::cli

@@ -1,0 +1,28 @@
+// The scene `pelage look` writes: the object framed (renderer/camera/auto_frame.h), its
+// pattern grown from a preset, on a ground plane under a sky and a sun. It is a complete
+// scene file, so the user edits it and renders it again with `pelage render`.
+#pragma once
+
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "renderer/camera/auto_frame.h"
+
+namespace pelage::renderer::cli {
+
+struct LookSetup {
+    Framing framing;
+    Vec3f up{0, 1, 0};
+    // Paths as the scene file writes them (relative to the scene's folder or absolute).
+    std::string mesh, cells, output, preview;
+    std::string object_name = "animal";
+    std::string preset = "giraffe-reticulata";
+    uint64_t seed = 1;
+    int width = 960, height = 540, spp = 64;
+    std::string view = "Filmic";
+    bool fur = false;
+};
+
+nlohmann::json look_scene(const LookSetup &s);
+
+}  // namespace pelage::renderer::cli

@@ -1,0 +1,144 @@
+// `pelage look MESH`: a picture of any mesh whatever its units, the scene it writes
+// renders again from anywhere, fur scaled to the animal, bad input refused before any
+// file is written.
+#include <OpenImageIO/imageio.h>
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "tests/test_paths.h"
+
+namespace pelage::test {
+namespace {
+
+namespace fs = std::filesystem;
+
+// A quick two-type preset (a few hundred cells, no division) so the test grows in a
+// second; the pattern's scale comes from the mesh's area, like every preset's.
+std::string quick_preset(const TempDir &tmp) {
+    return tmp.write("quick.json", R"({"name": "quick", "types": [
+        {"name": "F", "colour": [0.1, 0.05, 0.02], "eumelanin": 0.8, "division_time": "never",
+         "initial_probability": 0.3},
+        {"name": "B", "colour": [0.9, 0.6, 0.3], "pheomelanin": 0.5, "division_time": "never",
+         "initial_probability": 0.7}],
+        "adhesion": [[0.5, 0.0], [0.0, 0.5]],
+        "simulation": {"initial_cells": 400, "initial_relax_steps": 5,
+                       "w_r": 2.0, "w_d": 0.1, "rho": 5, "end_time": 1, "relax": "global"}})");
+}
+
+// The pixel box of object 0 (the animal) in the EXR's id.object layer, as fractions of
+// the image: {x0, y0, x1, y1}; all −1 when it is nowhere.
+std::array<double, 4> animal_box(const std::string &exr) {
+    auto in = OIIO::ImageInput::open(exr);
+    if (!in) return {-1, -1, -1, -1};
+    const OIIO::ImageSpec &s = in->spec();
+    const int c = s.channelindex("id.object");
+    if (c < 0) return {-1, -1, -1, -1};
+    std::vector<float> id(size_t(s.width) * s.height);
+    in->read_image(0, 0, c, c + 1, OIIO::TypeDesc::FLOAT, id.data());
+    int x0 = s.width, y0 = s.height, x1 = -1, y1 = -1;
+    for (int y = 0; y < s.height; ++y)
+        for (int x = 0; x < s.width; ++x)
+            if (id[size_t(y) * s.width + x] == 0) {
+                x0 = std::min(x0, x);
+                y0 = std::min(y0, y);
+                x1 = std::max(x1, x);
+                y1 = std::max(y1, y);
+            }
+    if (x1 < 0) return {-1, -1, -1, -1};
+    return {double(x0) / s.width, double(y0) / s.height, double(x1 + 1) / s.width,
+            double(y1 + 1) / s.height};
+}
+
+// Framed: inside the image with a margin, and filling it along one side.
+void expect_framed(const std::string &exr, const std::string &what) {
+    const auto b = animal_box(exr);
+    ASSERT_GE(b[0], 0) << what << ": the animal is not in the picture";
+    for (int k = 0; k < 2; ++k) {
+        EXPECT_GT(b[k], 0.01) << what;
+        EXPECT_LT(b[k + 2], 0.99) << what;
+    }
+    EXPECT_GT(std::max(b[2] - b[0], b[3] - b[1]), 0.75) << what << ": framed too loosely";
+}
+
+TEST(LookCli, FramesMeshesOfAnyUnitsAndWritesAReusableScene) {
+    // The elk is in the hundreds of units, the cow about one unit long.
+    for (const std::string name : {"elk", "cow"}) {
+        TempDir tmp;
+        const std::string out = tmp.file(name + ".exr");
+        std::string stdout_text, err;
+        ASSERT_EQ(run_pelage("look " + sample_mesh(name + ".off") + " --preset " +
+                                 quick_preset(tmp) + " --res 96x54 --spp 2 -o " + out,
+                             &stdout_text, &err),
+                  0)
+            << err;
+        for (const char *ext : {".exr", ".json", ".cells", "_preview.png"})
+            EXPECT_TRUE(fs::exists(tmp.file(name + ext))) << name << ext;
+        expect_framed(out, name);
+
+        // The scene names its cells and outputs relative to itself: copied with its
+        // cells elsewhere, it renders from any working folder without growing again.
+        TempDir moved;
+        fs::copy_file(tmp.file(name + ".json"), moved.file("scene.json"));
+        fs::copy_file(tmp.file(name + ".cells"), moved.file(name + ".cells"));
+        ASSERT_EQ(
+            run_pelage("render " + moved.file("scene.json") + " -q", &stdout_text, &err),
+            0)
+            << err;
+        EXPECT_TRUE(fs::exists(moved.file(name + ".exr")));
+        EXPECT_TRUE(fs::exists(moved.file(name + "_preview.png")));
+        EXPECT_EQ(stdout_text, "") << "-q and no growing expected";
+        expect_framed(moved.file(name + ".exr"), name + " moved");
+    }
+}
+
+TEST(LookCli, FurStrandCountDoesNotDependOnTheUnits) {
+    std::vector<double> strands;
+    for (const std::string name : {"elk", "cow"}) {
+        TempDir tmp;
+        std::string err;
+        ASSERT_EQ(
+            run_pelage("look " + sample_mesh(name + ".off") + " --preset " +
+                           quick_preset(tmp) + " --fur -q --res 32x18 --spp 1 -o " +
+                           tmp.file("a.exr") + " --stats-json " + tmp.file("s.json"),
+                       nullptr, &err),
+            0)
+            << err;
+        const auto s = nlohmann::json::parse(std::ifstream(tmp.file("s.json")));
+        strands.push_back(s.value("fur_strands", 0.0));
+    }
+    // Both near the shipped cow's 300 000 strands per unit of (radius / 0.608)²; the
+    // elk's body has its own proportions, so only the order of magnitude must agree.
+    for (const double n : strands) {
+        EXPECT_GT(n, 5e4);
+        EXPECT_LT(n, 2e6);
+    }
+}
+
+TEST(LookCli, BadInputWritesNothing) {
+    TempDir tmp;
+    const std::string out = tmp.file("x.exr");
+    std::string err;
+    EXPECT_EQ(run_pelage("look " + tmp.file("missing.off") + " -o " + out, nullptr, &err),
+              2);
+    EXPECT_NE(err.find("missing.off"), std::string::npos) << err;
+    EXPECT_EQ(
+        run_pelage("look " + sample_mesh("cow.off") + " --up w -o " + out, nullptr, &err),
+        2);
+    EXPECT_NE(err.find("--up"), std::string::npos) << err;
+    EXPECT_EQ(run_pelage("look " + sample_mesh("cow.off") + " -o " + tmp.file("x.png"),
+                         nullptr, &err),
+              2);
+    EXPECT_EQ(run_pelage(
+                  "look " + sample_mesh("cow.off") + " --preset no-such-preset -o " + out,
+                  nullptr, &err),
+              2);
+    EXPECT_NE(err.find("no-such-preset"), std::string::npos) << err;
+    EXPECT_TRUE(fs::is_empty(tmp.path()));
+}
+
+}  // namespace
+}  // namespace pelage::test
