@@ -184,9 +184,10 @@ TEST(CliVocabulary, QuietLeavesStandardOutputEmpty) {
     EXPECT_EQ(out, "");
     EXPECT_TRUE(std::filesystem::exists(tmp.file("c.cells")));
 
-    for (const std::string &cmd :
-         {"crps --mesh procedural:sphere:8x8", "stats " + tmp.file("c.cells"),
-          std::string("bench hair --configs 1 --theta-steps 16")}) {
+    const std::vector<std::string> commands = {"crps --mesh procedural:sphere:8x8",
+                                               "stats " + tmp.file("c.cells"),
+                                               "bench hair --configs 1 --theta-steps 16"};
+    for (const std::string &cmd : commands) {
         ASSERT_EQ(run_pelage(cmd, &out, &err), 0) << cmd << ": " << err;
         EXPECT_NE(out, "") << cmd;
         ASSERT_EQ(run_pelage(cmd + " -q", &out, &err), 0) << cmd << ": " << err;
@@ -336,6 +337,7 @@ TEST(CliVocabulary, ColourAndColorBothReadAndBothGivenIsExitTwo) {
     const std::string preset = R"({"name": "p", "types": [
         {"name": "F", "COLOUR_KEY": [0.1, 0.05, 0.02], "division_time": 1, "initial_probability": 0.3},
         {"name": "B", "colour": [0.9, 0.6, 0.3], "division_time": "never", "initial_probability": 0.7}],
+        "adhesion": [[0.5, 0.5], [0.5, 0.5]],
         "simulation": {"initial_cells": 80, "w_r": 2, "w_d": 0.1, "rho": 5, "end_time": 0.5}})";
     auto with_key = [&](const std::string &key) {
         std::string text = preset;
