@@ -287,6 +287,66 @@ TEST(CliVocabulary, StatsJsonIsWrittenAndItsFolderCheckedFirst) {
     EXPECT_FALSE(std::filesystem::exists(tmp.file("never.cells")));
 }
 
+// matte and movie: their --stats-json against the files they wrote.
+TEST(CliVocabulary, MatteAndMovieStatsJsonDescribeTheirFiles) {
+    TempDir tmp;
+    std::string out, err;
+    std::string scene = tiny_scene();
+    const std::string film_end = "\"spp\": 2}";
+    scene.replace(scene.find(film_end), film_end.size(),
+                  R"("spp": 2, "cryptomatte": ["object"]})");
+    const std::string exr = tmp.file("c.exr");
+    ASSERT_EQ(
+        run_pelage("render -q " + tmp.write("c.json", scene) + " -o " + exr, &out, &err),
+        0)
+        << err;
+    ASSERT_EQ(run_pelage("matte " + exr + " -q --name '*' -o " + tmp.file("m.exr") +
+                             " --stats-json " + tmp.file("m.json"),
+                         &out, &err),
+              0)
+        << err;
+    EXPECT_EQ(out, "");
+    const std::vector<float> alpha = pixels(tmp.file("m.exr"));
+    ASSERT_EQ(alpha.size(), 20u * 14u);
+    double sum = 0;
+    size_t covered = 0;
+    for (const float a : alpha) {
+        sum += a;
+        covered += a > 0;
+    }
+    const nlohmann::json m = read_json(tmp.file("m.json"));
+    EXPECT_EQ(m["names"], nlohmann::json::array({"object0"})) << m.dump();
+    EXPECT_NEAR(m["coverage"].get<double>(), sum / alpha.size(), 1e-6);
+    EXPECT_EQ(m["pixels_covered"], covered);
+    EXPECT_GT(covered, 0u);
+    EXPECT_LT(covered, alpha.size());
+
+    if (std::system("command -v ffmpeg >/dev/null 2>&1") != 0)
+        GTEST_SKIP() << "ffmpeg is not installed (quickstart.sh does)";
+    std::string animated = tiny_scene();
+    animated.replace(
+        animated.rfind('}'), 1,
+        R"(, "animation": {"frames": 4, "fps": 8, "turntable": {"degrees": 20}}})");
+    ASSERT_EQ(run_pelage("render -q " + tmp.write("a.json", animated) +
+                             " --frames 0-3 -o " + tmp.file("f.####.exr"),
+                         &out, &err),
+              0)
+        << err;
+    ASSERT_EQ(run_pelage("movie -q " + tmp.file("f.####.exr") + " -o " +
+                             tmp.file("f.mp4") + " --stats-json " + tmp.file("v.json"),
+                         &out, &err),
+              0)
+        << err;
+    EXPECT_EQ(out, "");
+    const nlohmann::json v = read_json(tmp.file("v.json"));
+    EXPECT_EQ(v["frames"], 4) << v.dump();
+    EXPECT_EQ(v["first_frame"], 0);
+    EXPECT_EQ(v["last_frame"], 3);
+    EXPECT_EQ(v["fps"], 8.0);
+    EXPECT_EQ(v["codec"], "h264");
+    EXPECT_EQ(v["bytes"], std::filesystem::file_size(tmp.file("f.mp4")));
+}
+
 TEST(CliVocabulary, ColourAndColorBothReadAndBothGivenIsExitTwo) {
     TempDir tmp;
     std::string out, err;
