@@ -110,6 +110,18 @@ TEST(CliVocabulary, ResTakesWidthXHeightEverywhere) {
     EXPECT_EQ(bn["width"], 12) << bn.dump();
     EXPECT_EQ(bn["height"], 8);
 
+    ASSERT_EQ(run_pelage("bench fur --strands 50 --segments 2 --res 16x10 --spp 1 -q "
+                         "--stats-json " +
+                             tmp.file("bf.json"),
+                         &out, &err),
+              0)
+        << err;
+    EXPECT_EQ(out, "");
+    const nlohmann::json bf = read_json(tmp.file("bf.json"));
+    ASSERT_EQ(bf["runs"].size(), 1u) << bf.dump();
+    EXPECT_EQ(bf["runs"][0]["width"], 16);
+    EXPECT_EQ(bf["runs"][0]["height"], 10);
+
     // A fixed aspect takes one number; where the aspect is free it is refused, naming
     // --res and the form it takes.
     EXPECT_EQ(run_pelage("render " + scene + " -q --res 24 -o " + tmp.file("x.exr"),
