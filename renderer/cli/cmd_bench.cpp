@@ -7,7 +7,7 @@
 namespace pelage::renderer::cli {
 
 void BenchOutput::add_to(CLI::App &benchmark) {
-    stats_json.add_to(benchmark, "the result (the JSON printed on stdout)");
+    stats_json.add_to(benchmark, "the benchmark's result (what stdout shows)");
     quiet.add_to(benchmark);
 }
 
