@@ -46,9 +46,9 @@ oiiotool "$tmp/mattes_beauty.png" --text:x=10:y=24:size=18:font=$font "beauty" \
     "CryptoLineage: cow/clone 1*" \
     --mosaic:pad=4 3x1 -o images/cryptomatte_cow.png
 # The simulation alone: every cell a dot (pelage preview).
-$pelage sim --mesh scenes/meshes/cow.off --preset giraffe-reticulata --cells 3000 --seed 1 \
+$pelage sim --mesh scenes/meshes/cow.off --preset giraffe-reticulata --initial-cells 3000 --seed 1 \
     -o "$tmp/cow3000.cells"
-$pelage preview "$tmp/cow3000.cells" -o images/sim_cow_giraffe_reticulata.png --size 480
+$pelage preview "$tmp/cow3000.cells" -o images/sim_cow_giraffe_reticulata.png --res 480
 
 # The gallery (fonts-dejavu-core labels it): every preset on the sphere and on the cow, labelled, and the look of each
 # measured by `pelage stats --mesh` (docs/data/gallery.json, shown in
@@ -67,7 +67,7 @@ print(round(100/f["initial_probability"]) if "initial_spacing" in s else 0)' "$p
         mesh=procedural:sphere:20x20
         [ $kind = cow ] && mesh=scenes/meshes/cow.off
         extra=()
-        [ $kind = sphere ] && [ "$cells" != 0 ] && extra=(--cells "$cells")
+        [ $kind = sphere ] && [ "$cells" != 0 ] && extra=(--initial-cells "$cells")
         $pelage sim --mesh "$mesh" --preset "$preset" --seed 1 "${extra[@]}" \
             -o scenes/gallery_$kind.cells >/dev/null
         $pelage stats scenes/gallery_$kind.cells --mesh "$mesh" --json >"$tmp/$name.$kind.json"

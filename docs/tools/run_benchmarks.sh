@@ -44,31 +44,32 @@ print(json.dumps({"cpu": model, "logical_cpus": os.cpu_count(),
 PY
 
 # --- Performance ---
-run bench_crps    "$pelage" bench crps --repeat 2 --threads 1 >"$out/bench_crps.json"
-run bench_sim     "$pelage" bench sim --cells 1000 5000 10000 --large-initial 25000 \
-                      --large-target 100000 --threads 1 \
-                      >"$out/bench_sim.json"
-run bench_lookup  "$pelage" bench lookup --cells 20000 --queries 500000 --threads 1 \
-                      >"$out/bench_lookup.json"
-run bench_render  "$pelage" bench render --res 1280x720 --spp 4 --repeat 3 >"$out/bench_render.json"
-run bench_hair    "$pelage" bench hair --configs 16 >"$out/bench_hair.json"
+run bench_crps    "$pelage" bench crps --repeat 2 --threads 1 -q \
+                      --stats-json "$out/bench_crps.json"
+run bench_sim     "$pelage" bench sim --initial-cells 1000 5000 10000 --large-initial 25000 \
+                      --large-target 100000 --threads 1 -q --stats-json "$out/bench_sim.json"
+run bench_lookup  "$pelage" bench lookup --cell-count 20000 --queries 500000 --threads 1 -q \
+                      --stats-json "$out/bench_lookup.json"
+run bench_render  "$pelage" bench render --res 1280x720 --spp 4 --repeat 3 -q \
+                      --stats-json "$out/bench_render.json"
+run bench_hair    "$pelage" bench hair --configs 16 -q --stats-json "$out/bench_hair.json"
 run bench_fur     "$pelage" bench fur --strands 20000 100000 --res 320x240 --spp 4 --threads 1 \
-                      >"$out/bench_fur.json"
+                      -q --stats-json "$out/bench_fur.json"
 # Noise against a converged reference, cached in build/noise_refs (keyed by the binary
 # and the inputs): the first run after a build renders the references (a few minutes).
 run sim_walter_cheetah "$pelage" sim --mesh scenes/meshes/cow.off --preset walter-cheetah \
                       --seed 1 --threads 1 -o scenes/cow_walter_cheetah.cells
 run bench_noise   "$pelage" bench noise scenes/bench_cow_sun_sky.json --spp 16 64 256 \
-                      --seeds 2 --cache build/noise_refs >"$out/bench_noise.json"
+                      --seeds 2 --cache build/noise_refs -q --stats-json "$out/bench_noise.json"
 run bench_noise_fur "$pelage" bench noise scenes/bench_cow_sun_sky_fur.json --spp 16 64 \
                       --seeds 2 --reference-spp 1024 --cache build/noise_refs \
-                      >"$out/bench_noise_fur.json"
+                      -q --stats-json "$out/bench_noise_fur.json"
 run sim_cheetah   "$pelage" sim --mesh procedural:sphere:20x20 --preset teo-cheetah --seed 1 \
                       --threads 1 -o scenes/sphere_cheetah.cells
 run compare       "$pelage" compare scenes/sphere_cheetah.json --res 500x500 --spp 2 \
                       --shaders clonal_mosaic,worley,perlin,texture,diffuse --repeat 3 \
                       --atlas-res 1024 --lookups 100000 --threads 1 \
-                      --report "$out/compare_sphere_cheetah.json"
+                      --stats-json "$out/compare_sphere_cheetah.json"
 
 # --- Validation and the default job's statistics ---
 run crps_cow      "$pelage" crps --mesh scenes/meshes/cow.off --threads 1 \

@@ -5,6 +5,15 @@
 
 namespace pelage::renderer::cli {
 
+// What every benchmark shares: its result, one JSON object, printed on stdout (unless
+// -q) and written to --stats-json.
+struct BenchOutput {
+    QuietOption quiet;
+    StatsJsonOption stats_json;
+    void add_to(CLI::App &benchmark);
+    void emit(const nlohmann::json &j) const;
+};
+
 Runner add_bench_crps(CLI::App &bench);
 Runner add_bench_lookup(CLI::App &bench);
 Runner add_bench_sim(CLI::App &bench);

@@ -1,9 +1,20 @@
 // `pelage bench <what>`: benchmarks of the hot paths, one JSON object on stdout each.
+#include <iostream>
 #include <vector>
 
 #include "renderer/cli/bench.h"
 
 namespace pelage::renderer::cli {
+
+void BenchOutput::add_to(CLI::App &benchmark) {
+    stats_json.add_to(benchmark, "the benchmark's result (what stdout shows)");
+    quiet.add_to(benchmark);
+}
+
+void BenchOutput::emit(const nlohmann::json &j) const {
+    if (!quiet) std::cout << j.dump(2) << std::endl;
+    stats_json.write(j);
+}
 
 Runner add_bench_command(CLI::App &app) {
     CLI::App *bench =

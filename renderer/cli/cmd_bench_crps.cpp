@@ -18,6 +18,7 @@ struct BenchCrpsOptions {
     std::vector<std::string> meshes;
     int repeat = 3;
     ThreadOption threads;
+    BenchOutput out;
 };
 
 nlohmann::json bench_one(const std::string &path, int repeat) {
@@ -107,7 +108,7 @@ int run(const BenchCrpsOptions &o) {
         j["ns_per_triangle_ratio"] = runs.back()["ns_per_triangle"].get<double>() /
                                      runs.front()["ns_per_triangle"].get<double>();
     }
-    std::cout << j.dump(2) << std::endl;
+    o.out.emit(j);
     return 0;
 }
 
@@ -123,6 +124,7 @@ Runner add_bench_crps(CLI::App &bench) {
     sub->add_option("--repeat", o->repeat, "Builds per mesh; the fastest counts")
         ->check(CLI::Range(1, 100));
     o->threads.add_to(*sub);
+    o->out.add_to(*sub);
     return [o] { return run(*o); };
 }
 

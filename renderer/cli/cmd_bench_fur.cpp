@@ -32,6 +32,7 @@ struct BenchFurOptions {
     std::string curve = "round";
     uint64_t child = 0;  // internal: run one configuration in this process
     ThreadOption threads;
+    BenchOutput out;  // the parent's; a child prints its one line regardless
 };
 
 constexpr const char *sphere_mesh = "procedural:sphere:20x20";
@@ -39,9 +40,9 @@ constexpr const char *sphere_mesh = "procedural:sphere:20x20";
 std::string scene_text(const BenchFurOptions &o, double density, bool with_fur) {
     std::ostringstream s;
     s << R"({"camera": {"position": [0, 0.6, 3.6], "look_at": [0, 0, 0], "fov": 38},
-  "lights": [{"type": "environment", "color": [0.55, 0.68, 0.9], "intensity": 0.8},
+  "lights": [{"type": "environment", "colour": [0.55, 0.68, 0.9], "intensity": 0.8},
              {"type": "distant", "direction": [-0.45, -0.8, -0.4], "angle": 0.53,
-              "color": [1.0, 0.93, 0.82], "intensity": 4.0}],
+              "colour": [1.0, 0.93, 0.82], "intensity": 4.0}],
   "objects": [{"mesh": ")"
       << sphere_mesh << R"(", "normals": "smooth",
                "material": {"shader": "diffuse", "params": {"albedo": [0.6, 0.4, 0.2]}})";
@@ -155,7 +156,7 @@ int run(const BenchFurOptions &o) {
         }
         runs.push_back(nlohmann::json::parse(out));
     }
-    std::cout << nlohmann::json{{"runs", runs}}.dump(2) << std::endl;
+    o.out.emit({{"runs", runs}});
     return 0;
 }
 
@@ -180,6 +181,7 @@ Runner add_bench_fur(CLI::App &bench) {
     cmd->add_option("--child", o->child, "Internal: run one strand count in this process")
         ->group("");
     o->threads.add_to(*cmd);
+    o->out.add_to(*cmd);
     return [o] { return run(*o); };
 }
 

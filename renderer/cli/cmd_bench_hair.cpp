@@ -20,6 +20,7 @@ struct BenchHairOptions {
     int configs = 32;
     int theta_steps = 512;
     uint32_t seed = 6;
+    BenchOutput out;
 };
 
 struct Rng {
@@ -106,7 +107,7 @@ int run(const BenchHairOptions &o) {
                               {"sample_ns", sample_ns},
                               {"construct_ns", construct_ns},
                               {"checksum", sink}};
-    std::cout << j.dump(2) << std::endl;
+    o.out.emit(j);
     return 0;
 }
 
@@ -124,6 +125,7 @@ Runner add_bench_hair(CLI::App &bench) {
         ->check(CLI::Range(16, 8192));
     sub->add_option("--seed", o->seed,
                     "Seed of the furnace set and the timing inputs (default 6)");
+    o->out.add_to(*sub);
     return [o] { return run(*o); };
 }
 

@@ -40,6 +40,7 @@ struct BenchLookupOptions {
     uint32_t subdivision = 3;
     int density_levels = 2;  // the first mesh split at its edge midpoints 1 … n times
     ThreadOption threads;
+    BenchOutput out;
 };
 
 using Query = std::pair<sim::TriId, shader::clonal_mosaic::Vec2f>;
@@ -331,7 +332,7 @@ int run(const BenchLookupOptions &o) {
                               {"runs", runs},
                               {"density_mesh", meshes[0]},
                               {"density", density}};
-    std::cout << j.dump(2) << std::endl;
+    o.out.emit(j);
     return 0;
 }
 
@@ -343,7 +344,7 @@ Runner add_bench_lookup(CLI::App &bench) {
         "lookup", "Closest-cell search: ns per lookup, pruning, cracks");
     sub->add_option("--mesh", o->meshes,
                     "Meshes (default: cow, triceratops, procedural:sphere:20x20)");
-    sub->add_option("--cells", o->cells, "Cells on each surface")
+    sub->add_option("--cell-count", o->cells, "Cells on each surface")
         ->check(CLI::Range(size_t(1), size_t(100000000)));
     sub->add_option("--queries", o->queries, "Random surface points to look up")
         ->check(CLI::Range(size_t(1), size_t(1000000000)));
@@ -356,6 +357,9 @@ Runner add_bench_lookup(CLI::App &bench) {
                     "runs (0: none)")
         ->check(CLI::Range(0, 4));
     o->threads.add_to(*sub);
+    o->out.add_to(*sub);
+    add_renamed_option(*sub, "--cells", "--cell-count",
+                       "--cells is kept for .cells files");
     return [o] { return run(*o); };
 }
 

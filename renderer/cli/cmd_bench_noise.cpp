@@ -50,6 +50,7 @@ struct BenchNoiseOptions {
     int seeds = 2, reference_spp = 4096;
     uint64_t reference_seed = 999983;
     ThreadOption threads;
+    BenchOutput out;
 };
 
 // Four channels per pixel (R, G, B, coverage) are all the metrics need.
@@ -155,8 +156,9 @@ int run(const BenchNoiseOptions &o) {
     const bool cached =
         read_reference(ref_file, desc.film.width, desc.film.height, &reference);
     if (!cached) {
-        std::cerr << "pelage bench noise: rendering the " << o.reference_spp
-                  << "-spp reference (cached as " << ref_file << ")\n";
+        if (!o.out.quiet)
+            std::cerr << "pelage bench noise: rendering the " << o.reference_spp
+                      << "-spp reference (cached as " << ref_file << ")\n";
         TimedRender ref = timed_render(*scene, o.reference_seed);
         ref_seconds = ref.seconds;
         reference = std::move(ref.pixels);
@@ -213,7 +215,7 @@ int run(const BenchNoiseOptions &o) {
                               {"reference_mean", reference_mean},
                               {"runs", runs},
                               {"by_spp", by_spp}};
-    std::cout << j.dump(2) << std::endl;
+    o.out.emit(j);
     return 0;
 }
 
@@ -243,6 +245,7 @@ Runner add_bench_noise(CLI::App &bench) {
                     "This reference file instead of the cache (rendered and written when "
                     "missing): to compare builds whose converged images agree");
     o->threads.add_to(*cmd);
+    o->out.add_to(*cmd);
     return [o] { return run(*o); };
 }
 

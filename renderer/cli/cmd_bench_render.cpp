@@ -30,6 +30,7 @@ using namespace pelage::renderer;
 struct BenchRenderOptions {
     std::string scene, res = "1280x720";
     int spp = 4, repeat = 3;
+    BenchOutput out;
 };
 
 // Replays the recorded rays. Baseline: every ray through rtcIntersect1. Same calls: the
@@ -189,7 +190,7 @@ int run(const BenchRenderOptions &o) {
         {"cpu_seconds", cpun},
         {"cpu_seconds_1_thread", cpu1},
     };
-    std::cout << j.dump(2) << std::endl;
+    o.out.emit(j);
     return 0;
 }
 
@@ -206,6 +207,7 @@ Runner add_bench_render(CLI::App &bench) {
     sub->add_option("--repeat", o->repeat,
                     "Runs per measurement (default 3); the fastest counts")
         ->check(CLI::Range(1, 100));
+    o->out.add_to(*sub);
     return [o] { return run(*o); };
 }
 

@@ -35,6 +35,7 @@ struct BenchSimOptions {
     uint64_t seed = 1;
     int repeat = 3;
     ThreadOption threads;
+    BenchOutput out;
 };
 
 struct RunResult {
@@ -187,7 +188,7 @@ int run(const BenchSimOptions &o) {
         n.seed = o.seed;
         out.update(neighbour_runs(n));
     }
-    std::cout << out.dump(2) << std::endl;
+    o.out.emit(out);
     return 0;
 }
 
@@ -201,7 +202,7 @@ Runner add_bench_sim(CLI::App &bench) {
                     "Preset of the small runs (default teo-table-7.2)");
     sub->add_option("--mesh", o->mesh,
                     "Mesh of the small runs (default the 760-triangle sphere)");
-    sub->add_option("--cells", o->cells, "Initial cell counts, smallest first")
+    sub->add_option("--initial-cells", o->cells, "Initial cell counts, smallest first")
         ->expected(1, -1);
     sub->add_option("--large-mesh", o->large_mesh,
                     "Mesh of the large run (default bunny00.off)");
@@ -227,6 +228,9 @@ Runner add_bench_sim(CLI::App &bench) {
     sub->add_option("--repeat", o->repeat, "Runs per case; the fastest counts")
         ->check(CLI::Range(1, 20));
     o->threads.add_to(*sub);
+    o->out.add_to(*sub);
+    add_renamed_option(*sub, "--cells", "--initial-cells",
+                       "--cells is kept for .cells files");
     return [o] { return run(*o); };
 }
 

@@ -1,6 +1,6 @@
 // `pelage compare SCENE.json`: one render per shader on the scene's patterned objects,
-// timings and a labelled contact sheet (renderer/tools/compare.h). --report keys are a
-// contract: shaders {NAME: {seconds, ns_per_lookup}}, ratios, ratio_rounds,
+// timings and a labelled contact sheet (renderer/tools/compare.h). --stats-json keys are
+// a contract: shaders {NAME: {seconds, ns_per_lookup}}, ratios, ratio_rounds,
 // lookup_ratios.
 #include <fmt/core.h>
 #include <unistd.h>
@@ -24,14 +24,16 @@ namespace {
 
 struct CompareCliOptions {
     std::string scene, shaders = "clonal_mosaic,worley,perlin,texture,diffuse", res,
-                       report, sheet, view;
-    int spp = 0, atlas_res = 4096;
+                       sheet, view, atlas_res = "4096";
+    int spp = 0;
     bool no_match = false;
     unsigned long long seed = 0;
     size_t lookups = 200000;
     int repeat = 1;
     bool deform = false;
     ThreadOption threads;
+    QuietOption quiet;
+    StatsJsonOption stats_json;
 };
 
 // A directory removed with everything in it when the comparison ends.
@@ -54,7 +56,7 @@ bool maps_image(const renderer::PluginRegistry &plugins, const std::string &name
 // the same pattern as the mosaic. Bake time is not part of the texture render's time.
 void bake_atlas_for_texture(const renderer::SceneDesc &desc, int res, TempDir &dir,
                             const renderer::PluginRegistry &plugins,
-                            renderer::CompareOptions &co) {
+                            renderer::CompareOptions &co, bool quiet) {
     const renderer::ObjectDesc *subject = nullptr;
     for (const auto &obj : desc.objects)
         if (!obj.cells.empty()) {
@@ -80,19 +82,42 @@ void bake_atlas_for_texture(const renderer::SceneDesc &desc, int res, TempDir &d
         for (int c = 0; c < 3; ++c) uvs.push_back(baked.atlas.uv(t, c));
     sim::write_obj(co.texture_mesh, pattern.surface().mesh, uvs,
                    "pelage compare: CRPS atlas UVs");
-    fmt::print(
-        "texture: baked the mosaic into a {}x{} atlas ({:.1f} texels per unit) in {:.2f} "
-        "s\n",
-        res, res, baked.atlas.texels_per_unit, timer.seconds());
+    if (!quiet)
+        fmt::print(
+            "texture: baked the mosaic into a {}x{} atlas ({:.1f} texels per unit) in "
+            "{:.2f} s\n",
+            res, res, baked.atlas.texels_per_unit, timer.seconds());
+}
+
+// The timings, each shader's, then the mosaic's ratio to each baseline.
+void print_summary(const renderer::CompareResult &r, const nlohmann::json &report) {
+    for (const auto &run : r.runs)
+        fmt::print("{:<14} render {:8.3f} s ({:8.3f} s CPU)   shade {:8.1f} ns/lookup\n",
+                   run.shader, run.seconds, run.cpu_seconds, run.ns_per_lookup);
+    for (const auto &[k, v] : report["ratios"].items()) {
+        fmt::print("  render {:<32} {:.3f}", k, v.get<double>());
+        if (report["repeats"].get<size_t>() > 1 && report["ratio_rounds"].contains(k)) {
+            const auto &rounds = report["ratio_rounds"][k];
+            fmt::print("   (rounds {:.3f} … {:.3f}, median {:.3f})",
+                       rounds["min"].get<double>(), rounds["max"].get<double>(),
+                       rounds["median"].get<double>());
+        }
+        fmt::print("\n");
+    }
+    for (const auto &[k, v] : report["lookup_ratios"].items())
+        fmt::print("  lookup {:<32} {:.3f}\n", k, v.get<double>());
 }
 
 int run(const CompareCliOptions &o) {
     const auto control = o.threads.apply();
     renderer::SceneDesc desc = renderer::load_scene_file(o.scene);
-    grow_scene_patterns(desc, false);
+    grow_scene_patterns(desc, bool(o.quiet));
     if (o.spp > 0) desc.film.spp = o.spp;
     if (!o.res.empty())
         parse_resolution(o.res, 16384, &desc.film.width, &desc.film.height);
+    const int atlas_res =
+        parse_resolution(o.atlas_res, 16384, ResolutionForm::square, "--atlas-res", 16)
+            .width;
     renderer::CompareOptions co;
     co.seed = o.seed;
     co.lookups = o.lookups;
@@ -109,13 +134,17 @@ int run(const CompareCliOptions &o) {
             throw InputError("", 0, "--sheet",
                              "--deform measures drift; it draws no sheet");
         const renderer::DriftResult d = renderer::measure_pattern_drift(desc, co);
-        fmt::print(
-            "pattern drift, {} -> {} (mean |albedo change| at {} fixed surface points)\n",
-            desc.objects[d.object].mesh, d.pose, d.runs.empty() ? 0 : d.runs[0].points);
-        for (const auto &run : d.runs)
-            fmt::print("{:<14} drift mean {:.6f}   max {:.6f}\n", run.shader, run.mean,
-                       run.max);
-        if (!o.report.empty()) write_json_file(o.report, d.report());
+        if (!o.quiet) {
+            fmt::print(
+                "pattern drift, {} -> {} (mean |albedo change| at {} fixed surface "
+                "points)\n",
+                desc.objects[d.object].mesh, d.pose,
+                d.runs.empty() ? 0 : d.runs[0].points);
+            for (const auto &run : d.runs)
+                fmt::print("{:<14} drift mean {:.6f}   max {:.6f}\n", run.shader,
+                           run.mean, run.max);
+        }
+        o.stats_json.write(d.report());
         return 0;
     }
     // The display is checked before any rendering, so a bad view fails fast.
@@ -126,25 +155,11 @@ int run(const CompareCliOptions &o) {
     const renderer::PluginRegistry plugins;
     if (std::any_of(co.shaders.begin(), co.shaders.end(),
                     [&](const std::string &s) { return maps_image(plugins, s); }))
-        bake_atlas_for_texture(desc, o.atlas_res, atlas_dir, plugins, co);
+        bake_atlas_for_texture(desc, atlas_res, atlas_dir, plugins, co, bool(o.quiet));
     const renderer::CompareResult r = renderer::compare_shaders(desc, co);
     const nlohmann::json report = r.report();
-    for (const auto &run : r.runs)
-        fmt::print("{:<14} render {:8.3f} s ({:8.3f} s CPU)   shade {:8.1f} ns/lookup\n",
-                   run.shader, run.seconds, run.cpu_seconds, run.ns_per_lookup);
-    for (const auto &[k, v] : report["ratios"].items()) {
-        fmt::print("  render {:<32} {:.3f}", k, v.get<double>());
-        if (report["repeats"].get<size_t>() > 1 && report["ratio_rounds"].contains(k)) {
-            const auto &r = report["ratio_rounds"][k];
-            fmt::print("   (rounds {:.3f} … {:.3f}, median {:.3f})",
-                       r["min"].get<double>(), r["max"].get<double>(),
-                       r["median"].get<double>());
-        }
-        fmt::print("\n");
-    }
-    for (const auto &[k, v] : report["lookup_ratios"].items())
-        fmt::print("  lookup {:<32} {:.3f}\n", k, v.get<double>());
-    if (!o.report.empty()) write_json_file(o.report, report);
+    if (!o.quiet) print_summary(r, report);
+    o.stats_json.write(report);
     if (display) {
         std::vector<renderer::SheetImage> images;
         for (const auto &run : r.runs) images.push_back({run.shader, &run.rgb});
@@ -176,10 +191,10 @@ Runner add_compare_command(CLI::App &app) {
                     "Render every shader N times, alternating, and report each one's "
                     "minimum time (for shared, noisy machines)")
         ->check(CLI::Range(1, 1000));
-    sub->add_option("--report", o->report, "Write the comparison as JSON");
+    o->stats_json.add_to(*sub, "the comparison");
     sub->add_option("--atlas-res", o->atlas_res,
-                    "Atlas resolution baked for the texture shader")
-        ->check(CLI::Range(16, 16384));
+                    "Side of the square atlas baked for the texture shader (N or NxN)")
+        ->capture_default_str();
     sub->add_flag("--no-match", o->no_match,
                   "Baselines with their plugin defaults instead of the mosaic's colours "
                   "and spot density");
@@ -188,7 +203,9 @@ Runner add_compare_command(CLI::App &app) {
                   "mesh and the object's \"deform\" pose, per shader (no renders)");
     sub->add_option("--sheet", o->sheet, "Write a labelled contact sheet (.png/.jpg)");
     sub->add_option("--view", o->view, "OCIO view for the sheet (default: the scene's)");
+    o->quiet.add_to(*sub);
     o->threads.add_to(*sub);
+    add_renamed_option(*sub, "--report", "--stats-json");
     return [o] { return run(*o); };
 }
 

@@ -12,28 +12,20 @@ namespace pelage::renderer::cli {
 namespace {
 
 struct CrpsOptions {
-    std::string mesh, stats_json;
+    std::string mesh;
     uint64_t seed = 1;
     ThreadOption threads;
+    QuietOption quiet;
+    StatsJsonOption stats_json;
 };
 
-int run_crps(const CrpsOptions &o) {
-    const auto control = o.threads.apply();
-    const Timer timer;
-    const sim::Surface s = sim::build_surface(o.mesh);
-    const double build_seconds = s.seconds_topology + s.seconds_crps;
-    const double total_seconds = timer.seconds();
-    const sim::CrpsValidation v = sim::validate_crps(s.mesh, s.crps, o.seed);
+// The human-readable summary: the mesh as loaded, its CRPS, and the self-validation.
+void print_summary(const std::string &mesh, const sim::Surface &s,
+                   const sim::CrpsValidation &v, size_t primary, size_t secondary,
+                   double area, double mel, double diag) {
     const sim::Topology &topo = s.crps.topology();
-
-    size_t primary = 0;
-    for (uint8_t n : topo.num_primary) primary += n;
-    const size_t secondary = topo.nbr.size() - primary;
-    const double area = s.mesh.surface_area();
-    const double mel = sim::mean_edge_length(s.mesh, topo);
-    const double diag = s.mesh.bounds().diagonal();
-
-    fmt::print("pelage crps: {}\n", o.mesh);
+    const double build_seconds = s.seconds_topology + s.seconds_crps;
+    fmt::print("pelage crps: {}\n", mesh);
     fmt::print("  triangles          {:>10}   (read {}, degenerate dropped {})\n",
                s.mesh.num_triangles(), s.load.raw_triangles,
                s.load.clean.degenerate_dropped);
@@ -68,8 +60,26 @@ int run_crps(const CrpsOptions &o) {
     fmt::print("    vertex maps (shared vertex){:.3g}\n", v.vertex_map_max_error);
     fmt::print("    edge lengths after maps    {:.3g}\n", v.edge_length_max_error);
     fmt::print("    F[i->j] o F[j->i] - I      {:.3g}\n", v.inverse_max_error);
+}
 
-    if (!o.stats_json.empty()) {
+int run_crps(const CrpsOptions &o) {
+    const auto control = o.threads.apply();
+    const Timer timer;
+    const sim::Surface s = sim::build_surface(o.mesh);
+    const double build_seconds = s.seconds_topology + s.seconds_crps;
+    const double total_seconds = timer.seconds();
+    const sim::CrpsValidation v = sim::validate_crps(s.mesh, s.crps, o.seed);
+    const sim::Topology &topo = s.crps.topology();
+
+    size_t primary = 0;
+    for (uint8_t n : topo.num_primary) primary += n;
+    const size_t secondary = topo.nbr.size() - primary;
+    const double area = s.mesh.surface_area();
+    const double mel = sim::mean_edge_length(s.mesh, topo);
+    const double diag = s.mesh.bounds().diagonal();
+
+    if (!o.quiet) print_summary(o.mesh, s, v, primary, secondary, area, mel, diag);
+    if (o.stats_json.wanted()) {
         nlohmann::json j = {
             {"mesh", o.mesh},
             {"triangles", s.mesh.num_triangles()},
@@ -99,7 +109,7 @@ int run_crps(const CrpsOptions &o) {
             {"seconds_load", s.seconds_load},
             {"seconds_total", total_seconds},
         };
-        write_json_file(o.stats_json, j);
+        o.stats_json.write(j);
     }
     return 0;
 }
@@ -114,8 +124,8 @@ Runner add_crps_command(CLI::App &app) {
     sub->add_option("--mesh", o->mesh,
                     "Mesh file (.off, .obj) or procedural:sphere:20x20 ...")
         ->required();
-    sub->add_option("--stats-json", o->stats_json,
-                    "Write the summary as JSON to this file");
+    o->stats_json.add_to(*sub, "the summary");
+    o->quiet.add_to(*sub);
     sub->add_option("--seed", o->seed, "Seed of the random validation points");
     o->threads.add_to(*sub);
     return [o] { return run_crps(*o); };

@@ -20,11 +20,13 @@ namespace fs = std::filesystem;
 
 struct LookOptions {
     std::string mesh, preset = "giraffe-reticulata", output, res = "960x540", up = "y",
-                      view = "Filmic", stats_json;
+                      view = "Filmic";
     uint64_t seed = 1;
     int spp = 64;
-    bool fur = false, quiet = false;
+    bool fur = false;
     ThreadOption threads;
+    QuietOption quiet;
+    StatsJsonOption stats_json;
 };
 
 Vec3f parse_up(const std::string &text) {
@@ -141,9 +143,8 @@ Runner add_look_command(CLI::App &app) {
     sub->add_option("--view", o->view, "OpenColorIO view of the preview")
         ->capture_default_str();
     sub->add_flag("--fur", o->fur, "Grow fur on the animal, scaled to its size");
-    sub->add_option("--stats-json", o->stats_json,
-                    "Write the render's statistics as JSON");
-    sub->add_flag("-q,--quiet", o->quiet, "No progress, no summary");
+    o->stats_json.add_to(*sub, "the render's timing and ray counts");
+    o->quiet.add_to(*sub);
     o->threads.add_to(*sub);
     return [o] { return run(*o); };
 }

@@ -2,7 +2,9 @@
 // the nearest cell's `id type distance` as the clonal_mosaic material finds it (the same
 // MosaicPattern and search). Faces are triangles of the mesh as pelage loads it: the one
 // the cells were grown on, or another of its shape (shader/clonal_mosaic/
-// surface_transfer.h).
+// surface_transfer.h). --stats-json keys: cells, mesh, points, queries, found,
+// mean_distance, max_distance, seconds_load, seconds_lookup.
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -18,10 +20,13 @@ namespace {
 
 struct LookupOptions {
     std::string cells, mesh, points;
+    StatsJsonOption stats_json;
 };
 
 int run(const LookupOptions &o) {
+    const Timer load;
     const shader::clonal_mosaic::MosaicPattern pattern(o.cells, o.mesh);
+    const double seconds_load = load.seconds();
     std::ifstream in(o.points, std::ios::binary);
     if (!in) throw InputError(o.points, 0, "", "cannot open file");
     // Parse everything first: a bad line fails the run before anything is printed.
@@ -61,6 +66,9 @@ int run(const LookupOptions &o) {
                              "barycentric coordinates must be >= 0 and sum to 1");
         queries.push_back({sim::TriId(face), float(b1), float(b2)});
     }
+    const Timer lookup;
+    size_t found = 0;
+    double sum = 0, max = 0;
     for (const Query &q : queries) {
         // As the renderer: carried onto the simulation surface when the mesh is another.
         shader::clonal_mosaic::SurfaceTransfer::Target at{q.face, q.b1, q.b2};
@@ -73,7 +81,19 @@ int run(const LookupOptions &o) {
         }
         std::printf("%u %u %.9g\n", pattern.cells().id[c.index],
                     unsigned(pattern.cells().type[c.index]), c.f1);
+        ++found;
+        sum += c.f1;
+        max = std::max(max, double(c.f1));
     }
+    o.stats_json.write({{"cells", o.cells},
+                        {"mesh", o.mesh},
+                        {"points", o.points},
+                        {"queries", queries.size()},
+                        {"found", found},
+                        {"mean_distance", found ? sum / double(found) : 0.0},
+                        {"max_distance", max},
+                        {"seconds_load", seconds_load},
+                        {"seconds_lookup", lookup.seconds()}});
     return 0;
 }
 
@@ -92,6 +112,7 @@ Runner add_lookup_command(CLI::App &app) {
         ->required();
     sub->add_option("--points", o->points, "Text file of `face b0 b1 b2` lines")
         ->required();
+    o->stats_json.add_to(*sub, "the query count and the distances found");
     return [o] { return run(*o); };
 }
 

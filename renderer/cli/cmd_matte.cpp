@@ -1,6 +1,8 @@
 // `pelage matte IMAGE.exr --layer type --name F -o spots.png`: a Cryptomatte matte out
 // of a rendered EXR, without a compositor (renderer/image/cryptomatte_read.h); `--list`
-// prints the layers and the names their manifests hold.
+// prints the layers and the names their manifests hold. --stats-json keys: image, layer,
+// names (those matched), width, height, coverage (the mean of the matte), pixels_covered
+// (pixels with any coverage).
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -16,7 +18,9 @@ namespace {
 struct MatteCliOptions {
     std::string image, layer = "object", output;
     std::vector<std::string> names;
-    bool list = false, quiet = false;
+    bool list = false;
+    QuietOption quiet;
+    StatsJsonOption stats_json;
 };
 
 int run(const MatteCliOptions &o) {
@@ -64,6 +68,22 @@ int run(const MatteCliOptions &o) {
     if (!o.quiet)
         std::printf("%s: %zu name(s) of %s\n", o.output.c_str(), m.names.size(),
                     o.layer.c_str());
+    if (o.stats_json.wanted()) {
+        double sum = 0;
+        size_t covered = 0;
+        for (const float a : m.alpha) {
+            sum += a;
+            covered += a > 0;
+        }
+        o.stats_json.write({{"image", o.image},
+                            {"layer", o.layer},
+                            {"names", m.names},
+                            {"width", m.width},
+                            {"height", m.height},
+                            {"coverage", m.alpha.empty() ? 0.0 : sum / m.alpha.size()},
+                            {"pixels_covered", covered},
+                            {"output", o.output}});
+    }
     return 0;
 }
 
@@ -81,7 +101,8 @@ Runner add_matte_command(CLI::App &app) {
                     "Names to select ('*' matches any characters); repeatable");
     sub->add_option("-o,--output", o->output, "Matte file: .exr (float) or .png/.jpg");
     sub->add_flag("--list", o->list, "Print each layer's names and exit");
-    sub->add_flag("-q,--quiet", o->quiet, "No summary line");
+    o->stats_json.add_to(*sub, "the matte's names and coverage");
+    o->quiet.add_to(*sub);
     return [o] { return run(*o); };
 }
 

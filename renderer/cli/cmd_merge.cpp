@@ -3,6 +3,7 @@
 // a whole render of it. The tiles must belong together: one pelage:settings_xxh3, one
 // display window, one tile count, every tile present once and complete, each covering
 // exactly its rows. Anything else is exit 2 naming the file, and nothing is written.
+// --stats-json keys: output, width, height, tiles, spp, mean_spp, seconds.
 #include <OpenImageIO/imageio.h>
 
 #include <algorithm>
@@ -26,7 +27,8 @@ namespace fs = std::filesystem;
 struct MergeOptions {
     std::vector<std::string> tiles;
     std::string output;
-    bool quiet = false;
+    QuietOption quiet;
+    StatsJsonOption stats_json;
 };
 
 struct TileFile {
@@ -142,6 +144,7 @@ ImageMetadata whole_metadata(const std::vector<TileFile> &tiles) {
 }
 
 int run(const MergeOptions &o) {
+    const Timer timer;
     if (fs::path(o.output).extension() != ".exr")
         throw InputError("", 0, "-o", "\"" + o.output + "\": expected a .exr file");
     const fs::path dir = fs::absolute(fs::path(o.output)).parent_path();
@@ -188,8 +191,16 @@ int run(const MergeOptions &o) {
             throw std::runtime_error(t.path + ": cannot read pixels: " +
                                      (in ? in->geterror() : OIIO::geterror()));
     }
-    write_exr(o.output, whole, whole_metadata(tiles));
+    const ImageMetadata meta = whole_metadata(tiles);
+    write_exr(o.output, whole, meta);
     if (!o.quiet) std::printf("%s: %dx%d from %d tiles\n", o.output.c_str(), W, H, count);
+    o.stats_json.write({{"output", o.output},
+                        {"width", W},
+                        {"height", H},
+                        {"tiles", count},
+                        {"spp", meta.spp},
+                        {"mean_spp", meta.mean_spp},
+                        {"seconds", timer.seconds()}});
     return 0;
 }
 
@@ -202,7 +213,8 @@ Runner add_merge_command(CLI::App &app) {
     sub->add_option("tiles", o->tiles, "Tile EXRs, all N of them, in any order")
         ->required();
     sub->add_option("-o,--output", o->output, "The whole EXR")->required();
-    sub->add_flag("-q,--quiet", o->quiet, "No summary line");
+    o->stats_json.add_to(*sub, "the merged image's size, tiles and samples");
+    o->quiet.add_to(*sub);
     return [o] { return run(*o); };
 }
 

@@ -1,7 +1,9 @@
 // `pelage movie out.####.exr -o turntable.mp4`: an EXR sequence through OpenColorIO to
 // display, encoded by ffmpeg (renderer/image/movie.h). The view is the one the frames
 // were rendered for unless --view says otherwise. A bad container or codec, missing
-// frames and a missing ffmpeg are reported before anything is encoded.
+// frames and a missing ffmpeg are reported before anything is encoded. --stats-json keys:
+// output, frames, first_frame, last_frame, step, fps, codec, crf or prores_profile, view,
+// view_recorded, bytes, seconds.
 #include <cstdio>
 #include <filesystem>
 #include <optional>
@@ -18,7 +20,8 @@ struct MovieCliOptions {
     double fps = 0;                     // 0: the frames' pelage:fps, else 24
     std::string codec = "h264", prores_profile;
     int crf = -1;  // -1: the default
-    bool quiet = false;
+    QuietOption quiet;
+    StatsJsonOption stats_json;
 };
 
 // --view, else the view recorded in the frames (all the same), else Standard.
@@ -44,6 +47,7 @@ std::string choose_view(const MovieCliOptions &o, const FrameSequence &seq,
 
 int run(const MovieCliOptions &o) {
     namespace fs = std::filesystem;
+    const Timer timer;
     renderer::MovieSettings settings;
     settings.codec = o.codec;
     if (o.crf >= 0) {
@@ -99,6 +103,24 @@ int run(const MovieCliOptions &o) {
                     frames.back().frame, step.c_str(), settings.fps, codec.c_str(),
                     view.c_str(), recorded ? " (recorded in the frames)" : "");
     }
+    if (o.stats_json.wanted()) {
+        nlohmann::json j = {{"output", o.output},
+                            {"frames", frames.size()},
+                            {"first_frame", frames.front().frame},
+                            {"last_frame", frames.back().frame},
+                            {"step", seq.step},
+                            {"fps", settings.fps},
+                            {"codec", o.codec},
+                            {"view", view},
+                            {"view_recorded", recorded},
+                            {"bytes", fs::file_size(o.output)},
+                            {"seconds", timer.seconds()}};
+        if (o.codec == "prores")
+            j["prores_profile"] = settings.prores_profile;
+        else
+            j["crf"] = settings.crf;
+        o.stats_json.write(j);
+    }
     return 0;
 }
 
@@ -129,7 +151,8 @@ Runner add_movie_command(CLI::App &app) {
     sub->add_option("--prores-profile", o->prores_profile,
                     "proxy, lt, standard, hq (default), 4444 or 4444xq")
         ->check(CLI::IsMember({"proxy", "lt", "standard", "hq", "4444", "4444xq"}));
-    sub->add_flag("-q,--quiet", o->quiet, "No summary line");
+    o->stats_json.add_to(*sub, "the frames encoded, codec, view and file size");
+    o->quiet.add_to(*sub);
     return [o] { return run(*o); };
 }
 

@@ -144,9 +144,9 @@ FrameOutcome render_frame(const RenderCliOptions &o, const SceneDesc &desc,
     ro.seed = o.seed;
     ro.frame = uint32_t(local);
     ro.cancel = &InterruptGuard::flag();
-    ro.progress = !o.quiet && Progress::stderr_is_tty();
+    ro.progress = o.quiet.progress();
     ro.camera = fd.camera;
-    ro.instrument = !o.stats_json.empty();  // plugin_seconds
+    ro.instrument = o.stats_json.wanted();  // plugin_seconds
     const auto &tt = desc.animation.turntable;
     if (tt && tt->motion_blur()) {
         const double open = local + double(tt->shutter_open),
@@ -276,7 +276,7 @@ void write_stats_json(const RenderCliOptions &o, const SceneDesc &desc,
         j["frames_rendered"] = totals.rendered;
         j["frames_skipped"] = totals.skipped;
     }
-    write_json_file(o.stats_json, j);
+    o.stats_json.write(j);
 }
 
 }  // namespace
@@ -284,10 +284,10 @@ void write_stats_json(const RenderCliOptions &o, const SceneDesc &desc,
 int run_render(const RenderCliOptions &o) {
     const Timer wall;
     const auto control = o.threads.apply();
-    SetupPhase::show("render", !o.quiet && Progress::stderr_is_tty());
+    SetupPhase::show("render", o.quiet.progress());
     SceneDesc desc = load_scene_file(o.scene);
     RenderPlan plan = plan_render(o, desc);
-    grow_scene_patterns(desc, o.quiet);  // after the outputs are checked
+    grow_scene_patterns(desc, bool(o.quiet));  // after the outputs are checked
     const PluginRegistry plugins;
     plan.settings = settings_hash(desc, plugins, o.seed, PELAGE_VERSION);
     const std::unique_ptr<Scene> shared_scene = shared_scene_for(desc, plugins);
@@ -302,7 +302,7 @@ int run_render(const RenderCliOptions &o) {
         if (done == FrameOutcome::aborted) return exit_interrupted;
         if (totals.interrupted) break;
     }
-    if (!o.stats_json.empty())
+    if (o.stats_json.wanted())
         write_stats_json(o, desc, plan, shared_scene.get(), totals, wall.seconds());
     if (plan.animated && !o.quiet)
         std::printf("%d frame(s) rendered, %d skipped (complete), %.2f s\n",
@@ -338,7 +338,7 @@ Runner add_render_command(CLI::App &app) {
                     "Also write a PNG/JPEG preview through OpenColorIO");
     sub->add_option("--view", o->view,
                     "OpenColorIO view of the preview (default: film.view, \"Standard\")");
-    sub->add_option("--stats-json", o->stats_json, "Write timing and ray counts as JSON");
+    o->stats_json.add_to(*sub, "timing and ray counts");
     sub->add_flag("--cryptomatte", o->cryptomatte,
                   "Write every Cryptomatte layer the materials offer (film.cryptomatte)");
     sub->add_option("--frames", o->frames,
@@ -353,7 +353,7 @@ Runner add_render_command(CLI::App &app) {
     sub->add_flag("--resume", o->resume,
                   "Skip frames whose EXR is complete (header and pixel checksum) and "
                   "was rendered with the same settings (pelage:settings_xxh3)");
-    sub->add_flag("-q,--quiet", o->quiet, "No progress bar, no summary line");
+    o->quiet.add_to(*sub);
     o->threads.add_to(*sub);
     return [o] { return run_render(*o); };
 }

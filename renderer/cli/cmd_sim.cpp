@@ -19,11 +19,13 @@ namespace pelage::renderer::cli {
 namespace {
 
 struct SimOptions {
-    std::string mesh, preset, output, stats_json, relax;
+    std::string mesh, preset, output, relax;
     std::string surface = "auto";
     uint64_t cells = 0;
     uint64_t seed = 1;
     ThreadOption threads;
+    QuietOption quiet;
+    StatsJsonOption stats_json;
 };
 
 int run_sim(const SimOptions &o) {
@@ -32,7 +34,7 @@ int run_sim(const SimOptions &o) {
         std::fprintf(stderr,
                      "pelage sim: warning: no -o given, the cells will not be saved "
                      "(only the summary%s is written)\n",
-                     o.stats_json.empty() ? "" : " and --stats-json");
+                     o.stats_json.wanted() ? " and --stats-json" : "");
     GrowRequest request;
     request.mesh = o.mesh;
     request.preset = o.preset;
@@ -40,8 +42,11 @@ int run_sim(const SimOptions &o) {
     request.initial_cells = o.cells;
     request.relax = o.relax;
     request.simplify = o.surface == "auto";
-    request.progress = true;
-    request.note = [](const std::string &text) { fmt::print("pelage sim: {}\n", text); };
+    request.progress = !o.quiet;
+    if (!o.quiet)
+        request.note = [](const std::string &text) {
+            fmt::print("pelage sim: {}\n", text);
+        };
     // Inputs first: grow_cells() reads and checks them all before simulating, and
     // nothing is written unless the run succeeds.
     const GrownCells grown = grow_cells(request);
@@ -56,56 +61,58 @@ int run_sim(const SimOptions &o) {
     nlohmann::json by_type = nlohmann::json::object();
     for (const auto &[name, n] : ps.cells_by_type) by_type[name] = n;
     const double seconds = st.seconds_total;
-    fmt::print("pelage sim: {} on {} ({} triangles, area {:.6g}), seed {}\n", preset.name,
-               o.mesh, grown.triangles, ps.area, o.seed);
     const double body_length = grown.body_length;
-    fmt::print("  body length   {:.4g}   initial cell spacing {:.3g} x body length\n",
-               body_length,
-               std::sqrt(2 * ps.area / (std::sqrt(3.0) * double(st.initial_cells))) /
-                   body_length);
-    fmt::print("  cells         {} -> {}   {}\n", st.initial_cells, data.num_cells(),
-               by_type.dump());
-    fmt::print("  spot fraction {:.4f}   spots {}   mean spot area {:.4g}\n",
-               ps.spot_fraction, ps.spots, ps.mean_spot_area);
-    fmt::print(
-        "  divisions     {}   relaxation steps {} (+{} initial, {} mode)   time {:.3g}\n",
-        st.divisions, st.relax_steps, st.initial_relax_steps,
-        params["relax"].get<std::string>(), st.final_time);
-    fmt::print("  seconds       {:.3f}   ({:.3g} cell-steps/s)\n", seconds,
-               seconds > 0 ? double(st.cell_steps) / seconds : 0.0);
-    if (!o.output.empty()) fmt::print("  wrote         {}\n", o.output);
+    if (!o.quiet) {
+        fmt::print("pelage sim: {} on {} ({} triangles, area {:.6g}), seed {}\n",
+                   preset.name, o.mesh, grown.triangles, ps.area, o.seed);
+        fmt::print("  body length   {:.4g}   initial cell spacing {:.3g} x body length\n",
+                   body_length,
+                   std::sqrt(2 * ps.area / (std::sqrt(3.0) * double(st.initial_cells))) /
+                       body_length);
+        fmt::print("  cells         {} -> {}   {}\n", st.initial_cells, data.num_cells(),
+                   by_type.dump());
+        fmt::print("  spot fraction {:.4f}   spots {}   mean spot area {:.4g}\n",
+                   ps.spot_fraction, ps.spots, ps.mean_spot_area);
+        fmt::print(
+            "  divisions     {}   relaxation steps {} (+{} initial, {} mode)   time "
+            "{:.3g}\n",
+            st.divisions, st.relax_steps, st.initial_relax_steps,
+            params["relax"].get<std::string>(), st.final_time);
+        fmt::print("  seconds       {:.3f}   ({:.3g} cell-steps/s)\n", seconds,
+                   seconds > 0 ? double(st.cell_steps) / seconds : 0.0);
+        if (!o.output.empty()) fmt::print("  wrote         {}\n", o.output);
+    }
 
-    if (!o.stats_json.empty()) {
-        write_json_file(o.stats_json,
-                        {
-                            {"preset", preset.name},
-                            {"mesh", o.mesh},
-                            {"seed", o.seed},
-                            {"relax", params["relax"]},
-                            {"triangles", grown.triangles},
-                            {"input_triangles", cell_scale.input_triangles},
-                            {"simplified", cell_scale.simplified},
-                            {"area", ps.area},
-                            {"body_length", body_length},
-                            {"initial_cells", st.initial_cells},
-                            {"final_cells", data.num_cells()},
-                            {"cells_by_type", by_type},
-                            {"spot_fraction", ps.spot_fraction},
-                            {"spots", ps.spots},
-                            {"mean_spot_area", ps.mean_spot_area},
-                            {"divisions", st.divisions},
-                            {"relax_steps", st.relax_steps},
-                            {"initial_relax_steps", st.initial_relax_steps},
-                            {"end_time", st.final_time},
-                            {"final_radius", st.final_radius},
-                            {"cell_steps", st.cell_steps},
-                            {"seconds", seconds},
-                            {"seconds_initial", st.seconds_initial},
-                            {"seconds_neighbourhoods", st.seconds_neighbourhoods},
-                            {"peak_rss_mb", peak_rss_mb()},
-                            {"cells_steps_per_second",
-                             seconds > 0 ? double(st.cell_steps) / seconds : 0.0},
-                        });
+    if (o.stats_json.wanted()) {
+        o.stats_json.write({
+            {"preset", preset.name},
+            {"mesh", o.mesh},
+            {"seed", o.seed},
+            {"relax", params["relax"]},
+            {"triangles", grown.triangles},
+            {"input_triangles", cell_scale.input_triangles},
+            {"simplified", cell_scale.simplified},
+            {"area", ps.area},
+            {"body_length", body_length},
+            {"initial_cells", st.initial_cells},
+            {"final_cells", data.num_cells()},
+            {"cells_by_type", by_type},
+            {"spot_fraction", ps.spot_fraction},
+            {"spots", ps.spots},
+            {"mean_spot_area", ps.mean_spot_area},
+            {"divisions", st.divisions},
+            {"relax_steps", st.relax_steps},
+            {"initial_relax_steps", st.initial_relax_steps},
+            {"end_time", st.final_time},
+            {"final_radius", st.final_radius},
+            {"cell_steps", st.cell_steps},
+            {"seconds", seconds},
+            {"seconds_initial", st.seconds_initial},
+            {"seconds_neighbourhoods", st.seconds_neighbourhoods},
+            {"peak_rss_mb", peak_rss_mb()},
+            {"cells_steps_per_second",
+             seconds > 0 ? double(st.cell_steps) / seconds : 0.0},
+        });
     }
     return 0;
 }
@@ -122,7 +129,7 @@ Runner add_sim_command(CLI::App &app) {
     sub->add_option("--preset", o->preset,
                     "Preset name (scenes/presets/NAME.json) or a preset file")
         ->required();
-    sub->add_option("--cells", o->cells,
+    sub->add_option("--initial-cells", o->cells,
                     "Initial cell count (overrides the preset; a preset's target count "
                     "is scaled with it)");
     sub->add_option("--seed", o->seed,
@@ -136,9 +143,11 @@ Runner add_sim_command(CLI::App &app) {
         ->check(CLI::IsMember({"auto", "input"}))
         ->capture_default_str();
     sub->add_option("-o,--output", o->output, "Write the cells to this .cells file");
-    sub->add_option("--stats-json", o->stats_json,
-                    "Write the run summary as JSON to this file");
+    o->stats_json.add_to(*sub, "the run summary");
+    o->quiet.add_to(*sub);
     o->threads.add_to(*sub);
+    add_renamed_option(*sub, "--cells", "--initial-cells",
+                       "--cells is kept for .cells files");
     return [o] { return run_sim(*o); };
 }
 

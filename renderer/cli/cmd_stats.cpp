@@ -21,11 +21,13 @@ namespace pelage::renderer::cli {
 namespace {
 
 struct StatsOptions {
-    std::string file, stats_json, mesh;
+    std::string file, mesh;
     bool json = false;
     size_t area_samples = 200000;
     double grid_resolution = 6;
     uint64_t seed = 1;
+    QuietOption quiet;
+    StatsJsonOption stats_json;
 };
 
 // Adds the area keys: each type's share of the surface, and F / (F + B) by area (the
@@ -78,10 +80,10 @@ int run_stats(const StatsOptions &o) {
         {"largest_spot_cells", s.largest_spot_cells},
     };
     if (!o.mesh.empty()) add_area_fractions(o, &j);
-    if (!o.stats_json.empty()) write_json_file(o.stats_json, j);
+    o.stats_json.write(j);
     if (o.json) {
         std::cout << j.dump(2) << std::endl;
-    } else {
+    } else if (!o.quiet) {
         fmt::print("pelage stats: {}\n", o.file);
         fmt::print("  triangles {}  area {:.6g}  cells {}  {}\n", data.num_triangles(),
                    s.area, s.total_cells, by_type.dump());
@@ -119,7 +121,7 @@ Runner add_stats_command(CLI::App &app) {
     auto o = std::make_shared<StatsOptions>();
     CLI::App *sub = app.add_subcommand("stats", "Pattern statistics of a .cells file");
     sub->add_option("file", o->file, ".cells file")->required();
-    sub->add_flag("--json", o->json, "Print JSON on stdout");
+    sub->add_flag("--json", o->json, "Print the JSON on stdout instead of text");
     sub->add_option("--mesh", o->mesh,
                     "The mesh the cells were grown on, or another of its shape (a "
                     "simplified copy's input): adds the area each type covers "
@@ -136,7 +138,8 @@ Runner add_stats_command(CLI::App &app) {
         ->check(CLI::Range(1.0, 64.0));
     sub->add_option("--seed", o->seed, "Seed of the surface points")
         ->capture_default_str();
-    sub->add_option("--stats-json", o->stats_json, "Also write the JSON to this file");
+    o->stats_json.add_to(*sub, "the statistics");
+    o->quiet.add_to(*sub);
     return [o] { return run_stats(*o); };
 }
 

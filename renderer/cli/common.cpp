@@ -2,10 +2,12 @@
 
 #include <sys/resource.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 
+#include "renderer/core/progress.h"
 #include "sim/core/atomic_file.h"
 #include "sim/core/input_error.h"
 
@@ -23,15 +25,87 @@ std::unique_ptr<tbb::global_control> ThreadOption::apply() const {
         tbb::global_control::max_allowed_parallelism, static_cast<size_t>(threads));
 }
 
+void QuietOption::add_to(CLI::App &app) {
+    app.add_flag("-q,--quiet", quiet,
+                 "No progress and no summary (errors and warnings are still printed)");
+}
+
+bool QuietOption::progress() const {
+    return !quiet && renderer::Progress::stderr_is_tty();
+}
+
+void StatsJsonOption::add_to(CLI::App &app, const std::string &what) {
+    app.add_option("--stats-json", path, "Write " + what + " as JSON to this file")
+        ->check(
+            [](const std::string &file) -> std::string {
+                const std::filesystem::path dir =
+                    std::filesystem::absolute(std::filesystem::path(file)).parent_path();
+                return std::filesystem::is_directory(dir)
+                           ? ""
+                           : "\"" + file + "\": folder " + dir.string() +
+                                 " does not exist";
+            },
+            "FILE");
+}
+
+void StatsJsonOption::write(const nlohmann::json &j) const {
+    if (wanted()) write_json_file(path, j);
+}
+
+Resolution parse_resolution(const std::string &text, int max_side, ResolutionForm form,
+                            const std::string &field, int min_side) {
+    const std::string expected =
+        form == ResolutionForm::width_x_height ? "expected WIDTHxHEIGHT, e.g. 1280x720"
+        : form == ResolutionForm::square
+            ? "expected the side of the square, e.g. 2048 (or 2048x2048)"
+            : "expected WIDTHxHEIGHT, e.g. 1280x720, or the longer side, e.g. 800";
+    auto refuse = [&](const std::string &why) -> Resolution {
+        throw InputError("", 0, field, "\"" + text + "\": " + why);
+    };
+    Resolution r;
+    int w = 0, h = 0, used = 0;
+    if (std::sscanf(text.c_str(), "%dx%d%n", &w, &h, &used) == 2 &&
+        size_t(used) == text.size()) {
+        r.width = w;
+        r.height = h;
+    } else if (form != ResolutionForm::width_x_height &&
+               std::sscanf(text.c_str(), "%d%n", &w, &used) == 1 &&
+               size_t(used) == text.size()) {
+        r.width = r.height = w;
+        r.longer_side_only = true;
+    } else {
+        return refuse(expected);
+    }
+    if (std::min(r.width, r.height) < min_side || std::max(r.width, r.height) > max_side)
+        return refuse("each side must be in [" + std::to_string(min_side) + ", " +
+                      std::to_string(max_side) + "]");
+    if (form == ResolutionForm::square && r.width != r.height)
+        return refuse("the image is square; " + expected);
+    return r;
+}
+
 void parse_resolution(const std::string &text, int max_side, int *width, int *height) {
-    int w = 0, h = 0;
-    char extra = 0;
-    if (std::sscanf(text.c_str(), "%dx%d%c", &w, &h, &extra) != 2 || w < 1 || h < 1 ||
-        w > max_side || h > max_side)
-        throw InputError("", 0, "--res",
-                         "\"" + text + "\": expected WIDTHxHEIGHT, e.g. 1280x720");
-    *width = w;
-    *height = h;
+    const Resolution r =
+        parse_resolution(text, max_side, ResolutionForm::width_x_height, "--res");
+    *width = r.width;
+    *height = r.height;
+}
+
+void add_renamed_option(CLI::App &app, const std::string &old_name,
+                        const std::string &new_name, const std::string &why) {
+    std::string command = app.get_name();  // "pelage bench sim", for the message
+    for (const CLI::App *p = app.get_parent(); p; p = p->get_parent())
+        command = p->get_name() + " " + command;
+    const std::string message = command + ": " + old_name + " was renamed " + new_name +
+                                (why.empty() ? "" : " (" + why + ")");
+    app.add_option_function<std::vector<std::string>>(
+           old_name,
+           [message](const std::vector<std::string> &) {
+               throw CLI::ValidationError(message);
+           })
+        ->expected(0, CLI::detail::expected_max_vector_size)
+        ->trigger_on_parse()
+        ->group("");
 }
 
 void write_json_file(const std::string &path, const nlohmann::json &j) {

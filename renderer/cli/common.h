@@ -1,5 +1,6 @@
-// Pieces every subcommand shares: how a subcommand is registered, the --threads and
-// --stats-json options, locating the project's data, timing.
+// Pieces every subcommand shares: how a subcommand is registered, the options every
+// command spells the same way (--threads, -q/--quiet, --stats-json, --res, the old
+// names of renamed options), locating the project's data, timing.
 #pragma once
 
 #include <tbb/global_control.h>
@@ -42,8 +43,45 @@ struct ThreadOption {
     std::unique_ptr<tbb::global_control> apply() const;
 };
 
-// "1280x720" -> width, height; InputError at field "--res" otherwise.
+// -q/--quiet: no progress bar and no summary; errors and warnings are still printed.
+struct QuietOption {
+    bool quiet = false;
+    void add_to(CLI::App &app);
+    explicit operator bool() const { return quiet; }
+    // Whether a progress bar is drawn: not quiet, and stderr is a terminal.
+    bool progress() const;
+};
+
+// --stats-json FILE: what the command measured, as one JSON object written atomically.
+// Its keys are each command's contract (listed at the top of its cmd_*.cpp). A FILE in a
+// missing folder is refused when the command line is read, before any work.
+struct StatsJsonOption {
+    std::string path;
+    void add_to(CLI::App &app, const std::string &what);
+    bool wanted() const { return !path.empty(); }
+    void write(const nlohmann::json &j) const;  // nothing without --stats-json
+};
+
+// --res, the one resolution syntax: WIDTHxHEIGHT on every command. Where the image's
+// shape is the command's own (a preview takes the mesh's, an atlas is square), one
+// number N is accepted too: the longer side, the side of a square.
+struct Resolution {
+    int width = 0, height = 0;
+    bool longer_side_only = false;  // N alone: width = height = N
+};
+enum class ResolutionForm { width_x_height, or_longer_side, square };
+// Throws InputError at `field` for anything else, a side outside [min_side, max_side],
+// and, for `square`, unequal sides.
+Resolution parse_resolution(const std::string &text, int max_side, ResolutionForm form,
+                            const std::string &field = "--res", int min_side = 1);
+// "1280x720" into a film's width and height.
 void parse_resolution(const std::string &text, int max_side, int *width, int *height);
+
+// An option's old name: a hidden option whose use fails the parse (exit 2) with
+// "OLD was renamed NEW", plus `why` when the old name now means something else. Old
+// scripts get told what to write instead of an unknown-option error.
+void add_renamed_option(CLI::App &app, const std::string &old_name,
+                        const std::string &new_name, const std::string &why = "");
 
 // Writes `j` to `path` atomically (pretty-printed, trailing newline).
 void write_json_file(const std::string &path, const nlohmann::json &j);

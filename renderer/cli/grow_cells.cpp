@@ -153,15 +153,16 @@ void grow_scene_patterns(const SceneDesc &scene, bool quiet) {
         std::string why;
         if (cells_match(o.cells, request, &why)) continue;
         if (!quiet)
-            std::printf("%s: %s, growing %s (seed %llu) on %s\n", o.cells.c_str(),
-                        why.c_str(), o.pattern->preset.c_str(),
-                        static_cast<unsigned long long>(o.pattern->seed), o.mesh.c_str());
+            std::fprintf(stderr, "%s: %s, growing %s (seed %llu) on %s\n",
+                         o.cells.c_str(), why.c_str(), o.pattern->preset.c_str(),
+                         static_cast<unsigned long long>(o.pattern->seed),
+                         o.mesh.c_str());
         const Timer timer;
         const GrownCells grown = grow_cells(request);
         sim::write_cells_file(o.cells, grown.data);
         if (!quiet)
-            std::printf("%s: %zu cells, %.1f s\n", o.cells.c_str(),
-                        grown.data.num_cells(), timer.seconds());
+            std::fprintf(stderr, "%s: %zu cells, %.1f s\n", o.cells.c_str(),
+                         grown.data.num_cells(), timer.seconds());
     }
 }
 

@@ -56,7 +56,8 @@ struct SceneDesc;
 namespace pelage::renderer::cli {
 
 // Grows every object's "pattern" whose cells file is missing or was grown otherwise
-// (cells_match), writing the file atomically; a line on stdout says why unless `quiet`.
+// (cells_match), writing the file atomically; a line on stderr says why unless `quiet`
+// (stdout may carry a command's JSON).
 void grow_scene_patterns(const SceneDesc &scene, bool quiet);
 
 }  // namespace pelage::renderer::cli

@@ -115,7 +115,7 @@ RenderPlan plan_render(const RenderCliOptions &o, SceneDesc &desc) {
 
     for (const auto &[flag, file] : {std::pair<std::string, std::string>{"-o", output},
                                      {"--preview", preview},
-                                     {"--stats-json", o.stats_json}}) {
+                                     {"--stats-json", o.stats_json.path}}) {
         if (file.empty()) continue;
         const fs::path dir = fs::absolute(fs::path(file)).parent_path();
         if (!fs::is_directory(dir))

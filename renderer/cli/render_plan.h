@@ -16,11 +16,13 @@ namespace pelage::renderer::cli {
 
 // The options of `pelage render`, as given.
 struct RenderCliOptions {
-    std::string scene, output, preview, stats_json, res, view;
+    std::string scene, output, preview, res, view;
     int spp = 0;
     double noise_threshold = -1;  // < 0: the scene's film.noise_threshold
     unsigned long long seed = 0;
-    bool quiet = false, resume = false, cryptomatte = false;
+    bool resume = false, cryptomatte = false;
+    QuietOption quiet;
+    StatsJsonOption stats_json;
     std::string frames, tile;
     int step = 1;
     ThreadOption threads;

@@ -11,6 +11,7 @@
 #include <stdexcept>
 
 #include "shader/sdk/params.h"
+#include "sim/core/colour_spelling.h"
 #include "sim/core/input_error.h"
 
 namespace pelage::renderer {
@@ -127,6 +128,9 @@ PluginParams validate_plugin_params(const PelageShaderPlugin &plugin,
     };
     size_t known = 0;
     for (const PelageParamSpec *s = plugin.params; s->name; ++s) {
+        // Found in either spelling of "colour", and named as the scene spells it.
+        const std::string key =
+            spelling_in(params, s->name, scene_file, prefix + "." + s->name);
         PelageParamValue v{};
         v.name = s->name;
         v.type = s->type;
@@ -134,7 +138,7 @@ PluginParams validate_plugin_params(const PelageShaderPlugin &plugin,
         v.i = int32_t(s->default_value[0]);
         const bool has_range = s->min_value < s->max_value;
         auto check = [&](const nlohmann::json &x, const std::string &what) -> float {
-            if (!x.is_number()) fail(s->name, "expected a number" + what);
+            if (!x.is_number()) fail(key, "expected a number" + what);
             const double d = x.get<double>();
             // Beyond FLT_MAX the float handed to the plugin would be infinite.
             if (!std::isfinite(d) || std::fabs(d) > double(FLT_MAX) ||
@@ -142,11 +146,11 @@ PluginParams validate_plugin_params(const PelageShaderPlugin &plugin,
                 std::ostringstream m;
                 m << "= " << d << ": must be in [" << s->min_value << ", " << s->max_value
                   << "]";
-                fail(s->name, m.str());
+                fail(key, m.str());
             }
             return float(d);
         };
-        if (auto it = params.find(s->name); it != params.end()) {
+        if (auto it = params.find(key); it != params.end()) {
             ++known;
             const nlohmann::json &x = *it;
             switch (s->type) {
@@ -154,12 +158,12 @@ PluginParams validate_plugin_params(const PelageShaderPlugin &plugin,
                     v.f[0] = check(x, "");
                     break;
                 case PELAGE_PARAM_INT:
-                    if (!x.is_number_integer()) fail(s->name, "expected an integer");
+                    if (!x.is_number_integer()) fail(key, "expected an integer");
                     {
                         const float f = check(x, "");
                         // Casting a float outside int32's range is undefined behaviour.
                         if (!(f >= -2147483648.0f && f < 2147483648.0f))
-                            fail(s->name, "= " + x.dump() + ": out of the integer range");
+                            fail(key, "= " + x.dump() + ": out of the integer range");
                         v.i = int32_t(f);
                     }
                     v.f[0] = float(v.i);
@@ -169,15 +173,14 @@ PluginParams validate_plugin_params(const PelageShaderPlugin &plugin,
                         v.f[0] = v.f[1] = v.f[2] = check(x, "");
                     } else {
                         if (!x.is_array() || x.size() != 3)
-                            fail(s->name, "expected [r, g, b] or one number");
+                            fail(key, "expected [r, g, b] or one number");
                         for (int c = 0; c < 3; ++c) v.f[c] = check(x[c], " in [r, g, b]");
                     }
                     break;
                 case PELAGE_PARAM_STRING:
                     // An object goes to the plugin as its JSON text (e.g.
                     // clonal_mosaic's "types").
-                    if (!x.is_string() && !x.is_object())
-                        fail(s->name, "expected a string");
+                    if (!x.is_string() && !x.is_object()) fail(key, "expected a string");
                     out.strings.push_back(x.is_string() ? x.get<std::string>()
                                                         : x.dump());
                     v.s = out.strings.back().c_str();
@@ -193,7 +196,8 @@ PluginParams validate_plugin_params(const PelageShaderPlugin &plugin,
         for (auto it = params.begin(); it != params.end(); ++it) {
             bool found = false;
             for (const PelageParamSpec *s = plugin.params; s->name; ++s)
-                found |= it.key() == s->name;
+                found |=
+                    it.key() == s->name || other_colour_spelling(it.key()) == s->name;
             if (!found)
                 fail(it.key(),
                      std::string("unknown parameter of shader \"") + plugin.name + "\"");

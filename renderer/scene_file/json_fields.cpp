@@ -3,6 +3,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "sim/core/colour_spelling.h"
 #include "sim/core/input_error.h"
 
 namespace pelage::renderer {
@@ -40,9 +41,15 @@ void JsonFields::fail(const std::string &field, const std::string &message) cons
     throw InputError(m_file, 0, field, message);
 }
 
+std::string JsonFields::spelled(const std::string &key) const {
+    return spelling_in(m_j, key, m_file, join(key));
+}
+
 const nlohmann::json *JsonFields::take(const std::string &key) {
     m_taken.insert(key);
-    const auto it = m_j.find(key);
+    if (const std::string other = other_colour_spelling(key); !other.empty())
+        m_taken.insert(other);
+    const auto it = m_j.find(spelled(key));
     return it == m_j.end() ? nullptr : &*it;
 }
 

@@ -2,7 +2,9 @@
 // is taken at most once, typed and range-checked, and finish() rejects the keys nobody
 // took — unknown or misspelled fields are errors, never warnings. Every
 // failure is a pelage::InputError naming the file and the field's JSON path
-// ("objects[0].fur.length = -1: must be in (0, 1e+09]").
+// ("objects[0].fur.length = -1: must be in (0, 1e+09]"). A key holding "colour" is
+// found in either spelling, "colour" or "color" (sim/core/colour_spelling.h), and named
+// in messages as the file spells it.
 #pragma once
 
 #include <nlohmann/json.hpp>
@@ -26,14 +28,14 @@ class JsonFields {
     JsonFields(const json &j, std::string path, std::string file);
 
     [[noreturn]] void fail(const std::string &field, const std::string &message) const;
-    // The JSON path of one of this object's keys.
-    std::string field(const std::string &key) const {
-        return m_path.empty() ? key : m_path + "." + key;
-    }
+    // The JSON path of one of this object's keys, spelled as in the file.
+    std::string field(const std::string &key) const { return join(spelled(key)); }
+    // `key` as the object spells it (colour or color); `key` when absent.
+    std::string spelled(const std::string &key) const;
     const std::string &path_prefix() const { return m_path; }
     const std::string &file() const { return m_file; }
 
-    bool has(const std::string &key) const { return m_j.contains(key); }
+    bool has(const std::string &key) const { return m_j.contains(spelled(key)); }
     // The key's value (nullptr when absent), marked as known either way.
     const json *take(const std::string &key);
     const json &require(const std::string &key);
@@ -76,6 +78,9 @@ class JsonFields {
     void finish() const;
 
   private:
+    std::string join(const std::string &key) const {
+        return m_path.empty() ? key : m_path + "." + key;
+    }
     const json &m_j;
     std::string m_path, m_file;
     std::set<std::string> m_taken;

@@ -81,14 +81,14 @@ LightDesc read_light(Reader r) {
     else
         r.fail(r.field("type"), "unknown light type \"" + type +
                                     "\" (expected environment, distant, sphere or quad)");
-    l.color = r.color("color", l.color);
+    l.color = r.color("colour", l.color);
     l.intensity = float(r.number("intensity", l.intensity, 0, 1e12));
     switch (l.type) {
         case LightDesc::Type::environment:
             l.image = r.path("image");
             l.rotation_deg = float(r.number("rotation", 0, -360, 360));
-            if (!l.image.empty() && r.has("color"))
-                r.fail(r.field("color"),
+            if (!l.image.empty() && r.has("colour"))
+                r.fail(r.field("colour"),
                        "conflicts with \"image\" (scale an image with \"intensity\")");
             break;
         case LightDesc::Type::distant:

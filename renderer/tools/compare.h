@@ -51,7 +51,7 @@ struct CompareResult {
     nlohmann::json params =
         nlohmann::json::object();  // per shader, the params it ran with
     nlohmann::json report()
-        const;  // the `--report` contract (docs/guide/compositing-outputs.md)
+        const;  // the `--stats-json` contract (docs/guide/compositing-outputs.md)
 };
 
 // Pattern drift under deformation: for each shader, the mean (and max) over `points`

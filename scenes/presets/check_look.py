@@ -23,7 +23,7 @@ def run(pelage, preset, mesh, seed, cells, tmp):
     out = os.path.join(tmp, "look.cells")
     args = [pelage, "sim", "--mesh", mesh, "--preset", preset, "--seed", str(seed), "-o", out]
     if cells:
-        args += ["--cells", str(cells)]
+        args += ["--initial-cells", str(cells)]
     subprocess.run(args, check=True, stdout=subprocess.DEVNULL)
     stats = json.loads(subprocess.run(
         [pelage, "stats", out, "--mesh", mesh, "--json"], check=True, capture_output=True,

@@ -34,15 +34,20 @@ PreviewImage render_cells_preview(const CellsData &d, const PreviewOptions &o) {
         }
     const double ex = std::max(b.hi.x - b.lo.x, 1e-12),
                  ey = std::max(b.hi.y - b.lo.y, 1e-12);
-    const double scale = (o.size - 8) / std::max(ex, ey);
+    // A 4-pixel margin on every side; a fixed image centres the mesh in what is left.
+    const bool fixed = o.width > 0 && o.height > 0;
+    const double scale = fixed ? std::min((o.width - 8) / ex, (o.height - 8) / ey)
+                               : (o.size - 8) / std::max(ex, ey);
     PreviewImage img;
-    img.width = std::max(8, int(std::ceil(ex * scale)) + 8);
-    img.height = std::max(8, int(std::ceil(ey * scale)) + 8);
+    img.width = fixed ? o.width : std::max(8, int(std::ceil(ex * scale)) + 8);
+    img.height = fixed ? o.height : std::max(8, int(std::ceil(ey * scale)) + 8);
+    const double ox = fixed ? 4 + 0.5 * (o.width - 8 - ex * scale) : 4,
+                 oy = fixed ? 4 + 0.5 * (o.height - 8 - ey * scale) : 4;
     img.rgb.assign(size_t(img.width) * img.height * 3, 40);
     std::vector<double> depth(size_t(img.width) * img.height, 1e300);
     auto project = [&](Vec3d q) {
-        return Vec3d{(dot(q, u) - b.lo.x) * scale + 4,
-                     img.height - 1 - ((dot(q, v) - b.lo.y) * scale + 4), dot(q, w)};
+        return Vec3d{(dot(q, u) - b.lo.x) * scale + ox,
+                     img.height - 1 - ((dot(q, v) - b.lo.y) * scale + oy), dot(q, w)};
     };
 
     // --- Flat-shaded triangles with a z-buffer (headlight: shade by |n·w|) ---

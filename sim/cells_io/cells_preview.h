@@ -15,7 +15,9 @@ struct PreviewImage {
 };
 
 struct PreviewOptions {
-    int size = 800;                        // longer side in pixels
+    int size = 800;  // longer side in pixels, the other side following the mesh
+    // Both > 0: exactly this image instead, the mesh fit inside it and centred.
+    int width = 0, height = 0;
     std::array<double, 3> view{0, 0, -1};  // viewing direction (world)
     int dot_radius = 1;                    // pixels
 };

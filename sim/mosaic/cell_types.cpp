@@ -8,6 +8,7 @@
 #include <set>
 #include <sstream>
 
+#include "sim/core/colour_spelling.h"
 #include "sim/core/input_error.h"
 
 namespace pelage::sim {
@@ -67,6 +68,7 @@ class Reader {
     [[noreturn]] void fail(const std::string &path, const std::string &message) const {
         throw InputError(m_file, 0, path, message);
     }
+    const std::string &file() const { return m_file; }
 
     void check_keys(const json &obj, const std::string &path,
                     const std::set<std::string> &allowed) const {
@@ -150,16 +152,19 @@ constexpr double probability_tolerance = 1e-6;  // rows and initial probabilitie
 
 CellType parse_type(const Reader &r, const json &t, const std::string &path) {
     r.check_keys(t, path,
-                 {"name", "colour", "eumelanin", "pheomelanin", "division_time",
+                 {"name", "colour", "color", "eumelanin", "pheomelanin", "division_time",
                   "initial_probability", "notes"});
     CellType c;
     c.name = r.string(t, path, "name", "", true);
     if (c.name.empty() || c.name.size() > 64)
         r.fail(path + ".name", "must have 1 to 64 characters");
-    if (!t.contains("colour")) r.fail(path + ".colour", "missing");
-    const auto rgb = r.numbers(t["colour"], path + ".colour", 3);
+    // "colour", or "color" (sim/core/colour_spelling.h), named as the preset spells it.
+    const std::string key = spelling_in(t, "colour", r.file(), path + ".colour");
+    const std::string colour = path + "." + key;
+    if (!t.contains(key)) r.fail(colour, "missing");
+    const auto rgb = r.numbers(t[key], colour, 3);
     for (int k = 0; k < 3; ++k) {
-        if (rgb[k] < 0) r.fail(path + ".colour", "components must be >= 0 (linear RGB)");
+        if (rgb[k] < 0) r.fail(colour, "components must be >= 0 (linear RGB)");
         c.colour[k] = static_cast<float>(rgb[k]);
     }
     c.eumelanin = static_cast<float>(r.number(t, path, "eumelanin", 0));

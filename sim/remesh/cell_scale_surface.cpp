@@ -54,7 +54,7 @@ void check_neighbourhood_memory(const CellScaleReport &plan, double budget,
         text, sizeof text,
         "the relaxation would need about %.1f GB for the neighbourhoods of its "
         "%zu triangles (mean edge %.3g) at the initial repulsion radius, more than "
-        "the %.1f GB available: start from more cells (--cells, or "
+        "the %.1f GB available: start from more cells (--initial-cells, or "
         "simulation.initial_cells / initial_spacing), a smaller w_r, or a coarser "
         "mesh",
         need / 1e9, plan.input_triangles, plan.input_mean_edge, budget / 1e9);

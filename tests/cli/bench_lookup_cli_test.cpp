@@ -12,11 +12,12 @@ namespace {
 
 TEST(BenchLookupCli, PrintsTheContractKeysAndExactSearches) {
     std::string out, err;
-    ASSERT_EQ(run_pelage(
-                  "bench lookup --mesh procedural:icosphere:2 --cells 800 --queries 4000 "
-                  "--threads 1",
-                  &out, &err),
-              0)
+    ASSERT_EQ(
+        run_pelage(
+            "bench lookup --mesh procedural:icosphere:2 --cell-count 800 --queries 4000 "
+            "--threads 1",
+            &out, &err),
+        0)
         << err;
     const nlohmann::json j = nlohmann::json::parse(out);
     ASSERT_TRUE(j.contains("runs"));

@@ -30,7 +30,7 @@ TEST(CompareCli, ReportsEveryShaderAndWritesASheet) {
         scene_json(simulate_two_type_cells(tmp, "procedural:icosphere:3", 300)));
     std::string err;
     ASSERT_EQ(
-        run_pelage("compare " + scene + " --lookups 1000 --atlas-res 256 --report " +
+        run_pelage("compare " + scene + " --lookups 1000 --atlas-res 256 --stats-json " +
                        tmp.file("r.json") + " --sheet " + tmp.file("sheet.png"),
                    nullptr, &err),
         0)
@@ -57,7 +57,7 @@ TEST(CompareCli, BaselinesMatchTheMosaicAndTextureUsesItsAtlas) {
     std::string out, err;
     ASSERT_EQ(run_pelage("compare " + scene +
                              " --shaders clonal_mosaic,worley,perlin,texture --lookups "
-                             "1000 --atlas-res 256 --report " +
+                             "1000 --atlas-res 256 --stats-json " +
                              tmp.file("r.json"),
                          &out, &err),
               0)
@@ -82,9 +82,10 @@ TEST(CompareCli, BaselinesMatchTheMosaicAndTextureUsesItsAtlas) {
         std::filesystem::exists(r["params"]["texture"]["file"].get<std::string>()));
     // --no-match: the plugins' defaults (no params given).
     ASSERT_EQ(
-        run_pelage("compare " + scene +
-                   " --shaders clonal_mosaic,worley --lookups 1000 --no-match --report " +
-                   tmp.file("d.json")),
+        run_pelage(
+            "compare " + scene +
+            " --shaders clonal_mosaic,worley --lookups 1000 --no-match --stats-json " +
+            tmp.file("d.json")),
         0);
     const auto d = nlohmann::json::parse(std::ifstream(tmp.file("d.json")));
     EXPECT_TRUE(d["params"]["worley"].empty());
@@ -100,7 +101,7 @@ TEST(CompareCli, RepeatReportsTheMinimumOfEveryRender) {
     std::string err;
     ASSERT_EQ(run_pelage("compare " + scene +
                              " --shaders clonal_mosaic,diffuse --lookups 1000 --repeat 3 "
-                             "--report " +
+                             "--stats-json " +
                              tmp.file("r.json"),
                          nullptr, &err),
               0)

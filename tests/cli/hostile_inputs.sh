@@ -37,7 +37,7 @@ while IFS=$'\t' read -r file command expected_rc expected gen_flag; do
     rm -f "$tmp/out" "$tmp/out.exr" "$tmp/stats.json"
     case "$command" in
         crps) args=(crps --mesh "$in" --stats-json "$tmp/stats.json"); out="$tmp/stats.json" ;;
-        sim) args=(sim --mesh "$in" --preset teo-cheetah --cells 30 --seed 1 -o "$tmp/out"
+        sim) args=(sim --mesh "$in" --preset teo-cheetah --initial-cells 30 --seed 1 -o "$tmp/out"
                    --stats-json "$tmp/stats.json"); out="$tmp/out" ;;
         preset) args=(sim --mesh procedural:sphere:6x6 --preset "$in" -o "$tmp/out"
                       --stats-json "$tmp/stats.json"); out="$tmp/out" ;;

@@ -31,7 +31,7 @@ done < "$corpus/expected.tsv"
 [ "$rc" -eq 2 ] || fail "bad --relax: exit $rc"
 
 # --- Corrupted .cells ---
-"$pelage" sim --mesh procedural:sphere:8x8 --preset teo-table-7.2 --cells 300 -o "$tmp/good.cells" >/dev/null \
+"$pelage" sim --mesh procedural:sphere:8x8 --preset teo-table-7.2 --initial-cells 300 -o "$tmp/good.cells" >/dev/null \
     || { fail "could not make a .cells file"; exit 1; }
 size=$(stat -c %s "$tmp/good.cells")
 head -c 50 "$tmp/good.cells" > "$tmp/short_header.cells"

@@ -34,8 +34,8 @@ TEST(PresetLook, FittedPresetsCoverTheirPublishedAreaOnTheSphere) {
         const std::string cells = tmp.file("look.cells");
         std::string out, err;
         ASSERT_EQ(run_pelage("sim --mesh " + mesh + " --preset " + e.path().string() +
-                                 " --cells " + std::to_string(std::lround(100 / pf)) +
-                                 " -o " + cells,
+                                 " --initial-cells " +
+                                 std::to_string(std::lround(100 / pf)) + " -o " + cells,
                              nullptr, &err),
                   0)
             << err;

@@ -39,13 +39,13 @@ TEST(ScenePaths, PatternIsGrownOnceAndAgainWhenItsRecipeChanges) {
     const std::string scene = tmp.write("s.json", patterned_scene(3));
     std::string out, err;
     ASSERT_EQ(run_pelage("render " + scene, &out, &err), 0) << err;
-    EXPECT_NE(out.find("no file, growing"), std::string::npos) << out;
+    EXPECT_NE(err.find("no file, growing"), std::string::npos) << err;
     ASSERT_TRUE(fs::exists(tmp.file("coat.cells")));
     EXPECT_TRUE(fs::exists(tmp.file("out.exr")));
     const auto first_time = fs::last_write_time(tmp.file("coat.cells"));
 
     ASSERT_EQ(run_pelage("render " + scene, &out, &err), 0) << err;
-    EXPECT_EQ(out.find("growing"), std::string::npos) << out;
+    EXPECT_EQ(err.find("growing"), std::string::npos) << err;
     EXPECT_EQ(fs::last_write_time(tmp.file("coat.cells")), first_time);
 
     // The same cells as `pelage sim` grows from that preset and seed: the render's
@@ -65,21 +65,21 @@ TEST(ScenePaths, PatternIsGrownOnceAndAgainWhenItsRecipeChanges) {
     // Another seed: grown again.
     tmp.write("s.json", patterned_scene(4));
     ASSERT_EQ(run_pelage("render " + scene, &out, &err), 0) << err;
-    EXPECT_NE(out.find("grown with another seed, growing"), std::string::npos) << out;
+    EXPECT_NE(err.find("grown with another seed, growing"), std::string::npos) << err;
     EXPECT_NE(sim::read_cells_file(tmp.file("coat.cells")).x, b.x);
 
     // A file from `pelage sim` with the scene's recipe is used as it is.
     fs::copy_file(by_sim, tmp.file("coat.cells"), fs::copy_options::overwrite_existing);
     tmp.write("s.json", patterned_scene(3));
     ASSERT_EQ(run_pelage("render " + scene, &out, &err), 0) << err;
-    EXPECT_EQ(out.find("growing"), std::string::npos) << out;
+    EXPECT_EQ(err.find("growing"), std::string::npos) << err;
 
     // Another preset (by content, not by name): grown again.
     std::string edited = quick_preset;
     edited.replace(edited.find("\"initial_cells\": 300"), 20, "\"initial_cells\": 200");
     tmp.write("quick.json", edited);
     ASSERT_EQ(run_pelage("render " + scene, &out, &err), 0) << err;
-    EXPECT_NE(out.find("grown from another preset, growing"), std::string::npos) << out;
+    EXPECT_NE(err.find("grown from another preset, growing"), std::string::npos) << err;
 }
 
 TEST(ScenePaths, PatternWithoutCellsIsRefused) {

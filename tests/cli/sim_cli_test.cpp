@@ -15,7 +15,8 @@ namespace pelage::test {
 namespace {
 
 const std::string small_run =
-    "sim --mesh procedural:sphere:20x20 --preset teo-table-7.2 --cells 1500 --seed 4 ";
+    "sim --mesh procedural:sphere:20x20 --preset teo-table-7.2 --initial-cells 1500 "
+    "--seed 4 ";
 
 TEST(SimCli, StatsJsonHasTheContractKeys) {
     TempDir tmp;
@@ -54,7 +55,7 @@ TEST(SimCli, StatsJsonHasTheContractKeys) {
     EXPECT_NEAR(sa["spot_fraction_by_area"].get<double>(), af / (af + ab), 1e-12);
     EXPECT_EQ(sa["area_samples"], 5000);
 
-    ASSERT_EQ(run_pelage("preview " + tmp.file("a.cells") + " --size 64 -o " +
+    ASSERT_EQ(run_pelage("preview " + tmp.file("a.cells") + " --res 64 -o " +
                          tmp.file("p.png")),
               0);
     EXPECT_EQ(slurp(tmp.file("p.png")).substr(1, 3), "PNG");

@@ -286,7 +286,7 @@ TEST(TurntableCli, ClonalMosaicDoesNotDriftOnADeformingMesh) {
     std::string out, err;
     ASSERT_EQ(run_pelage("compare " + scene +
                              " --deform --lookups 4000 --shaders "
-                             "clonal_mosaic,worley,perlin --report " +
+                             "clonal_mosaic,worley,perlin --stats-json " +
                              tmp.file("r.json"),
                          &out, &err),
               0)

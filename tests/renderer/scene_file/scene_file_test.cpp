@@ -39,6 +39,26 @@ TEST(SceneFile, ProceduralMeshesAreNotPaths) {
     EXPECT_EQ(s.objects[0].mesh, "procedural:sphere:8x8");
 }
 
+// "colour" or "color": the same light either way, errors named as the file spells the
+// key, and both spellings in one object refused naming it.
+TEST(SceneFile, ColourReadsInEitherSpelling) {
+    const auto light = [](const std::string &fields) {
+        return R"({"camera": {}, "lights": [{"type": "environment", )" + fields +
+               R"(}], "objects": []})";
+    };
+    const SceneDesc a = parse_scene(light(R"("colour": [0.1, 0.2, 0.3])"), "/s.json");
+    const SceneDesc b = parse_scene(light(R"("color": [0.1, 0.2, 0.3])"), "/s.json");
+    EXPECT_EQ(a.lights[0].color.x, 0.1f);
+    EXPECT_EQ(b.lights[0].color.x, a.lights[0].color.x);
+    EXPECT_EQ(b.lights[0].color.y, a.lights[0].color.y);
+    EXPECT_EQ(b.lights[0].color.z, a.lights[0].color.z);
+    EXPECT_EQ(field_of(light(R"("color": -1)")), "lights[0].color");
+    EXPECT_EQ(field_of(light(R"("colour": -1)")), "lights[0].colour");
+    EXPECT_EQ(field_of(light(R"("colour": 1, "color": 1)")), "lights[0].colour");
+    EXPECT_EQ(field_of(light(R"("color": 1, "image": "sky.exr")")), "lights[0].color");
+    EXPECT_EQ(field_of(light(R"("colr": 1)")), "lights[0].colr");
+}
+
 TEST(SceneFile, ErrorsNameTheJsonPath) {
     EXPECT_EQ(field_of(R"({"camera": {"fovv": 3}, "objects": []})"), "camera.fovv");
     EXPECT_EQ(

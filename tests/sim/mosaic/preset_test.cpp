@@ -52,6 +52,11 @@ TEST(Preset, BadValuesNameTheFileAndJsonPath) {
     const std::vector<BadCase> cases = {
         {"\"colour\": [0.1, 0.1, 0.1]", "\"colour\": [0.1, 0.1]", "types[0].colour"},
         {"\"colour\": [0.1, 0.1, 0.1]", "\"colour\": \"red\"", "types[0].colour"},
+        // Either spelling, named as the file spells it; both is refused.
+        {"\"colour\": [0.1, 0.1, 0.1]", "\"color\": [0.1, -0.1, 0.1]", "types[0].color:"},
+        {"\"colour\": [0.1, 0.1, 0.1]",
+         "\"colour\": [0.1, 0.1, 0.1], \"color\": [0.1, 0.1, 0.1]",
+         "types[0].colour: given twice"},
         {"\"division_time\": 2", "\"division_time\": -2", "types[0].division_time"},
         {"\"initial_probability\": 0.5}", "\"initial_probability\": 0.6}",
          "initial_probability"},
