@@ -9,6 +9,7 @@
 #include "renderer/cli/common.h"
 #include "renderer/cli/look_scene.h"
 #include "renderer/cli/render_plan.h"
+#include "sim/core/atomic_file.h"
 #include "sim/core/input_error.h"
 #include "sim/mesh/mesh_load.h"
 #include "sim/mosaic/cell_types.h"
@@ -99,7 +100,9 @@ int run(const LookOptions &o) {
     setup.fur = o.fur;
 
     const fs::path scene_path = dir / (stem + ".json");
-    write_json_file(scene_path.string(), look_scene(setup));
+    const std::string scene_text = format_scene_json(look_scene(setup));
+    write_file_atomically(scene_path.string(),
+                          [&](std::ostream &out) { out << scene_text; });
     if (!o.quiet)
         fmt::print(
             "pelage look: wrote {} (radius {:.4g}, camera at {:.4g} radii); "

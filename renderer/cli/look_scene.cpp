@@ -8,7 +8,7 @@
 namespace pelage::renderer::cli {
 namespace {
 
-using nlohmann::json;
+using json = nlohmann::ordered_json;
 
 // Six significant digits: the file reads well and the framing moves far less than a
 // pixel.
@@ -81,29 +81,70 @@ json look_scene(const LookSetup &s) {
                      {"roughness", 0.45},
                      {"ior", 1.5}}}};
     if (s.fur) animal["fur"] = fur_block(s);
-    return {{"camera",
-             {{"type", "pinhole"},
-              {"position", vec(f.camera.position)},
-              {"look_at", vec(f.camera.look_at)},
-              {"up", vec(f.camera.up)},
-              {"fov", round6(f.camera.fov_deg)}}},
-            {"film",
-             {{"width", s.width},
-              {"height", s.height},
-              {"spp", s.spp},
-              {"filter", {{"type", "gaussian"}, {"radius", 1.5}}},
-              {"output", s.output},
-              {"preview", s.preview},
-              {"view", s.view}}},
-            {"lights",
-             {{{"type", "environment"}, {"color", {0.55, 0.68, 0.9}}, {"intensity", 0.8}},
-              {{"type", "distant"},
-               {"direction", vec(-towards_sun)},
-               {"angle", 0.53},
-               {"color", {1.0, 0.93, 0.82}},
-               {"intensity", 4.0}}}},
-            {"objects", {animal, ground_object(s)}},
-            {"integrator", {{"max_depth", 6}, {"rr_depth", 3}}}};
+    return {
+        {"camera",
+         {{"type", "pinhole"},
+          {"position", vec(f.camera.position)},
+          {"look_at", vec(f.camera.look_at)},
+          {"up", vec(f.camera.up)},
+          {"fov", round6(f.camera.fov_deg)}}},
+        {"film",
+         {{"width", s.width},
+          {"height", s.height},
+          {"spp", s.spp},
+          {"filter", {{"type", "gaussian"}, {"radius", 1.5}}},
+          {"output", s.output},
+          {"preview", s.preview},
+          {"view", s.view}}},
+        {"lights",
+         {{{"type", "environment"}, {"colour", {0.55, 0.68, 0.9}}, {"intensity", 0.8}},
+          {{"type", "distant"},
+           {"direction", vec(-towards_sun)},
+           {"angle", 0.53},
+           {"colour", {1.0, 0.93, 0.82}},
+           {"intensity", 4.0}}}},
+        {"objects", {animal, ground_object(s)}},
+        {"integrator", {{"max_depth", 6}, {"rr_depth", 3}}}};
+}
+
+namespace {
+
+void format_into(const json &j, int indent, std::string *out) {
+    const std::string pad(size_t(indent) + 2, ' ');
+    if (j.is_object() && !j.empty()) {
+        *out += "{\n";
+        size_t i = 0;
+        for (const auto &[key, value] : j.items()) {
+            *out += pad + json(key).dump() + ": ";
+            format_into(value, indent + 2, out);
+            *out += ++i < j.size() ? ",\n" : "\n";
+        }
+        *out += std::string(size_t(indent), ' ') + "}";
+    } else if (j.is_array() && !j.empty() &&
+               std::any_of(j.begin(), j.end(),
+                           [](const json &e) { return e.is_structured(); })) {
+        *out += "[\n";
+        for (size_t i = 0; i < j.size(); ++i) {
+            *out += pad;
+            format_into(j[i], indent + 2, out);
+            *out += i + 1 < j.size() ? ",\n" : "\n";
+        }
+        *out += std::string(size_t(indent), ' ') + "]";
+    } else if (j.is_array()) {
+        *out += "[";
+        for (size_t i = 0; i < j.size(); ++i) *out += (i ? ", " : "") + j[i].dump();
+        *out += "]";
+    } else {
+        *out += j.dump();
+    }
+}
+
+}  // namespace
+
+std::string format_scene_json(const json &j) {
+    std::string out;
+    format_into(j, 0, &out);
+    return out + "\n";
 }
 
 }  // namespace pelage::renderer::cli

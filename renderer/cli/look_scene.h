@@ -23,6 +23,11 @@ struct LookSetup {
     bool fur = false;
 };
 
-nlohmann::json look_scene(const LookSetup &s);
+// The scene, its keys in the order a person reads them (camera, film, lights, objects).
+nlohmann::ordered_json look_scene(const LookSetup &s);
+
+// JSON as scene files are written by hand: one key per line, short arrays of numbers
+// on one line.
+std::string format_scene_json(const nlohmann::ordered_json &j);
 
 }  // namespace pelage::renderer::cli
