@@ -3,9 +3,8 @@
 #include <sys/resource.h>
 
 #include <cstdio>
-#include <cstdlib>
-#include <filesystem>
 
+#include "renderer/core/install_layout.h"
 #include "sim/core/atomic_file.h"
 #include "sim/core/input_error.h"
 
@@ -38,11 +37,7 @@ void write_json_file(const std::string &path, const nlohmann::json &j) {
     write_file_atomically(path, [&](std::ostream &out) { out << j.dump(2) << "\n"; });
 }
 
-std::string data_path(const std::string &relative) {
-    if (const char *dir = std::getenv("PELAGE_DATA_DIR"); dir && *dir)
-        return (std::filesystem::path(dir) / relative).string();
-    return (std::filesystem::path(PELAGE_SOURCE_DIR) / relative).string();
-}
+std::string data_path(const std::string &relative) { return find_data(relative); }
 
 double peak_rss_mb() {
     rusage u{};

@@ -1,0 +1,43 @@
+#include "renderer/core/install_layout.h"
+
+#include <cstdlib>
+#include <filesystem>
+#include <vector>
+
+namespace pelage::renderer {
+
+namespace fs = std::filesystem;
+
+std::string executable_dir() {
+    std::error_code ec;
+    const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
+    return ec ? std::string() : exe.parent_path().string();
+}
+
+// The folders relative to bin/ come from the install folders CMake was configured with
+// (CMakeLists.txt: PELAGE_PKGLIBDIR, PELAGE_PKGDATADIR).
+std::string package_lib_dir() {
+    return (fs::path(executable_dir()) / PELAGE_PKGLIBDIR_FROM_BINDIR)
+        .lexically_normal()
+        .string();
+}
+
+std::string package_data_dir() {
+    return (fs::path(executable_dir()) / PELAGE_PKGDATADIR_FROM_BINDIR)
+        .lexically_normal()
+        .string();
+}
+
+std::string find_data(const std::string &relative) {
+    std::vector<fs::path> candidates;
+    if (const char *dir = std::getenv("PELAGE_DATA_DIR"); dir && *dir)
+        candidates.push_back(fs::path(dir) / relative);
+    candidates.push_back(fs::path(package_data_dir()) / relative);
+    for (const fs::path &p : candidates) {
+        std::error_code ec;
+        if (fs::exists(p, ec)) return p.string();
+    }
+    return candidates.front().string();
+}
+
+}  // namespace pelage::renderer
