@@ -8,7 +8,6 @@
 
 #include <cstdio>
 #include <cstring>
-#include <filesystem>
 #include <string>
 
 #include "renderer/cli/version.h"
@@ -19,9 +18,12 @@ int main(int argc, char **argv) {
         std::puts(PELAGE_VERSION_LINE);
         return 0;
     }
-    const std::string body =
-        (std::filesystem::path(pelage::renderer::package_lib_dir()) / "libpelage_cli.so")
-            .string();
+    const std::string lib = pelage::renderer::package_lib_dir();
+    if (lib.empty()) {
+        std::fprintf(stderr, "pelage: cannot find this executable (/proc/self/exe)\n");
+        return 1;
+    }
+    const std::string body = lib + "/libpelage_cli.so";
     // Lazy binding, as for the libraries an executable links; nothing else looks up the
     // body's symbols.
     void *handle = dlopen(body.c_str(), RTLD_LAZY | RTLD_LOCAL);

@@ -17,7 +17,8 @@ namespace pelage::renderer {
 // The folder of the running executable; "" when /proc/self/exe cannot be read.
 std::string executable_dir();
 
-// lib/pelage and share/pelage of the installation (or build tree) the executable is in.
+// lib/pelage and share/pelage of the installation (or build tree) the executable is in;
+// "" when the executable's folder is unknown.
 std::string package_lib_dir();
 std::string package_data_dir();
 

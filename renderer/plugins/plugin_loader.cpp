@@ -66,8 +66,8 @@ std::vector<std::string> PluginRegistry::default_search_path() {
         while (std::getline(ss, d, ':'))
             if (!d.empty()) dirs.push_back(d);
     }
-    if (!executable_dir().empty())
-        dirs.push_back((fs::path(package_lib_dir()) / "shaders").string());
+    if (const std::string lib = package_lib_dir(); !lib.empty())
+        dirs.push_back((fs::path(lib) / "shaders").string());
     return dirs;
 }
 
