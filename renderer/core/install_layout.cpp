@@ -1,5 +1,7 @@
 #include "renderer/core/install_layout.h"
 
+#include <dlfcn.h>
+
 #include <cstdlib>
 #include <filesystem>
 #include <vector>
@@ -12,6 +14,13 @@ std::string executable_dir() {
     std::error_code ec;
     const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
     return ec ? std::string() : exe.parent_path().string();
+}
+
+std::string code_file() {
+    Dl_info info{};
+    if (dladdr(reinterpret_cast<void *>(&code_file), &info) && info.dli_fname)
+        return fs::absolute(info.dli_fname).string();
+    return "";
 }
 
 namespace {

@@ -17,6 +17,10 @@ namespace pelage::renderer {
 // The folder of the running executable; "" when /proc/self/exe cannot be read.
 std::string executable_dir();
 
+// The executable or shared library holding this code: lib/pelage/libpelage_cli.so
+// under bin/pelage, which is only a launcher. A cache keyed by "this build" hashes it.
+std::string code_file();
+
 // lib/pelage and share/pelage of the installation (or build tree) the executable is in;
 // "" when the executable's folder is unknown.
 std::string package_lib_dir();

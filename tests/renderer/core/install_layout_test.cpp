@@ -52,6 +52,11 @@ TEST(InstallLayout, FoldersAreNextToTheExecutablesBin) {
     EXPECT_TRUE(fs::exists(share + "/ocio/config.ocio")) << share;
 }
 
+TEST(InstallLayout, CodeFileIsTheBinaryHoldingTheCode) {
+    // Linked statically into this test; into lib/pelage/libpelage_cli.so in `pelage`.
+    EXPECT_EQ(renderer::code_file(), fs::read_symlink("/proc/self/exe").string());
+}
+
 TEST(InstallLayout, DataDirIsSearchedFirstThenShare) {
     TempDir tmp;
     fs::create_directories(tmp.path() / "scenes" / "presets");
