@@ -18,7 +18,6 @@
 // cpu_seconds, mse, rmse, relative_rmse, time_mse, fireflies, median_max}], by_spp:
 // [{spp, seconds, cpu_seconds, mse, rmse, time_mse, fireflies}] (means over the seeds)}
 // (an output contract).
-#include <unistd.h>
 
 #include <cstdlib>
 #include <cstring>
@@ -30,6 +29,7 @@
 #include "renderer/cli/bench.h"
 #include "renderer/cli/grow_cells.h"
 #include "renderer/cli/input_hash.h"
+#include "renderer/core/install_layout.h"
 #include "renderer/integrator/render.h"
 #include "renderer/plugins/plugin_loader.h"
 #include "renderer/scene/scene.h"
@@ -70,9 +70,8 @@ std::string reference_key(const BenchNoiseOptions &o, const SceneDesc &desc,
     InputHash h;
     h.add_file(desc.path);
     for (const std::string &f : scene_input_files(desc)) h.add_file(f);
-    char self[4096];
-    const ssize_t len = readlink("/proc/self/exe", self, sizeof(self) - 1);
-    if (len > 0) h.add_file(std::string(self, size_t(len)));
+    // The renderer's code: bin/pelage is only a launcher.
+    if (const std::string code = renderer::code_file(); !code.empty()) h.add_file(code);
     for (const auto &[name, plugin] : plugins.plugins()) h.add_file(plugin.file);
     h.add(std::to_string(desc.film.width) + "x" + std::to_string(desc.film.height) + " " +
           std::to_string(o.reference_spp) + " " + std::to_string(o.reference_seed));

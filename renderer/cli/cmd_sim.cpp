@@ -131,7 +131,8 @@ Runner add_sim_command(CLI::App &app) {
         ->required();
     sub->add_option("--initial-cells", o->cells,
                     "Initial cell count (overrides the preset; a preset's target count "
-                    "is scaled with it)");
+                    "is scaled with it)")
+        ->default_str("");
     sub->add_option("--seed", o->seed,
                     "Seed: same mesh, preset and seed give identical .cells");
     sub->add_option("--relax", o->relax, "Relaxation mode (overrides the preset)")

@@ -4,10 +4,9 @@
 
 #include <algorithm>
 #include <cstdio>
-#include <cstdlib>
-#include <filesystem>
 
 #include "renderer/core/progress.h"
+#include "renderer/core/install_layout.h"
 #include "sim/core/atomic_file.h"
 #include "sim/core/input_error.h"
 
@@ -112,11 +111,7 @@ void write_json_file(const std::string &path, const nlohmann::json &j) {
     write_file_atomically(path, [&](std::ostream &out) { out << j.dump(2) << "\n"; });
 }
 
-std::string data_path(const std::string &relative) {
-    if (const char *dir = std::getenv("PELAGE_DATA_DIR"); dir && *dir)
-        return (std::filesystem::path(dir) / relative).string();
-    return (std::filesystem::path(PELAGE_SOURCE_DIR) / relative).string();
-}
+std::string data_path(const std::string &relative) { return find_data(relative); }
 
 double peak_rss_mb() {
     rusage u{};

@@ -86,8 +86,8 @@ void add_renamed_option(CLI::App &app, const std::string &old_name,
 // Writes `j` to `path` atomically (pretty-printed, trailing newline).
 void write_json_file(const std::string &path, const nlohmann::json &j);
 
-// Resolves a path inside the project's data (scenes/...): $PELAGE_DATA_DIR first, then
-// the source tree this binary was built from.
+// Resolves a path inside pelage's data (scenes/...): $PELAGE_DATA_DIR first, then
+// share/pelage next to the executable (renderer/core/install_layout.h).
 std::string data_path(const std::string &relative);
 
 // The process's peak resident memory so far, in MB.

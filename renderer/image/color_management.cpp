@@ -1,27 +1,18 @@
 #include "renderer/image/color_management.h"
 
 #include <cstdlib>
-#include <filesystem>
 #include <stdexcept>
 
+#include "renderer/core/install_layout.h"
 #include "sim/core/input_error.h"
 
 namespace OCIO = OCIO_NAMESPACE;
 
 namespace pelage::renderer {
 
-namespace fs = std::filesystem;
-
 std::string DisplayTransform::config_location() {
     if (const char *env = std::getenv("OCIO"); env && *env) return env;
-    std::error_code ec;
-    const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
-    if (!ec) {
-        const fs::path p =
-            exe.parent_path().parent_path() / "share" / "pelage" / "ocio" / "config.ocio";
-        if (fs::exists(p)) return p.string();
-    }
-    return PELAGE_OCIO_CONFIG;
+    return find_data("ocio/config.ocio");
 }
 
 DisplayTransform::DisplayTransform(const std::string &view, const std::string &display) {

@@ -1,6 +1,6 @@
 // Scene-linear to display through OpenColorIO. The config is $OCIO when set, else
 // pelage's own (renderer/image/ocio/config.ocio: sRGB display; Standard, Filmic and Raw
-// views), found next to the executable (share/pelage/ocio) or in the source tree.
+// views), share/pelage/ocio next to the executable (renderer/core/install_layout.h).
 #pragma once
 
 #include <OpenColorIO/OpenColorIO.h>
@@ -24,7 +24,7 @@ class DisplayTransform {
     const std::string &display() const { return m_display; }
     const std::string &view() const { return m_view; }
 
-    // $OCIO, or the shipped config.
+    // $OCIO, else ocio/config.ocio in $PELAGE_DATA_DIR or share/pelage.
     static std::string config_location();
 
   private:

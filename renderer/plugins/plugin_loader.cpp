@@ -10,6 +10,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "renderer/core/install_layout.h"
 #include "shader/sdk/params.h"
 #include "sim/core/colour_spelling.h"
 #include "sim/core/input_error.h"
@@ -66,11 +67,8 @@ std::vector<std::string> PluginRegistry::default_search_path() {
         while (std::getline(ss, d, ':'))
             if (!d.empty()) dirs.push_back(d);
     }
-    std::error_code ec;
-    const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
-    if (!ec)
-        dirs.push_back(
-            (exe.parent_path().parent_path() / "lib" / "pelage" / "shaders").string());
+    if (const std::string lib = package_lib_dir(); !lib.empty())
+        dirs.push_back((fs::path(lib) / "shaders").string());
     return dirs;
 }
 

@@ -1,8 +1,8 @@
 // Finding and opening shader plugins (shader/pelage_shader.h). The search path is
-// $PELAGE_SHADER_PATH (colon-separated folders, searched first), then
-// lib/pelage/shaders next to the executable's bin/ folder (build/lib/pelage/shaders in a
-// build tree). A plugin file is `<name>.so`; its descriptor's ABI version is checked
-// before anything else in it is used.
+// $PELAGE_SHADER_PATH (colon-separated folders, searched first), then lib/pelage/shaders
+// next to the executable's bin/ folder (renderer/core/install_layout.h; the same folder
+// in a build tree). A plugin file is `<name>.so`; its descriptor's ABI version is
+// checked before anything else in it is used.
 #pragma once
 
 #include <deque>

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "renderer/core/install_layout.h"
 #include "renderer/plugins/plugin_loader.h"
 #include "tests/test_paths.h"
 
@@ -14,10 +15,8 @@ namespace pelage::test {
 namespace {
 
 renderer::LoadedPlugin load(const std::string &name) {
-    return renderer::open_plugin(
-        (std::filesystem::path(PELAGE_BINARY).parent_path().parent_path() /
-         "lib/pelage/shaders" / (name + ".so"))
-            .string());
+    return renderer::open_plugin(renderer::package_lib_dir() + "/shaders/" + name +
+                                 ".so");
 }
 
 std::vector<std::string> lines_of(const std::string &text) {

@@ -11,6 +11,7 @@
 #include <set>
 #include <sstream>
 
+#include "renderer/core/install_layout.h"
 #include "renderer/plugins/plugin_loader.h"
 #include "sim/cells_io/cells_file.h"
 #include "sim/mesh/mesh_load.h"
@@ -91,9 +92,7 @@ std::string write_off(const TempDir &tmp, const std::string &name,
 }
 
 std::string plugin_file() {
-    return (std::filesystem::path(PELAGE_BINARY).parent_path().parent_path() /
-            "lib/pelage/shaders/clonal_mosaic.so")
-        .string();
+    return renderer::package_lib_dir() + "/shaders/clonal_mosaic.so";
 }
 
 struct Case {

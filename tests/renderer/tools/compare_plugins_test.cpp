@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <string>
 
+#include "renderer/core/install_layout.h"
 #include "renderer/plugins/plugin_loader.h"
 #include "renderer/tools/compare.h"
 #include "tests/test_paths.h"
@@ -16,10 +17,8 @@ namespace {
 using renderer::BaselineModel;
 
 renderer::LoadedPlugin load(const std::string &name) {
-    return renderer::open_plugin(
-        (std::filesystem::path(PELAGE_BINARY).parent_path().parent_path() /
-         "lib/pelage/shaders" / (name + ".so"))
-            .string());
+    return renderer::open_plugin(renderer::package_lib_dir() + "/shaders/" + name +
+                                 ".so");
 }
 
 TEST(ComparePlugins, ShippedPluginsByTheirTables) {

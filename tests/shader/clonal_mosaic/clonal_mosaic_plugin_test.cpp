@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <random>
 
+#include "renderer/core/install_layout.h"
 #include "renderer/plugins/plugin_loader.h"
 #include "shader/clonal_mosaic/closest_cell.h"
 #include "shader/clonal_mosaic/mosaic_lod.h"
@@ -21,9 +22,7 @@ namespace {
 const std::string mesh_spec = "procedural:icosphere:3";
 
 std::string plugin_file() {
-    return (std::filesystem::path(PELAGE_BINARY).parent_path().parent_path() /
-            "lib/pelage/shaders/clonal_mosaic.so")
-        .string();
+    return renderer::package_lib_dir() + "/shaders/clonal_mosaic.so";
 }
 
 struct Instance {

@@ -9,16 +9,15 @@
 #include <string>
 #include <vector>
 
+#include "renderer/core/install_layout.h"
 #include "renderer/plugins/plugin_loader.h"
 
 namespace pelage::test {
 namespace {
 
 renderer::LoadedPlugin load(const std::string &name) {
-    return renderer::open_plugin(
-        (std::filesystem::path(PELAGE_BINARY).parent_path().parent_path() /
-         "lib/pelage/shaders" / (name + ".so"))
-            .string());
+    return renderer::open_plugin(renderer::package_lib_dir() + "/shaders/" + name +
+                                 ".so");
 }
 
 // One triangle in object space, with corner UVs.
