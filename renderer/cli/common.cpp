@@ -5,8 +5,8 @@
 #include <algorithm>
 #include <cstdio>
 
-#include "renderer/core/progress.h"
 #include "renderer/core/install_layout.h"
+#include "renderer/core/progress.h"
 #include "sim/core/atomic_file.h"
 #include "sim/core/input_error.h"
 

@@ -71,7 +71,7 @@ if grep -E "file=($build|$source)/" "$work/shaders.err" >"$work/leaks"; then
     fail "loaded from the build or source tree: $(head -3 "$work/leaks")"
 fi
 
-run sim "$pelage" sim --mesh procedural:sphere:12x12 --preset walter-cheetah --cells 300 \
+run sim "$pelage" sim --mesh procedural:sphere:12x12 --preset walter-cheetah --initial-cells 300 \
     --seed 1 -o coat.cells
 [ "$rc" = 0 ] && [ -s coat.cells ] || fail "pelage sim: exit $rc: $(tail -3 "$work/sim.err")"
 
@@ -101,7 +101,7 @@ run render_no_ocio "$pelage" render scene.json
 mv "$work/ocio.away" "$prefix/share/pelage/ocio"
 mv "$prefix/share/pelage/scenes" "$work/scenes.away"
 run sim_no_presets "$pelage" sim --mesh procedural:sphere:12x12 --preset walter-cheetah \
-    --cells 300 -o none.cells
+    --initial-cells 300 -o none.cells
 [ "$rc" = 2 ] && grep -q "$prefix/share/pelage/scenes/presets" "$work/sim_no_presets.err" ||
     fail "sim without share/pelage/scenes: exit $rc: $(tail -3 "$work/sim_no_presets.err")"
 [ -e none.cells ] && fail "sim without its preset wrote none.cells"
@@ -112,7 +112,7 @@ mkdir -p "$work/data/scenes/presets"
 cp "$prefix/share/pelage/scenes/presets/walter-cheetah.json" \
     "$work/data/scenes/presets/only-in-data-dir.json"
 PELAGE_DATA_DIR=$work/data run sim_data_dir "$pelage" sim --mesh procedural:sphere:12x12 \
-    --preset only-in-data-dir --cells 300 --seed 1 -o data_dir.cells
+    --preset only-in-data-dir --initial-cells 300 --seed 1 -o data_dir.cells
 [ "$rc" = 0 ] && cmp -s coat.cells data_dir.cells ||
     fail "sim with a preset from \$PELAGE_DATA_DIR: exit $rc: $(tail -3 "$work/sim_data_dir.err")"
 
