@@ -60,8 +60,8 @@ TEST(UsageCli, HelpShowsDefaults) {
     ASSERT_EQ(run_pelage("sim --help", &out, &err), 0) << err;
     EXPECT_NE(help_entry(out, "--seed").find("=1 "), std::string::npos) << out;
     EXPECT_NE(help_entry(out, "--threads").find("=0"), std::string::npos) << out;
-    // --cells 0 means "the preset's count": no default shown.
-    EXPECT_EQ(help_entry(out, "--cells").find('='), std::string::npos) << out;
+    // --initial-cells 0 means "the preset's count": no default shown.
+    EXPECT_EQ(help_entry(out, "--initial-cells").find('='), std::string::npos) << out;
     ASSERT_EQ(run_pelage("render --help", &out, &err), 0) << err;
     EXPECT_NE(help_entry(out, "--step").find("=1"), std::string::npos) << out;
     // --spp takes 1 and up; its stored 0 means "film.spp" and is not shown.
