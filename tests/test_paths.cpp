@@ -48,21 +48,28 @@ std::string slurp(const std::string &path) {
     return ss.str();
 }
 
+std::string two_type_preset(const TempDir &tmp, int initial_cells, double f_probability) {
+    return tmp.write("two_types.json",
+                     R"({"name": "t", "types": [
+        {"name": "F", "colour": [0.1, 0.05, 0.02], "eumelanin": 0.8, "division_time": "never",
+         "initial_probability": )" +
+                         std::to_string(f_probability) +
+                         R"(},
+        {"name": "B", "colour": [0.9, 0.6, 0.3], "pheomelanin": 0.5, "division_time": "never",
+         "initial_probability": )" +
+                         std::to_string(1 - f_probability) +
+                         R"(}],
+        "adhesion": [[0.5, 0.0], [0.0, 0.5]],
+        "simulation": {"initial_cells": )" +
+                         std::to_string(initial_cells) +
+                         R"(, "initial_relax_steps": 10,
+                       "w_r": 2.0, "w_d": 0.1, "rho": 5, "end_time": 1, "relax": "global"}})");
+}
+
 std::string simulate_two_type_cells(const TempDir &tmp, const std::string &mesh,
                                     int initial_cells, double f_probability,
                                     uint64_t seed) {
-    const std::string preset = tmp.write("two_types.json",
-                                         R"({"name": "t", "types": [
-        {"name": "F", "colour": [0.1, 0.05, 0.02], "eumelanin": 0.8, "division_time": "never",
-         "initial_probability": )" + std::to_string(f_probability) +
-                                             R"(},
-        {"name": "B", "colour": [0.9, 0.6, 0.3], "pheomelanin": 0.5, "division_time": "never",
-         "initial_probability": )" + std::to_string(1 - f_probability) +
-                                             R"(}],
-        "adhesion": [[0.5, 0.0], [0.0, 0.5]],
-        "simulation": {"initial_cells": )" + std::to_string(initial_cells) +
-                                             R"(, "initial_relax_steps": 10,
-                       "w_r": 2.0, "w_d": 0.1, "rho": 5, "end_time": 1, "relax": "global"}})");
+    const std::string preset = two_type_preset(tmp, initial_cells, f_probability);
     const std::string cells = tmp.file("mosaic.cells");
     std::string err;
     EXPECT_EQ(run_pelage("sim --mesh " + mesh + " --preset " + preset + " -o " + cells +

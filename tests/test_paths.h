@@ -27,6 +27,11 @@ class TempDir {
     std::filesystem::path m_path;
 };
 
+// A small two-type preset file (F dark, B light, no division: the cells are the initial
+// ones) written into `tmp` as two_types.json; returns its path.
+std::string two_type_preset(const TempDir &tmp, int initial_cells,
+                            double f_probability = 0.3);
+
 // `pelage sim` of a small two-type mosaic (F dark 10 %..40 %, B light) on `mesh`, as a
 // user would run it; returns the .cells path inside `tmp`. F is type 0 with colour (0.1,
 // 0.05, 0.02) and eumelanin 0.8, B type 1 with (0.9, 0.6, 0.3) and pheomelanin 0.5.

@@ -16,19 +16,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// A quick two-type preset (a few hundred cells, no division) so the test grows in a
-// second; the pattern's scale comes from the mesh's area, like every preset's.
-std::string quick_preset(const TempDir &tmp) {
-    return tmp.write("quick.json", R"({"name": "quick", "types": [
-        {"name": "F", "colour": [0.1, 0.05, 0.02], "eumelanin": 0.8, "division_time": "never",
-         "initial_probability": 0.3},
-        {"name": "B", "colour": [0.9, 0.6, 0.3], "pheomelanin": 0.5, "division_time": "never",
-         "initial_probability": 0.7}],
-        "adhesion": [[0.5, 0.0], [0.0, 0.5]],
-        "simulation": {"initial_cells": 400, "initial_relax_steps": 5,
-                       "w_r": 2.0, "w_d": 0.1, "rho": 5, "end_time": 1, "relax": "global"}})");
-}
-
 // The pixel box of object 0 (the animal) in the EXR's id.object layer, as fractions of
 // the image: {x0, y0, x1, y1}; all −1 when it is nowhere.
 std::array<double, 4> animal_box(const std::string &exr) {
@@ -70,10 +57,11 @@ TEST(LookCli, FramesMeshesOfAnyUnitsAndWritesAReusableScene) {
         TempDir tmp;
         const std::string out = tmp.file(name + ".exr");
         std::string stdout_text, err;
-        ASSERT_EQ(run_pelage("look " + sample_mesh(name + ".off") + " --preset " +
-                                 quick_preset(tmp) + " --res 96x54 --spp 2 -o " + out,
-                             &stdout_text, &err),
-                  0)
+        ASSERT_EQ(
+            run_pelage("look " + sample_mesh(name + ".off") + " --preset " +
+                           two_type_preset(tmp, 400) + " --res 96x54 --spp 2 -o " + out,
+                       &stdout_text, &err),
+            0)
             << err;
         for (const char *ext : {".exr", ".json", ".cells", "_preview.png"})
             EXPECT_TRUE(fs::exists(tmp.file(name + ext))) << name << ext;
@@ -98,12 +86,12 @@ TEST(LookCli, FurStrandCountDoesNotDependOnTheUnits) {
     for (const std::string name : {"elk", "cow"}) {
         TempDir tmp;
         std::string err;
-        ASSERT_EQ(
-            run_pelage("look " + sample_mesh(name + ".off") + " --preset " +
-                           quick_preset(tmp) + " --fur -q --res 32x18 --spp 1 -o " +
-                           tmp.file("a.exr") + " --stats-json " + tmp.file("s.json"),
-                       nullptr, &err),
-            0)
+        ASSERT_EQ(run_pelage("look " + sample_mesh(name + ".off") + " --preset " +
+                                 two_type_preset(tmp, 400) +
+                                 " --fur -q --res 32x18 --spp 1 -o " + tmp.file("a.exr") +
+                                 " --stats-json " + tmp.file("s.json"),
+                             nullptr, &err),
+                  0)
             << err;
         const auto s = nlohmann::json::parse(std::ifstream(tmp.file("s.json")));
         strands.push_back(s.value("fur_strands", 0.0));

@@ -14,28 +14,19 @@ namespace {
 
 namespace fs = std::filesystem;
 
-const char *quick_preset = R"({"name": "quick", "types": [
-    {"name": "F", "colour": [0.1, 0.05, 0.02], "eumelanin": 0.8, "division_time": "never",
-     "initial_probability": 0.3},
-    {"name": "B", "colour": [0.9, 0.6, 0.3], "pheomelanin": 0.5, "division_time": "never",
-     "initial_probability": 0.7}],
-    "adhesion": [[0.5, 0.0], [0.0, 0.5]],
-    "simulation": {"initial_cells": 300, "initial_relax_steps": 5,
-                   "w_r": 2.0, "w_d": 0.1, "rho": 5, "end_time": 1, "relax": "global"}})";
-
 std::string patterned_scene(int seed) {
     return R"({"camera": {"position": [0, 0, 4]},
       "film": {"width": 16, "height": 12, "spp": 1, "output": "out.exr",
                "preview": "out_preview.png"},
       "objects": [{"mesh": "procedural:sphere:12x12", "cells": "coat.cells",
-                   "pattern": {"preset": "quick.json", "seed": )" +
+                   "pattern": {"preset": "two_types.json", "seed": )" +
            std::to_string(seed) + R"(},
                    "material": {"shader": "clonal_mosaic"}}]})";
 }
 
 TEST(ScenePaths, PatternIsGrownOnceAndAgainWhenItsRecipeChanges) {
     TempDir tmp;
-    tmp.write("quick.json", quick_preset);
+    two_type_preset(tmp, 300);
     const std::string scene = tmp.write("s.json", patterned_scene(3));
     std::string out, err;
     ASSERT_EQ(run_pelage("render " + scene, &out, &err), 0) << err;
@@ -52,7 +43,7 @@ TEST(ScenePaths, PatternIsGrownOnceAndAgainWhenItsRecipeChanges) {
     // growth is the simulation, not an approximation of it.
     const std::string by_sim = tmp.file("by_sim.cells");
     ASSERT_EQ(run_pelage("sim --mesh procedural:sphere:12x12 --preset " +
-                             tmp.file("quick.json") + " --seed 3 -o " + by_sim,
+                             tmp.file("two_types.json") + " --seed 3 -o " + by_sim,
                          nullptr, &err),
               0)
         << err;
@@ -75,9 +66,7 @@ TEST(ScenePaths, PatternIsGrownOnceAndAgainWhenItsRecipeChanges) {
     EXPECT_EQ(err.find("growing"), std::string::npos) << err;
 
     // Another preset (by content, not by name): grown again.
-    std::string edited = quick_preset;
-    edited.replace(edited.find("\"initial_cells\": 300"), 20, "\"initial_cells\": 200");
-    tmp.write("quick.json", edited);
+    two_type_preset(tmp, 200);
     ASSERT_EQ(run_pelage("render " + scene, &out, &err), 0) << err;
     EXPECT_NE(err.find("grown from another preset, growing"), std::string::npos) << err;
 }
@@ -96,7 +85,7 @@ TEST(ScenePaths, PatternWithoutCellsIsRefused) {
 
 TEST(ScenePaths, PreviewGoesBesideTheOutputGiven) {
     TempDir tmp;
-    tmp.write("quick.json", quick_preset);
+    two_type_preset(tmp, 300);
     const std::string scene = tmp.write("s.json", patterned_scene(3));
     fs::create_directory(tmp.file("elsewhere"));
     std::string err;
@@ -112,12 +101,12 @@ TEST(ScenePaths, PreviewGoesBesideTheOutputGiven) {
 
 TEST(ScenePaths, SimWithoutOutputSaysSoBeforeItRuns) {
     TempDir tmp;
-    tmp.write("quick.json", quick_preset);
+    two_type_preset(tmp, 300);
     std::string out, err;
-    ASSERT_EQ(
-        run_pelage("sim --mesh procedural:sphere:8x8 --preset " + tmp.file("quick.json"),
-                   &out, &err),
-        0);
+    ASSERT_EQ(run_pelage("sim --mesh procedural:sphere:8x8 --preset " +
+                             tmp.file("two_types.json"),
+                         &out, &err),
+              0);
     EXPECT_NE(err.find("no -o given, the cells will not be saved"), std::string::npos)
         << err;
 }
