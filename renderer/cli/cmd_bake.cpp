@@ -43,8 +43,9 @@ int run(const BakeOptions &o) {
                          "give --mesh (bake into an atlas) or --uv-from (bake into that "
                          "mesh's UVs), one of them");
     if (o.output.size() < 4 || o.output.substr(o.output.size() - 4) != ".exr")
-        throw InputError("", 0, "-o",
-                         "\"" + o.output + "\": the texture is written as OpenEXR (.exr)");
+        throw InputError(
+            "", 0, "-o",
+            "\"" + o.output + "\": the texture is written as OpenEXR (.exr)");
     int width = 0, height = 0;
     parse_resolution(o.res.find('x') == std::string::npos ? o.res + "x" + o.res : o.res,
                      32768, &width, &height);
@@ -156,11 +157,11 @@ int run(const BakeOptions &o) {
         write_json_file(o.stats_json, j);
     }
     if (!o.quiet) {
-        fmt::print("pelage bake: {} ({}x{}, {} tile{}): {:.1f} % of texels inside "
-                   "triangles",
-                   written.size() == 1 ? written[0] : o.output, width, height,
-                   written.size(), written.size() == 1 ? "" : "s",
-                   100 * baked.coverage());
+        fmt::print(
+            "pelage bake: {} ({}x{}, {} tile{}): {:.1f} % of texels inside "
+            "triangles",
+            written.size() == 1 ? written[0] : o.output, width, height, written.size(),
+            written.size() == 1 ? "" : "s", 100 * baked.coverage());
         if (atlas)
             fmt::print(", {} charts, {:.1f} texels per unit", atlas->num_charts,
                        atlas->texels_per_unit);
@@ -182,15 +183,17 @@ Runner add_bake_command(CLI::App &app) {
     sub->add_option("--uv-from", o->uv_from,
                     "Bake into this mesh's own UVs (an OBJ with vt; the cells' mesh or "
                     "another mesh of its shape); UDIM tiles when they span several");
-    sub->add_option("--res", o->res, "Texels of the atlas or of each UDIM tile: WxH, or N "
-                                     "for NxN (default 4096)");
+    sub->add_option("--res", o->res,
+                    "Texels of the atlas or of each UDIM tile: WxH, or N "
+                    "for NxN (default 4096)");
     sub->add_option("--gutter", o->gutter,
                     "Texels beyond each chart's border filled from the surface")
         ->check(CLI::Range(0, 64));
     sub->add_option("-o,--output", o->output,
                     "Texture (.exr); <UDIM> in the name stands for the tile number")
         ->required();
-    sub->add_option("--obj", o->obj, "Also write the mesh as OBJ with its UVs and normals");
+    sub->add_option("--obj", o->obj,
+                    "Also write the mesh as OBJ with its UVs and normals");
     sub->add_option("--stats-json", o->stats_json,
                     "Write coverage, tiles and time as JSON");
     sub->add_flag("-q,--quiet", o->quiet, "No summary line");

@@ -74,8 +74,8 @@ std::vector<Chart> grow_charts(const sim::Crps &crps, double max_angle_deg) {
             y0 = std::min(y0, q.y);
             y1 = std::max(y1, q.y);
         }
-        for (int64_t y = int64_t(std::floor(y0 / cell)); y <= int64_t(std::floor(y1 / cell));
-             ++y)
+        for (int64_t y = int64_t(std::floor(y0 / cell));
+             y <= int64_t(std::floor(y1 / cell)); ++y)
             for (int64_t x = int64_t(std::floor(x0 / cell));
                  x <= int64_t(std::floor(x1 / cell)); ++x)
                 fn(key(x, y));
@@ -114,7 +114,8 @@ std::vector<Chart> grow_charts(const sim::Crps &crps, double max_angle_deg) {
                 if (dot(crps.frame(n).normal, n0) < cos_max) continue;
                 // n's corners on the shared edge, and its reference triangle moved
                 // rigidly so that edge lands on the chart's copy of it.
-                const sim::VertId A = crps.corners(t)[k], B = crps.corners(t)[(k + 1) % 3];
+                const sim::VertId A = crps.corners(t)[k],
+                                  B = crps.corners(t)[(k + 1) % 3];
                 int ia = -1, ib = -1;
                 for (int q = 0; q < 3; ++q) {
                     if (crps.corners(n)[q] == A) ia = q;
@@ -225,7 +226,8 @@ double distance_to_triangle(Vec2d q, const Tri2 &p) {
     double best = 1e300;
     for (int k = 0; k < 3; ++k) {
         const Vec2d a = p[k], ab = p[(k + 1) % 3] - a;
-        const double t = std::clamp(dot(q - a, ab) / std::max(dot(ab, ab), 1e-300), 0.0, 1.0);
+        const double t =
+            std::clamp(dot(q - a, ab) / std::max(dot(ab, ab), 1e-300), 0.0, 1.0);
         best = std::min(best, length(q - (a + ab * t)));
     }
     return best;
@@ -390,8 +392,8 @@ bool bitmap_pack(const std::vector<Chart> &charts, const std::vector<size_t> &or
     for (size_t i : order) {
         // Both orientations at once; the lower (then lefter) position wins.
         Mask m[2];
-        int x[2] = {0, 0}, y[2] = {std::numeric_limits<int>::max(),
-                                   std::numeric_limits<int>::max()};
+        int x[2] = {0, 0},
+            y[2] = {std::numeric_limits<int>::max(), std::numeric_limits<int>::max()};
         auto search = [&](int turn) {
             m[turn] = mask_of(charts[i], turn == 1, scale, margin, cs);
             if (!occ.find(m[turn], &x[turn], &y[turn]))
@@ -427,9 +429,8 @@ Atlas pack_atlas(const sim::Crps &crps, int width, int height,
     }
     std::vector<size_t> order(charts.size());
     std::iota(order.begin(), order.end(), 0);
-    std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) {
-        return charts[a].area > charts[b].area;
-    });
+    std::stable_sort(order.begin(), order.end(),
+                     [&](size_t a, size_t b) { return charts[a].area > charts[b].area; });
     // A packing grid of at most 2048 cells a side: at most two texels per cell.
     const double cs = std::max(1.0, std::ceil(double(std::max(width, height)) / 2048));
     const int cols = int(width / cs), rows = int(height / cs);
@@ -451,9 +452,8 @@ Atlas pack_atlas(const sim::Crps &crps, int width, int height,
             hi = mid;
     }
     // On the fine grid: down until it fits, then a bisection up to 12 % higher.
-    for (int k = 0; lo > 0 && !bitmap_pack(charts, order, lo, margin, cs, cols, rows,
-                                           &placed);
-         ++k)
+    for (int k = 0;
+         lo > 0 && !bitmap_pack(charts, order, lo, margin, cs, cols, rows, &placed); ++k)
         lo = k < 20 ? lo * 0.97 : 0;
     hi = lo * 1.12;
     for (int it = 0; it < 4 && lo > 0; ++it) {

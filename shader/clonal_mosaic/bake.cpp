@@ -219,8 +219,8 @@ BakeResult bake_layout(const MosaicPattern &pattern, const BakeLayout &layout) {
         T.jy = (E1 * T.i01 + E2 * T.i11) * scale;
         // The larger singular value of [jx jy]: the texel's widest extent on the surface.
         const double xx = dot(T.jx, T.jx), yy = dot(T.jy, T.jy), xy = dot(T.jx, T.jy);
-        const double tr = 0.5 * (xx + yy), dd = std::sqrt(0.25 * (xx - yy) * (xx - yy) +
-                                                          xy * xy);
+        const double tr = 0.5 * (xx + yy),
+                     dd = std::sqrt(0.25 * (xx - yy) * (xx - yy) + xy * xy);
         T.footprint = float(std::sqrt(tr + dd));
         T.x0 = std::min({T.p[0].x, T.p[1].x, T.p[2].x}) - gutter;
         T.x1 = std::max({T.p[0].x, T.p[1].x, T.p[2].x}) + gutter;
@@ -261,7 +261,8 @@ BakeResult bake_layout(const MosaicPattern &pattern, const BakeLayout &layout) {
                         for (int x = x0; x <= x1; ++x) {
                             const size_t i = size_t(y) * W + x;
                             Vec3d bn;
-                            const float d = float(distance_to(T, {x + 0.5, y + 0.5}, &bn));
+                            const float d =
+                                float(distance_to(T, {x + 0.5, y + 0.5}, &bn));
                             if (d == 0 && bn.x > 1e-9 && bn.y > 1e-9 && bn.z > 1e-9 &&
                                 strictly_inside[i] < 255)
                                 ++strictly_inside[i];
@@ -313,7 +314,8 @@ BakeResult bake_layout(const MosaicPattern &pattern, const BakeLayout &layout) {
                         b1 = float(be.y);
                         b2 = float(be.z);
                     }
-                    shade_texel(pattern, looks, s, b1, b2, T.footprint, &tile.pixels[i * C]);
+                    shade_texel(pattern, looks, s, b1, b2, T.footprint,
+                                &tile.pixels[i * C]);
                 }
         });
         std::vector<uint8_t> covered(n);

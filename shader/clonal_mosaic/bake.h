@@ -47,14 +47,14 @@ struct BakeResult {
     // filtered; −1 where no triangle or gutter covers the texel.
     static constexpr int channels = 7;
     static std::vector<std::string> channel_names() {
-        return {"R", "G", "B", "A", "shader.cell_type", "shader.cell_id",
-                "shader.lineage"};
+        return {
+            "R", "G", "B", "A", "shader.cell_type", "shader.cell_id", "shader.lineage"};
     }
     int width = 0, height = 0;
-    std::vector<BakedTile> tiles;  // ascending UDIM
-    size_t texels_inside = 0;      // centre inside a triangle
-    size_t texels_gutter = 0;      // filled from the surface beyond a chart's border
-    size_t texels_overlapped = 0;  // centre strictly inside two or more triangles
+    std::vector<BakedTile> tiles;     // ascending UDIM
+    size_t texels_inside = 0;         // centre inside a triangle
+    size_t texels_gutter = 0;         // filled from the surface beyond a chart's border
+    size_t texels_overlapped = 0;     // centre strictly inside two or more triangles
     size_t degenerate_triangles = 0;  // zero UV area: not baked
     double coverage() const {
         return tiles.empty() ? 0.0
