@@ -54,6 +54,18 @@ int run(const BakeOptions &o) {
 
     const Timer timer;
     const std::string &mesh_path = o.uv_from.empty() ? o.mesh : o.uv_from;
+    renderer::ImageMetadata meta;
+    meta.software = "pelage " PELAGE_VERSION " bake";
+    meta.scene = o.cells;
+    std::vector<std::string> written;
+    nlohmann::json tiles = nlohmann::json::array();
+    auto write_tile = [&](const cm::BakedTile &tile) {
+        const std::string path = tile_path(o.output, tile.udim);
+        renderer::write_exr(path, width, height, tile.pixels,
+                            cm::BakeResult::channel_names(), false, meta);
+        written.push_back(path);
+        tiles.push_back({{"udim", tile.udim}, {"file", path}});
+    };
     const cm::MosaicPattern pattern(o.cells, mesh_path);
     cm::BakeResult baked;
     std::optional<cm::Atlas> atlas;
@@ -86,17 +98,21 @@ int run(const BakeOptions &o) {
         layout.width = width;
         layout.height = height;
         layout.gutter = o.gutter;
+        std::vector<int> udims;
         try {
-            baked = cm::bake_layout(pattern, layout);
+            udims = cm::udim_tiles(uv_mesh, uv_mesh.corner_uvs);
         } catch (const std::invalid_argument &e) {
             throw InputError(o.uv_from, 0, "vt", e.what());
         }
-        if (baked.tiles.size() > 1 && o.output.find(udim_token) == std::string::npos)
+        if (udims.size() > 1 && o.output.find(udim_token) == std::string::npos)
             throw InputError("", 0, "-o",
                              "\"" + o.output + "\": the UVs span " +
-                                 std::to_string(baked.tiles.size()) +
+                                 std::to_string(udims.size()) +
                                  " UDIM tiles; name the output with <UDIM>, e.g. "
                                  "pattern.<UDIM>.exr");
+        // Each tile is written as soon as it is baked: one tile in memory at a time.
+        baked = cm::bake_layout(pattern, layout,
+                                [&](cm::BakedTile &&tile) { write_tile(tile); });
         if (baked.texels_overlapped > 0)
             fmt::print(stderr,
                        "pelage bake: warning: {}: {:.2f} % of the covered texels lie "
@@ -110,18 +126,7 @@ int run(const BakeOptions &o) {
                        o.uv_from, baked.degenerate_triangles);
     }
 
-    renderer::ImageMetadata meta;
-    meta.software = "pelage " PELAGE_VERSION " bake";
-    meta.scene = o.cells;
-    std::vector<std::string> written;
-    nlohmann::json tiles = nlohmann::json::array();
-    for (const cm::BakedTile &tile : baked.tiles) {
-        const std::string path = tile_path(o.output, tile.udim);
-        renderer::write_exr(path, width, height, tile.pixels,
-                            cm::BakeResult::channel_names(), false, meta);
-        written.push_back(path);
-        tiles.push_back({{"udim", tile.udim}, {"file", path}});
-    }
+    for (const cm::BakedTile &tile : baked.tiles) write_tile(tile);
     if (!o.obj.empty()) {
         if (atlas) {
             std::vector<sim::Vec2d> uvs;

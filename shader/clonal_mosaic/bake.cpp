@@ -170,11 +170,42 @@ int udim_of(Vec2d uv) {
     return 1001 + int(u) + 10 * int(v);
 }
 
-BakeResult bake_layout(const MosaicPattern &pattern, const BakeLayout &layout) {
+namespace {
+
+// The tile of triangle t (its UV centroid's), checking every corner's range.
+int tile_of(const sim::TriangleMesh &mesh, const Vec2d *uv, sim::TriId t) {
+    try {
+        const int udim = udim_of((uv[0] + uv[1] + uv[2]) / 3);
+        for (int c = 0; c < 3; ++c)  // corners may lie on the tiles' far borders
+            if (!(uv[c].x >= 0 && uv[c].x <= 10 && uv[c].y >= 0 && uv[c].y <= 10))
+                udim_of(uv[c]);
+        return udim;
+    } catch (const std::invalid_argument &e) {
+        const uint32_t face = t < mesh.source_face.size() ? mesh.source_face[t] : t;
+        throw std::invalid_argument("triangle " + std::to_string(t) + " (face " +
+                                    std::to_string(face + 1) + "): " + e.what());
+    }
+}
+
+}  // namespace
+
+std::vector<int> udim_tiles(const sim::TriangleMesh &mesh,
+                            const std::vector<sim::Vec2d> &corner_uvs) {
+    if (corner_uvs.size() != 3 * mesh.num_triangles())
+        throw std::invalid_argument("the layout needs 3 UVs per triangle");
+    std::vector<int> tiles;
+    for (sim::TriId t = 0; t < mesh.num_triangles(); ++t)
+        tiles.push_back(tile_of(mesh, &corner_uvs[3 * size_t(t)], t));
+    std::sort(tiles.begin(), tiles.end());
+    tiles.erase(std::unique(tiles.begin(), tiles.end()), tiles.end());
+    return tiles;
+}
+
+BakeResult bake_layout(const MosaicPattern &pattern, const BakeLayout &layout,
+                       const std::function<void(BakedTile &&)> &on_tile) {
     const sim::TriangleMesh &mesh = *layout.mesh;
     const size_t nt = mesh.num_triangles();
-    if (layout.corner_uvs.size() != 3 * nt)
-        throw std::invalid_argument("the layout needs 3 UVs per triangle");
+    udim_tiles(mesh, layout.corner_uvs);  // every check, before any work
     const int W = layout.width, H = layout.height, C = BakeResult::channels;
     const double gutter = layout.gutter;
     const double scale = layout.transfer ? layout.transfer->scale() : 1.0;
@@ -187,18 +218,7 @@ BakeResult bake_layout(const MosaicPattern &pattern, const BakeLayout &layout) {
     std::map<int, std::vector<uint32_t>> by_tile;
     for (sim::TriId t = 0; t < nt; ++t) {
         const Vec2d *uv = &layout.corner_uvs[3 * size_t(t)];
-        const Vec2d centroid = (uv[0] + uv[1] + uv[2]) / 3;
-        int udim;
-        try {
-            udim = udim_of(centroid);
-            for (int c = 0; c < 3; ++c)  // corners may lie on the tiles' far borders
-                if (!(uv[c].x >= 0 && uv[c].x <= 10 && uv[c].y >= 0 && uv[c].y <= 10))
-                    udim_of(uv[c]);
-        } catch (const std::invalid_argument &e) {
-            const uint32_t face = t < mesh.source_face.size() ? mesh.source_face[t] : t;
-            throw std::invalid_argument("triangle " + std::to_string(t) + " (face " +
-                                        std::to_string(face + 1) + "): " + e.what());
-        }
+        const int udim = tile_of(mesh, uv, t);
         const int ut = (udim - 1001) % 10, vt = (udim - 1001) / 10;
         TexelTriangle &T = tris[t];
         for (int c = 0; c < 3; ++c)
@@ -233,6 +253,7 @@ BakeResult bake_layout(const MosaicPattern &pattern, const BakeLayout &layout) {
     const Looks looks = looks_of(pattern);
     const sim::Crps &crps = pattern.surface().crps;
     constexpr int band = 16;  // rows per parallel task
+    out.num_tiles = by_tile.size();
     for (const auto &[udim, list] : by_tile) {
         // --- Owners: per texel, the nearest triangle within the gutter (the first one,
         // by id, among those that hold its centre) ---
@@ -326,7 +347,10 @@ BakeResult bake_layout(const MosaicPattern &pattern, const BakeLayout &layout) {
             out.texels_overlapped += strictly_inside[i] >= 2;
         }
         fill_empty(tile.pixels, covered, W, H);
-        out.tiles.push_back(std::move(tile));
+        if (on_tile)
+            on_tile(std::move(tile));
+        else
+            out.tiles.push_back(std::move(tile));
     }
     return out;
 }

@@ -16,6 +16,7 @@
 #pragma once
 
 #include <array>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -56,10 +57,11 @@ struct BakeResult {
     size_t texels_gutter = 0;         // filled from the surface beyond a chart's border
     size_t texels_overlapped = 0;     // centre strictly inside two or more triangles
     size_t degenerate_triangles = 0;  // zero UV area: not baked
+    size_t num_tiles = 0;
     double coverage() const {
-        return tiles.empty() ? 0.0
-                             : double(texels_inside) /
-                                   (double(tiles.size()) * double(width) * height);
+        return num_tiles ? double(texels_inside) /
+                               (double(num_tiles) * double(width) * double(height))
+                         : 0.0;
     }
     double overlap_share() const {
         return texels_inside ? double(texels_overlapped) / double(texels_inside) : 0.0;
@@ -69,9 +71,17 @@ struct BakeResult {
 // The UDIM tile of UV (u, v); throws std::invalid_argument when outside 1001…1100.
 int udim_of(sim::Vec2d uv);
 
-// Throws std::invalid_argument naming the triangle (and its source face) whose UVs lie
+// The UDIM tiles a layout's triangles fall in (by UV centroid), ascending. Throws
+// std::invalid_argument naming the triangle (and its source face) whose UVs lie
 // outside the UDIM range.
-BakeResult bake_layout(const MosaicPattern &pattern, const BakeLayout &layout);
+std::vector<int> udim_tiles(const sim::TriangleMesh &mesh,
+                            const std::vector<sim::Vec2d> &corner_uvs);
+
+// Throws as udim_tiles() does, before baking anything. Each tile is handed to
+// `on_tile` as soon as it is baked (so only one is held at a time) when given, else
+// kept in the result's `tiles`.
+BakeResult bake_layout(const MosaicPattern &pattern, const BakeLayout &layout,
+                       const std::function<void(BakedTile &&)> &on_tile = {});
 
 struct BakedAtlas {
     Atlas atlas;

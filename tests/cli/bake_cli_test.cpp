@@ -49,9 +49,11 @@ std::vector<float> read_layer(const std::string &path, const std::string &prefix
 // A sphere whose UVs are a cube map: each triangle goes to the cube face of its normal,
 // one UDIM tile per face (1001-1003, 1011-1013), by the angles of its projection onto
 // the face; smooth normals.
-std::string write_cube_mapped_sphere(const TempDir &tmp) {
-    const sim::TriangleMesh m = sim::load_mesh("procedural:icosphere:3");
-    std::ofstream out(tmp.file("sphere.obj"));
+std::string write_cube_mapped_sphere(const TempDir &tmp, int level = 3) {
+    const std::string path = tmp.file("sphere" + std::to_string(level) + ".obj");
+    const sim::TriangleMesh m =
+        sim::load_mesh("procedural:icosphere:" + std::to_string(level));
+    std::ofstream out(path);
     out.precision(17);
     for (const auto &p : m.positions)
         out << "v " << p.x << " " << p.y << " " << p.z << "\n";
@@ -80,7 +82,7 @@ std::string write_cube_mapped_sphere(const TempDir &tmp) {
                 << m.triangles[t][k] + 1;
         out << "\n";
     }
-    return tmp.file("sphere.obj");
+    return path;
 }
 
 std::string scene(const std::string &mesh, const std::string &material,
@@ -210,6 +212,77 @@ TEST(BakeCli, AtlasBakeRendersLikeTheMosaic) {
     const double share = agreement(tmp.file("m.exr"), tmp.file("t.exr"), 0.1, &object);
     EXPECT_GT(object, size_t(res * res / 4));
     EXPECT_GE(share, 0.99) << object << " object pixels at " << res << "x" << res;
+}
+
+// The cells grown on one triangulation of the sphere, baked into the UVs of a finer
+// one (carried onto the simulation surface like a render of that mesh), at one and two
+// threads alike.
+TEST(BakeCli, UvsOfAnotherTriangulationOfTheShape) {
+    TempDir tmp;
+    const std::string cells =
+        simulate_two_type_cells(tmp, "procedural:icosphere:3", 400, 0.4);
+    const std::string mesh = write_cube_mapped_sphere(tmp, 4);
+    std::string err;
+    for (int threads : {1, 2})
+        ASSERT_EQ(run_pelage("bake " + cells + " --uv-from " + mesh + " --res 384 -o '" +
+                                 tmp.file("t" + std::to_string(threads) + ".<UDIM>.exr") +
+                                 "' -q --threads " + std::to_string(threads),
+                             nullptr, &err),
+                  0)
+            << err;
+    for (int udim : {1001, 1002, 1003, 1011, 1012, 1013}) {
+        int w, h, w2, h2;
+        const auto a = read_layer(tmp.file("t1." + std::to_string(udim) + ".exr"), "", &w,
+                                  &h),
+                   b = read_layer(tmp.file("t2." + std::to_string(udim) + ".exr"), "",
+                                  &w2, &h2);
+        ASSERT_FALSE(a.empty());
+        EXPECT_TRUE(a == b) << udim;
+    }
+    const int res = 192;
+    const std::string mosaic = tmp.write(
+        "mosaic.json", scene(mesh, R"({"shader": "clonal_mosaic"})", cells, res));
+    const std::string texture =
+        tmp.write("texture.json", scene(mesh,
+                                        R"({"shader": "texture", "params": {"file": ")" +
+                                            tmp.file("t1.<UDIM>.exr") + R"("}})",
+                                        "", res));
+    ASSERT_EQ(run_pelage("render " + mosaic + " -o " + tmp.file("m.exr"), nullptr, &err),
+              0)
+        << err;
+    ASSERT_EQ(run_pelage("render " + texture + " -o " + tmp.file("t.exr"), nullptr, &err),
+              0)
+        << err;
+    size_t object = 0;
+    const double share = agreement(tmp.file("m.exr"), tmp.file("t.exr"), 0.1, &object);
+    EXPECT_GT(object, size_t(res * res / 4));
+    EXPECT_GE(share, 0.99) << object << " object pixels";
+}
+
+TEST(BakeCli, OverlappingUvsAreAWarningWithTheirShare) {
+    TempDir tmp;
+    const std::string mesh = write_cube_mapped_sphere(tmp);
+    const std::string cells = simulate_two_type_cells(tmp, mesh, 200, 0.4);
+    // Every cube face's UVs moved into tile 1001: six charts on top of each other.
+    std::ifstream in(mesh);
+    std::ofstream stacked(tmp.file("stacked.obj"));
+    for (std::string line; std::getline(in, line);) {
+        double u, v;
+        if (std::sscanf(line.c_str(), "vt %lf %lf", &u, &v) == 2)
+            stacked << "vt " << u - std::floor(u) << " " << v - std::floor(v) << "\n";
+        else
+            stacked << line << "\n";
+    }
+    stacked.close();
+    std::string err;
+    ASSERT_EQ(run_pelage("bake " + cells + " --uv-from " + tmp.file("stacked.obj") +
+                             " --res 64 -o " + tmp.file("s.exr"),
+                         nullptr, &err),
+              0)
+        << err;
+    EXPECT_NE(err.find("overlapping UVs"), std::string::npos) << err;
+    EXPECT_NE(err.find("stacked.obj"), std::string::npos) << err;
+    EXPECT_NE(err.find(" %"), std::string::npos) << err;
 }
 
 TEST(BakeCli, BadInputsExitTwoNamingFileAndField) {
