@@ -3,6 +3,7 @@
 // or on an undistorted CRPS atlas, and the mesh with those UVs and its normals.
 #include <fmt/core.h>
 
+#include <cstdio>
 #include <filesystem>
 #include <optional>
 
@@ -47,10 +48,21 @@ int run(const BakeOptions &o) {
             "", 0, "-o",
             "\"" + o.output + "\": the texture is written as OpenEXR (.exr)");
     int width = 0, height = 0;
-    parse_resolution(o.res.find('x') == std::string::npos ? o.res + "x" + o.res : o.res,
-                     32768, &width, &height);
-    if (width < 16 || height < 16)
-        throw InputError("", 0, "--res", "\"" + o.res + "\": at least 16 texels a side");
+    if (o.res.find('x') == std::string::npos) {  // "N": N x N
+        int n = 0;
+        char extra = 0;
+        if (std::sscanf(o.res.c_str(), "%d%c", &n, &extra) != 1 || n < 16 || n > 32768)
+            throw InputError("", 0, "--res",
+                             "\"" + o.res +
+                                 "\": expected N or WIDTHxHEIGHT, 16 to 32768 texels a "
+                                 "side, e.g. 4096 or 4096x2048");
+        width = height = n;
+    } else {
+        parse_resolution(o.res, 32768, &width, &height);
+        if (width < 16 || height < 16)
+            throw InputError("", 0, "--res",
+                             "\"" + o.res + "\": at least 16 texels a side");
+    }
 
     const Timer timer;
     const std::string &mesh_path = o.uv_from.empty() ? o.mesh : o.uv_from;
