@@ -1,7 +1,5 @@
 #include "shader/clonal_mosaic/atlas.h"
 
-#include <tbb/parallel_invoke.h>
-
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -308,8 +306,9 @@ class Occupancy {
           m_longest(size_t(rows)) {
         for (int y = 0; y < rows; ++y) update_row(y);
     }
-    // The first position (least row, then column) where m fits; false when none does.
-    bool find(const Mask &m, int *px, int *py) const {
+    // The first position (least row, then column) where m fits, in rows below
+    // `row_limit`; false when none does.
+    bool find(const Mask &m, int row_limit, int *px, int *py) const {
         // The mask's longest run: a row without as long a free run cannot take it.
         int widest_row = 0, widest = 0;
         for (int r = 0; r < m.rows; ++r)
@@ -318,7 +317,7 @@ class Occupancy {
                     widest = run.len;
                     widest_row = r;
                 }
-        for (int y = 0; y + m.rows <= m_rows; ++y) {
+        for (int y = 0; y + m.rows <= m_rows && y < row_limit; ++y) {
             if (m_longest[size_t(y + widest_row)] < widest) continue;
             for (int x = 0; x + m.cols <= m_cols;) {
                 int skip = 0;
@@ -390,18 +389,19 @@ bool bitmap_pack(const std::vector<Chart> &charts, const std::vector<size_t> &or
     Occupancy occ(cols, rows);
     out->assign(charts.size(), {});
     for (size_t i : order) {
-        // Both orientations at once; the lower (then lefter) position wins.
+        // Both orientations; the lower (then lefter) position wins, so the second
+        // search stops at the first one's row.
         Mask m[2];
         int x[2] = {0, 0},
             y[2] = {std::numeric_limits<int>::max(), std::numeric_limits<int>::max()};
-        auto search = [&](int turn) {
+        for (int turn = 0; turn < 2; ++turn) {
             m[turn] = mask_of(charts[i], turn == 1, scale, margin, cs);
-            if (!occ.find(m[turn], &x[turn], &y[turn]))
+            if (!occ.find(m[turn], turn ? y[0] : std::numeric_limits<int>::max(),
+                          &x[turn], &y[turn]))
                 y[turn] = std::numeric_limits<int>::max();
-        };
-        tbb::parallel_invoke([&] { search(0); }, [&] { search(1); });
-        const int turn = y[1] < y[0] || (y[1] == y[0] && x[1] < x[0]) ? 1 : 0;
-        int best_x = x[turn], best_y = y[turn];
+        }
+        const int turn = y[1] < y[0] ? 1 : 0;
+        const int best_x = x[turn], best_y = y[turn];
         const bool best_turn = turn == 1;
         Mask &best = m[turn];
         if (best_y == std::numeric_limits<int>::max()) return false;
