@@ -12,6 +12,7 @@
 #include <random>
 
 #include "renderer/plugins/plugin_loader.h"
+#include "shader/clonal_mosaic/surface_transfer.h"
 #include "sim/crps/surface.h"
 #include "tests/test_paths.h"
 
@@ -204,6 +205,73 @@ TEST(Bake, NoTexelWithinTheGutterOfAChartStaysUncovered) {
         }
     EXPECT_GT(uncovered, 0u);
     EXPECT_GT(baked.image.texels_gutter, 0u);
+}
+
+// A gutter texel shows the surface beyond its chart's border: the point its offset from
+// the border reaches when the border triangle's plane is continued, brought back to the
+// (nearly flat, at this scale) surface by its closest point. Clamping to the border
+// instead would repeat the border's cells across the whole gutter.
+TEST(Bake, GutterTexelsContinueTheSurfaceAcrossTheSeam) {
+    TempDir tmp;
+    const std::string cells = simulate_two_type_cells(tmp, mesh_spec, 800, 0.4);
+    const cm::MosaicPattern pattern(cells, mesh_spec);
+    const int res = 256, gutter = 12;
+    const cm::BakedAtlas baked = cm::bake_atlas(pattern, res, res, gutter);
+    const std::vector<float> &px = baked.image.tiles[0].pixels;
+    const int C = cm::BakeResult::channels;
+    const sim::TriangleMesh &mesh = pattern.surface().mesh;
+    const auto id_at = [&](sim::TriId t, sim::Vec3d b) {
+        const cm::ClosestCell c = pattern.index().find_nearest(t, float(b.y), float(b.z));
+        return float(pattern.cells().id[c.index]);
+    };
+    size_t far = 0, continued = 0, clamped = 0;
+    for (int y = 0; y < res; y += 2)
+        for (int x = 0; x < res; x += 2) {
+            const float *texel = &px[(size_t(y) * res + x) * C];
+            const sim::Vec2d q{x + 0.5, y + 0.5};
+            double nearest = 1e300;
+            sim::TriId t = 0;
+            for (sim::TriId k = 0; k < mesh.num_triangles(); ++k)
+                if (const double d = distance_to(baked.atlas.corners[k], q);
+                    d < nearest) {
+                    nearest = d;
+                    t = k;
+                }
+            if (!(nearest > gutter / 2.0 && nearest <= gutter && texel[3] == 1)) continue;
+            // The texel in t's plane, continued past its border (the atlas is isometric).
+            const sim::Vec3d b = barycentric(baked.atlas.corners[t], q);
+            const sim::Vec3d p = mesh.vertex(t, 0) * b.x + mesh.vertex(t, 1) * b.y +
+                                 mesh.vertex(t, 2) * b.z;
+            double best = 1e300;
+            sim::TriId s = 0;
+            sim::Vec3d on;
+            for (sim::TriId k = 0; k < mesh.num_triangles(); ++k) {
+                const sim::Vec3d c = cm::closest_point_on_triangle(
+                    p, mesh.vertex(k, 0), mesh.vertex(k, 1), mesh.vertex(k, 2));
+                if (length(c - p) < best) {
+                    best = length(c - p);
+                    s = k;
+                    on = c;
+                }
+            }
+            const sim::Vec2d a2 = pattern.surface().crps.to_2d(s, on);
+            const sim::Vec3d bs = pattern.surface().crps.to_barycentric(s, a2);
+            // The border point the texel would repeat if it were clamped.
+            sim::Vec3d bc = b;
+            const double lo = std::min({b.x, b.y, b.z});
+            if (lo < 0) {
+                bc = {std::max(b.x, 0.0), std::max(b.y, 0.0), std::max(b.z, 0.0)};
+                const double sum = bc.x + bc.y + bc.z;
+                bc = {bc.x / sum, bc.y / sum, bc.z / sum};
+            }
+            ++far;
+            continued += texel[5] == id_at(s, bs);
+            clamped += texel[5] == id_at(t, bc);
+        }
+    ASSERT_GT(far, 200u);
+    EXPECT_GT(double(continued) / far, 0.9) << continued << " of " << far;
+    EXPECT_LT(double(clamped) / far, double(continued) / far - 0.15)
+        << clamped << " of " << far;
 }
 
 TEST(Bake, UvsOverSeveralUdimTilesBakeIntoThoseTiles) {
