@@ -3,7 +3,7 @@
 // bake` to turn a mosaic into an ordinary texture — the texture-mapping baseline of
 // Teo's Table 7.9, and an export any DCC can read.
 //
-// Charts: edge-connected triangles laid flat by unfolding each new triangle about the
+// Charts: edge-connected triangles laid flat by unfolding each added triangle about the
 // edge it shares with the chart (its reference shape, rigidly moved, so still
 // undistorted). A chart grows from its seed, nearest candidate first (so it stays
 // compact), and refuses a triangle whose unfolded copy would overlap the chart or whose
