@@ -11,6 +11,7 @@
 #include "renderer/image/image_output.h"
 #include "shader/clonal_mosaic/bake.h"
 #include "sim/core/input_error.h"
+#include "sim/crps/surface.h"
 #include "sim/mesh/mesh_load.h"
 #include "sim/mesh/mesh_write_obj.h"
 
@@ -83,18 +84,19 @@ int run(const BakeOptions &o) {
     std::optional<cm::Atlas> atlas;
     sim::TriangleMesh uv_mesh;
     if (o.uv_from.empty()) {
-        if (pattern.transfer())
-            throw InputError(o.mesh, 0, "--mesh",
-                             "the atlas lays out the triangles the cells were grown on: "
-                             "give that mesh, or bake into this mesh's own UVs with "
-                             "--uv-from");
+        // Cells grown on a simplified copy (pelage sim --surface auto) or another mesh of
+        // the shape: the atlas lays out the mesh given, carried onto theirs.
+        std::optional<sim::Surface> render;
+        if (pattern.transfer()) render = sim::build_surface(o.mesh);
         try {
-            cm::BakedAtlas a = cm::bake_atlas(pattern, width, height, o.gutter);
+            cm::BakedAtlas a = cm::bake_atlas(pattern, width, height, o.gutter,
+                                              render ? &*render : nullptr);
             baked = std::move(a.image);
             atlas = std::move(a.atlas);
         } catch (const std::invalid_argument &e) {
             throw InputError("", 0, "--res", e.what());
         }
+        if (render) uv_mesh = std::move(render->mesh);
     } else {
         // The same loader as the pattern's: the same triangles in the same order.
         uv_mesh = sim::load_mesh(o.uv_from);
@@ -141,10 +143,12 @@ int run(const BakeOptions &o) {
     for (const cm::BakedTile &tile : baked.tiles) write_tile(tile);
     if (!o.obj.empty()) {
         if (atlas) {
+            const sim::TriangleMesh &mesh =
+                pattern.transfer() ? uv_mesh : pattern.surface().mesh;
             std::vector<sim::Vec2d> uvs;
-            for (sim::TriId t = 0; t < pattern.num_triangles(); ++t)
+            for (sim::TriId t = 0; t < mesh.num_triangles(); ++t)
                 for (int c = 0; c < 3; ++c) uvs.push_back(atlas->uv(t, c));
-            sim::write_obj(o.obj, pattern.surface().mesh, uvs,
+            sim::write_obj(o.obj, mesh, uvs,
                            "pelage bake: CRPS atlas UVs for " + o.output);
         } else {
             sim::write_obj(o.obj, uv_mesh, uv_mesh.corner_uvs,

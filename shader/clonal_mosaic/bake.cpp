@@ -355,18 +355,22 @@ BakeResult bake_layout(const MosaicPattern &pattern, const BakeLayout &layout,
     return out;
 }
 
-BakedAtlas bake_atlas(const MosaicPattern &pattern, int width, int height, int gutter) {
+BakedAtlas bake_atlas(const MosaicPattern &pattern, int width, int height, int gutter,
+                      const sim::Surface *render) {
+    const bool carried = render && pattern.transfer();
+    const sim::Surface &surface = carried ? *render : pattern.surface();
     BakedAtlas out;
     AtlasOptions options;
     options.gutter = gutter;
-    out.atlas = pack_atlas(pattern.surface().crps, width, height, options);
+    out.atlas = pack_atlas(surface.crps, width, height, options);
     BakeLayout layout;
-    layout.mesh = &pattern.surface().mesh;
+    layout.mesh = &surface.mesh;
+    layout.transfer = carried ? pattern.transfer() : nullptr;
     layout.width = width;
     layout.height = height;
     layout.gutter = gutter;
-    layout.corner_uvs.reserve(3 * pattern.num_triangles());
-    for (sim::TriId t = 0; t < pattern.num_triangles(); ++t)
+    layout.corner_uvs.reserve(3 * surface.mesh.num_triangles());
+    for (sim::TriId t = 0; t < surface.mesh.num_triangles(); ++t)
         for (int c = 0; c < 3; ++c) layout.corner_uvs.push_back(out.atlas.uv(t, c));
     out.image = bake_layout(pattern, layout);
     return out;

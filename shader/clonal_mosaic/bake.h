@@ -22,6 +22,7 @@
 
 #include "shader/clonal_mosaic/atlas.h"
 #include "shader/clonal_mosaic/pattern.h"
+#include "sim/crps/surface.h"
 
 namespace pelage::shader::clonal_mosaic {
 
@@ -88,8 +89,11 @@ struct BakedAtlas {
     BakeResult image;  // one tile, 1001
 };
 
-// The simulation surface (pattern.surface().mesh) laid out by pack_atlas and baked.
-BakedAtlas bake_atlas(const MosaicPattern &pattern, int width, int height,
-                      int gutter = 4);
+// A surface laid out by pack_atlas and baked: the simulation surface, or — when the
+// pattern carries another mesh of its shape onto it (pattern.transfer()) and `render`
+// is given — that mesh (built from the same file, so its triangles are the
+// transfer's).
+BakedAtlas bake_atlas(const MosaicPattern &pattern, int width, int height, int gutter = 4,
+                      const sim::Surface *render = nullptr);
 
 }  // namespace pelage::shader::clonal_mosaic

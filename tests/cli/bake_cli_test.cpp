@@ -257,6 +257,15 @@ TEST(BakeCli, UvsOfAnotherTriangulationOfTheShape) {
     const double share = agreement(tmp.file("m.exr"), tmp.file("t.exr"), 0.1, &object);
     EXPECT_GT(object, size_t(res * res / 4));
     EXPECT_GE(share, 0.99) << object << " object pixels";
+
+    // The atlas of that finer mesh: laid out from it, its triangles in the OBJ.
+    ASSERT_EQ(run_pelage("bake " + cells + " --mesh " + mesh + " --res 256 -q -o " +
+                             tmp.file("a.exr") + " --obj " + tmp.file("a.obj"),
+                         nullptr, &err),
+              0)
+        << err;
+    EXPECT_EQ(sim::load_mesh(tmp.file("a.obj")).num_triangles(),
+              sim::load_mesh(mesh).num_triangles());
 }
 
 TEST(BakeCli, OverlappingUvsAreAWarningWithTheirShare) {
