@@ -69,14 +69,13 @@ void bake_atlas_for_texture(const renderer::SceneDesc &desc, int res, TempDir &d
     std::filesystem::create_directories(dir.path);
     const Timer timer;
     const shader::clonal_mosaic::MosaicPattern pattern(subject->cells, subject->mesh);
-    const shader::clonal_mosaic::BakedPattern baked =
-        shader::clonal_mosaic::bake_pattern(pattern, res);
+    const shader::clonal_mosaic::BakedAtlas baked =
+        shader::clonal_mosaic::bake_atlas(pattern, res, res);
     co.texture_file = (dir.path / "atlas.exr").string();
     co.texture_mesh = (dir.path / "atlas.obj").string();
     co.texels_per_unit = float(baked.atlas.texels_per_unit);
-    renderer::write_exr(co.texture_file, res, res, baked.pixels,
-                        {"R", "G", "B", "A", "shader.cell_type", "shader.cell_id"}, false,
-                        {});
+    renderer::write_exr(co.texture_file, res, res, baked.image.tiles.at(0).pixels,
+                        shader::clonal_mosaic::BakeResult::channel_names(), false, {});
     std::vector<sim::Vec2d> uvs;
     for (sim::TriId t = 0; t < pattern.num_triangles(); ++t)
         for (int c = 0; c < 3; ++c) uvs.push_back(baked.atlas.uv(t, c));

@@ -1,33 +1,62 @@
 #include "sim/mesh/mesh_write_obj.h"
 
-#include <cstdio>
+#include <charconv>
+#include <string>
 
 #include "sim/core/atomic_file.h"
 
 namespace pelage::sim {
+namespace {
+
+// Shortest round-trip text of x (std::to_chars without a precision).
+void put(std::string &line, double x) {
+    char buf[32];
+    const auto r = std::to_chars(buf, buf + sizeof(buf), x);
+    line += ' ';
+    line.append(buf, r.ptr);
+}
+
+}  // namespace
 
 void write_obj(const std::string &path, const TriangleMesh &mesh,
                const std::vector<Vec2d> &corner_uvs, const std::string &comment) {
+    const bool uvs = !corner_uvs.empty(),
+               normals = mesh.corner_normals.size() == 3 * mesh.num_triangles() &&
+                         mesh.num_triangles() > 0;
     write_file_atomically(path, [&](std::ostream &out) {
-        char line[256];
+        std::string line;
         if (!comment.empty()) out << "# " << comment << "\n";
         for (const Vec3d &p : mesh.positions) {
-            std::snprintf(line, sizeof(line), "v %.9g %.9g %.9g\n", p.x, p.y, p.z);
-            out << line;
+            line = "v";
+            put(line, p.x);
+            put(line, p.y);
+            put(line, p.z);
+            out << line << '\n';
         }
         for (const Vec2d &uv : corner_uvs) {
-            std::snprintf(line, sizeof(line), "vt %.9g %.9g\n", uv.x, uv.y);
-            out << line;
+            line = "vt";
+            put(line, uv.x);
+            put(line, uv.y);
+            out << line << '\n';
         }
+        if (normals)
+            for (const Vec3d &n : mesh.corner_normals) {
+                line = "vn";
+                put(line, n.x);
+                put(line, n.y);
+                put(line, n.z);
+                out << line << '\n';
+            }
         for (size_t t = 0; t < mesh.num_triangles(); ++t) {
-            const auto &tri = mesh.triangles[t];
-            if (corner_uvs.empty())
-                std::snprintf(line, sizeof(line), "f %u %u %u\n", tri[0] + 1, tri[1] + 1,
-                              tri[2] + 1);
-            else
-                std::snprintf(line, sizeof(line), "f %u/%zu %u/%zu %u/%zu\n", tri[0] + 1,
-                              3 * t + 1, tri[1] + 1, 3 * t + 2, tri[2] + 1, 3 * t + 3);
-            out << line;
+            line = "f";
+            for (int c = 0; c < 3; ++c) {
+                const std::string corner = std::to_string(3 * t + c + 1);
+                line += ' ' + std::to_string(mesh.triangles[t][c] + 1);
+                if (uvs || normals) line += '/';
+                if (uvs) line += corner;
+                if (normals) line += '/' + corner;
+            }
+            out << line << '\n';
         }
     });
 }
