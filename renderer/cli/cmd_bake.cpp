@@ -21,10 +21,11 @@ namespace {
 namespace cm = shader::clonal_mosaic;
 
 struct BakeOptions {
-    std::string cells, mesh, uv_from, output, obj, res = "4096", stats_json;
+    std::string cells, mesh, uv_from, output, obj, res = "4096";
     int gutter = 4;
-    bool quiet = false;
     ThreadOption threads;
+    QuietOption quiet;
+    StatsJsonOption stats_json;
 };
 
 constexpr const char *udim_token = "<UDIM>";
@@ -48,22 +49,10 @@ int run(const BakeOptions &o) {
         throw InputError(
             "", 0, "-o",
             "\"" + o.output + "\": the texture is written as OpenEXR (.exr)");
-    int width = 0, height = 0;
-    if (o.res.find('x') == std::string::npos) {  // "N": N x N
-        int n = 0;
-        char extra = 0;
-        if (std::sscanf(o.res.c_str(), "%d%c", &n, &extra) != 1 || n < 16 || n > 32768)
-            throw InputError("", 0, "--res",
-                             "\"" + o.res +
-                                 "\": expected N or WIDTHxHEIGHT, 16 to 32768 texels a "
-                                 "side, e.g. 4096 or 4096x2048");
-        width = height = n;
-    } else {
-        parse_resolution(o.res, 32768, &width, &height);
-        if (width < 16 || height < 16)
-            throw InputError("", 0, "--res",
-                             "\"" + o.res + "\": at least 16 texels a side");
-    }
+    // N is a square (the atlas's shape, and the usual UDIM tile); WxH otherwise.
+    const Resolution res =
+        parse_resolution(o.res, 32768, ResolutionForm::or_longer_side, "--res", 16);
+    const int width = res.width, height = res.height;
 
     const Timer timer;
     const std::string &mesh_path = o.uv_from.empty() ? o.mesh : o.uv_from;
@@ -156,7 +145,7 @@ int run(const BakeOptions &o) {
         }
     }
     const double seconds = timer.seconds();
-    if (!o.stats_json.empty()) {
+    if (o.stats_json.wanted()) {
         nlohmann::json j = {
             {"cells", o.cells},
             {"mesh", mesh_path},
@@ -175,7 +164,7 @@ int run(const BakeOptions &o) {
             j["charts"] = atlas->num_charts;
             j["texels_per_unit"] = atlas->texels_per_unit;
         }
-        write_json_file(o.stats_json, j);
+        o.stats_json.write(j);
     }
     if (!o.quiet) {
         fmt::print(
@@ -215,9 +204,8 @@ Runner add_bake_command(CLI::App &app) {
         ->required();
     sub->add_option("--obj", o->obj,
                     "Also write the mesh as OBJ with its UVs and normals");
-    sub->add_option("--stats-json", o->stats_json,
-                    "Write coverage, tiles and time as JSON");
-    sub->add_flag("-q,--quiet", o->quiet, "No summary line");
+    o->stats_json.add_to(*sub, "coverage, tiles and time");
+    o->quiet.add_to(*sub);
     o->threads.add_to(*sub);
     return [o] { return run(*o); };
 }
