@@ -213,8 +213,10 @@ std::string points_and_lines_only(const std::string &path) {
 
 TriangleMesh read_assimp(const std::string &path, MeshReadStats *stats,
                          const std::string &object) {
-    if (!std::ifstream(path, std::ios::binary))
-        throw InputError(path, 0, "", "cannot open file");
+    std::ifstream in(path, std::ios::binary | std::ios::ate);
+    if (!in) throw InputError(path, 0, "", "cannot open file");
+    if (in.tellg() == 0) throw InputError(path, 0, "", "empty file");
+    in.close();
     Assimp::Importer importer;
     // A file with bones and no mesh must not be drawn as a stick figure.
     importer.SetPropertyBool(AI_CONFIG_IMPORT_NO_SKELETON_MESHES, true);
@@ -234,6 +236,11 @@ TriangleMesh read_assimp(const std::string &path, MeshReadStats *stats,
         // Validation refuses a point cloud ("contains no faces"): say what it holds.
         const std::string only = points_and_lines_only(path);
         if (!only.empty()) throw InputError(path, 0, "", "the file " + only);
+        // What assimp says when the extension's importer refuses the contents outright.
+        if (why.rfind("No suitable reader found", 0) == 0) {
+            const auto dot = path.find_last_of('.');
+            why = "its contents are not a valid ." + path.substr(dot + 1) + " file";
+        }
         throw InputError(path, 0, "", "cannot read the file: " + why);
     }
     if ((scene->mFlags & AI_SCENE_FLAGS_INCOMPLETE) || !scene->mRootNode)
