@@ -32,7 +32,7 @@ const Assimp::Importer &assimp_formats() {
 
 bool is_mesh_extension(const std::string &ext) {
     const std::string e = lower(ext);
-    if (e == "off" || e == "obj") return true;
+    if (e == "off" || e == "obj" || e == "ply") return true;
     return !e.empty() && e.find_first_of("*;. ") == std::string::npos &&
            assimp_formats().IsExtensionSupported(e);
 }
@@ -55,12 +55,14 @@ std::string mesh_extension_list() {
 TriangleMesh read_mesh(const std::string &path, MeshReadStats *stats,
                        const std::string &object) {
     const std::string ext = extension_of(path);
-    if (ext == "off") {
+    if (ext == "off" || ext == "ply") {
         if (!object.empty())
             throw InputError(path, 0, "",
-                             "an OFF file holds one unnamed object: it has no object \"" +
+                             "a ." + ext +
+                                 " file holds one unnamed object: it has no "
+                                 "object \"" +
                                  object + "\" to select");
-        return read_off(path, stats);
+        return ext == "off" ? read_off(path, stats) : read_ply(path, stats);
     }
     if (ext == "obj") return read_obj(path, stats, object);
     if (is_mesh_extension(ext)) return read_assimp(path, stats, object);

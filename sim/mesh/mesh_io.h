@@ -1,6 +1,6 @@
-// Reading meshes from disk: OFF (our own parser), OBJ (tinyobjloader) and, through
-// assimp, glTF 2.0, FBX, PLY, Collada and the other formats assimp imports. Readers throw
-// pelage::InputError naming the file (and the line or element where the format has
+// Reading meshes from disk: OFF and PLY (our own parsers), OBJ (tinyobjloader) and,
+// through assimp, glTF 2.0, FBX, Collada and the other formats assimp imports. Readers
+// throw pelage::InputError naming the file (and the line or element where the format has
 // one); they never return a half-read mesh.
 #pragma once
 
@@ -20,7 +20,7 @@ struct MeshReadStats {
     size_t pieces_read = 0;
 };
 
-// Dispatches on the extension (.off, .obj, or one assimp imports; case-insensitive).
+// Dispatches on the extension (.off, .ply, .obj, or one assimp imports; any case).
 // `object`, when not empty, selects the named object of the file (OBJ: the faces under
 // `o NAME` or `g ... NAME ...`; assimp: the meshes under the node NAME, or the mesh
 // NAME), and is an error, listing the names there are, when the file has none of that
@@ -30,9 +30,11 @@ TriangleMesh read_mesh(const std::string &path, MeshReadStats *stats = nullptr,
                        const std::string &object = "");
 
 TriangleMesh read_off(const std::string &path, MeshReadStats *stats = nullptr);
+// PLY, ASCII or binary (our own reader: assimp's crashes on damaged headers).
+TriangleMesh read_ply(const std::string &path, MeshReadStats *stats = nullptr);
 TriangleMesh read_obj(const std::string &path, MeshReadStats *stats = nullptr,
                       const std::string &object = "");
-// glTF, FBX, PLY, Collada, ...: node transforms are baked into positions and normals,
+// glTF, FBX, Collada, ...: node transforms are baked into positions and normals,
 // polygons triangulated; lengths are the file's own (glTF's metres, FBX's centimetres).
 TriangleMesh read_assimp(const std::string &path, MeshReadStats *stats = nullptr,
                          const std::string &object = "");

@@ -157,12 +157,10 @@ ObjScan validate_obj(const std::string &path) {
             scan.face_label.push_back(label);
             ++scan.segment_faces.back();
         } else if (tok[0] == "o") {
-            // tinyobjloader's object name is the rest of the line.
-            const size_t at = line.find_first_not_of(" \t", line.find('o') + 1);
-            object_name = at == std::string::npos ? "" : line.substr(at);
-            while (!object_name.empty() &&
-                   (object_name.back() == ' ' || object_name.back() == '\t'))
-                object_name.pop_back();
+            // The rest of the line, its words joined by one space.
+            object_name.clear();
+            for (size_t i = 1; i < tok.size(); ++i)
+                object_name += (i > 1 ? " " : "") + std::string(tok[i]);
             names_changed();
         } else if (tok[0] == "g") {
             group_names.assign(tok.begin() + 1, tok.end());

@@ -1,7 +1,8 @@
-// Mesh formats read through assimp (glTF, PLY, Collada, FBX), objects selected by name
-// (assimp nodes and meshes, OBJ `o`/`g`), and OBJ materials. The files are written here
-// byte by byte, so each reader is checked against positions known by construction, not
-// against itself; Collada and FBX come from assimp's exporter fed a known mesh.
+// Mesh formats beyond OFF and OBJ (PLY; through assimp glTF, Collada, FBX), objects
+// selected by name (assimp nodes and meshes, OBJ `o`/`g`), and OBJ materials. The files
+// are written here byte by byte, so each reader is checked against positions known by
+// construction, not against itself; Collada and FBX come from assimp's exporter fed a
+// known mesh.
 #include <assimp/scene.h>
 #include <gtest/gtest.h>
 
@@ -189,6 +190,17 @@ TEST(MeshFormats, TruncatedGlbIsAnInputErrorNamingTheFile) {
     EXPECT_NE(e.find(p + ": "), std::string::npos) << e;
 }
 
+TEST(MeshFormats, GltfWithPointsOnlyIsRefusedSayingSo) {
+    TempDir tmp;
+    const std::string b = gltf_buffer();
+    std::string json =
+        gltf_json("data:application/octet-stream;base64," + base64(b), b.size());
+    json.replace(json.find("\"material\": 0"), 13, "\"mode\": 0");
+    const std::string p = tmp.write("points.gltf", json);
+    EXPECT_EQ(error_of(p),
+              p + ": the file holds no triangles (only 9 points and 0 lines)");
+}
+
 TEST(MeshFormats, ObjectsAreSelectedByNodeOrMeshName) {
     TempDir tmp;
     const std::string p = write_gltf(tmp);
@@ -221,14 +233,30 @@ TEST(MeshFormats, MergingSeveralObjectsSaysSoOncePerFile) {
     EXPECT_EQ(err.find("merged"), err.rfind("merged")) << err;
 }
 
+// A unit square (two triangles after triangulation) and a triangle of area 2.
+const char *ply_ascii =
+    "ply\nformat ascii 1.0\ncomment made by hand\nelement vertex 7\n"
+    "property float x\nproperty float y\nproperty float z\n"
+    "element face 2\nproperty list uchar int vertex_indices\nend_header\n"
+    "0 0 0\n1 0 0\n1 1 0\n0 1 0\n0 0 5\n2 0 5\n0 2 5\n4 0 1 2 3\n3 4 5 6\n";
+
 TEST(MeshFormats, AssimpPrintsNothingAndReadsDeterministically) {
     TempDir tmp;
     const std::string good = write_gltf(tmp);
     const std::string bad = tmp.write("bad.gltf", "{\"asset\": {\"version\": \"2.0\"");
+    std::string cut = ply_ascii;
+    cut.resize(cut.size() / 2);
+    const std::string bad_ply = tmp.write("cut.ply", cut);
+    const std::string points = tmp.write(
+        "points.ply",
+        "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nproperty float "
+        "y\nproperty float z\nend_header\n0 0 0\n");
     testing::internal::CaptureStdout();
     testing::internal::CaptureStderr();
     const TriangleMesh a = read_mesh(good), b = read_mesh(good);
     EXPECT_THROW((void)read_mesh(bad), InputError);
+    EXPECT_THROW((void)read_mesh(bad_ply), InputError);
+    EXPECT_THROW((void)read_mesh(points), InputError);
     const std::string out = testing::internal::GetCapturedStdout();
     const std::string err = testing::internal::GetCapturedStderr();
     EXPECT_EQ(out, "");
@@ -237,13 +265,6 @@ TEST(MeshFormats, AssimpPrintsNothingAndReadsDeterministically) {
     EXPECT_EQ(a.triangles, b.triangles);
     EXPECT_EQ(a.corner_normals, b.corner_normals);
 }
-
-// A unit square (two triangles after triangulation) and a triangle of area 2.
-const char *ply_ascii =
-    "ply\nformat ascii 1.0\ncomment made by hand\nelement vertex 7\n"
-    "property float x\nproperty float y\nproperty float z\n"
-    "element face 2\nproperty list uchar int vertex_indices\nend_header\n"
-    "0 0 0\n1 0 0\n1 1 0\n0 1 0\n0 0 5\n2 0 5\n0 2 5\n4 0 1 2 3\n3 4 5 6\n";
 
 TEST(MeshFormats, PlyAsciiAndBinaryGiveTheKnownTriangles) {
     TempDir tmp;
@@ -256,8 +277,19 @@ TEST(MeshFormats, PlyAsciiAndBinaryGiveTheKnownTriangles) {
     append<int32_t>(&bin, {0, 1, 2, 3});
     append<uint8_t>(&bin, {3});
     append<int32_t>(&bin, {4, 5, 6});
-    for (const std::string &p :
-         {tmp.write("a.ply", ply_ascii), tmp.write("b.ply", bin)}) {
+    // The same as big-endian: every value's bytes reversed.
+    std::string big = bin;
+    big.replace(big.find("binary_little_endian"), 20, "binary_big_endian");
+    for (size_t at = big.find("end_header\n") + 11, i = 0; i < 21; ++i, at += 4)
+        std::reverse(big.begin() + long(at), big.begin() + long(at) + 4);
+    for (size_t at = big.size() - 30, f = 0; f < 2; ++f) {  // "4 0 1 2 3", "3 4 5 6"
+        at += 1;
+        const int n = f == 0 ? 4 : 3;
+        for (int k = 0; k < n; ++k, at += 4)
+            std::reverse(big.begin() + long(at), big.begin() + long(at) + 4);
+    }
+    for (const std::string &p : {tmp.write("a.ply", ply_ascii), tmp.write("b.ply", bin),
+                                 tmp.write("c.ply", big)}) {
         SCOPED_TRACE(p);
         const TriangleMesh m = load_mesh(p);
         ASSERT_EQ(m.num_triangles(), 3u);
@@ -272,6 +304,26 @@ TEST(MeshFormats, PlyAsciiAndBinaryGiveTheKnownTriangles) {
     }
 }
 
+TEST(MeshFormats, PlyNormalsAndUvsBecomeCornerAttributes) {
+    TempDir tmp;
+    const std::string p = tmp.write(
+        "n.ply",
+        "ply\nformat ascii 1.0\nelement vertex 3\nproperty double x\nproperty double y\n"
+        "property double z\nproperty float nx\nproperty float ny\nproperty float nz\n"
+        "property float s\nproperty float t\nproperty uchar red\n"
+        "element face 1\nproperty uchar flags\nproperty list uint8 uint32 vertex_index\n"
+        "element edge 1\nproperty int a\nproperty int b\nend_header\n"
+        "0 0 0 0 0 1 0 0 255\n1 0 0 0 0 1 1 0 0\n0 1 0 0 0 1 0 1 7\n9 3 0 2 1\n0 1\n");
+    const TriangleMesh m = read_mesh(p);
+    ASSERT_EQ(m.num_triangles(), 1u);
+    EXPECT_EQ(m.triangles[0], (std::array<VertId, 3>{0, 2, 1}));
+    ASSERT_EQ(m.corner_normals.size(), 3u);
+    EXPECT_EQ(m.corner_normals[1], (Vec3d{0, 0, 1}));
+    ASSERT_EQ(m.corner_uvs.size(), 3u);
+    EXPECT_EQ(m.corner_uvs[1], (Vec2d{0, 1}));
+    EXPECT_EQ(m.corner_uvs[2], (Vec2d{1, 0}));
+}
+
 TEST(MeshFormats, BadPlyFilesAreInputErrors) {
     TempDir tmp;
     std::string out_of_range = ply_ascii;
@@ -281,20 +333,47 @@ TEST(MeshFormats, BadPlyFilesAreInputErrors) {
     const std::string points_only =
         "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float "
         "y\nproperty float z\nend_header\n0 0 0\n1 0 0\n0 1 0\n";
+    const std::string ascii = ply_ascii;
     const struct {
         std::string name, contents, message;
     } cases[] = {
-        {"range.ply", out_of_range, "cannot read the file"},
-        {"nan.ply", nan, "vertex 5: non-finite position"},
-        {"points.ply", points_only, "holds no triangles (only 3 points and 0 lines)"},
-        {"empty.ply", "", "empty file"},
+        {"range.ply", out_of_range, ":19: face 1: vertex index 9 out of range [0, 7)"},
+        {"nan.ply", nan, ":16: vertex 5: non-finite coordinate"},
+        {"points.ply", points_only,
+         ": the file holds no triangles (only 3 points: no faces)"},
+        {"empty.ply", "", ": empty file"},
+        {"cut.ply", ascii.substr(0, ascii.find("4 0 1 2 3")),
+         ":17: truncated file: expected 2 face rows, found 0"},
+        {"short.ply", std::string(ascii).replace(ascii.find("\n1 0 0\n") + 1, 5, "1 0"),
+         ":12: vertex 1: too few values on the line"},
+        {"long.ply",
+         std::string(ascii).replace(ascii.find("\n1 0 0\n") + 1, 5, "1 0 0 0"),
+         ":12: vertex 1: 4 values on the line, the header's properties take 3"},
+        {"type.ply", std::string(ascii).replace(ascii.find("float x"), 5, "flaot"),
+         ":5: unknown property type 'flaot'"},
+        {"noend.ply", "ply\nformat ascii 1.0\nelement vertex 3\n",
+         ":4: truncated header: no end_header line"},
+        {"huge.ply", "ply\nformat ascii 1.0\nelement vertex 99999999999\nend_header\n",
+         ":3: element 'vertex' declares 99999999999 rows, more than a file of"},
     };
     for (const auto &c : cases) {
         const std::string p = tmp.write(c.name, c.contents);
         const std::string e = error_of(p);
-        EXPECT_EQ(e.rfind(p + ": ", 0), 0u) << e;
-        EXPECT_NE(e.find(c.message), std::string::npos) << e;
+        EXPECT_EQ(e.rfind(p + c.message, 0), 0u) << e;
     }
+    // Binary: the element, not a line, is named.
+    std::string bin =
+        "ply\nformat binary_little_endian 1.0\nelement vertex 3\n"
+        "property float x\nproperty float y\nproperty float z\n"
+        "element face 1\nproperty list uchar int vertex_indices\nend_header\n";
+    append<float>(&bin, {0, 0, 0, 1, 0, 0, 0, 1, 0});
+    append<uint8_t>(&bin, {3});
+    append<int32_t>(&bin, {0, 1, 3});
+    EXPECT_EQ(error_of(tmp.write("b.ply", bin)),
+              tmp.file("b.ply") + ": face 0: vertex index 3 out of range [0, 3)");
+    bin.resize(bin.size() - 6);
+    EXPECT_EQ(error_of(tmp.write("c.ply", bin)),
+              tmp.file("c.ply") + ": truncated file: the data ends inside face 0");
     EXPECT_NE(error_of(tmp.file("missing.ply")).find("cannot open file"),
               std::string::npos);
 }
@@ -363,7 +442,7 @@ TEST(MeshFormats, ObjObjectsAndGroupsAreSelectable) {
                                     "f 1 2 3\n"  // before any name
                                     "o giraffe\ng body\nf 1 2 3\nf 2 4 3\n"
                                     "g head neck\nf 1 2 4\n"
-                                    "o zebra\ng\nf 1 3 4\n");
+                                    "o zebra \r\ng\nf 1 3 4\n");
     MeshReadStats st;
     EXPECT_EQ(read_mesh(p, &st).num_triangles(), 5u);
     EXPECT_EQ(st.object_names,
@@ -383,7 +462,7 @@ TEST(MeshFormats, ObjObjectsAndGroupsAreSelectable) {
         << e;
     const std::string off =
         tmp.write("t.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n");
-    EXPECT_NE(error_of(off + "#x").find("an OFF file holds one unnamed object"),
+    EXPECT_NE(error_of(off + "#x").find("a .off file holds one unnamed object"),
               std::string::npos);
 }
 
