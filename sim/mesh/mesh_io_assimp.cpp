@@ -1,4 +1,5 @@
-// Meshes in the formats assimp imports (glTF 2.0, FBX, PLY, Collada, 3DS, STL, ...).
+// Meshes in the formats assimp imports (glTF 2.0, FBX, Collada, 3DS, STL, ...; OFF, PLY
+// and OBJ have readers of their own).
 // assimp parses and triangulates; this file walks the node graph, bakes every node's
 // global transform into positions and normals (a glTF scene places its meshes with node
 // matrices), keeps the triangles of the selected object and checks what it keeps: no
