@@ -16,6 +16,7 @@ packages=(
     libtbb-dev libtinyobjloader-dev nlohmann-json3-dev libcli11-dev libfmt-dev libxxhash-dev
     libembree-dev libopenimageio-dev openimageio-tools libopenexr-dev libopencolorio-dev
     libopencv-core-dev   # Debian's OpenImageIO CMake config names an opencv4 include folder
+    libassimp-dev        # meshes: glTF, FBX, PLY, Collada, ... (sim/mesh/mesh_io_assimp.cpp)
     libgtest-dev libgmock-dev libbenchmark-dev
     libcgal-dev          # tests: the exact-geodesic oracle (tests/oracle)
     ffmpeg               # pelage movie (encodes EXR sequences)

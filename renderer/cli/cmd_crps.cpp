@@ -121,8 +121,10 @@ Runner add_crps_command(CLI::App &app) {
     CLI::App *sub = app.add_subcommand(
         "crps",
         "Build the Canonical Reference Plane Structure of a mesh and validate it");
-    sub->add_option("--mesh", o->mesh,
-                    "Mesh file (.off, .obj) or procedural:sphere:20x20 ...")
+    sub->add_option(
+           "--mesh", o->mesh,
+           "Mesh file (.off, .obj, .gltf, .glb, .fbx, .ply, .dae, ...), FILE#NAME for "
+           "one named object of it, or procedural:sphere:20x20 ...")
         ->required();
     o->stats_json.add_to(*sub, "the summary");
     o->quiet.add_to(*sub);

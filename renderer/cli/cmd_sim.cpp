@@ -123,8 +123,10 @@ Runner add_sim_command(CLI::App &app) {
     auto o = std::make_shared<SimOptions>();
     CLI::App *sub = app.add_subcommand(
         "sim", "Grow a Clonal Mosaic on a mesh and write a .cells file");
-    sub->add_option("--mesh", o->mesh,
-                    "Mesh file (.off, .obj) or procedural:sphere:20x20 ...")
+    sub->add_option(
+           "--mesh", o->mesh,
+           "Mesh file (.off, .obj, .gltf, .glb, .fbx, .ply, .dae, ...), FILE#NAME for "
+           "one named object of it, or procedural:sphere:20x20 ...")
         ->required();
     sub->add_option("--preset", o->preset,
                     "Preset name (scenes/presets/NAME.json) or a preset file")

@@ -11,6 +11,8 @@
 #include <set>
 #include <sstream>
 
+#include "sim/mesh/mesh_objects.h"
+
 namespace pelage::renderer::cli {
 
 namespace fs = std::filesystem;
@@ -68,8 +70,11 @@ void add_param_files(const nlohmann::json &v, const std::string &dir,
 std::vector<std::string> scene_input_files(const SceneDesc &desc) {
     std::vector<std::string> files;
     for (const ObjectDesc &obj : desc.objects) {
-        if (obj.mesh.rfind("procedural:", 0) != 0) files.push_back(obj.mesh);
-        for (const std::string &d : obj.deform) files.push_back(d);
+        // "zoo.glb#giraffe" reads zoo.glb (the selection is in the scene's text).
+        if (obj.mesh.rfind("procedural:", 0) != 0)
+            files.push_back(sim::parse_mesh_spec(obj.mesh).path);
+        for (const std::string &d : obj.deform)
+            files.push_back(sim::parse_mesh_spec(d).path);
         if (!obj.cells.empty()) files.push_back(obj.cells);
         add_param_files(obj.material.params, desc.dir, &files);
     }

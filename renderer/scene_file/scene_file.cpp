@@ -10,6 +10,7 @@
 #include "renderer/scene_file/json_fields.h"
 #include "renderer/scene_file/scene_fur.h"
 #include "sim/core/input_error.h"
+#include "sim/mesh/mesh_objects.h"
 
 namespace pelage::renderer {
 namespace {
@@ -37,6 +38,16 @@ class Reader : public JsonFields {
         const fs::path p(s);
         return p.is_absolute() ? s
                                : (fs::path(m_scene.dir) / p).lexically_normal().string();
+    }
+    // A mesh reference "FILE" or "FILE#OBJECT" (sim/mesh/mesh_objects.h) at `f`: the
+    // file resolved, the object name kept as written (a name may hold "/..").
+    std::string resolve_mesh(const std::string &s, const std::string &f) const {
+        try {
+            const sim::MeshSpec spec = sim::parse_mesh_spec(s);
+            return resolve(spec.path) + (spec.object.empty() ? "" : "#" + spec.object);
+        } catch (const InputError &e) {
+            fail(f, std::string(e.what()).substr(std::string(e.what()).find(": ") + 2));
+        }
     }
     static const SceneDesc &scene_of(const Reader &r) { return r.m_scene; }
 
@@ -280,7 +291,8 @@ ObjectDesc read_object(Reader r, size_t index) {
     o.name = r.string("name", "object" + std::to_string(index));
     const std::string mesh = r.string("mesh", "", true);
     if (mesh.empty()) r.fail(r.field("mesh"), "empty mesh path");
-    o.mesh = mesh.rfind("procedural:", 0) == 0 ? mesh : r.resolve(mesh);
+    o.mesh =
+        mesh.rfind("procedural:", 0) == 0 ? mesh : r.resolve_mesh(mesh, r.field("mesh"));
     o.cells = r.path("cells");
     if (const json *v = r.take("pattern")) o.pattern = read_pattern(r, *v, o.cells);
     o.normals = r.choice<ObjectDesc::Normals>("normals", o.normals,
@@ -294,7 +306,7 @@ ObjectDesc read_object(Reader r, size_t index) {
             if (!e.is_string() || e.get<std::string>().empty())
                 r.fail(ef, std::string("expected a mesh path, got ") +
                                (e.is_string() ? "an empty string" : json_type_name(e)));
-            o.deform.push_back(r.resolve(e.get<std::string>()));
+            o.deform.push_back(r.resolve_mesh(e.get<std::string>(), ef));
         };
         if (v->is_array()) {
             if (v->empty()) r.fail(f, "empty list of meshes");

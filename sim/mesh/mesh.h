@@ -1,5 +1,6 @@
 // A triangle mesh as pelage sees it: indexed positions plus optional per-corner normals
-// and UVs (OBJ stores them with their own indices, so they stay per corner).
+// and UVs (OBJ stores them with their own indices, so they stay per corner), and the
+// materials the file assigns to its triangles.
 #pragma once
 
 #include <array>
@@ -22,6 +23,16 @@ struct Bounds3 {
     double diagonal() const;  // 0 for an empty box
 };
 
+// A material as the mesh file defines it (OBJ's .mtl, a glTF/FBX/... material): only
+// what a diffuse surface needs.
+struct MeshMaterial {
+    std::string name;
+    Vec3d diffuse{0.8, 0.8, 0.8};  // Kd, or glTF's baseColorFactor; linear RGB
+    // map_Kd (resolved against the .mtl's folder), or the base colour texture (against
+    // the mesh file's folder); "" = none, or a texture embedded in the file.
+    std::string diffuse_texture;
+};
+
 struct TriangleMesh {
     std::vector<Vec3d> positions;
     std::vector<std::array<VertId, 3>> triangles;
@@ -31,6 +42,10 @@ struct TriangleMesh {
     // For each triangle, the face of the source file it came from (polygons are fanned,
     // degenerate triangles dropped), so errors and tools can point back at the file.
     std::vector<uint32_t> source_face;
+    // The file's materials, and for each triangle the index of its own (invalid_id: the
+    // file gives it none). triangle_material is empty when the file has no materials.
+    std::vector<MeshMaterial> materials;
+    std::vector<uint32_t> triangle_material;
 
     size_t num_triangles() const { return triangles.size(); }
     size_t num_vertices() const { return positions.size(); }

@@ -74,6 +74,7 @@ TriangleMesh clean_mesh(const TriangleMesh &in, const std::string &source_path,
     // Compact the surviving vertices, keeping their file order.
     std::vector<VertId> new_index(in.positions.size(), invalid_id);
     TriangleMesh out;
+    out.materials = in.materials;
     for (VertId v = 0; v < in.positions.size(); ++v)
         if (rep[v] == v) {
             new_index[v] = static_cast<VertId>(out.positions.size());
@@ -95,6 +96,8 @@ TriangleMesh clean_mesh(const TriangleMesh &in, const std::string &source_path,
         }
         out.triangles.push_back(tri);
         out.source_face.push_back(in.source_face.empty() ? t : in.source_face[t]);
+        if (!in.triangle_material.empty())
+            out.triangle_material.push_back(in.triangle_material[t]);
         for (int c = 0; c < 3; ++c) {
             if (has_n) out.corner_normals.push_back(in.corner_normals[3 * t + c]);
             if (has_uv) out.corner_uvs.push_back(in.corner_uvs[3 * t + c]);

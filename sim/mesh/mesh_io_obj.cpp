@@ -1,10 +1,14 @@
-// OBJ reader: tinyobjloader does the parsing and polygon triangulation. tinyobjloader is
-// lenient (a malformed number reads as 0, a bad index may be skipped), so a short
-// validating pass first checks the lines that define geometry and reports the first bad
-// one with its line number: we never render a mesh the file did not describe.
+// OBJ reader: tinyobjloader does the parsing, polygon triangulation and the .mtl files.
+// tinyobjloader is lenient (a malformed number reads as 0, a bad index may be skipped),
+// so a short validating pass first checks the lines that define geometry and reports the
+// first bad one with its line number: we never render a mesh the file did not describe.
+// The same pass records which `o` and `g` names each face is under, for selecting one.
+#include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <filesystem>
 #include <fstream>
+#include <map>
 #include <string_view>
 #include <vector>
 
@@ -16,6 +20,7 @@
 #include "sim/core/input_error.h"
 #include "sim/core/text_lines.h"
 #include "sim/mesh/mesh_io.h"
+#include "sim/mesh/mesh_objects.h"
 
 namespace pelage::sim {
 namespace {
@@ -45,13 +50,38 @@ void check_numbers(const std::vector<std::string_view> &tok, size_t first, size_
     }
 }
 
+// What the validating pass learns of the faces, in file order.
+struct ObjScan {
+    std::vector<uint32_t> face_corners;
+    // Each face's names: the `o` name it is under and its `g` names, as an index into
+    // `labels` (faces under the same names share one).
+    std::vector<uint32_t> face_label;
+    std::vector<std::vector<std::string>> labels{{}};
+    // Faces between two `o`/`g` lines, which is what tinyobjloader makes a shape of.
+    std::vector<uint32_t> segment_faces{0};
+    std::vector<std::string> mtllibs;  // as written after `mtllib`
+};
+
 // Validates `v`, `vt`, `vn` and `f` lines (every corner's vertex, texture and normal
-// index in range: tinyobjloader does not check them); returns the number of corners of
-// every face in file order.
-std::vector<uint32_t> validate_obj(const std::string &path) {
+// index in range: tinyobjloader does not check them) and records the names of the faces.
+ObjScan validate_obj(const std::string &path) {
     std::ifstream in(path, std::ios::binary);
     if (!in) throw InputError(path, 0, "", "cannot open file");
-    std::vector<uint32_t> face_corners;
+    ObjScan scan;
+    std::vector<uint32_t> &face_corners = scan.face_corners;
+    std::string object_name;               // the current `o`
+    std::vector<std::string> group_names;  // the current `g`
+    std::map<std::vector<std::string>, uint32_t> label_index{{{}, 0}};
+    uint32_t label = 0;
+    auto names_changed = [&] {
+        std::vector<std::string> names = group_names;
+        if (!object_name.empty()) names.insert(names.begin(), object_name);
+        const auto [it, added] =
+            label_index.try_emplace(names, static_cast<uint32_t>(scan.labels.size()));
+        if (added) scan.labels.push_back(names);
+        label = it->second;
+        if (scan.segment_faces.back() > 0) scan.segment_faces.push_back(0);
+    };
     std::string line;
     size_t line_no = 0;
     int64_t num_v = 0, num_vt = 0, num_vn = 0;
@@ -124,27 +154,90 @@ std::vector<uint32_t> validate_obj(const std::string &path) {
                 }
             }
             face_corners.push_back(static_cast<uint32_t>(tok.size() - 1));
+            scan.face_label.push_back(label);
+            ++scan.segment_faces.back();
+        } else if (tok[0] == "o") {
+            // The rest of the line, its words joined by one space.
+            object_name.clear();
+            for (size_t i = 1; i < tok.size(); ++i)
+                object_name += (i > 1 ? " " : "") + std::string(tok[i]);
+            names_changed();
+        } else if (tok[0] == "g") {
+            group_names.assign(tok.begin() + 1, tok.end());
+            names_changed();
+        } else if (tok[0] == "mtllib") {
+            scan.mtllibs.insert(scan.mtllibs.end(), tok.begin() + 1, tok.end());
         }
     }
     if (num_v == 0 || face_corners.empty())
         throw InputError(path, 0, "", "empty mesh: no vertices or no faces");
-    return face_corners;
+    return scan;
+}
+
+// The file's materials, map_Kd made absolute against the folder of the .mtl it is in
+// (tinyobjloader does not say which: the first .mtl folder that holds the texture).
+std::vector<MeshMaterial> obj_materials(const std::string &path, const ObjScan &scan,
+                                        const std::vector<tinyobj::material_t> &mats) {
+    namespace fs = std::filesystem;
+    const fs::path obj_dir = fs::absolute(fs::path(path)).parent_path();
+    std::vector<fs::path> mtl_dirs;
+    for (const std::string &m : scan.mtllibs)
+        mtl_dirs.push_back((obj_dir / fs::path(m)).parent_path().lexically_normal());
+    if (mtl_dirs.empty()) mtl_dirs.push_back(obj_dir);
+    std::vector<MeshMaterial> out;
+    for (const tinyobj::material_t &m : mats) {
+        MeshMaterial mm;
+        mm.name = m.name;
+        mm.diffuse = {m.diffuse[0], m.diffuse[1], m.diffuse[2]};
+        if (!m.diffuse_texname.empty()) {
+            const fs::path t(m.diffuse_texname);
+            fs::path chosen = t.is_absolute() ? t : mtl_dirs[0] / t;
+            if (!t.is_absolute())
+                for (const fs::path &d : mtl_dirs) {
+                    std::error_code ec;
+                    if (fs::is_regular_file(d / t, ec)) {
+                        chosen = d / t;
+                        break;
+                    }
+                }
+            mm.diffuse_texture = chosen.lexically_normal().string();
+        }
+        out.push_back(std::move(mm));
+    }
+    return out;
 }
 
 }  // namespace
 
-TriangleMesh read_obj(const std::string &path, MeshReadStats *stats) {
-    const std::vector<uint32_t> face_corners = validate_obj(path);
+TriangleMesh read_obj(const std::string &path, MeshReadStats *stats,
+                      const std::string &object) {
+    const ObjScan scan = validate_obj(path);
+    const std::vector<uint32_t> &face_corners = scan.face_corners;
+
+    // The names there are, in file order, and which labels the selection keeps.
+    std::vector<std::string> all_names;
+    for (uint32_t l : scan.face_label)
+        all_names.insert(all_names.end(), scan.labels[l].begin(), scan.labels[l].end());
+    const std::vector<std::string> names = unique_names(all_names);
+    std::vector<char> label_kept(scan.labels.size(), object.empty());
+    if (!object.empty()) {
+        bool found = false;
+        for (size_t l = 0; l < scan.labels.size(); ++l)
+            for (const std::string &n : scan.labels[l])
+                if (n == object) label_kept[l] = 1, found = true;
+        if (!found) fail_unknown_object(path, object, names);
+    }
 
     tinyobj::ObjReaderConfig config;
     config.triangulate = true;
     config.vertex_color = false;
-    config.mtl_search_path = "";  // materials come from the scene, not from .mtl files
+    config.mtl_search_path = "";  // the .obj's folder
     tinyobj::ObjReader reader;
     if (!reader.ParseFromFile(path, config))
         throw InputError(path, 0, "", "OBJ parse error: " + reader.Error());
 
     const tinyobj::attrib_t &attrib = reader.GetAttrib();
+    const auto &shapes = reader.GetShapes();
     TriangleMesh mesh;
     const size_t nv = attrib.vertices.size() / 3;
     mesh.positions.resize(nv);
@@ -152,19 +245,73 @@ TriangleMesh read_obj(const std::string &path, MeshReadStats *stats) {
         mesh.positions[v] = {attrib.vertices[3 * v], attrib.vertices[3 * v + 1],
                              attrib.vertices[3 * v + 2]};
 
-    // Per-corner attributes are kept only when every corner has them.
-    bool all_normals = !attrib.normals.empty(), all_uvs = !attrib.texcoords.empty();
-    for (const auto &shape : reader.GetShapes())
-        for (const auto &idx : shape.mesh.indices) {
-            all_normals &= idx.normal_index >= 0;
-            all_uvs &= idx.texcoord_index >= 0;
+    // --- Each triangle's source face: an n-gon fans into n - 2 triangles, unless the
+    //     triangulator dropped degenerate pieces; then shapes stand for segments ---
+    size_t num_tris = 0;
+    for (const auto &shape : shapes) num_tris += shape.mesh.num_face_vertices.size();
+    std::vector<uint32_t> tri_face;
+    size_t expected = 0;
+    for (uint32_t n : face_corners) expected += n - 2;
+    if (expected == num_tris) {
+        for (uint32_t f = 0; f < face_corners.size(); ++f)
+            for (uint32_t k = 0; k + 2 < face_corners[f]; ++k) tri_face.push_back(f);
+    } else {
+        std::vector<uint32_t> segment_first;  // first face of each segment with faces
+        uint32_t first = 0;
+        for (uint32_t n : scan.segment_faces) {
+            if (n > 0) segment_first.push_back(first);
+            first += n;
         }
-    for (const auto &shape : reader.GetShapes()) {
+        std::vector<const tinyobj::shape_t *> with_faces;
+        for (const auto &shape : shapes)
+            if (!shape.mesh.num_face_vertices.empty()) with_faces.push_back(&shape);
+        if (with_faces.size() != segment_first.size()) {
+            if (!object.empty())
+                throw InputError(path, 0, "",
+                                 "cannot tell which triangles belong to object \"" +
+                                     object +
+                                     "\": triangulating a degenerate polygon dropped it");
+            for (uint32_t t = 0; t < num_tris; ++t) tri_face.push_back(t);
+        } else {
+            // Only the first face of each segment is known: enough for the names.
+            for (size_t s = 0; s < with_faces.size(); ++s)
+                tri_face.insert(tri_face.end(),
+                                with_faces[s]->mesh.num_face_vertices.size(),
+                                segment_first[s]);
+        }
+    }
+    auto kept = [&](size_t t) {
+        const uint32_t f = tri_face[t];
+        return f < scan.face_label.size() ? bool(label_kept[scan.face_label[f]])
+                                          : object.empty();
+    };
+
+    // Per-corner attributes are kept only when every kept corner has them.
+    bool all_normals = !attrib.normals.empty(), all_uvs = !attrib.texcoords.empty();
+    {
+        size_t t = 0;
+        for (const auto &shape : shapes)
+            for (size_t f = 0; f < shape.mesh.num_face_vertices.size(); ++f, ++t) {
+                if (!kept(t)) continue;
+                for (int c = 0; c < 3; ++c) {
+                    const tinyobj::index_t idx = shape.mesh.indices[3 * f + c];
+                    all_normals &= idx.normal_index >= 0;
+                    all_uvs &= idx.texcoord_index >= 0;
+                }
+            }
+    }
+    const std::vector<MeshMaterial> materials =
+        obj_materials(path, scan, reader.GetMaterials());
+    bool any_material = false;
+    std::vector<char> label_read(scan.labels.size(), 0);
+    size_t t = 0;
+    for (const auto &shape : shapes) {
         const auto &m = shape.mesh;
         if (m.indices.size() != 3 * m.num_face_vertices.size())
             throw InputError(path, 0, "",
                              "OBJ triangulation left a face that is not a triangle");
-        for (size_t f = 0; f < m.num_face_vertices.size(); ++f) {
+        for (size_t f = 0; f < m.num_face_vertices.size(); ++f, ++t) {
+            if (!kept(t)) continue;
             std::array<VertId, 3> tri{};
             for (int c = 0; c < 3; ++c) {
                 const tinyobj::index_t idx = m.indices[3 * f + c];
@@ -188,22 +335,31 @@ TriangleMesh read_obj(const std::string &path, MeshReadStats *stats) {
                          attrib.texcoords[2 * idx.texcoord_index + 1]});
             }
             mesh.triangles.push_back(tri);
+            mesh.source_face.push_back(tri_face[t]);
+            const int mat = f < m.material_ids.size() ? m.material_ids[f] : -1;
+            const bool has_mat = mat >= 0 && size_t(mat) < materials.size();
+            mesh.triangle_material.push_back(has_mat ? uint32_t(mat) : invalid_id);
+            any_material |= has_mat;
+            if (tri_face[t] < scan.face_label.size())
+                label_read[scan.face_label[tri_face[t]]] = 1;
         }
     }
-
-    // Point each triangle back at its source face: an n-gon fans into n - 2 triangles.
-    size_t expected = 0;
-    for (uint32_t n : face_corners) expected += n - 2;
-    if (expected == mesh.triangles.size()) {
-        for (uint32_t f = 0; f < face_corners.size(); ++f)
-            for (uint32_t k = 0; k + 2 < face_corners[f]; ++k)
-                mesh.source_face.push_back(f);
-    } else {  // the triangulator dropped degenerate pieces: fall back to triangle order
-        for (uint32_t t = 0; t < mesh.triangles.size(); ++t)
-            mesh.source_face.push_back(t);
+    if (any_material) {
+        mesh.materials = materials;
+    } else {
+        mesh.triangle_material.clear();
     }
-    if (stats)
-        for (uint32_t n : face_corners) stats->polygons_triangulated += n > 3;
+    if (mesh.triangles.empty())
+        throw InputError(path, 0, "",
+                         object.empty() ? std::string("empty mesh: no triangles")
+                                        : "object \"" + object + "\" holds no triangles");
+    if (stats) {
+        for (uint32_t f = 0; f < face_corners.size(); ++f)
+            stats->polygons_triangulated +=
+                face_corners[f] > 3 && label_kept[scan.face_label[f]];
+        stats->object_names = names;
+        stats->pieces_read = size_t(std::count(label_read.begin(), label_read.end(), 1));
+    }
     return mesh;
 }
 

@@ -6,14 +6,14 @@
 # Crashes land in build-fuzz/fuzz-artifacts/<target>/; copy the reproducer to
 # tests/fuzz/crashes/<target>/ with the fix, so CI replays it forever.
 #   cmake -S . -B build-fuzz -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ -DPELAGE_FUZZ=ON
-#   cmake --build build-fuzz -j2 --target fuzz_off fuzz_obj fuzz_cells fuzz_scene fuzz_shader_params
+#   cmake --build build-fuzz -j2 --target fuzz_off fuzz_obj fuzz_ply fuzz_cells fuzz_scene fuzz_shader_params
 #   tests/fuzz/run_fuzzers.sh [SECONDS] [TARGET...]
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 seconds="${1:-600}"
 shift || true
 targets=("$@")
-[ ${#targets[@]} -gt 0 ] || targets=(off obj cells scene shader_params)
+[ ${#targets[@]} -gt 0 ] || targets=(off obj ply cells scene shader_params)
 declare -A dict=([off]=off [obj]=obj [scene]=json [shader_params]=json)
 for t in "${targets[@]}"; do
     mkdir -p "build-fuzz/fuzz-artifacts/$t" "build-fuzz/corpus/$t"

@@ -59,6 +59,20 @@ TEST(SceneFile, ColourReadsInEitherSpelling) {
     EXPECT_EQ(field_of(light(R"("colr": 1)")), "lights[0].colr");
 }
 
+TEST(SceneFile, MeshObjectsKeepTheirNameAsWritten) {
+    const SceneDesc s = parse_scene(
+        R"({"camera": {}, "objects": [{"mesh": "m/zoo.glb#herd/../giraffe",
+                                       "deform": ["m/../pose.fbx#giraffe"]}]})",
+        "/a/s.json");
+    EXPECT_EQ(s.objects[0].mesh, "/a/m/zoo.glb#herd/../giraffe");
+    EXPECT_EQ(s.objects[0].deform[0], "/a/pose.fbx#giraffe");
+    EXPECT_EQ(field_of(R"({"camera": {}, "objects": [{"mesh": "zoo.glb#"}]})"),
+              "objects[0].mesh");
+    EXPECT_EQ(field_of(R"({"camera": {}, "objects": [{"mesh": "a.obj",
+                                                       "deform": ["b.obj", "c.obj#"]}]})"),
+              "objects[0].deform[1]");
+}
+
 TEST(SceneFile, ErrorsNameTheJsonPath) {
     EXPECT_EQ(field_of(R"({"camera": {"fovv": 3}, "objects": []})"), "camera.fovv");
     EXPECT_EQ(
