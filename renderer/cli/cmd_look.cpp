@@ -12,6 +12,7 @@
 #include "sim/core/atomic_file.h"
 #include "sim/core/input_error.h"
 #include "sim/mesh/mesh_load.h"
+#include "sim/mesh/mesh_objects.h"
 #include "sim/mosaic/cell_types.h"
 
 namespace pelage::renderer::cli {
@@ -43,21 +44,26 @@ Vec3f parse_up(const std::string &text) {
 // (the two move together), absolute otherwise.
 std::string mesh_reference(const std::string &mesh, const fs::path &scene_dir) {
     if (mesh.rfind("procedural:", 0) == 0) return mesh;
-    const fs::path abs = fs::absolute(mesh).lexically_normal();
+    const sim::MeshSpec spec = sim::parse_mesh_spec(mesh);
+    const std::string object = spec.object.empty() ? "" : "#" + spec.object;
+    const fs::path abs = fs::absolute(spec.path).lexically_normal();
     const fs::path rel = abs.lexically_relative(scene_dir);
-    if (!rel.empty() && *rel.begin() != "..") return rel.generic_string();
-    return abs.string();
+    if (!rel.empty() && *rel.begin() != "..") return rel.generic_string() + object;
+    return abs.string() + object;
 }
 
 int run(const LookOptions &o) {
     // --- Everything checked before anything is written ---
+    // The animal's name: the object chosen in the file, else the file's name.
+    const bool procedural = o.mesh.rfind("procedural:", 0) == 0;
+    const sim::MeshSpec spec =
+        procedural ? sim::MeshSpec{} : sim::parse_mesh_spec(o.mesh);
+    const std::string animal = procedural ? "procedural"
+                               : !spec.object.empty()
+                                   ? spec.object
+                                   : fs::path(spec.path).stem().string();
     fs::path output = o.output;
-    if (output.empty()) {
-        const std::string stem = o.mesh.rfind("procedural:", 0) == 0
-                                     ? "procedural"
-                                     : fs::path(o.mesh).stem().string();
-        output = stem + ".exr";
-    }
+    if (output.empty()) output = animal + ".exr";
     if (output.extension() != ".exr")
         throw InputError("", 0, "-o",
                          "\"" + output.string() +
@@ -89,8 +95,7 @@ int run(const LookOptions &o) {
     setup.cells = stem + ".cells";
     setup.output = output.filename().string();
     setup.preview = stem + "_preview.png";
-    if (o.mesh.rfind("procedural:", 0) != 0)
-        setup.object_name = fs::path(o.mesh).stem().string();
+    if (!procedural) setup.object_name = animal;
     setup.preset = o.preset;
     setup.seed = o.seed;
     setup.width = width;
@@ -128,7 +133,9 @@ Runner add_look_command(CLI::App &app) {
         "look",
         "Grow a preset on a mesh, frame it and render it; writes the scene next to the "
         "output to continue from");
-    sub->add_option("mesh", o->mesh, "Mesh file (.off, .obj, ...) or procedural:...")
+    sub->add_option("mesh", o->mesh,
+                    "Mesh file (OFF, OBJ, PLY, glTF, FBX, ...; FILE#NAME for one object) "
+                    "or procedural:...")
         ->required();
     sub->add_option("--preset", o->preset,
                     "Preset name (`pelage sim --help` lists where) or a preset file")
