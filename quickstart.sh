@@ -54,6 +54,6 @@ else
     # corpus replays and the hostile/malformed CLI tables. The whole suite under ASan and
     # TSan is tests/nightly.sh (too long for CI on two cores).
     cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DPELAGE_SANITIZE=ON
-    cmake --build build-asan -j2 --target pelage fuzz_off fuzz_obj fuzz_cells fuzz_scene fuzz_shader_params
+    cmake --build build-asan -j2 --target pelage fuzz_off fuzz_obj fuzz_ply fuzz_cells fuzz_scene fuzz_shader_params
     (cd build-asan && ctest -L asan --output-on-failure -j2)
 fi
