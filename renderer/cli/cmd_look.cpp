@@ -137,8 +137,9 @@ Runner add_look_command(CLI::App &app) {
                     "Mesh file (OFF, OBJ, PLY, glTF, FBX, ...; FILE#NAME for one object) "
                     "or procedural:...")
         ->required();
-    sub->add_option("--preset", o->preset,
-                    "Preset name (`pelage sim --help` lists where) or a preset file")
+    sub->add_option(
+           "--preset", o->preset,
+           "Preset name (scenes/presets/NAME.json in pelage's data) or a preset file")
         ->capture_default_str();
     sub->add_option("--seed", o->seed, "Seed of the pattern")->capture_default_str();
     sub->add_option("-o,--output", o->output,
