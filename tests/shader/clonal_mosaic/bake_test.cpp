@@ -14,6 +14,7 @@
 #include "renderer/plugins/plugin_loader.h"
 #include "shader/clonal_mosaic/surface_transfer.h"
 #include "sim/crps/surface.h"
+#include "tests/shader/clonal_mosaic/mosaic_plugin_instance.h"
 #include "tests/test_paths.h"
 
 namespace pelage::test {
@@ -40,57 +41,6 @@ double distance_to(const std::array<sim::Vec2d, 3> &p, sim::Vec2d q) {
     }
     return best;
 }
-
-// The clonal_mosaic plugin, created for the pattern's mesh and cells.
-struct MosaicShader {
-    renderer::LoadedPlugin plugin;
-    renderer::PluginParams params;
-    sim::TriangleMesh mesh;
-    std::vector<float> positions;
-    std::vector<uint32_t> triangles;
-    void *self = nullptr;
-
-    MosaicShader(const std::string &cells, const std::string &mesh_path)
-        : plugin(renderer::open_plugin(
-              (std::filesystem::path(PELAGE_BINARY).parent_path().parent_path() /
-               "lib/pelage/shaders/clonal_mosaic.so")
-                  .string())),
-          params(renderer::validate_plugin_params(*plugin.desc, nlohmann::json::object(),
-                                                  "test.json", "params")),
-          mesh(sim::load_mesh(mesh_path)) {
-        for (const auto &v : mesh.positions)
-            positions.insert(positions.end(), {float(v.x), float(v.y), float(v.z)});
-        for (const auto &t : mesh.triangles)
-            triangles.insert(triangles.end(), t.begin(), t.end());
-        PelageParamSet ps{};
-        ps.count = uint32_t(params.values.size());
-        ps.values = params.values.data();
-        ps.mesh = {uint32_t(mesh.num_vertices()),
-                   uint32_t(mesh.num_triangles()),
-                   positions.data(),
-                   triangles.data(),
-                   nullptr,
-                   cells.c_str(),
-                   mesh_path.c_str()};
-        PelageError err{};
-        self = plugin.desc->create(&ps, &err);
-        EXPECT_TRUE(self) << err.message;
-    }
-    ~MosaicShader() {
-        if (self) plugin.desc->destroy(self);
-    }
-    PelageShade shade(uint32_t prim, float b1, float b2, float footprint) const {
-        PelageHit hit{};
-        hit.primitive_id = prim;
-        hit.b1 = b1;
-        hit.b2 = b2;
-        hit.footprint = footprint;
-        PelageShade out{};
-        out.roughness = -1;
-        plugin.desc->shade(self, &hit, &out);
-        return out;
-    }
-};
 
 TEST(Bake, AtlasTrianglesAreUndistortedAndDisjoint) {
     const sim::Surface s = sim::build_surface(mesh_spec);
@@ -139,8 +89,8 @@ TEST(Bake, TexelsTakeTheShadersFilteredLookAndTheNearestCellsIds) {
     TempDir tmp;
     const std::string cells = simulate_two_type_cells(tmp, mesh_spec, 500, 0.4);
     const cm::MosaicPattern pattern(cells, mesh_spec);
-    const MosaicShader shader(cells, mesh_spec);
-    ASSERT_TRUE(shader.self);
+    const MosaicPluginInstance shader(nlohmann::json::object(), cells.c_str(), mesh_spec);
+    ASSERT_TRUE(shader.self) << shader.error;
     const int res = 256;
     const cm::BakedAtlas baked = cm::bake_atlas(pattern, res, res);
     ASSERT_EQ(baked.image.tiles.size(), 1u);

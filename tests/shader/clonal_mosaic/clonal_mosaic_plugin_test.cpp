@@ -14,6 +14,7 @@
 #include "shader/clonal_mosaic/mosaic_lod.h"
 #include "sim/cells_io/cells_file.h"
 #include "sim/crps/surface.h"
+#include "tests/shader/clonal_mosaic/mosaic_plugin_instance.h"
 #include "tests/test_paths.h"
 
 namespace pelage::test {
@@ -21,59 +22,11 @@ namespace {
 
 const std::string mesh_spec = "procedural:icosphere:3";
 
-std::string plugin_file() {
-    return renderer::package_lib_dir() + "/shaders/clonal_mosaic.so";
-}
-
-struct Instance {
-    renderer::LoadedPlugin plugin;
-    renderer::PluginParams params;
-    sim::TriangleMesh mesh;
-    std::vector<float> positions;
-    std::vector<uint32_t> triangles;
-    void *self = nullptr;
-    std::string error;
-
+// The plugin on `mesh_path` (the icosphere unless given).
+struct Instance : MosaicPluginInstance {
     Instance(const nlohmann::json &p, const char *cells,
              const std::string &mesh_path = mesh_spec)
-        : plugin(renderer::open_plugin(plugin_file())),
-          params(
-              renderer::validate_plugin_params(*plugin.desc, p, "test.json", "params")),
-          mesh(sim::load_mesh(mesh_path)) {
-        for (const auto &v : mesh.positions)
-            positions.insert(positions.end(), {float(v.x), float(v.y), float(v.z)});
-        for (const auto &t : mesh.triangles)
-            triangles.insert(triangles.end(), t.begin(), t.end());
-        PelageParamSet ps{};
-        ps.count = uint32_t(params.values.size());
-        ps.values = params.values.data();
-        ps.mesh = {uint32_t(mesh.num_vertices()),
-                   uint32_t(mesh.num_triangles()),
-                   positions.data(),
-                   triangles.data(),
-                   nullptr,
-                   cells,
-                   mesh_path.c_str()};
-        PelageError err{};
-        self = plugin.desc->create(&ps, &err);
-        error = err.message;
-    }
-    ~Instance() {
-        if (self) plugin.desc->destroy(self);
-    }
-    PelageShade shade(uint32_t prim, float b1, float b2, float footprint = 0,
-                      uint32_t depth = 0) const {
-        PelageHit hit{};
-        hit.depth = depth;
-        hit.primitive_id = prim;
-        hit.b1 = b1;
-        hit.b2 = b2;
-        hit.footprint = footprint;
-        PelageShade out{};
-        out.roughness = -1;
-        plugin.desc->shade(self, &hit, &out);
-        return out;
-    }
+        : MosaicPluginInstance(p, cells, mesh_path) {}
 };
 
 // The cells of a .cells file as the search's table: the reference the plugin is checked

@@ -1,0 +1,72 @@
+// The clonal_mosaic plugin opened from the build's plugin folder and created for a mesh
+// and a .cells file through the plugin ABI, as the renderer's Scene does it: what the
+// plugin and bake tests call.
+#pragma once
+
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "renderer/core/install_layout.h"
+#include "renderer/plugins/plugin_loader.h"
+#include "sim/mesh/mesh_load.h"
+
+namespace pelage::test {
+
+struct MosaicPluginInstance {
+    renderer::LoadedPlugin plugin;
+    renderer::PluginParams params;
+    sim::TriangleMesh mesh;
+    std::vector<float> positions;
+    std::vector<uint32_t> triangles;
+    void *self = nullptr;  // null when create() refused; `error` says why
+    std::string error;
+
+    // `cells` may be null (no .cells file given).
+    MosaicPluginInstance(const nlohmann::json &p, const char *cells,
+                         const std::string &mesh_path)
+        : plugin(renderer::open_plugin(renderer::package_lib_dir() +
+                                       "/shaders/clonal_mosaic.so")),
+          params(
+              renderer::validate_plugin_params(*plugin.desc, p, "test.json", "params")),
+          mesh(sim::load_mesh(mesh_path)) {
+        for (const auto &v : mesh.positions)
+            positions.insert(positions.end(), {float(v.x), float(v.y), float(v.z)});
+        for (const auto &t : mesh.triangles)
+            triangles.insert(triangles.end(), t.begin(), t.end());
+        PelageParamSet ps{};
+        ps.count = uint32_t(params.values.size());
+        ps.values = params.values.data();
+        ps.mesh = {uint32_t(mesh.num_vertices()),
+                   uint32_t(mesh.num_triangles()),
+                   positions.data(),
+                   triangles.data(),
+                   nullptr,
+                   cells,
+                   mesh_path.c_str()};
+        PelageError err{};
+        self = plugin.desc->create(&ps, &err);
+        error = err.message;
+    }
+    ~MosaicPluginInstance() {
+        if (self) plugin.desc->destroy(self);
+    }
+    MosaicPluginInstance(const MosaicPluginInstance &) = delete;
+    MosaicPluginInstance &operator=(const MosaicPluginInstance &) = delete;
+
+    PelageShade shade(uint32_t prim, float b1, float b2, float footprint = 0,
+                      uint32_t depth = 0) const {
+        PelageHit hit{};
+        hit.depth = depth;
+        hit.primitive_id = prim;
+        hit.b1 = b1;
+        hit.b2 = b2;
+        hit.footprint = footprint;
+        PelageShade out{};
+        out.roughness = -1;
+        plugin.desc->shade(self, &hit, &out);
+        return out;
+    }
+};
+
+}  // namespace pelage::test
