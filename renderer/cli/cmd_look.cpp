@@ -77,7 +77,7 @@ int run(const LookOptions &o) {
     int width = 0, height = 0;
     parse_resolution(o.res, 65536, &width, &height);
     const Vec3f up = parse_up(o.up);
-    sim::load_preset(o.preset, data_path("scenes/presets"));  // a bad preset fails now
+    sim::load_preset(o.preset, data_path("scenes/presets"));  // a bad one fails here
     const sim::TriangleMesh mesh = sim::load_mesh(o.mesh);
     std::vector<Vec3f> points;
     points.reserve(mesh.positions.size());
