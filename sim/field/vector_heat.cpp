@@ -22,7 +22,7 @@ double wrap(double a) {
     return a;
 }
 
-// The per-vertex tangent bases of §5.2: for every triangle corner, the angle (in the
+// The per-vertex tangent bases: for every triangle corner, the angle (in the
 // corner vertex's basis) of the edges to the next and the previous corner, and each
 // vertex's angle scale.
 struct VertexBases {
@@ -148,7 +148,7 @@ TangentField vector_heat_field(const Crps &crps,
     const size_t nv = b.position.size();
     const Topology &topo = crps.topology();
 
-    // t = h², h the mean edge length (§6.1).
+    // t = h², h the mean edge length.
     double h = 0;
     for (EdgeId e = 0; e < topo.num_edges(); ++e)
         h += length(b.position[topo.edge_vertices[e][0]] -
@@ -156,7 +156,7 @@ TangentField vector_heat_field(const Crps &crps,
     h = topo.num_edges() > 0 ? h / double(topo.num_edges()) : 0;
     double time = harmonic ? 1.0 : how.time_scale * h * h;
 
-    // X0: each control in its corners' bases, by barycentric weight (§6.2).
+    // X0: each control in its corners' bases, by barycentric weight.
     Eigen::VectorXcd x0 = Eigen::VectorXcd::Zero(nv);
     std::vector<double> held(nv, 0.0);  // harmonic: each vertex's weight in the controls
     std::vector<uint8_t> piece_has_control(topo.num_components + 1, 0);

@@ -1,16 +1,18 @@
-// Smooth tangent fields from a few control vectors by the vector heat method of Sharp,
-// Soliman and Crane, "The Vector Heat Method", ACM TOG 38(3) 2019, §5–6:
+// Smooth tangent fields from a few control vectors on the connection Laplacian of Sharp,
+// Soliman and Crane, "The Vector Heat Method", ACM TOG 38(3) 2019 (discretisation §5,
+// algorithm §6):
 //   * every vertex gets a tangent basis: the angles of its outgoing edges, measured
 //     counter-clockwise around the oriented normal and rescaled by 2π/Θ (Θ the sum of
-//     its corner angles) so they fill a full turn (§5.2; boundary and non-manifold
-//     vertices keep their angles unscaled);
+//     its corner angles) so they fill a full turn (boundary and non-manifold vertices
+//     keep their angles unscaled);
 //   * the discrete Levi-Civita connection carries a vector across edge ij by keeping its
-//     angle to the edge: r_ji = exp(i(φ_ij − φ_ji + π)) (§5.3);
-//   * one backward-Euler step of the vector heat flow, (M + t·L∇) X = X0 with the lumped
-//     mass M and the cotangent connection Laplacian L∇ (positive semi-definite here),
-//     t = h² for the mean edge length h (§6.1), solved by sparse Cholesky (Eigen's
-//     SimplicialLDLT); the directions of X are the field (§6.2: the magnitudes, which
-//     decay away from the controls, are dropped and every vector gets one length).
+//     angle to the edge: r_ji = exp(i(φ_ij − φ_ji + π));
+//   * L∇, the cotangent Laplacian with those rotations, is solved by sparse Cholesky
+//     (Eigen's SimplicialLDLT), either as one backward-Euler step of the vector heat
+//     flow, (M + t·L∇) X = X0 with the lumped mass M and t = h² for the mean edge length
+//     h, or as the Dirichlet problem L∇ X = 0 with X held to the controls
+//     (FieldInterpolation below); the directions of X are the field, every vector gets
+//     one length.
 // A control on a triangle spreads to its corners by its barycentric weights; each
 // triangle's vector is the mean of its corners' vectors carried into its plane, and a
 // control's own triangle takes the control's direction exactly. Triangles of a connected
@@ -36,9 +38,9 @@ struct FieldInterpolation {
     // shortest geodesics, so between two controls the field turns within a few
     // triangles where their regions meet. harmonic: the smoothest field through the
     // controls, L∇ X = 0 with X held to the controls at their triangles' corners (the
-    // connection Laplacian's Dirichlet problem; Knöppel, Crane, Pinkall, Schröder,
-    // "Globally Optimal Direction Fields", SIGGRAPH 2013, §5), which turns gradually
-    // between them.
+    // connection Laplacian's Dirichlet problem, as in Knöppel, Crane, Pinkall, Schröder,
+    // "Globally Optimal Direction Fields", SIGGRAPH 2013), which turns gradually between
+    // them.
     enum class Method { heat, harmonic };
     Method method = Method::harmonic;
     double time_scale = 1.0;  // heat: t = time_scale · h²

@@ -2,7 +2,7 @@
 // specifications (sim/field/field_spec.h), against analytic fields: a constant field on
 // a plane, the axial and circumferential fields of a cylinder (both parallel), and on a
 // sphere the parallel transport of the control along great circles, the short-time
-// limit of the vector heat flow (Sharp, Soliman, Crane 2019, §3).
+// limit of the vector heat flow (Sharp, Soliman, Crane 2019).
 #include <gtest/gtest.h>
 #include <tbb/global_control.h>
 
