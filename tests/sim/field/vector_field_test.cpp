@@ -166,6 +166,29 @@ TEST(VectorField, SmoothAcrossEdgesAndEqualToTheControlsAtTheirTriangles) {
     EXPECT_LT(turn[turn.size() * 95 / 100], 8.0);
 }
 
+TEST(VectorField, APieceWithoutAControlGetsNoField) {
+    // Two spheres side by side; the control is on the first.
+    TriangleMesh m = make_icosphere(2);
+    const TriangleMesh other = make_icosphere(2);
+    const VertId offset = VertId(m.positions.size());
+    for (const Vec3d &p : other.positions) m.positions.push_back(p + Vec3d{3, 0, 0});
+    for (auto tri : other.triangles)
+        m.triangles.push_back({tri[0] + offset, tri[1] + offset, tri[2] + offset});
+    const Surface s = build_surface(m);
+    for (const FieldInterpolation &how : {heat, harmonic}) {
+        const TangentField f =
+            vector_heat_field(s.crps, {control_at(s.crps, {1, 0, 0}, {0, 1, 0})}, 1, how);
+        size_t with = 0, without = 0;
+        for (TriId t = 0; t < s.crps.num_triangles(); ++t) {
+            const bool first = centroid(s.crps, t).x < 1.5;
+            if (first) with += length(f.a[t]) > 0;
+            if (!first) without += length(f.a[t]) == 0;
+        }
+        EXPECT_EQ(with, other.triangles.size());
+        EXPECT_EQ(without, other.triangles.size());
+    }
+}
+
 TEST(VectorField, IndependentOfTheThreadCount) {
     const Surface s = build_surface(make_icosphere(3));
     const FieldSpec spec = parse_field_spec(
