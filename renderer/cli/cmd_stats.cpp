@@ -11,6 +11,7 @@
 // stripe_alignment_q3 (degrees), stripe_alignment_samples, stripe_coherence_median.
 #include <fmt/core.h>
 
+#include <cstdio>
 #include <iostream>
 
 #include "renderer/cli/common.h"
@@ -19,6 +20,7 @@
 #include "sim/cells_io/cells_file.h"
 #include "sim/cells_io/pattern_stats.h"
 #include "sim/cells_io/stripe_alignment.h"
+#include "sim/core/input_error.h"
 #include "sim/crps/surface.h"
 #include "sim/mosaic/anisotropy_field.h"
 
@@ -74,7 +76,16 @@ void add_stripe_alignment(const StatsOptions &o, const sim::CellsData &data,
                           nlohmann::json *j) {
     const nlohmann::json params = nlohmann::json::parse(data.params_json, nullptr, false);
     if (!params.is_object() || !params.contains("preset")) return;
-    const sim::Preset preset = sim::parse_preset(params["preset"].dump(), o.file);
+    sim::Preset preset;
+    try {
+        preset = sim::parse_preset(params["preset"].dump(), o.file);
+    } catch (const InputError &e) {
+        // A file from a pelage that read presets otherwise: its other statistics stand.
+        std::fprintf(stderr,
+                     "pelage stats: no stripe alignment: the recorded preset: %s\n",
+                     e.what());
+        return;
+    }
     if (!(preset.params.w_a > 0)) return;
     const sim::Surface surface = sim::build_surface(sim::surface_mesh(data, o.file));
     const sim::TangentField field = sim::anisotropy_field(preset.params, surface.crps);

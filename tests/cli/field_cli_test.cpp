@@ -7,6 +7,8 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
+#include "sim/cells_io/cells_file.h"
+#include "sim/crps/surface.h"
 #include "tests/test_paths.h"
 
 namespace pelage::test {
@@ -66,6 +68,27 @@ TEST(FieldCli, StatsMeasureTheStripesAgainstTheField) {
         simulate_two_type_cells(tmp, "procedural:sphere:20x20", 300);
     ASSERT_EQ(run_pelage("stats " + plain + " --json", &out), 0);
     EXPECT_FALSE(nlohmann::json::parse(out).contains("stripe_alignment_median"));
+}
+
+TEST(FieldCli, StatsOfAFileWhosePresetNoLongerParsesSkipOnlyTheAlignment) {
+    TempDir tmp;
+    const sim::Surface s = sim::build_surface("procedural:sphere:8x8");
+    sim::CellType f, b;
+    f.name = "F";
+    b.name = "B";
+    sim::Cells cells(s.crps.num_triangles());
+    cells.add({0, {0, 0}}, 0);
+    cells.add({1, {0, 0}}, 1);
+    const std::string path = tmp.file("old.cells");
+    sim::write_cells_file(
+        path,
+        sim::make_cells_data(s.mesh, s.crps,
+                             sim::CellTypes({f, b}, {{1, 0}, {0, 1}}, {{0, 0}, {0, 0}}),
+                             cells, R"({"preset": {"name": "old", "shape": 3}})", 1));
+    std::string out, err;
+    ASSERT_EQ(run_pelage("stats " + path + " --json", &out, &err), 0) << err;
+    EXPECT_NE(err.find("no stripe alignment"), std::string::npos) << err;
+    EXPECT_EQ(nlohmann::json::parse(out)["cells"].get<size_t>(), 2u);
 }
 
 }  // namespace
