@@ -19,6 +19,7 @@ packages=(
     libassimp-dev        # meshes: glTF, FBX, PLY, Collada, ... (sim/mesh/mesh_io_assimp.cpp)
     libgtest-dev libgmock-dev libbenchmark-dev
     libcgal-dev          # tests: the exact-geodesic oracle (tests/oracle)
+    libeigen3-dev        # sparse Cholesky of the anisotropy fields (sim/field)
     ffmpeg               # pelage movie (encodes EXR sequences)
     fonts-dejavu-core    # labels of `pelage compare` contact sheets
     slurm-wlm munge      # tests: the farm recipe on a private Slurm cluster (tests/farm)

@@ -6,9 +6,12 @@
 // (shader/clonal_mosaic/spot_statistics.h): spot_count, spot_area_mean, spot_area_sd,
 // spot_area_share_mean, spot_neighbours_mean, spot_circularity_mean, spot_complexity,
 // background_components, background_largest_share, background_near_spot,
-// grid_resolution.
+// grid_resolution; for cells grown with anisotropy, how their F/B boundaries follow its
+// field (sim/cells_io/stripe_alignment.h): stripe_alignment_median, stripe_alignment_q1,
+// stripe_alignment_q3 (degrees), stripe_alignment_samples, stripe_coherence_median.
 #include <fmt/core.h>
 
+#include <cstdio>
 #include <iostream>
 
 #include "renderer/cli/common.h"
@@ -16,6 +19,10 @@
 #include "shader/clonal_mosaic/spot_statistics.h"
 #include "sim/cells_io/cells_file.h"
 #include "sim/cells_io/pattern_stats.h"
+#include "sim/cells_io/stripe_alignment.h"
+#include "sim/core/input_error.h"
+#include "sim/crps/surface.h"
+#include "sim/mosaic/anisotropy_field.h"
 
 namespace pelage::renderer::cli {
 namespace {
@@ -63,6 +70,34 @@ void add_area_fractions(const StatsOptions &o, nlohmann::json *j) {
     (*j)["grid_resolution"] = o.grid_resolution;
 }
 
+// Adds the stripe alignment keys when the cells were grown with anisotropy: the field is
+// resolved again from the preset the file records, on the surface the file carries.
+void add_stripe_alignment(const StatsOptions &o, const sim::CellsData &data,
+                          nlohmann::json *j) {
+    const nlohmann::json params = nlohmann::json::parse(data.params_json, nullptr, false);
+    if (!params.is_object() || !params.contains("preset")) return;
+    sim::Preset preset;
+    try {
+        preset = sim::parse_preset(params["preset"].dump(), o.file);
+    } catch (const InputError &e) {
+        // A file from a pelage that read presets otherwise: its other statistics stand.
+        std::fprintf(stderr,
+                     "pelage stats: no stripe alignment: the recorded preset: %s\n",
+                     e.what());
+        return;
+    }
+    if (!(preset.params.w_a > 0)) return;
+    const sim::Surface surface = sim::build_surface(sim::surface_mesh(data, o.file));
+    const sim::TangentField field = sim::anisotropy_field(preset.params, surface.crps);
+    const sim::StripeAlignment a =
+        sim::measure_stripe_alignment(data, surface.crps, field);
+    (*j)["stripe_alignment_median"] = a.median;
+    (*j)["stripe_alignment_q1"] = a.q1;
+    (*j)["stripe_alignment_q3"] = a.q3;
+    (*j)["stripe_alignment_samples"] = a.samples;
+    (*j)["stripe_coherence_median"] = a.coherence;
+}
+
 int run_stats(const StatsOptions &o) {
     const sim::CellsData data = sim::read_cells_file(o.file);
     const sim::PatternStats s = sim::compute_pattern_stats(data);
@@ -80,6 +115,7 @@ int run_stats(const StatsOptions &o) {
         {"largest_spot_cells", s.largest_spot_cells},
     };
     if (!o.mesh.empty()) add_area_fractions(o, &j);
+    add_stripe_alignment(o, data, &j);
     o.stats_json.write(j);
     if (o.json) {
         std::cout << j.dump(2) << std::endl;
@@ -89,6 +125,15 @@ int run_stats(const StatsOptions &o) {
                    s.area, s.total_cells, by_type.dump());
         fmt::print("  spot fraction {:.4f}  spots {}  mean spot area {:.4g}\n",
                    s.spot_fraction, s.spots, s.mean_spot_area);
+        if (j.contains("stripe_alignment_median"))
+            fmt::print(
+                "  stripes against the anisotropy field: median {:.1f}° (quartiles "
+                "{:.1f}°, {:.1f}°) over {} boundary cells, coherence {:.2f}\n",
+                j["stripe_alignment_median"].get<double>(),
+                j["stripe_alignment_q1"].get<double>(),
+                j["stripe_alignment_q3"].get<double>(),
+                j["stripe_alignment_samples"].get<size_t>(),
+                j["stripe_coherence_median"].get<double>());
         if (j.contains("spot_fraction_by_area"))
             fmt::print("  by area ({} points): spot fraction {:.4f}  {}\n",
                        j["area_samples"].get<size_t>(),

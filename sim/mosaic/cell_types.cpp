@@ -243,17 +243,27 @@ SimParams parse_sim(const Reader &r, const json &s) {
         r.fail(p + ".w_a", Reader::fmt_value(o.w_a) + ": must be in [0, 1]");
     if (s.contains("anisotropy")) {
         const json &a = s["anisotropy"];
-        r.check_keys(a, p + ".anisotropy", {"direction", "magnitude"});
-        if (!a.contains("direction")) r.fail(p + ".anisotropy.direction", "missing");
-        const auto d = r.numbers(a["direction"], p + ".anisotropy.direction", 3);
-        const double len = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
-        if (len == 0) r.fail(p + ".anisotropy.direction", "must not be the zero vector");
-        o.anisotropy_direction = {d[0] / len, d[1] / len, d[2] / len};
+        r.check_keys(a, p + ".anisotropy", {"direction", "field", "magnitude"});
+        if (a.contains("field")) {
+            if (a.contains("direction"))
+                r.fail(p + ".anisotropy",
+                       "\"direction\" and \"field\" conflict: give one");
+            o.anisotropy_field =
+                parse_field_spec(a["field"], p + ".anisotropy.field", r.file());
+        } else {
+            if (!a.contains("direction"))
+                r.fail(p + ".anisotropy.direction", "missing (or give a \"field\")");
+            const auto d = r.numbers(a["direction"], p + ".anisotropy.direction", 3);
+            const double len = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+            if (len == 0)
+                r.fail(p + ".anisotropy.direction", "must not be the zero vector");
+            o.anisotropy_direction = {d[0] / len, d[1] / len, d[2] / len};
+        }
         o.anisotropy_magnitude = non_negative(
             "anisotropy.magnitude", r.number(a, p + ".anisotropy", "magnitude", 1));
     }
     if (o.w_a > 0 && o.anisotropy_magnitude == 0)
-        r.fail(p + ".w_a", "w_a > 0 needs an anisotropy {direction, magnitude}");
+        r.fail(p + ".w_a", "w_a > 0 needs an anisotropy {direction or field, magnitude}");
     const std::string relax = r.string(s, p, "relax", "local");
     if (relax == "local")
         o.relax = RelaxMode::local;

@@ -17,6 +17,8 @@
 #include <string>
 #include <vector>
 
+#include "sim/field/field_spec.h"
+
 namespace pelage::sim {
 
 inline constexpr int max_cell_types = 8;
@@ -85,6 +87,9 @@ struct SimParams {
     double w_a = 0.0;                                     // anisotropy weight in [0, 1]
     std::array<double, 3> anisotropy_direction{0, 1, 0};  // world direction of A
     double anisotropy_magnitude = 0;                      // |A|
+    // A per-triangle direction of A instead of the one world direction
+    // (sim/field/field_spec.h; resolved on the surface by anisotropy_field.h).
+    FieldSpec anisotropy_field;
     RelaxMode relax = RelaxMode::local;
     int local_steps = 4;  // S of Teo §5.1.4
 

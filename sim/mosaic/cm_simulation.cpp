@@ -7,6 +7,7 @@
 
 #include "sim/core/input_error.h"
 #include "sim/crps/body_length.h"
+#include "sim/mosaic/anisotropy_field.h"
 #include "sim/mosaic/run_progress.h"
 
 namespace pelage::sim {
@@ -30,9 +31,7 @@ CmSimulation::CmSimulation(const Crps &crps, CellTypes types, SimParams params,
       m_cells(crps.num_triangles()),
       m_steps_left(crps.num_triangles(), 0) {
     for (TriId t = 0; t < crps.num_triangles(); ++t) m_area += crps.frame(t).area;
-    if (m_params.w_a > 0)
-        m_field = constant_world_field(crps, m_params.anisotropy_direction,
-                                       m_params.anisotropy_magnitude);
+    m_field = anisotropy_field(m_params, crps);
 }
 
 double CmSimulation::radius() const {
@@ -278,3 +277,4 @@ void CmSimulation::run(const std::function<void(double)> &progress) {
 
 }  // namespace pelage::sim
 #include "sim/crps/body_length.h"
+#include "sim/mosaic/anisotropy_field.h"

@@ -75,6 +75,20 @@ TEST(Preset, BadValuesNameTheFileAndJsonPath) {
         {"\"initial_cells\": 10", "\"initial_spacing\": 0.05, \"target_cells\": 90",
          "simulation.target_cells"},
         {"\"initial_cells\": 10, ", "", "needs initial_cells, initial_density or"},
+        {"\"w_d\": 0.1",
+         "\"w_d\": 0.1, \"w_a\": 0.5, \"anisotropy\": {\"field\": {\"around\": "
+         "\"tail\"}}",
+         "simulation.anisotropy.field.around: 'tail'"},
+        {"\"w_d\": 0.1",
+         "\"w_d\": 0.1, \"w_a\": 0.5, \"anisotropy\": {\"direction\": [0, 1, 0], "
+         "\"field\": {\"along\": \"body_axis\"}}",
+         "simulation.anisotropy: \"direction\" and \"field\" conflict"},
+        {"\"w_d\": 0.1",
+         "\"w_d\": 0.1, \"w_a\": 0.5, \"anisotropy\": {\"field\": {\"controls\": "
+         "[{\"at\": [0, 0, 0]}]}}",
+         "simulation.anisotropy.field.controls[0].direction: missing"},
+        {"\"w_d\": 0.1", "\"w_d\": 0.1, \"w_a\": 0.5, \"anisotropy\": {\"magnitude\": 1}",
+         "simulation.anisotropy.direction: missing (or give a \"field\")"},
     };
     for (const BadCase &c : cases) {
         std::string bad = good;
