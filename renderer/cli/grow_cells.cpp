@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <fstream>
 #include <iterator>
+#include <memory>
 #include <sstream>
 
 #include "renderer/cli/common.h"
@@ -18,6 +19,8 @@
 #include "sim/core/input_error.h"
 #include "sim/crps/body_length.h"
 #include "sim/crps/surface.h"
+#include "sim/growth/growth_shape.h"
+#include "sim/mosaic/growing_surface.h"
 
 namespace pelage::renderer::cli {
 namespace {
@@ -71,11 +74,29 @@ GrownCells grow_cells(const GrowRequest &r) {
             g.cell_scale.edge_length, g.cell_scale.max_deviation,
             g.cell_scale.cell_spacing, r.mesh));
 
-    sim::CmSimulation simulation(surface.crps, g.preset.types, g.preset.params, r.seed);
+    // A growing run (the preset's "growth") simulates on the surface's shape at each
+    // age and writes the cells on the rest shape, where they keep their barycentric
+    // points (sim/mosaic/growing_surface.h).
+    std::unique_ptr<sim::GrowingSurface> growing;
+    if (g.preset.growth) {
+        const SetupPhase phase("resolving the growth keys on the surface");
+        const bool reload = g.cell_scale.simplified && g.preset.growth->has_mesh_keys();
+        const sim::TriangleMesh rest =
+            reload ? sim::load_mesh(r.mesh) : sim::TriangleMesh();
+        growing = std::make_unique<sim::GrowingSurface>(
+            surface.mesh, surface.crps,
+            sim::resolve_growth(*g.preset.growth, reload ? rest : surface.mesh,
+                                surface.mesh));
+    }
+    sim::CmSimulation simulation(growing ? growing->crps() : surface.crps, g.preset.types,
+                                 g.preset.params, r.seed);
+    if (growing) simulation.set_growth(growing.get());
     {
         // The line names this step; the bar that follows measures the growth alone.
         const SetupPhase phase("placing and relaxing the initial cells");
-        simulation.initialize(chosen.initial_cells());
+        // On a growing surface the preset's count or density applies to the first
+        // age's shape.
+        simulation.initialize(growing ? r.initial_cells : chosen.initial_cells());
     }
     {
         Progress progress(r.label, 1000, tty);
@@ -104,8 +125,14 @@ GrownCells grow_cells(const GrowRequest &r) {
         surface_json["max_deviation"] = g.cell_scale.max_deviation;
     }
     g.params["simulation_surface"] = surface_json;
+    sim::Cells on_rest;
+    if (growing) {
+        on_rest = simulation.cells();
+        sim::carry_cells(growing->crps(), surface.crps, on_rest);
+    }
     g.data = sim::make_cells_data(surface.mesh, surface.crps, simulation.types(),
-                                  simulation.cells(), g.params.dump(), r.seed);
+                                  growing ? on_rest : simulation.cells(), g.params.dump(),
+                                  r.seed);
     g.body_length = sim::body_axis(surface.crps).length;
     return g;
 }
