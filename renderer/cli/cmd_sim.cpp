@@ -101,7 +101,7 @@ int run_sim(const SimOptions &o) {
         {"q75", sim::quantile(ps.spot_areas, 0.75)},
         {"q90", sim::quantile(ps.spot_areas, 0.9)},
         {"max", sim::quantile(ps.spot_areas, 1)}};
-    if (!o.quiet && !st.growth.empty()) {
+    if (!o.quiet && st.growth.size() > 1) {
         const sim::GrowthSample &a = st.growth.front(), &b = st.growth.back();
         fmt::print(
             "  growth        area {:.4g} -> {:.4g}   cells per unit area {:.4g} -> "

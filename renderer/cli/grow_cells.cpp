@@ -90,13 +90,16 @@ GrownCells grow_cells(const GrowRequest &r) {
     }
     sim::CmSimulation simulation(growing ? growing->crps() : surface.crps, g.preset.types,
                                  g.preset.params, r.seed);
-    if (growing) simulation.set_growth(growing.get());
+    if (growing && g.preset.growth->during) simulation.set_growth(growing.get());
     {
         // The line names this step; the bar that follows measures the growth alone.
         const SetupPhase phase("placing and relaxing the initial cells");
         // On a growing surface the preset's count or density applies to the first
         // age's shape.
         simulation.initialize(growing ? r.initial_cells : chosen.initial_cells());
+        if (growing && !g.preset.growth->during)
+            g.stats.growth.push_back(
+                {growing->age(), simulation.area(), simulation.cells().size()});
     }
     {
         Progress progress(r.label, 1000, tty);
@@ -108,7 +111,12 @@ GrownCells grow_cells(const GrowRequest &r) {
         });
         progress.finish();
     }
-    g.stats = simulation.stats();
+    {
+        // Pattern before growth: the one sample is the start.
+        std::vector<sim::GrowthSample> before = std::move(g.stats.growth);
+        g.stats = simulation.stats();
+        if (!before.empty()) g.stats.growth = before;
+    }
     g.params = {
         {"preset", nlohmann::json::parse(g.preset.json_text)},
         {"mesh", r.mesh},

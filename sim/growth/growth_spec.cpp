@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <fstream>
 #include <nlohmann/json.hpp>
 #include <set>
 
@@ -142,7 +143,7 @@ bool GrowthSpec::has_mesh_keys() const {
 GrowthSpec parse_growth(const json &node, const std::string &path,
                         const std::string &file, const std::string &base_dir) {
     const Reader r(file);
-    r.keys(node, path, {"keys", "interpolation", "interval", "cylinders"});
+    r.keys(node, path, {"keys", "interpolation", "interval", "cylinders", "pattern"});
     GrowthSpec spec;
     spec.file = file;
     if (node.contains("interpolation")) {
@@ -154,6 +155,13 @@ GrowthSpec parse_growth(const json &node, const std::string &path,
         else
             r.fail(path + ".interpolation",
                    "'" + s + "' is not one of \"linear\", \"smooth\"");
+    }
+    if (node.contains("pattern")) {
+        const std::string s = r.text(node["pattern"], path + ".pattern");
+        if (s != "during_growth" && s != "before_growth")
+            r.fail(path + ".pattern",
+                   "'" + s + "' is not one of \"during_growth\", \"before_growth\"");
+        spec.during = s == "during_growth";
     }
     if (node.contains("interval"))
         spec.interval = r.positive(node["interval"], path + ".interval");
@@ -170,6 +178,25 @@ GrowthSpec parse_growth(const json &node, const std::string &path,
             r.fail(p + ".age", "ages must increase from key to key");
     }
     return spec;
+}
+
+}  // namespace pelage::sim
+
+namespace pelage::sim {
+
+GrowthSpec load_growth(const std::string &path) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw InputError(path, 0, "", "cannot open preset file");
+    json j;
+    try {
+        j = json::parse(in);
+    } catch (const json::exception &e) {
+        throw InputError(path, 0, "", std::string("not valid JSON: ") + e.what());
+    }
+    if (!j.is_object() || !j.contains("growth"))
+        throw InputError(path, 0, "growth", "missing: the preset has no growth block");
+    return parse_growth(j["growth"], "growth", path,
+                        std::filesystem::path(path).parent_path().string());
 }
 
 }  // namespace pelage::sim

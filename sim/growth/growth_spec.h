@@ -46,7 +46,12 @@ struct GrowthSpec {
     std::vector<GrowthKey> keys;  // ages strictly increasing, at least one
     GrowthInterpolation interpolation = GrowthInterpolation::linear;
     double interval = 1;  // time between reshapes of the simulation surface
-    std::string file;     // the preset, for errors found when resolving
+    // Walter thesis §6.8 (true, "pattern during growth"): the simulation runs on the
+    // growing surface, divisions from its growth. §6.7 (false, "pattern then growth"):
+    // it runs on the shape at the first age with the types' division times, and the
+    // pattern then follows the surface to the rest shape.
+    bool during = true;
+    std::string file;  // the preset, for errors found when resolving
     bool has_mesh_keys() const;
 };
 
@@ -54,5 +59,13 @@ struct GrowthSpec {
 // against `base_dir`. InputError naming the file and the JSON path of the bad field.
 GrowthSpec parse_growth(const nlohmann::json &node, const std::string &path,
                         const std::string &file, const std::string &base_dir);
+
+}  // namespace pelage::sim
+
+namespace pelage::sim {
+
+// The "growth" block of the preset file at `path` (the renderer's "grow" needs only
+// that): InputError naming the file when it cannot be read or has no growth block.
+GrowthSpec load_growth(const std::string &path);
 
 }  // namespace pelage::sim
