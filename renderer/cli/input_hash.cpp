@@ -75,6 +75,7 @@ std::vector<std::string> scene_input_files(const SceneDesc &desc) {
             files.push_back(sim::parse_mesh_spec(obj.mesh).path);
         for (const std::string &d : obj.deform)
             files.push_back(sim::parse_mesh_spec(d).path);
+        if (obj.grow) files.push_back(obj.grow->preset);
         if (!obj.cells.empty()) files.push_back(obj.cells);
         add_param_files(obj.material.params, desc.dir, &files);
     }
