@@ -36,8 +36,8 @@ struct GrowingRun {
     std::vector<uint8_t> bytes;  // the .cells data on the rest shape
 };
 
-GrowingRun run_growing(const std::string &mesh, const std::string &growth, double end_time,
-                uint64_t seed = 7) {
+GrowingRun run_growing(const std::string &mesh, const std::string &growth,
+                       double end_time, uint64_t seed = 7) {
     const Surface s = build_surface(mesh);
     const Preset p = parse_preset(growing_preset(growth, end_time), "g.json");
     GrowingSurface growing(s.mesh, s.crps, resolve_growth(*p.growth, s.mesh, s.mesh));
@@ -56,6 +56,14 @@ GrowingRun run_growing(const std::string &mesh, const std::string &growth, doubl
     return r;
 }
 
+double max_deviation(const GrowingRun &r) {
+    const double d0 = double(r.samples[0].cells) / r.samples[0].area;
+    double m = 0;
+    for (const GrowthSample &g : r.samples)
+        m = std::max(m, std::abs(double(g.cells) / g.area / d0 - 1));
+    return m;
+}
+
 void expect_density_within(const GrowingRun &r, double tolerance) {
     ASSERT_GE(r.samples.size(), 2u);
     const double d0 = double(r.samples[0].cells) / r.samples[0].area;
@@ -71,6 +79,7 @@ TEST(GrowingSimulation, DensityStaysConstantOnAUniformlyScaledSphere) {
         R"({"keys": [{"age": 0, "scale": 0.5}, {"age": 12, "scale": 1}]})", 12);
     ASSERT_EQ(r.samples.size(), 13u);  // one reshape per time unit, and the end
     EXPECT_NEAR(r.samples.back().area / r.samples.front().area, 4.0, 1e-9);
+    RecordProperty("max_density_deviation", std::to_string(max_deviation(r)));
     expect_density_within(r, 0.10);
     // Analytic: the cells quadruple too (the Poisson spread of ~3600 divisions is 1 %).
     EXPECT_NEAR(double(r.samples.back().cells) / 1200.0, 4.0, 0.4);
@@ -93,7 +102,55 @@ TEST(GrowingSimulation, DensityStaysConstantOnAStretchingCylinder) {
     for (const GrowthSample &g : r.samples)
         EXPECT_NEAR(g.area, a0 * (1 + 0.2 * g.time) * (1 + 0.05 * g.time), 1e-9 * a0)
             << g.time;
+    RecordProperty("max_density_deviation", std::to_string(max_deviation(r)));
     expect_density_within(r, 0.10);
+}
+
+TEST(GrowingSimulation, DensityStaysConstantWhereOnlyHalfTheBodyGrows) {
+    // The lower half of the cylinder (y < 0) triples its length over 8 time units, the
+    // upper half keeps its size and rides on top (its pivot follows the lower half's
+    // growth): each lower facet's area grows by L(t) = 1 + 0.25 t, the upper's stays.
+    // Cells per unit area must stay constant in each half, not only overall.
+    const std::string growth = R"({"cylinders": [
+        {"name": "low", "from": [0, -1.0001, 0], "to": [0, 0, 0], "radius": 1.5},
+        {"name": "up", "from": [0, 0, 0], "to": [0, 1.0001, 0], "radius": 1.5,
+         "parent": "low"}],
+        "keys": [{"age": 0, "cylinders": {}},
+                 {"age": 8, "cylinders": {"low": {"length": 3}}}]})";
+    const Surface s = build_surface("procedural:cylinder:48x16");
+    const Preset p = parse_preset(growing_preset(growth, 8), "g.json");
+    GrowingSurface growing(s.mesh, s.crps, resolve_growth(*p.growth, s.mesh, s.mesh));
+    CmSimulation sim(growing.crps(), p.types, p.params, 3);
+    sim.set_growth(&growing);
+    sim.initialize();
+    double area[2][2] = {{0, 0}, {0, 0}};  // [start, end][lower, upper]
+    size_t cells[2][2] = {{0, 0}, {0, 0}};
+    auto count = [&](int when) {
+        for (TriId t = 0; t < s.mesh.num_triangles(); ++t) {
+            const int half = s.crps.to_3d(t, {0, 0}).y < 0 ? 0 : 1;  // rest centroid
+            area[when][half] += growing.crps().frame(t).area;
+            cells[when][half] += sim.cells().on(t).size();
+        }
+    };
+    count(0);
+    sim.run();
+    count(1);
+    RecordProperty("lost_cells", std::to_string(sim.stats().growth_lost_cells));
+    RecordProperty("cells", std::to_string(cells[0][0]) + " " +
+                                std::to_string(cells[0][1]) + " -> " +
+                                std::to_string(cells[1][0]) + " " +
+                                std::to_string(cells[1][1]));
+    EXPECT_NEAR(area[1][0] / area[0][0], 3.0, 1e-9);
+    EXPECT_NEAR(area[1][1] / area[0][1], 1.0, 1e-9);
+    for (int half : {0, 1}) {
+        const double d0 = cells[0][half] / area[0][half],
+                     d1 = cells[1][half] / area[1][half];
+        RecordProperty(half ? "upper_density_ratio" : "lower_density_ratio",
+                       std::to_string(d1 / d0));
+        EXPECT_NEAR(d1 / d0, 1.0, 0.10) << (half ? "upper" : "lower") << ": "
+                                        << cells[0][half] << " -> " << cells[1][half];
+    }
+    EXPECT_GT(cells[1][0], 2 * cells[0][0]);  // the growing half gained the cells
 }
 
 TEST(GrowingSimulation, IdenticalAtOneAndTwoThreads) {
