@@ -94,7 +94,8 @@ TEST(GrowthSpec, ErrorsNameTheJsonPath) {
 }
 
 TEST(GrowthSpec, APresetCarriesItsGrowthBlock) {
-    const std::string base = test::preset_json(R"({"initial_cells": 10, "w_r": 2, "w_d": 0.1, "rho": 1, "end_time": 1})");
+    const std::string base = test::preset_json(
+        R"({"initial_cells": 10, "w_r": 2, "w_d": 0.1, "rho": 1, "end_time": 1})");
     const std::string with = base.substr(0, base.size() - 1) +
                              R"(, "growth": {"keys": [{"age": 0, "scale": 2}]}})";
     const Preset p = parse_preset(with, "/somewhere/p.json");
