@@ -39,6 +39,17 @@ std::string mesh_content_hash(const std::string &mesh) {
     return h.hex();
 }
 
+// The content of the growth block's mesh keys: a pattern grown through other shapes is
+// another pattern.
+nlohmann::json growth_mesh_hashes(const sim::Preset &preset) {
+    nlohmann::json out = nlohmann::json::array();
+    if (preset.growth)
+        for (const sim::GrowthKey &k : preset.growth->keys)
+            if (k.kind == sim::GrowthKey::Kind::mesh)
+                out.push_back(mesh_content_hash(k.mesh));
+    return out;
+}
+
 sim::Preset read_preset(const GrowRequest &r) {
     sim::Preset preset = sim::load_preset(r.preset, data_path("scenes/presets"));
     if (r.relax == "local")
@@ -125,6 +136,8 @@ GrownCells grow_cells(const GrowRequest &r) {
         {"initial_cells", g.stats.initial_cells},
         {"relax", g.preset.params.relax == sim::RelaxMode::local ? "local" : "global"},
     };
+    if (const nlohmann::json h = growth_mesh_hashes(g.preset); !h.empty())
+        g.params["growth_meshes_xxh3"] = h;  // absent without mesh keys: files unchanged
     nlohmann::json surface_json = {{"input_triangles", g.cell_scale.input_triangles},
                                    {"triangles", g.triangles},
                                    {"simplified", g.cell_scale.simplified}};
@@ -166,6 +179,9 @@ bool cells_match(const std::string &path, const GrowRequest &r, std::string *why
         return differs("grown with another seed");
     if (params.value("mesh_xxh3", std::string()) != mesh_content_hash(r.mesh))
         return differs("grown on another mesh");
+    if (params.value("growth_meshes_xxh3", nlohmann::json::array()) !=
+        growth_mesh_hashes(preset))
+        return differs("grown through other growth meshes");
     const std::string relax =
         preset.params.relax == sim::RelaxMode::local ? "local" : "global";
     if (params.value("relax", std::string()) != relax)

@@ -152,5 +152,25 @@ TEST(GrowthCli, ASceneGrowsItsMeshAndRefusesBadGrow) {
     EXPECT_NE(err.find("objects[0].grow"), std::string::npos) << err;
 }
 
+TEST(GrowthCli, AScenePatternIsGrownAgainWhenAGrowthMeshChanges) {
+    TempDir tmp;
+    sim::TriangleMesh ball = sim::make_uv_sphere(10, 16);
+    sim::write_obj(tmp.file("ball.obj"), ball, {});
+    for (sim::Vec3d &p : ball.positions) p = p * 0.5;
+    sim::write_obj(tmp.file("small.obj"), ball, {});
+    growing_preset(
+        tmp, R"({"keys": [{"age": 0, "mesh": "small.obj"}, {"age": 2, "scale": 1}]})");
+    const std::string scene =
+        tmp.write("s.json", grow_scene("ball.obj", R"({"from": 0, "to": 2})"));
+    std::string err;
+    ASSERT_EQ(run_pelage("render " + scene, nullptr, &err), 0) << err;
+    ASSERT_EQ(run_pelage("render " + scene, nullptr, &err), 0) << err;
+    EXPECT_EQ(err.find("growing"), std::string::npos) << err;  // reused
+    for (sim::Vec3d &p : ball.positions) p = p * 1.2;
+    sim::write_obj(tmp.file("small.obj"), ball, {});
+    ASSERT_EQ(run_pelage("render " + scene, nullptr, &err), 0) << err;
+    EXPECT_NE(err.find("grown through other growth meshes"), std::string::npos) << err;
+}
+
 }  // namespace
 }  // namespace pelage::test
