@@ -63,6 +63,35 @@ TEST(GrowthCli, DensityPerReshapeInStatsJson) {
         nlohmann::json::parse(std::ifstream(tmp.file("n.json")))["growth"].empty());
 }
 
+TEST(GrowthCli, PatternBeforeGrowthRunsOnTheFirstShapeAndWritesOnTheRest) {
+    TempDir tmp;
+    // Walter thesis §6.7: the types' own division times on the half-size sphere for 2
+    // time units (F every 4 on average, B every 12), then carried to the rest sphere.
+    const std::string preset = growing_preset(tmp, R"({"pattern": "before_growth",
+                 "keys": [{"age": 0, "scale": 0.5}, {"age": 6, "scale": 1}]})");
+    std::string text = slurp(preset);
+    text.replace(text.find("\"end_time\": 0"), 13, "\"end_time\": 2");
+    tmp.write("growing.json", text);
+    std::string err;
+    ASSERT_EQ(
+        run_pelage("sim --mesh procedural:sphere:20x20 --preset " + preset + " -o " +
+                       tmp.file("b.cells") + " --stats-json " + tmp.file("s.json"),
+                   nullptr, &err),
+        0)
+        << err;
+    const auto s = nlohmann::json::parse(std::ifstream(tmp.file("s.json")));
+    ASSERT_EQ(s["growth"].size(), 1u);  // the start only: no reshape
+    EXPECT_NEAR(s["growth"][0]["area"].get<double>() / s["area"].get<double>(), 0.25,
+                1e-9);
+    EXPECT_EQ(s["end_time"], 2.0);
+    // Divisions at the types' rates over 2 time units (not from the growth, which would
+    // quadruple the 600 cells): about 600 (0.3·0.5 + 0.7·(2/12)) ≈ 160.
+    const double divisions = s["divisions"];
+    EXPECT_GT(divisions, 80);
+    EXPECT_LT(divisions, 300);
+    EXPECT_EQ(s["final_cells"].get<double>(), 600 + divisions);
+}
+
 TEST(GrowthCli, BadGrowthIsExitTwoNamingTheField) {
     TempDir tmp;
     const std::vector<std::pair<std::string, std::string>> cases = {
