@@ -94,6 +94,15 @@ GrownCells grow_cells(const GrowRequest &r) {
         const bool reload = g.cell_scale.simplified && g.preset.growth->has_mesh_keys();
         const sim::TriangleMesh rest =
             reload ? sim::load_mesh(r.mesh) : sim::TriangleMesh();
+        const sim::GrowthSpec &spec = *g.preset.growth;
+        if (const size_t out =
+                sim::vertices_outside_cylinders(spec.cylinders, surface.mesh);
+            !spec.cylinders.empty() && out > 0 && r.note)
+            r.note(
+                fmt::format("{} of the surface's {} vertices lie in no growth cylinder "
+                            "and keep their rest position at every age (the cylinders "
+                            "of {} should enclose the body)",
+                            out, surface.mesh.num_vertices(), r.preset));
         growing = std::make_unique<sim::GrowingSurface>(
             surface.mesh, surface.crps,
             sim::resolve_growth(*g.preset.growth, reload ? rest : surface.mesh,

@@ -60,6 +60,31 @@ Vec3d grow_alone(const std::vector<GrowthCylinder> &cyl,
 
 }  // namespace
 
+namespace {
+
+bool in_cylinder(const GrowthCylinder &k, Vec3d p, double *d) {
+    const Vec3d axis = k.to - k.from;
+    const double len = length(axis);
+    const double x = dot(p - k.from, axis) / len;
+    if (x < 0 || x > len) return false;
+    *d = length(p - k.from - axis * (x / len)) / k.radius;
+    return *d <= 1;
+}
+
+}  // namespace
+
+size_t vertices_outside_cylinders(const std::vector<GrowthCylinder> &cylinders,
+                                  const TriangleMesh &mesh) {
+    size_t n = 0;
+    for (const Vec3d &p : mesh.positions) {
+        bool in = false;
+        double d = 0;
+        for (const GrowthCylinder &k : cylinders) in = in || in_cylinder(k, p, &d);
+        n += in ? 0 : 1;
+    }
+    return n;
+}
+
 Vec3d grow_by_cylinders(const std::vector<GrowthCylinder> &cylinders,
                         const std::vector<std::array<double, 2>> &scales, Vec3d p) {
     Vec3d sum;
@@ -67,13 +92,8 @@ Vec3d grow_by_cylinders(const std::vector<GrowthCylinder> &cylinders,
     int inside = 0;
     Vec3d plain;  // the unweighted sum, for a point on every cylinder's wall
     for (size_t c = 0; c < cylinders.size(); ++c) {
-        const GrowthCylinder &k = cylinders[c];
-        const Vec3d axis = k.to - k.from;
-        const double len = length(axis);
-        const double x = dot(p - k.from, axis) / len;
-        if (x < 0 || x > len) continue;
-        const double d = length(p - k.from - axis * (x / len)) / k.radius;
-        if (d > 1) continue;
+        double d = 0;
+        if (!in_cylinder(cylinders[c], p, &d)) continue;
         const Vec3d g = grow_alone(cylinders, scales, int(c), p);
         sum += g * (1 - d);  // thesis L1356: d_A = 1 − d_A, w_A = d_A / Σ d
         weight += 1 - d;

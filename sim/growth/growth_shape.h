@@ -58,6 +58,11 @@ class GrowthShape {
 Vec3d grow_by_cylinders(const std::vector<GrowthCylinder> &cylinders,
                         const std::vector<std::array<double, 2>> &scales, Vec3d p);
 
+// How many vertices of `mesh` lie inside none of the cylinders (they do not move under a
+// cylinder key): 0 when the cylinders enclose the body, as they should.
+size_t vertices_outside_cylinders(const std::vector<GrowthCylinder> &cylinders,
+                                  const TriangleMesh &mesh);
+
 // Area-weighted centroid of the surface: the fixed point of a uniform scale key.
 Vec3d area_centroid(const TriangleMesh &mesh);
 

@@ -151,6 +151,10 @@ TEST(GrowthShape, CylindersScaleAboutTheirPivotAndBlendByDistanceToTheAxis) {
     // with A to (2,0,0) and B alone gives (2.5, 0.5, 0) with weight 1 − 0.25.
     // x = (3·0.5 + 2.5·0.75) / 1.25 = 2.7.
     expect_near(grow_by_cylinders(c, {{2, 1}, {1, 1}}, {1.5, 0.5, 0}), {2.7, 0.5, 0});
+    // Vertices in no cylinder are counted.
+    TriangleMesh m;
+    m.positions = {{1, 0.5, 0}, {2.5, 1.5, 0}, {3.5, 0, 0}, {-0.5, 0, 0}};
+    EXPECT_EQ(vertices_outside_cylinders(c, m), 2u);  // (3.5,0,0) and (-0.5,0,0)
     // Only in B: its pivot moved by A, its own scales.
     expect_near(grow_by_cylinders(c, {{2, 1}, {1.5, 2}}, {2.8, 1.2, 0}),
                 {2 + 1.5 * 1.8, 2.4, 0});
