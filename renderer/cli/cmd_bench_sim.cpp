@@ -67,6 +67,13 @@ RunResult run_once(const sim::Surface &s, const sim::Preset &p, sim::SimParams p
 int run(const BenchSimOptions &o) {
     const auto control = o.threads.apply();
     const sim::Preset preset = sim::load_preset(o.preset, data_path("scenes/presets"));
+    // The benchmark times the simulation on a fixed surface (and on spheres, which a
+    // growth block's meshes or cylinders do not fit).
+    if (preset.growth)
+        throw InputError("", 0, "--preset",
+                         "'" + o.preset +
+                             "' has a growth block, which bench sim does not "
+                             "run: give a preset without one");
     const sim::Surface sphere = sim::build_surface(o.mesh);
 
     nlohmann::json runs = nlohmann::json::array();

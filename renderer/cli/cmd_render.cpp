@@ -35,11 +35,11 @@ using namespace pelage::renderer;
 constexpr int exit_interrupted = 128 + 2;
 
 // One scene for every frame when only the camera moves (and for a still); null when an
-// object turns or deforms, and each frame builds its own.
+// object turns, deforms or grows, and each frame builds its own.
 std::unique_ptr<Scene> shared_scene_for(const SceneDesc &desc,
                                         const PluginRegistry &plugins) {
     bool rigid = desc.animation.present;
-    for (const auto &ob : desc.objects) rigid = rigid && ob.deform.empty();
+    for (const auto &ob : desc.objects) rigid = rigid && ob.deform.empty() && !ob.grow;
     const auto &tt = desc.animation.turntable;
     if (tt && tt->target == TurntableDesc::Target::object) rigid = false;
     if (!rigid && desc.animation.present) return nullptr;

@@ -2,7 +2,9 @@
 // and writes the .cells file (sim/mosaic/cm_simulation.h, sim/cells_io/cells_file.h). The
 // keys of
 // --stats-json are a contract: triangles, area, cells_by_type, spot_fraction,
-// divisions, relax_steps, seconds, peak_rss_mb.
+// divisions, relax_steps, seconds, peak_rss_mb; spot_area_quantiles (of the spots on the
+// mesh the cells are written on); growth (a growing run: time, area, cells, density at
+// each reshape and at the end; empty otherwise) and growth_lost_cells.
 #include <fmt/core.h>
 
 #include <algorithm>
@@ -83,8 +85,36 @@ int run_sim(const SimOptions &o) {
         if (!o.output.empty()) fmt::print("  wrote         {}\n", o.output);
     }
 
+    // A growing run: cells per unit area at every reshape (Walter thesis §6.2 keeps it
+    // constant), and the spots' areas.
+    nlohmann::json growth = nlohmann::json::array();
+    for (const sim::GrowthSample &g : st.growth)
+        growth.push_back({{"time", g.time},
+                          {"area", g.area},
+                          {"cells", g.cells},
+                          {"density", double(g.cells) / g.area}});
+    const nlohmann::json spot_area_quantiles = {
+        {"min", sim::quantile(ps.spot_areas, 0)},
+        {"q10", sim::quantile(ps.spot_areas, 0.1)},
+        {"q25", sim::quantile(ps.spot_areas, 0.25)},
+        {"median", sim::quantile(ps.spot_areas, 0.5)},
+        {"q75", sim::quantile(ps.spot_areas, 0.75)},
+        {"q90", sim::quantile(ps.spot_areas, 0.9)},
+        {"max", sim::quantile(ps.spot_areas, 1)}};
+    if (!o.quiet && st.growth.size() > 1) {
+        const sim::GrowthSample &a = st.growth.front(), &b = st.growth.back();
+        fmt::print(
+            "  growth        area {:.4g} -> {:.4g}   cells per unit area {:.4g} -> "
+            "{:.4g} ({} reshapes)\n",
+            a.area, b.area, double(a.cells) / a.area, double(b.cells) / b.area,
+            st.growth.size() - 1);
+    }
+
     if (o.stats_json.wanted()) {
         o.stats_json.write({
+            {"growth", growth},
+            {"growth_lost_cells", st.growth_lost_cells},
+            {"spot_area_quantiles", spot_area_quantiles},
             {"preset", preset.name},
             {"mesh", o.mesh},
             {"seed", o.seed},

@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <fstream>
 #include <iterator>
+#include <memory>
 #include <sstream>
 
 #include "renderer/cli/common.h"
@@ -18,6 +19,8 @@
 #include "sim/core/input_error.h"
 #include "sim/crps/body_length.h"
 #include "sim/crps/surface.h"
+#include "sim/growth/growth_shape.h"
+#include "sim/mosaic/growing_surface.h"
 
 namespace pelage::renderer::cli {
 namespace {
@@ -34,6 +37,17 @@ std::string mesh_content_hash(const std::string &mesh) {
         h.add(std::string(std::istreambuf_iterator<char>(in), {}));
     }
     return h.hex();
+}
+
+// The content of the growth block's mesh keys: a pattern grown through other shapes is
+// another pattern.
+nlohmann::json growth_mesh_hashes(const sim::Preset &preset) {
+    nlohmann::json out = nlohmann::json::array();
+    if (preset.growth)
+        for (const sim::GrowthKey &k : preset.growth->keys)
+            if (k.kind == sim::GrowthKey::Kind::mesh)
+                out.push_back(mesh_content_hash(k.mesh));
+    return out;
 }
 
 sim::Preset read_preset(const GrowRequest &r) {
@@ -71,11 +85,41 @@ GrownCells grow_cells(const GrowRequest &r) {
             g.cell_scale.edge_length, g.cell_scale.max_deviation,
             g.cell_scale.cell_spacing, r.mesh));
 
-    sim::CmSimulation simulation(surface.crps, g.preset.types, g.preset.params, r.seed);
+    // A growing run (the preset's "growth") simulates on the surface's shape at each
+    // age and writes the cells on the rest shape, where they keep their barycentric
+    // points (sim/mosaic/growing_surface.h).
+    std::unique_ptr<sim::GrowingSurface> growing;
+    if (g.preset.growth) {
+        const SetupPhase phase("resolving the growth keys on the surface");
+        const bool reload = g.cell_scale.simplified && g.preset.growth->has_mesh_keys();
+        const sim::TriangleMesh rest =
+            reload ? sim::load_mesh(r.mesh) : sim::TriangleMesh();
+        const sim::GrowthSpec &spec = *g.preset.growth;
+        if (const size_t out =
+                sim::vertices_outside_cylinders(spec.cylinders, surface.mesh);
+            !spec.cylinders.empty() && out > 0 && r.note)
+            r.note(
+                fmt::format("{} of the surface's {} vertices lie in no growth cylinder "
+                            "and keep their rest position at every age (the cylinders "
+                            "of {} should enclose the body)",
+                            out, surface.mesh.num_vertices(), r.preset));
+        growing = std::make_unique<sim::GrowingSurface>(
+            surface.mesh, surface.crps,
+            sim::resolve_growth(*g.preset.growth, reload ? rest : surface.mesh,
+                                surface.mesh));
+    }
+    sim::CmSimulation simulation(growing ? growing->crps() : surface.crps, g.preset.types,
+                                 g.preset.params, r.seed);
+    if (growing && g.preset.growth->during) simulation.set_growth(growing.get());
     {
         // The line names this step; the bar that follows measures the growth alone.
         const SetupPhase phase("placing and relaxing the initial cells");
-        simulation.initialize(chosen.initial_cells());
+        // On a growing surface the preset's count or density applies to the first
+        // age's shape.
+        simulation.initialize(growing ? r.initial_cells : chosen.initial_cells());
+        if (growing && !g.preset.growth->during)
+            g.stats.growth.push_back(
+                {growing->age(), simulation.area(), simulation.cells().size()});
     }
     {
         Progress progress(r.label, 1000, tty);
@@ -87,7 +131,12 @@ GrownCells grow_cells(const GrowRequest &r) {
         });
         progress.finish();
     }
-    g.stats = simulation.stats();
+    {
+        // Pattern before growth: the one sample is the start.
+        std::vector<sim::GrowthSample> before = std::move(g.stats.growth);
+        g.stats = simulation.stats();
+        if (!before.empty()) g.stats.growth = before;
+    }
     g.params = {
         {"preset", nlohmann::json::parse(g.preset.json_text)},
         {"mesh", r.mesh},
@@ -96,6 +145,8 @@ GrownCells grow_cells(const GrowRequest &r) {
         {"initial_cells", g.stats.initial_cells},
         {"relax", g.preset.params.relax == sim::RelaxMode::local ? "local" : "global"},
     };
+    if (const nlohmann::json h = growth_mesh_hashes(g.preset); !h.empty())
+        g.params["growth_meshes_xxh3"] = h;  // absent without mesh keys: files unchanged
     nlohmann::json surface_json = {{"input_triangles", g.cell_scale.input_triangles},
                                    {"triangles", g.triangles},
                                    {"simplified", g.cell_scale.simplified}};
@@ -104,8 +155,14 @@ GrownCells grow_cells(const GrowRequest &r) {
         surface_json["max_deviation"] = g.cell_scale.max_deviation;
     }
     g.params["simulation_surface"] = surface_json;
+    sim::Cells on_rest;
+    if (growing) {
+        on_rest = simulation.cells();
+        sim::carry_cells(growing->crps(), surface.crps, on_rest);
+    }
     g.data = sim::make_cells_data(surface.mesh, surface.crps, simulation.types(),
-                                  simulation.cells(), g.params.dump(), r.seed);
+                                  growing ? on_rest : simulation.cells(), g.params.dump(),
+                                  r.seed);
     g.body_length = sim::body_axis(surface.crps).length;
     return g;
 }
@@ -131,6 +188,9 @@ bool cells_match(const std::string &path, const GrowRequest &r, std::string *why
         return differs("grown with another seed");
     if (params.value("mesh_xxh3", std::string()) != mesh_content_hash(r.mesh))
         return differs("grown on another mesh");
+    if (params.value("growth_meshes_xxh3", nlohmann::json::array()) !=
+        growth_mesh_hashes(preset))
+        return differs("grown through other growth meshes");
     const std::string relax =
         preset.params.relax == sim::RelaxMode::local ? "local" : "global";
     if (params.value("relax", std::string()) != relax)

@@ -11,6 +11,7 @@
 #include <set>
 #include <sstream>
 
+#include "sim/growth/growth_spec.h"
 #include "sim/mesh/mesh_objects.h"
 
 namespace pelage::renderer::cli {
@@ -75,6 +76,12 @@ std::vector<std::string> scene_input_files(const SceneDesc &desc) {
             files.push_back(sim::parse_mesh_spec(obj.mesh).path);
         for (const std::string &d : obj.deform)
             files.push_back(sim::parse_mesh_spec(d).path);
+        if (obj.grow) {
+            files.push_back(obj.grow->preset);
+            for (const sim::GrowthKey &k : sim::load_growth(obj.grow->preset).keys)
+                if (k.kind == sim::GrowthKey::Kind::mesh)
+                    files.push_back(sim::parse_mesh_spec(k.mesh).path);
+        }
         if (!obj.cells.empty()) files.push_back(obj.cells);
         add_param_files(obj.material.params, desc.dir, &files);
     }

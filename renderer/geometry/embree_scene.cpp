@@ -9,6 +9,7 @@
 #include "renderer/core/setup_phase.h"
 #include "renderer/geometry/deform.h"
 #include "sim/core/input_error.h"
+#include "sim/growth/growth_shape.h"
 #include "sim/mesh/mesh_load.h"
 
 namespace pelage::renderer {
@@ -30,6 +31,13 @@ std::shared_ptr<MeshData> load_mesh_data(const ObjectDesc &o,
     if (!o.deform_mesh.empty() && o.deform_weight > 0)
         apply_pose(mesh, o.deform_mesh, o.deform_weight, scene_path,
                    "objects[" + std::to_string(index) + "].deform");
+    if (o.grow) {
+        // The shape at the age, vertex by vertex: the pattern, stored per (triangle,
+        // barycentric point), rides on it (sim/growth/growth_shape.h).
+        mesh.positions = sim::resolve_growth(sim::load_growth(o.grow->preset), mesh, mesh)
+                             .at(o.grow_age);
+        mesh.corner_normals.clear();
+    }
     auto m = std::make_shared<MeshData>();
     m->source = o.mesh;
     m->num_vertices = uint32_t(mesh.num_vertices());
@@ -152,6 +160,9 @@ EmbreeScene::EmbreeScene(const SceneDesc &scene) {
     // A mesh is its file, its normals and its pose.
     using Key = std::tuple<std::string, int, std::string, float>;
     auto key_of = [](const ObjectDesc &o) {
+        if (o.grow)
+            return Key{o.mesh, int(o.normals),
+                       "grow " + o.grow->preset + " " + std::to_string(o.grow_age), 1.0f};
         return o.deform_weight > 0
                    ? Key{o.mesh, int(o.normals), o.deform_mesh, o.deform_weight}
                    : Key{o.mesh, int(o.normals), std::string(), 0.0f};

@@ -10,6 +10,7 @@
 #include "renderer/scene_file/json_fields.h"
 #include "renderer/scene_file/scene_fur.h"
 #include "sim/core/input_error.h"
+#include "sim/growth/growth_spec.h"
 #include "sim/mesh/mesh_objects.h"
 
 namespace pelage::renderer {
@@ -320,6 +321,30 @@ ObjectDesc read_object(Reader r, size_t index) {
         o.deform_mesh = o.deform.back();
         o.deform_weight = 1;
     }
+    // "grow": {"preset": "growing.json", "from": AGE, "to": AGE}
+    if (const json *v = r.take("grow")) {
+        const std::string f = r.field("grow");
+        Reader g(*v, f, Reader::scene_of(r));
+        ObjectDesc::Grow d;
+        const bool own = g.has("preset");
+        d.preset =
+            own ? g.string("preset", "", true) : (o.pattern ? o.pattern->preset : "");
+        if (d.preset.empty() ||
+            (!own && d.preset.find('/') == std::string::npos))  // a built-in name
+            g.fail(g.field("preset"),
+                   "missing: the preset file whose growth block shapes the mesh (the "
+                   "pattern's preset when that is a file)");
+        if (own) d.preset = g.resolve(d.preset);
+        d.from = g.number("from", 0, -1e12, 1e12, true);
+        d.to = g.number("to", 0, -1e12, 1e12, true);
+        g.finish();
+        if (o.mesh.rfind("procedural:", 0) == 0)
+            r.fail(f, "a procedural mesh cannot grow (give the rest mesh as a file)");
+        if (!o.deform.empty()) r.fail(f, "grow and deform cannot be combined");
+        sim::load_growth(d.preset);  // its errors before any rendering
+        o.grow = d;
+        o.grow_age = d.to;
+    }
     if (const json *v = r.take("fur"))
         o.fur = read_fur(*v, r.field("fur"), Reader::scene_of(r).path);
     r.finish();
@@ -602,6 +627,11 @@ SceneDesc scene_at_frame(const SceneDesc &scene, int frame) {
                 o.transform = m * o.transform;
     }
     for (ObjectDesc &o : s.objects) {
+        if (o.grow) {
+            const int n = scene.animation.frames;
+            const double w = n > 1 ? double(frame) / double(n - 1) : 1.0;
+            o.grow_age = o.grow->from + (o.grow->to - o.grow->from) * w;
+        }
         if (o.deform.empty()) continue;
         if (o.deform.size() > 1) {
             o.deform_mesh = o.deform[size_t(frame) % o.deform.size()];

@@ -105,6 +105,14 @@ struct ObjectDesc {
     // parser (the last pose, weight 1) and by scene_at_frame().
     std::string deform_mesh;
     float deform_weight = 0;
+    // "grow": the mesh grown by a preset's growth block (sim/growth/growth_spec.h) to the
+    // age `from` at the first frame, `to` at the last; a still shows `to`.
+    struct Grow {
+        std::string preset;  // absolute path of the preset file
+        double from = 0, to = 0;
+    };
+    std::optional<Grow> grow;
+    double grow_age = 0;  // the age rendered: set by the parser (to) and scene_at_frame()
     std::optional<shader::fur::FurParams>
         fur;  // strands on this object (renderer/scene_file/scene_fur.h)
 };

@@ -1,5 +1,6 @@
 #include "sim/cells_io/pattern_stats.h"
 
+#include <algorithm>
 #include <cmath>
 #include <numeric>
 
@@ -60,9 +61,23 @@ PatternStats compute_pattern_stats(const CellsData &d) {
         if (size[c] > 0) {
             ++s.spots;
             s.largest_spot_cells = std::max(s.largest_spot_cells, size[c]);
+            s.spot_areas.push_back(double(size[c]) * (s.area / double(n)));
         }
+    std::sort(s.spot_areas.begin(), s.spot_areas.end());
     s.mean_spot_area = double(nf) * (s.area / double(n)) / double(s.spots);
     return s;
+}
+
+}  // namespace pelage::sim
+
+namespace pelage::sim {
+
+double quantile(const std::vector<double> &v, double q) {
+    if (v.empty()) return 0;
+    const double x = std::clamp(q, 0.0, 1.0) * double(v.size() - 1);
+    const size_t i = size_t(x);
+    if (i + 1 >= v.size()) return v.back();
+    return v[i] + (v[i + 1] - v[i]) * (x - double(i));
 }
 
 }  // namespace pelage::sim

@@ -24,7 +24,12 @@ struct PatternStats {
     size_t spots = 0;
     double mean_spot_area = 0;  // surface area units
     size_t largest_spot_cells = 0;
+    std::vector<double> spot_areas;  // every spot's area (its cells × A/m), ascending
 };
+
+// The q-quantile (q in [0, 1]) of ascending values, linear between order statistics;
+// 0 for none.
+double quantile(const std::vector<double> &ascending, double q);
 
 PatternStats compute_pattern_stats(const CellsData &data);
 

@@ -22,6 +22,7 @@ enum class RandomStream : uint64_t {
     initial_division = 3,
     division = 4,
     tie_break = 5,
+    growth_division = 6,
 };
 
 // A small sequential generator over one (seed, stream, index) key: each draw hashes the

@@ -312,7 +312,7 @@ Preset parse_preset(const std::string &text, const std::string &file) {
     }
     r.check_keys(j, "",
                  {"name", "description", "source", "types", "mutation", "adhesion",
-                  "repulsiveness", "simulation", "published", "notes"});
+                  "repulsiveness", "simulation", "published", "notes", "growth"});
     Preset preset;
     preset.name = r.string(j, "", "name", "", true);
     preset.description = r.string(j, "", "description", "");
@@ -368,6 +368,9 @@ Preset parse_preset(const std::string &text, const std::string &file) {
     preset.params = parse_sim(r, j["simulation"]);
     if (j.contains("published") && !j["published"].is_object())
         r.fail("published", "expected an object");
+    if (j.contains("growth"))
+        preset.growth = parse_growth(j["growth"], "growth", file,
+                                     std::filesystem::path(file).parent_path().string());
     preset.types = CellTypes(std::move(types), std::move(mutation), std::move(alpha));
     preset.json_text = j.dump();
     return preset;

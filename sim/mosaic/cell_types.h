@@ -14,10 +14,12 @@
 #include <array>
 #include <cstdint>
 #include <limits>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "sim/field/field_spec.h"
+#include "sim/growth/growth_spec.h"
 
 namespace pelage::sim {
 
@@ -106,6 +108,7 @@ struct Preset {
     CellTypes types;
     SimParams params;
     std::string json_text;  // the preset as read (compact JSON), stored in .cells files
+    std::optional<GrowthSpec> growth;  // the "growth" block (sim/growth/growth_spec.h)
 };
 
 // Parses a preset from JSON text; `file` names the source in InputError messages, which

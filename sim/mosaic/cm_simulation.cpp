@@ -4,6 +4,8 @@
 #include <chrono>
 #include <cmath>
 #include <functional>
+#include <limits>
+#include <stdexcept>
 
 #include "sim/core/input_error.h"
 #include "sim/crps/body_length.h"
@@ -32,6 +34,17 @@ CmSimulation::CmSimulation(const Crps &crps, CellTypes types, SimParams params,
       m_steps_left(crps.num_triangles(), 0) {
     for (TriId t = 0; t < crps.num_triangles(); ++t) m_area += crps.frame(t).area;
     m_field = anisotropy_field(m_params, crps);
+    // Each vector in its triangle's edge basis, for surface_changed() to carry it.
+    m_field_edge_coords.resize(m_field.a.size());
+    m_field_length.resize(m_field.a.size());
+    for (TriId t = 0; t < m_field.a.size(); ++t) {
+        const Vec2d e1 = crps.frame(t).v[1] - crps.frame(t).v[0];
+        const Vec2d e2 = crps.frame(t).v[2] - crps.frame(t).v[0];
+        const Vec2d a = m_field.a[t];
+        const double det = cross(e1, e2);  // nonzero: the CRPS has no degenerate triangle
+        m_field_edge_coords[t] = {cross(a, e2) / det, cross(e1, a) / det};
+        m_field_length[t] = length(a);
+    }
 }
 
 double CmSimulation::radius() const {
@@ -225,6 +238,18 @@ void CmSimulation::divide(Event e) {
     // descendant of one initial cell, whatever types mutation gave them).
     const CellId child =
         m_cells.add(at, static_cast<uint8_t>(child_type), m_cells.founder(parent));
+    if (m_growth) {
+        // Growth sets the rates (set_growth): the parent keeps its rate until the next
+        // reshape, the child gets its own then.
+        const double mean = m_growth_mean[parent];
+        m_growth_mean.push_back(std::numeric_limits<double>::infinity());
+        if (mean < std::numeric_limits<double>::infinity()) {
+            m_heap.push_back({e.time + std::max(rng.exponential(mean), 1e-9), parent});
+            std::push_heap(m_heap.begin(), m_heap.end(), std::greater<>());
+        }
+        if (m_params.relax == RelaxMode::local) mark_local(at);
+        return;
+    }
     // Both are rescheduled: parent and child divide again after their own delays.
     if (m_types[parent_type].divides()) {
         m_heap.push_back({e.time + division_delay(parent_type, rng), parent});
@@ -237,11 +262,70 @@ void CmSimulation::divide(Event e) {
     if (m_params.relax == RelaxMode::local) mark_local(at);
 }
 
+void CmSimulation::set_growth(GrowingSurface *surface) {
+    if (surface && &surface->crps() != &m_crps)
+        throw std::invalid_argument("CmSimulation::set_growth: built on another CRPS");
+    m_growth = surface;
+}
+
+void CmSimulation::surface_changed() {
+    m_area = 0;
+    for (TriId t = 0; t < m_crps.num_triangles(); ++t) m_area += m_crps.frame(t).area;
+    m_relaxer.neighbourhoods().invalidate();
+    // The field is a property of the skin, so it moves with it: each triangle's vector
+    // keeps its coordinates in the triangle's edge basis (v1 − v0, v2 − v0), the way the
+    // growth map's differential carries a tangent vector, and keeps its length.
+    for (TriId t = 0; t < m_field.a.size(); ++t) {
+        const Vec2d e1 = m_crps.frame(t).v[1] - m_crps.frame(t).v[0];
+        const Vec2d e2 = m_crps.frame(t).v[2] - m_crps.frame(t).v[0];
+        const Vec2d a = e1 * m_field_edge_coords[t].x + e2 * m_field_edge_coords[t].y;
+        const double len = length(a);
+        m_field.a[t] = len > 0 ? a * (m_field_length[t] / len) : Vec2d{0, 0};
+    }
+}
+
+void CmSimulation::grow(uint64_t update, double time) {
+    const double interval =
+        double(std::max<uint64_t>(
+            1, uint64_t(std::llround(m_growth->shape().interval() * m_params.rho)))) /
+        m_params.rho;
+    m_growth->reshape(time, m_cells);
+    surface_changed();
+    if (m_cell_area == 0)
+        m_cell_area = m_area / double(std::max<size_t>(1, m_cells.size()));
+    m_stats.growth.push_back({time, m_area, m_cells.size()});
+    std::vector<double> now(m_crps.num_triangles());
+    for (TriId t = 0; t < now.size(); ++t) now[t] = m_crps.frame(t).area;
+    double lost = 0;
+    const std::vector<double> expected =
+        growth_divisions(m_crps, m_cells, m_types, now,
+                         m_growth->triangle_areas(time + interval), m_cell_area, &lost);
+    m_stats.growth_lost_cells += lost;
+    // Every cell's next division from its rate over this interval: r = Δt / (k g_i).
+    m_growth_mean.assign(m_cells.size(), std::numeric_limits<double>::infinity());
+    m_heap.clear();
+    for (CellId c = 0; c < m_cells.size(); ++c) {
+        if (!(expected[c] > 0)) continue;
+        m_growth_mean[c] = interval / expected[c];
+        CounterRng rng(m_seed, RandomStream::growth_division, (update << 32) | c);
+        m_heap.push_back({time + std::max(rng.exponential(m_growth_mean[c]), 1e-9), c});
+    }
+    std::make_heap(m_heap.begin(), m_heap.end(), std::greater<>());
+}
+
 void CmSimulation::run(const std::function<void(double)> &progress) {
     const double t0 = now_seconds();
     const double dt = 1.0 / m_params.rho;
+    const double end_time = m_growth && m_params.end_time == 0
+                                ? m_growth->shape().last_age()
+                                : m_params.end_time;
     const uint64_t n_steps =
-        static_cast<uint64_t>(std::ceil(m_params.end_time * m_params.rho - 1e-9));
+        static_cast<uint64_t>(std::ceil(end_time * m_params.rho - 1e-9));
+    const uint64_t growth_steps =
+        m_growth
+            ? std::max<uint64_t>(
+                  1, uint64_t(std::llround(m_growth->shape().interval() * m_params.rho)))
+            : 0;
     const uint64_t target = m_params.target_cells;
     const bool open_ended = n_steps == 0 && target > 0;
     constexpr uint64_t max_open_steps = 10'000'000;     // same cap as the preset checker
@@ -249,6 +333,8 @@ void CmSimulation::run(const std::function<void(double)> &progress) {
     for (uint64_t step = 0; open_ended ? step < max_open_steps : step < n_steps; ++step) {
         const double t_next = double(step + 1) * dt;
         bool reached = false;
+        if (m_growth && step % growth_steps == 0)
+            grow(step / growth_steps, double(step) * dt);
         // --- Divisions due in this step, in heap order ---
         while (!m_heap.empty() && m_heap.front().time <= t_next) {
             if (target > 0 && m_cells.size() >= target) {
@@ -269,6 +355,11 @@ void CmSimulation::run(const std::function<void(double)> &progress) {
         if (reached) break;
         if (open_ended && m_heap.empty()) break;
     }
+    if (m_growth) {
+        m_growth->reshape(m_stats.final_time, m_cells);
+        surface_changed();
+        m_stats.growth.push_back({m_stats.final_time, m_area, m_cells.size()});
+    }
     m_stats.final_radius = radius();
     m_stats.seconds_neighbourhoods = m_relaxer.neighbourhoods().seconds();
     m_stats.neighbourhood_builds = m_relaxer.neighbourhoods().rebuilds();
@@ -276,5 +367,3 @@ void CmSimulation::run(const std::function<void(double)> &progress) {
 }
 
 }  // namespace pelage::sim
-#include "sim/crps/body_length.h"
-#include "sim/mosaic/anisotropy_field.h"

@@ -27,6 +27,7 @@
 #include "sim/crps/unfold.h"
 #include "sim/mosaic/cell_types.h"
 #include "sim/mosaic/cells.h"
+#include "sim/mosaic/growing_surface.h"
 #include "sim/mosaic/relaxation.h"
 
 namespace pelage::sim {
@@ -43,6 +44,8 @@ struct SimStats {
     double seconds_neighbourhoods =
         0;  // building the unfolding cache (once per ~2× cells)
     size_t neighbourhood_builds = 0;
+    std::vector<GrowthSample> growth;  // one per reshape, and the end (growing runs)
+    double growth_lost_cells = 0;  // ΔN no dividing cell was near (growing_surface.h)
 };
 
 // The initial count a run starts from: initial_cells, or initial_density × area, or the
@@ -63,6 +66,17 @@ class CmSimulation {
     // fraction of the work done (sim/mosaic/run_progress.h).
     void run(const std::function<void(double)> &progress = {});
 
+    // Grows the surface while the simulation runs (Walter thesis §6.2, §6.8): the
+    // simulation must have been built on surface->crps(). Every growth interval (rounded
+    // to whole relaxation steps) the surface takes the shape at the current time, cells
+    // keeping their barycentric points, and the divisions of the next interval come from
+    // the growth of each triangle's area (growth_divisions) instead of the types'
+    // division times, which then only give the relative rates. Divisions are drawn as a
+    // Poisson process at each cell's rate (exponential waits, memoryless across
+    // reshapes); a child divides from the next reshape on. The run ends at end_time, or
+    // at the last key's age when end_time is 0; the surface ends in the shape of the
+    // final time. Call before run().
+    void set_growth(GrowingSurface *surface);
     // One relaxation step over `active` triangles (tests drive this directly).
     RelaxStepResult relax(const std::vector<TriId> &active, bool uniform_alpha);
 
@@ -86,6 +100,8 @@ class CmSimulation {
     double division_delay(int type, CounterRng &rng) const;
     // Takes the event by value: it pops the heap, which moves the front element.
     void divide(Event e);
+    void grow(uint64_t update, double time);
+    void surface_changed();
     void mark_local(SurfacePoint at);
     std::vector<TriId> all_triangles_with_cells() const;
     std::vector<TriId> take_local_active();
@@ -96,12 +112,17 @@ class CmSimulation {
     uint64_t m_seed;
     double m_area = 0;
     TangentField m_field;
+    std::vector<Vec2d> m_field_edge_coords;  // m_field in each triangle's edge basis
+    std::vector<double> m_field_length;
     Cells m_cells;
     Relaxer m_relaxer;
     std::vector<Event> m_heap;      // min-heap via std::push_heap with greater<>
     std::vector<int> m_steps_left;  // local relaxation: S countdown per triangle
     std::vector<TriId> m_marked;    // triangles with m_steps_left > 0
     SimStats m_stats;
+    GrowingSurface *m_growth = nullptr;
+    double m_cell_area = 0;  // a = A0 / N0 (thesis §6.2), at the first reshape
+    std::vector<double> m_growth_mean;  // per cell: mean time between divisions now
 };
 
 }  // namespace pelage::sim

@@ -55,6 +55,8 @@ class Neighbourhoods {
     void set_verified(bool verified) { m_verified = verified; }
     // Makes sure the cache covers radius r.
     void update(const Crps &crps, double r);
+    // Forgets the cache: the next update rebuilds it (the surface changed shape).
+    void invalidate() { m_radius = 0; }
     const std::vector<Entry> &of(TriId t) const { return m_entries[t]; }
     // Radius of t's bounding circle about its centroid (the origin of its 2D frame).
     double bounding_radius(TriId t) const { return m_bounding[t]; }
