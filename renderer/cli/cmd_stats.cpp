@@ -6,12 +6,14 @@
 // (shader/clonal_mosaic/spot_statistics.h): spot_count, spot_area_mean, spot_area_sd,
 // spot_area_share_mean, spot_neighbours_mean, spot_circularity_mean, spot_complexity,
 // background_components, background_largest_share, background_near_spot,
-// grid_resolution.
+// grid_resolution; and, when the preset has neural-crest masks, mask_adherence
+// (renderer/cli/mask_adherence.h).
 #include <fmt/core.h>
 
 #include <iostream>
 
 #include "renderer/cli/common.h"
+#include "renderer/cli/mask_adherence.h"
 #include "shader/clonal_mosaic/area_fractions.h"
 #include "shader/clonal_mosaic/spot_statistics.h"
 #include "sim/cells_io/cells_file.h"
@@ -21,7 +23,7 @@ namespace pelage::renderer::cli {
 namespace {
 
 struct StatsOptions {
-    std::string file, mesh;
+    std::string file, mesh, preset;
     bool json = false;
     size_t area_samples = 200000;
     double grid_resolution = 6;
@@ -61,6 +63,21 @@ void add_area_fractions(const StatsOptions &o, nlohmann::json *j) {
     (*j)["background_largest_share"] = l.background_largest_share;
     (*j)["background_near_spot"] = l.background_near_spot;
     (*j)["grid_resolution"] = o.grid_resolution;
+
+    // The preset given, else the one the file was grown from.
+    std::string preset_file = o.preset;
+    const sim::Preset preset = [&] {
+        if (!o.preset.empty())
+            return sim::load_preset(o.preset, data_path("scenes/presets"));
+        preset_file = o.file;
+        const auto params =
+            nlohmann::json::parse(pattern.data().params_json, nullptr, false);
+        if (params.is_discarded() || !params.contains("preset")) return sim::Preset{};
+        return sim::parse_preset(params["preset"].dump(), o.file);
+    }();
+    if (!preset.control.masks.empty())
+        (*j)["mask_adherence"] = to_json(
+            measure_mask_adherence(pattern, preset, preset_file, o.area_samples, o.seed));
 }
 
 int run_stats(const StatsOptions &o) {
@@ -94,6 +111,17 @@ int run_stats(const StatsOptions &o) {
                        j["area_samples"].get<size_t>(),
                        j["spot_fraction_by_area"].get<double>(),
                        j["area_fraction_by_type"].dump());
+        if (j.contains("mask_adherence"))
+            for (const auto &m : j["mask_adherence"])
+                fmt::print(
+                    "  mask {} {} {}: {:.3f} of the surface masked out, {:.3f} % of it "
+                    "shows {}\n",
+                    m["type"].get<std::string>(),
+                    m.contains("only_in") ? "only in" : "not in",
+                    (m.contains("only_in") ? m["only_in"] : m["not_in"])
+                        .get<std::string>(),
+                    m["masked_out_share"].get<double>(),
+                    100 * m["violation"].get<double>(), m["type"].get<std::string>());
         if (j.contains("spot_count")) {
             fmt::print(
                 "  spots {}  area mean {:.4g} sd {:.4g} ({:.3g} % of the surface "
@@ -127,6 +155,9 @@ Runner add_stats_command(CLI::App &app) {
                     "simplified copy's input): adds the area each type covers "
                     "(area_fraction_by_type, spot_fraction_by_area); another shape is "
                     "refused");
+    sub->add_option("--preset", o->preset,
+                    "With --mesh: the preset whose neural-crest masks to check "
+                    "(mask_adherence; default: the preset stored in the file)");
     sub->add_option("--area-samples", o->area_samples,
                     "Surface points for the area fractions (standard error "
                     "sqrt(f(1-f)/n))")

@@ -57,7 +57,9 @@ GrownCells grow_cells(const GrowRequest &r) {
             const SetupPhase phase("loading the mesh, building its CRPS");
             return sim::build_surface(r.mesh);
         }(),
-        r.mesh, g.preset, r.initial_cells, r.simplify);
+        // Vertex attributes and UVs stay on the input: regions that read them keep it.
+        r.mesh, g.preset, r.initial_cells,
+        r.simplify && !g.preset.control.needs_mesh_data());
     const sim::Surface &surface = chosen.surface();
     g.cell_scale = chosen.report();
     g.triangles = surface.mesh.num_triangles();
@@ -72,6 +74,11 @@ GrownCells grow_cells(const GrowRequest &r) {
             g.cell_scale.cell_spacing, r.mesh));
 
     sim::CmSimulation simulation(surface.crps, g.preset.types, g.preset.params, r.seed);
+    if (!g.preset.control.empty()) {
+        const SetupPhase phase("resolving regions on the surface");
+        simulation.set_control(
+            sim::SurfaceControl(g.preset.control, surface.mesh, surface.crps, r.preset));
+    }
     {
         // The line names this step; the bar that follows measures the growth alone.
         const SetupPhase phase("placing and relaxing the initial cells");

@@ -22,6 +22,10 @@ enum class RandomStream : uint64_t {
     initial_division = 3,
     division = 4,
     tie_break = 5,
+    local_type = 6,     // initial types from local probabilities (sim/control)
+    mask_initial = 7,   // neural-crest masks at initialisation
+    mask_division = 8,  // ... on a child
+    mask_switch = 9,    // the division time of a cell a mask switched
 };
 
 // A small sequential generator over one (seed, stream, index) key: each draw hashes the

@@ -17,6 +17,8 @@
 #include <string>
 #include <vector>
 
+#include "sim/control/control_spec.h"
+
 namespace pelage::sim {
 
 inline constexpr int max_cell_types = 8;
@@ -100,6 +102,9 @@ struct Preset {
     std::string name, description;
     CellTypes types;
     SimParams params;
+    // Regions, masks and local parameters (Queiroz & Walter §V); SimParams and the types
+    // hold the defaults of the local ones.
+    ControlSpec control;
     std::string json_text;  // the preset as read (compact JSON), stored in .cells files
 };
 
