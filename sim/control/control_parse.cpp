@@ -145,7 +145,7 @@ RegionSpec parse_region(const ordered_json &j, const Fields &f, const std::strin
         if (!o.contains("points")) n.fail("points", "missing");
         const ordered_json &pts = o["points"];
         if (!pts.is_array() || pts.empty() || pts.size() > 1000)
-            n.fail("points", "expected an array of 1 to 1000 points [x, y, z]");
+            n.fail("points", "expected an array of 1 to 64 points [x, y, z]");
         for (size_t i = 0; i < pts.size(); ++i)
             r.points.push_back(n.point(pts[i], "points[" + std::to_string(i) + "]"));
         const auto space = o.find("space");

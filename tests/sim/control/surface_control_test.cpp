@@ -5,6 +5,7 @@
 
 #include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
+#include <tbb/global_control.h>
 
 #include <algorithm>
 #include <cmath>
@@ -177,6 +178,32 @@ TEST(Masks, MaskedTypeNeverStandsWhereTheMaskIsZeroAtAnyStep) {
         EXPECT_LT(f0, 200u);
         EXPECT_GT(sim.count_by_type()[0], 2 * f0) << relax;
     }
+}
+
+TEST(Masks, LocalRunsAreIdenticalAtOneAndTwoThreads) {
+    const Surface s = build_surface("procedural:sphere:20x20");
+    const Preset p = parse_preset(
+        preset(R"({"cap": {"height": {"above": 0.6, "blend": 0.15}}})",
+               R"([{"type": "F", "only_in": "cap", "otherwise": "B"}])",
+               R"({"initial_cells": 400, "w_r": {"default": 2.5, "in": {"cap": 1.5}},
+                   "w_d": 0.2, "rho": 4, "end_time": 6,
+                   "initial_weight": {"default": 1, "in": {"cap": 2}}})",
+               R"({"default": 2, "in": {"cap": 1}})"),
+        "t.json");
+    std::vector<std::vector<double>> x;
+    std::vector<std::vector<uint8_t>> types;
+    for (int threads : {1, 2}) {
+        tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
+        CmSimulation sim(s.crps, p.types, p.params, 11);
+        sim.set_control(SurfaceControl(p.control, s.mesh, s.crps, "t.json"));
+        sim.initialize();
+        sim.run();
+        x.push_back(sim.cells().x());
+        types.push_back(sim.cells().types());
+    }
+    EXPECT_GT(x[0].size(), 400u);
+    EXPECT_EQ(x[0], x[1]);
+    EXPECT_EQ(types[0], types[1]);
 }
 
 // Cells with y above `y0` over those below −y0 (two equal caps of the sphere).
