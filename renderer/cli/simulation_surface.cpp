@@ -27,9 +27,9 @@ SimulationSurface::SimulationSurface(sim::Surface input_surface,
     request.expected_cells =
         sim::expected_final_cells(preset.params, preset.types, m_initial);
     // r = w_r·sqrt(A/m) (Walter 1998 §3.3) at the initial count, widened as the
-    // relaxation's cache is.
+    // relaxation's cache is; the largest local w_r (sim/control).
     request.neighbourhood_radius =
-        sim::Neighbourhoods::slack * preset.params.w_r *
+        sim::Neighbourhoods::slack * preset.control.w_r.max() *
         std::sqrt(area / double(std::max<uint64_t>(m_initial, 1)));
     m_report = sim::plan_cell_scale(input.mesh, request);
     if (!simplify) m_report.simplified = false;

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <filesystem>
 #include <functional>
+#include <limits>
 #include <set>
 #include <sstream>
 
@@ -274,9 +275,12 @@ LocalValue parse_local_value(const ordered_json &v, const std::string &path,
                              ValueRange range) {
     const Fields f(file, path);
     auto checked = [&](const std::string &key, double x) {
-        if (x < range.lo || x > range.hi || (range.lo_open && x == range.lo))
-            f.fail(key, fmt(x) + ": must be in " + (range.lo_open ? "(" : "[") +
-                            fmt(range.lo) + ", " + fmt(range.hi) + "]");
+        if (x >= range.lo && x <= range.hi && !(range.lo_open && x == range.lo)) return x;
+        if (range.hi == std::numeric_limits<double>::max())
+            f.fail(key, fmt(x) + ": must be " + (range.lo_open ? "> " : ">= ") +
+                            fmt(range.lo));
+        f.fail(key, fmt(x) + ": must be in " + (range.lo_open ? "(" : "[") +
+                        fmt(range.lo) + ", " + fmt(range.hi) + "]");
         return x;
     };
     LocalValue out;

@@ -47,6 +47,12 @@ struct LocalValue {
     double value = 0;                        // the default (or the constant)
     std::vector<std::pair<int, double>> in;  // (region index, value)
     bool local() const { return !in.empty(); }
+    // The largest value anywhere: lerps stay between the default and the regions'.
+    double max() const {
+        double m = value;
+        for (const auto &[region, v] : in) m = v > m ? v : m;
+        return m;
+    }
 };
 
 // Queiroz §V.A: a cell of `type` where the mask m = 0 becomes `otherwise`; m is the
@@ -60,7 +66,8 @@ struct ControlSpec {
     std::vector<std::string> region_names;
     std::vector<RegionSpec> regions;  // parallel to region_names; operands point back
     std::vector<MaskSpec> masks;
-    // Local simulation parameters (unset ones are plain numbers kept in SimParams).
+    // Simulation parameters that may vary by region (constant ones have no `in`; their
+    // value is also in SimParams).
     LocalValue w_r, w_d, w_a, anisotropy_magnitude, initial_weight{1, {}};
     // Per cell type, indexed like the preset's types (empty: all constant).
     std::vector<LocalValue> division_time, initial_probability;

@@ -221,7 +221,6 @@ SimParams parse_sim(const Reader &r, const json &s, const ordered_json &os,
          "initial_relax_alpha", "initial_relax_tolerance", "w_r", "w_d", "w_a",
          "anisotropy", "relax", "local_steps", "rho", "end_time", "target_cells",
          "division_distribution", "child_radius_factor", "initial_weight", "notes"});
-    SimParams o;
     // A local value replaces the plain number the checks below read.
     json plain = s;
     auto local = [&](const ordered_json &node, json *plain_node, const std::string &path,
@@ -240,7 +239,13 @@ SimParams parse_sim(const Reader &r, const json &s, const ordered_json &os,
               {0, inf}, &control->anisotropy_magnitude);
     if (control->initial_weight.value <= 0 && !control->initial_weight.local())
         r.fail(p + ".initial_weight", "must be > 0 (a relative density)");
-    return parse_plain_sim(r, plain, *control);
+    const SimParams o = parse_plain_sim(r, plain, *control);
+    // The control holds every one of them, local or constant.
+    control->w_r.value = o.w_r;
+    control->w_d.value = o.w_d;
+    control->w_a.value = o.w_a;
+    control->anisotropy_magnitude.value = o.anisotropy_magnitude;
+    return o;
 }
 
 SimParams parse_plain_sim(const Reader &r, const json &s, const ControlSpec &control) {

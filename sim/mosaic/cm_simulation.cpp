@@ -13,14 +13,6 @@ namespace pelage::sim {
 
 namespace {
 
-// The largest value a local parameter takes anywhere: lerps stay between the default
-// and the regions' values.
-double max_of(const LocalValue &v) {
-    double m = v.value;
-    for (const auto &[region, x] : v.in) m = std::max(m, x);
-    return m;
-}
-
 double now_seconds() {
     return std::chrono::duration<double>(
                std::chrono::steady_clock::now().time_since_epoch())
@@ -47,7 +39,7 @@ void CmSimulation::set_control(SurfaceControl control) {
     m_control = std::move(control);
     const ControlSpec &s = m_control.spec();
     // A local anisotropy magnitude scales a unit field cell by cell.
-    if (max_of(s.w_a) > 0 && (s.w_a.local() || s.anisotropy_magnitude.local()))
+    if (s.w_a.max() > 0 && (s.w_a.local() || s.anisotropy_magnitude.local()))
         m_field = constant_world_field(
             m_crps, m_params.anisotropy_direction,
             s.anisotropy_magnitude.local() ? 1.0 : m_params.anisotropy_magnitude);
@@ -56,7 +48,7 @@ void CmSimulation::set_control(SurfaceControl control) {
 double CmSimulation::max_radius() const {
     const LocalValue &w = m_control.spec().w_r;
     if (!w.local()) return radius();
-    return radius() / m_params.w_r * max_of(w);
+    return radius() / m_params.w_r * w.max();
 }
 
 double CmSimulation::radius_at(SurfacePoint at) const {
@@ -159,7 +151,7 @@ RelaxStepResult CmSimulation::relax(const std::vector<TriId> &active,
     ctx.r = max_radius();
     ctx.w_d = m_params.w_d;
     ctx.w_a = uniform_alpha ? 0.0
-                            : (m_control.spec().w_a.local() ? max_of(m_control.spec().w_a)
+                            : (m_control.spec().w_a.local() ? m_control.spec().w_a.max()
                                                             : m_params.w_a);
     ctx.uniform_alpha = uniform_alpha;
     ctx.alpha = m_params.initial_relax_alpha;

@@ -245,6 +245,91 @@ TEST(LocalParameters, SmallerLocalRepulsionRadiusKeepsADenseRegionDense) {
     EXPECT_GT(local, 1.55) << "uniform " << uniform;
 }
 
+// Positions of every cell before and after `steps` global relaxation steps.
+struct Moves {
+    std::vector<Vec3d> before, after;
+};
+Moves relax_moves(const Surface &s, const Preset &p, int steps) {
+    CmSimulation sim(s.crps, p.types, p.params, 9);
+    sim.set_control(SurfaceControl(p.control, s.mesh, s.crps, "t.json"));
+    sim.initialize();
+    Moves m;
+    for (CellId i = 0; i < sim.cells().size(); ++i)
+        m.before.push_back(s.crps.to_3d(sim.cells().tri(i), sim.cells().pos(i)));
+    std::vector<TriId> all(s.mesh.num_triangles());
+    for (TriId t = 0; t < all.size(); ++t) all[t] = t;
+    for (int k = 0; k < steps; ++k) sim.relax(all, false);
+    for (CellId i = 0; i < sim.cells().size(); ++i)
+        m.after.push_back(s.crps.to_3d(sim.cells().tri(i), sim.cells().pos(i)));
+    return m;
+}
+
+TEST(LocalParameters, LocalDisplacementWeightsActOnlyInTheirRegion) {
+    const Surface s = build_surface("procedural:sphere:20x20");
+    const std::string cells =
+        R"({"initial_cells": 500, "initial_relax_steps": 0, "w_r": 2,
+                                  "rho": 1, "end_time": 0, )";
+    // w_d 1e-6 on top: cells there hardly move.
+    {
+        const Preset p = parse_preset(
+            preset(R"({"top": {"height": {"above": 0.5}}})", "[]",
+                   cells + R"("w_d": {"default": 0.1, "in": {"top": 1e-6}}})",
+                   "\"never\"", "1", "0"),
+            "t.json");
+        const Moves m = relax_moves(s, p, 3);
+        size_t still = 0, moved = 0;
+        for (size_t i = 0; i < m.before.size(); ++i) {
+            const double d = length(m.after[i] - m.before[i]);
+            if (m.before[i].y > 0.01) {
+                EXPECT_LT(d, 1e-5) << i;
+                ++still;
+            }
+            if (m.before[i].y < -0.2) moved += d > 1e-3;
+        }
+        EXPECT_GT(still, 150u);
+        EXPECT_GT(moved, 150u);
+    }
+    // w_a 1 on top with A along +y: only the anisotropic term O = (D·Â)A moves them, so
+    // cells there move along the meridians (their azimuth stays) and the others do not.
+    {
+        const Preset p = parse_preset(
+            preset(R"({"top": {"height": {"above": 0.5}}})", "[]",
+                   cells + R"("w_d": 0.1, "w_a": {"default": 0, "in": {"top": 1}},
+                       "anisotropy": {"direction": [0, 1, 0], "magnitude": {"default": 1,
+                       "in": {"top": 0.05}}}})",
+                   "\"never\"", "1", "0"),
+            "t.json");
+        const Moves m = relax_moves(s, p, 1);
+        // The sideways share of each move: azimuthal distance over the distance moved.
+        double along = 0, across = 0;
+        size_t n_along = 0, n_across = 0;
+        for (size_t i = 0; i < m.before.size(); ++i) {
+            const Vec3d a = m.before[i], b = m.after[i];
+            const double d = length(b - a);
+            if (!(d > 0)) continue;
+            const double turn =
+                std::remainder(std::atan2(b.z, b.x) - std::atan2(a.z, a.x), 2 * M_PI);
+            const double sideways = std::abs(turn) * std::hypot(a.x, a.z) / d;
+            if (a.y > 0.05 && a.y < 0.8) {
+                along += sideways;
+                ++n_along;
+                EXPECT_LT(d, 0.01);  // |A| = 0.05 on top: small steps
+            }
+            if (a.y < -0.2) {
+                across += sideways;
+                ++n_across;
+            }
+        }
+        ASSERT_GT(n_along, 100u);
+        ASSERT_GT(n_across, 100u);
+        // Isotropic moves go sideways by 2/π on average; moves along the field's
+        // meridians only by the facets' tilt (the UV sphere's triangles are not
+        // symmetric about the meridians).
+        EXPECT_LT(along / double(n_along), 0.15);
+        EXPECT_GT(across / double(n_across), 0.4);
+    }
+}
+
 TEST(LocalParameters, InitialWeightSetsTheInitialDensity) {
     const Surface s = build_surface("procedural:sphere:30x30");
     const Preset p = parse_preset(
