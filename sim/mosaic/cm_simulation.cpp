@@ -51,12 +51,6 @@ double CmSimulation::max_radius() const {
     return radius() / m_params.w_r * w.max();
 }
 
-double CmSimulation::radius_at(SurfacePoint at) const {
-    const LocalValue &w = m_control.spec().w_r;
-    if (!w.local()) return radius();
-    return radius() / m_params.w_r * m_control.value(w, at.tri, at.p);
-}
-
 double CmSimulation::radius() const {
     // Walter 1998 §3.3: r = w_r·sqrt(A/m)
     const double m = std::max<double>(1.0, double(m_cells.size()));

@@ -83,8 +83,6 @@ class CmSimulation {
     double radius() const;  // r = w_r·sqrt(A/m), Walter 1998 §3.3
     // The largest local radius anywhere (radius() without a local w_r).
     double max_radius() const;
-    // The radius of a cell at `at`: its local w_r·sqrt(A/m).
-    double radius_at(SurfacePoint at) const;
     std::vector<size_t> count_by_type() const;
 
   private:
