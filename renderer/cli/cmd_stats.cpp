@@ -76,8 +76,8 @@ void add_area_fractions(const StatsOptions &o, nlohmann::json *j) {
         return sim::parse_preset(params["preset"].dump(), o.file);
     }();
     if (!preset.control.masks.empty())
-        (*j)["mask_adherence"] = to_json(
-            measure_mask_adherence(pattern, preset, preset_file, o.area_samples, o.seed));
+        (*j)["mask_adherence"] = to_json(measure_mask_adherence(
+            pattern, o.mesh, preset, preset_file, o.area_samples, o.seed));
 }
 
 int run_stats(const StatsOptions &o) {

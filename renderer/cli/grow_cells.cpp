@@ -57,9 +57,7 @@ GrownCells grow_cells(const GrowRequest &r) {
             const SetupPhase phase("loading the mesh, building its CRPS");
             return sim::build_surface(r.mesh);
         }(),
-        // Vertex attributes and UVs stay on the input: regions that read them keep it.
-        r.mesh, g.preset, r.initial_cells,
-        r.simplify && !g.preset.control.needs_mesh_data());
+        r.mesh, g.preset, r.initial_cells, r.simplify);
     const sim::Surface &surface = chosen.surface();
     g.cell_scale = chosen.report();
     g.triangles = surface.mesh.num_triangles();
@@ -76,8 +74,8 @@ GrownCells grow_cells(const GrowRequest &r) {
     sim::CmSimulation simulation(surface.crps, g.preset.types, g.preset.params, r.seed);
     if (!g.preset.control.empty()) {
         const SetupPhase phase("resolving regions on the surface");
-        simulation.set_control(
-            sim::SurfaceControl(g.preset.control, surface.mesh, surface.crps, r.preset));
+        simulation.set_control(sim::SurfaceControl(
+            g.preset.control, surface.mesh, surface.crps, r.preset, &chosen.data_mesh()));
     }
     {
         // The line names this step; the bar that follows measures the growth alone.

@@ -1,18 +1,27 @@
 #include "renderer/cli/mask_adherence.h"
 
+#include <optional>
+
 #include "sim/control/surface_control.h"
 #include "sim/crps/surface_sampling.h"
+#include "sim/mesh/mesh_load.h"
 
 namespace pelage::renderer::cli {
 
 std::vector<MaskAdherence> measure_mask_adherence(
-    const shader::clonal_mosaic::MosaicPattern &pattern, const sim::Preset &preset,
-    const std::string &preset_file, size_t samples, uint64_t seed) {
+    const shader::clonal_mosaic::MosaicPattern &pattern, const std::string &mesh_path,
+    const sim::Preset &preset, const std::string &preset_file, size_t samples,
+    uint64_t seed) {
     const sim::ControlSpec &spec = preset.control;
     std::vector<MaskAdherence> out(spec.masks.size());
     if (spec.masks.empty()) return out;
     const sim::Surface &surface = pattern.surface();
-    const sim::SurfaceControl control(spec, surface.mesh, surface.crps, preset_file);
+    // A simplified simulation surface lacks the input's attributes and UVs: the input
+    // (the pattern's render mesh) carries them.
+    std::optional<sim::TriangleMesh> input;
+    if (pattern.transfer() && spec.needs_mesh_data()) input = sim::load_mesh(mesh_path);
+    const sim::SurfaceControl control(spec, surface.mesh, surface.crps, preset_file,
+                                      input ? &*input : nullptr);
     std::vector<size_t> zero(spec.masks.size(), 0), wrong(spec.masks.size(), 0);
     size_t found = 0;
     for (const auto &s : sim::sample_surface_uniform(surface.crps, samples, seed)) {

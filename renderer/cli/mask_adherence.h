@@ -22,10 +22,12 @@ struct MaskAdherence {
     size_t masked_out_samples = 0;
 };
 
-// One entry per mask of `preset` (resolved on the pattern's simulation surface).
+// One entry per mask of `preset` (resolved on the pattern's simulation surface; the
+// pattern's mesh file `mesh_path` supplies attributes and UVs).
 std::vector<MaskAdherence> measure_mask_adherence(
-    const shader::clonal_mosaic::MosaicPattern &pattern, const sim::Preset &preset,
-    const std::string &preset_file, size_t samples, uint64_t seed);
+    const shader::clonal_mosaic::MosaicPattern &pattern, const std::string &mesh_path,
+    const sim::Preset &preset, const std::string &preset_file, size_t samples,
+    uint64_t seed);
 
 nlohmann::json to_json(const std::vector<MaskAdherence> &a);
 

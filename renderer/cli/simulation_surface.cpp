@@ -44,10 +44,11 @@ SimulationSurface::SimulationSurface(sim::Surface input_surface,
     if (!m_report.simplified) return;
     // The input's CRPS and topology go before the simplification's own structures come.
     const renderer::SetupPhase phase("remeshing to the cells' scale");
-    const sim::TriangleMesh mesh = std::move(m_input->mesh);
+    sim::TriangleMesh mesh = std::move(m_input->mesh);
     m_input.reset();
     m_simplified.emplace(
         sim::build_surface(sim::simplify_to_cell_scale(mesh, &m_report)));
+    if (preset.control.needs_mesh_data()) m_input_mesh = std::move(mesh);
 }
 
 }  // namespace pelage::renderer::cli

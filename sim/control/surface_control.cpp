@@ -7,6 +7,7 @@
 #include <limits>
 
 #include "sim/control/closest_point.h"
+#include "sim/control/corner_transfer.h"
 #include "sim/core/input_error.h"
 #include "sim/crps/body_length.h"
 #include "sim/geodesic/geodesic_mesh.h"
@@ -146,8 +147,17 @@ std::vector<double> texture_values(const RegionSpec &r, const TriangleMesh &mesh
 }  // namespace
 
 SurfaceControl::SurfaceControl(const ControlSpec &spec, const TriangleMesh &mesh,
-                               const Crps &crps, const std::string &preset)
+                               const Crps &crps, const std::string &preset,
+                               const TriangleMesh *data_mesh)
     : m_spec(spec), m_crps(&crps) {
+    const bool transfer = data_mesh && data_mesh != &mesh;
+    const TriangleMesh &data = transfer ? *data_mesh : mesh;
+    std::vector<ClosestSource> map;  // built on first use
+    auto carried = [&](std::vector<double> values) {
+        if (!transfer) return values;
+        if (map.empty()) map = closest_source_points(data, mesh);
+        return transfer_corner_values(map, values);
+    };
     const size_t n = spec.regions.size();
     m_corner.resize(n);
     std::vector<bool> done(n, false);
@@ -166,10 +176,10 @@ SurfaceControl::SurfaceControl(const ControlSpec &spec, const TriangleMesh &mesh
                 out = near_values(r, mesh, crps);
                 break;
             case RegionSpec::Kind::attribute:
-                out = attribute_values(r, mesh, preset, path);
+                out = carried(attribute_values(r, data, preset, path));
                 break;
             case RegionSpec::Kind::texture:
-                out = texture_values(r, mesh, preset, path);
+                out = carried(texture_values(r, data, preset, path));
                 break;
             case RegionSpec::Kind::any:
             case RegionSpec::Kind::all: {

@@ -21,10 +21,13 @@ class SurfaceControl {
   public:
     SurfaceControl() = default;
     // Resolves every region of `spec` on `mesh` (the simulated surface) and its CRPS.
-    // InputError (file `preset`, the region's JSON path) when a region needs what the
-    // mesh lacks: a vertex attribute, UVs, a readable texture.
+    // Attribute and texture regions read `data_mesh` when given (the input, of which
+    // `mesh` is a simplified copy without attributes and UVs) and are carried to `mesh`
+    // by closest points (corner_transfer.h). InputError (file `preset`, the region's
+    // JSON path) when a region needs what the mesh lacks: a vertex attribute, UVs, a
+    // readable texture.
     SurfaceControl(const ControlSpec &spec, const TriangleMesh &mesh, const Crps &crps,
-                   const std::string &preset);
+                   const std::string &preset, const TriangleMesh *data_mesh = nullptr);
 
     bool empty() const { return m_spec.empty(); }
     const ControlSpec &spec() const { return m_spec; }

@@ -12,6 +12,7 @@
 #include <fstream>
 
 #include "sim/control/closest_point.h"
+#include "sim/control/corner_transfer.h"
 #include "sim/core/input_error.h"
 #include "sim/crps/body_length.h"
 #include "sim/crps/surface.h"
@@ -514,6 +515,36 @@ f 1/1 3/3 4/4
     const Surface sphere = build_surface("procedural:sphere:6x6");
     EXPECT_THROW(SurfaceControl(p.control, sphere.mesh, sphere.crps, preset_file),
                  InputError);
+}
+
+}  // namespace
+}  // namespace pelage::sim
+
+namespace pelage::sim {
+namespace {
+
+TEST(CornerTransfer, ClosestPointsMatchABruteForceSearch) {
+    const TriangleMesh fine = make_icosphere(4);
+    TriangleMesh coarse =
+        make_uv_sphere(9, 13, 1.01);  // another tessellation, off the surface
+    const std::vector<ClosestSource> map = closest_source_points(fine, coarse);
+    ASSERT_EQ(map.size(), 3 * coarse.num_triangles());
+    std::vector<double> height(3 * fine.num_triangles());
+    for (TriId t = 0; t < fine.num_triangles(); ++t)
+        for (int k = 0; k < 3; ++k) height[3 * t + k] = (fine.vertex(t, k).y + 1) / 2;
+    const std::vector<double> carried = transfer_corner_values(map, height);
+    for (size_t q = 0; q < map.size(); ++q) {
+        const Vec3d p = coarse.vertex(TriId(q / 3), int(q % 3));
+        const ClosestSurfacePoint brute = closest_surface_point(fine, p);
+        const Vec3d b = map[q].b;
+        const Vec3d x = fine.vertex(map[q].tri, 0) * b.x +
+                        fine.vertex(map[q].tri, 1) * b.y +
+                        fine.vertex(map[q].tri, 2) * b.z;
+        EXPECT_NEAR(length(x - p), brute.distance, 1e-12) << q;
+        // A linear function of position carries over exactly (up to the 1 % offset).
+        EXPECT_NEAR(carried[q], (x.y + 1) / 2, 1e-9);
+        EXPECT_NEAR(carried[q], (p.y / 1.01 + 1) / 2, 0.01);
+    }
 }
 
 }  // namespace
