@@ -340,10 +340,10 @@ TriangleMesh read_ply(const std::string &path, MeshReadStats *stats) {
     for (const Element &e : h.elements) {
         const bool is_vertex = &e == vertex, is_face = &e == face;
         if (is_vertex) {
-            for (int i : vl.extra) {
+            // Not reserved: a damaged header may declare many properties and rows; the
+            // values grow with what the file really holds.
+            for (int i : vl.extra)
                 mesh.vertex_attributes.push_back({e.props[size_t(i)].name, {}});
-                mesh.vertex_attributes.back().second.reserve(e.count);
-            }
             mesh.positions.reserve(e.count);
             if (vl.normals()) normals.reserve(e.count);
             if (vl.uvs()) uvs.reserve(e.count);
