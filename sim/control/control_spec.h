@@ -73,7 +73,9 @@ struct ControlSpec {
     std::vector<LocalValue> division_time, initial_probability;
 
     bool any_local() const;
-    bool empty() const { return masks.empty() && !any_local(); }
+    // Masks and local values name regions, so regions alone say whether there is
+    // anything to resolve (unused regions are resolved too: their errors show).
+    bool empty() const { return regions.empty(); }
     // Whether a region reads the mesh's own data (vertex attributes or UVs), which a
     // simplified copy of the mesh does not carry.
     bool needs_mesh_data() const;
