@@ -49,6 +49,8 @@ struct RunResult {
 RunResult run_once(const sim::Surface &s, const sim::Preset &p, sim::SimParams params,
                    uint64_t cells, uint64_t seed) {
     sim::CmSimulation simulation(s.crps, p.types, params, seed);
+    if (!p.control.empty())
+        simulation.set_control(sim::SurfaceControl(p.control, s.mesh, s.crps, p.name));
     const Timer timer;
     simulation.initialize(cells);
     simulation.run();

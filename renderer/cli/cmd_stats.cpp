@@ -8,13 +8,16 @@
 // background_components, background_largest_share, background_near_spot,
 // grid_resolution; for cells grown with anisotropy, how their F/B boundaries follow its
 // field (sim/cells_io/stripe_alignment.h): stripe_alignment_median, stripe_alignment_q1,
-// stripe_alignment_q3 (degrees), stripe_alignment_samples, stripe_coherence_median.
+// stripe_alignment_q3 (degrees), stripe_alignment_samples, stripe_coherence_median;
+// and, when the preset has neural-crest masks, mask_adherence
+// (renderer/cli/mask_adherence.h).
 #include <fmt/core.h>
 
 #include <cstdio>
 #include <iostream>
 
 #include "renderer/cli/common.h"
+#include "renderer/cli/mask_adherence.h"
 #include "shader/clonal_mosaic/area_fractions.h"
 #include "shader/clonal_mosaic/spot_statistics.h"
 #include "sim/cells_io/cells_file.h"
@@ -28,7 +31,7 @@ namespace pelage::renderer::cli {
 namespace {
 
 struct StatsOptions {
-    std::string file, mesh;
+    std::string file, mesh, preset;
     bool json = false;
     size_t area_samples = 200000;
     double grid_resolution = 6;
@@ -68,6 +71,21 @@ void add_area_fractions(const StatsOptions &o, nlohmann::json *j) {
     (*j)["background_largest_share"] = l.background_largest_share;
     (*j)["background_near_spot"] = l.background_near_spot;
     (*j)["grid_resolution"] = o.grid_resolution;
+
+    // The preset given, else the one the file was grown from.
+    std::string preset_file = o.preset;
+    const sim::Preset preset = [&] {
+        if (!o.preset.empty())
+            return sim::load_preset(o.preset, data_path("scenes/presets"));
+        preset_file = o.file;
+        const auto params =
+            nlohmann::json::parse(pattern.data().params_json, nullptr, false);
+        if (params.is_discarded() || !params.contains("preset")) return sim::Preset{};
+        return sim::parse_preset(params["preset"].dump(), o.file);
+    }();
+    if (!preset.control.masks.empty())
+        (*j)["mask_adherence"] = to_json(measure_mask_adherence(
+            pattern, o.mesh, preset, preset_file, o.area_samples, o.seed));
 }
 
 // Adds the stripe alignment keys when the cells were grown with anisotropy: the field is
@@ -139,6 +157,17 @@ int run_stats(const StatsOptions &o) {
                        j["area_samples"].get<size_t>(),
                        j["spot_fraction_by_area"].get<double>(),
                        j["area_fraction_by_type"].dump());
+        if (j.contains("mask_adherence"))
+            for (const auto &m : j["mask_adherence"])
+                fmt::print(
+                    "  mask {} {} {}: {:.3f} of the surface masked out, {:.3f} % of it "
+                    "shows {}\n",
+                    m["type"].get<std::string>(),
+                    m.contains("only_in") ? "only in" : "not in",
+                    (m.contains("only_in") ? m["only_in"] : m["not_in"])
+                        .get<std::string>(),
+                    m["masked_out_share"].get<double>(),
+                    100 * m["violation"].get<double>(), m["type"].get<std::string>());
         if (j.contains("spot_count")) {
             fmt::print(
                 "  spots {}  area mean {:.4g} sd {:.4g} ({:.3g} % of the surface "
@@ -172,6 +201,9 @@ Runner add_stats_command(CLI::App &app) {
                     "simplified copy's input): adds the area each type covers "
                     "(area_fraction_by_type, spot_fraction_by_area); another shape is "
                     "refused");
+    sub->add_option("--preset", o->preset,
+                    "With --mesh: the preset whose neural-crest masks to check "
+                    "(mask_adherence; default: the preset stored in the file)");
     sub->add_option("--area-samples", o->area_samples,
                     "Surface points for the area fractions (standard error "
                     "sqrt(f(1-f)/n))")

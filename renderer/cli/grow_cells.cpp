@@ -111,6 +111,13 @@ GrownCells grow_cells(const GrowRequest &r) {
     sim::CmSimulation simulation(growing ? growing->crps() : surface.crps, g.preset.types,
                                  g.preset.params, r.seed);
     if (growing && g.preset.growth->during) simulation.set_growth(growing.get());
+    if (!g.preset.control.empty()) {
+        // Resolved on the rest shape, where the preset's box-space points and heights
+        // are meant; the values ride on the skin as it grows.
+        const SetupPhase phase("resolving regions on the surface");
+        simulation.set_control(sim::SurfaceControl(
+            g.preset.control, surface.mesh, surface.crps, r.preset, &chosen.data_mesh()));
+    }
     {
         // The line names this step; the bar that follows measures the growth alone.
         const SetupPhase phase("placing and relaxing the initial cells");

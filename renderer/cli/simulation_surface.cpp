@@ -27,9 +27,9 @@ SimulationSurface::SimulationSurface(sim::Surface input_surface,
     request.expected_cells =
         sim::expected_final_cells(preset.params, preset.types, m_initial);
     // r = w_r·sqrt(A/m) (Walter 1998 §3.3) at the initial count, widened as the
-    // relaxation's cache is.
+    // relaxation's cache is; the largest local w_r (sim/control).
     request.neighbourhood_radius =
-        sim::Neighbourhoods::slack * preset.params.w_r *
+        sim::Neighbourhoods::slack * preset.control.w_r.max() *
         std::sqrt(area / double(std::max<uint64_t>(m_initial, 1)));
     m_report = sim::plan_cell_scale(input.mesh, request);
     if (!simplify) m_report.simplified = false;
@@ -44,10 +44,11 @@ SimulationSurface::SimulationSurface(sim::Surface input_surface,
     if (!m_report.simplified) return;
     // The input's CRPS and topology go before the simplification's own structures come.
     const renderer::SetupPhase phase("remeshing to the cells' scale");
-    const sim::TriangleMesh mesh = std::move(m_input->mesh);
+    sim::TriangleMesh mesh = std::move(m_input->mesh);
     m_input.reset();
     m_simplified.emplace(
         sim::build_surface(sim::simplify_to_cell_scale(mesh, &m_report)));
+    if (preset.control.needs_mesh_data()) m_input_mesh = std::move(mesh);
 }
 
 }  // namespace pelage::renderer::cli

@@ -17,7 +17,8 @@ class SimulationSurface {
   public:
     // `cells` > 0 overrides the preset's initial count; `simplify` false keeps the input.
     // The input is released once a simplified copy stands for it: a dense mesh would
-    // otherwise weigh on the whole run.
+    // otherwise weigh on the whole run; its mesh (without CRPS) stays when the preset's
+    // regions read vertex attributes or UVs (sim/control).
     // InputError naming mesh_path when the run would not fit in memory.
     SimulationSurface(sim::Surface input, const std::string &mesh_path,
                       const sim::Preset &preset, uint64_t cells, bool simplify);
@@ -25,11 +26,16 @@ class SimulationSurface {
         return m_simplified ? *m_simplified : *m_input;
     }
     uint64_t initial_cells() const { return m_initial; }
+    // The mesh carrying the input's attributes and UVs: the input's when kept.
+    const sim::TriangleMesh &data_mesh() const {
+        return m_input_mesh ? *m_input_mesh : surface().mesh;
+    }
     const sim::CellScaleReport &report() const { return m_report; }
 
   private:
     std::optional<sim::Surface> m_input;
     std::optional<sim::Surface> m_simplified;
+    std::optional<sim::TriangleMesh> m_input_mesh;
     uint64_t m_initial = 0;
     sim::CellScaleReport m_report;
 };

@@ -23,6 +23,10 @@ enum class RandomStream : uint64_t {
     division = 4,
     tie_break = 5,
     growth_division = 6,
+    local_type = 7,     // initial types from local probabilities (sim/control)
+    mask_initial = 8,   // neural-crest masks at initialisation
+    mask_division = 9,  // ... on a child
+    mask_switch = 10,   // the division time of a cell a mask switched
 };
 
 // A small sequential generator over one (seed, stream, index) key: each draw hashes the

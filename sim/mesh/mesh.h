@@ -6,6 +6,7 @@
 #include <array>
 #include <cstdint>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "sim/core/check.h"
@@ -46,6 +47,9 @@ struct TriangleMesh {
     // file gives it none). triangle_material is empty when the file has no materials.
     std::vector<MeshMaterial> materials;
     std::vector<uint32_t> triangle_material;
+    // Other per-vertex scalars of the file by name (a PLY vertex's extra properties),
+    // each with one value per entry of `positions`; empty for formats without them.
+    std::vector<std::pair<std::string, std::vector<float>>> vertex_attributes;
 
     size_t num_triangles() const { return triangles.size(); }
     size_t num_vertices() const { return positions.size(); }

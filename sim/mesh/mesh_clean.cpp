@@ -80,6 +80,14 @@ TriangleMesh clean_mesh(const TriangleMesh &in, const std::string &source_path,
             new_index[v] = static_cast<VertId>(out.positions.size());
             out.positions.push_back(in.positions[v]);
         }
+    // A welded vertex keeps the attributes of the vertex it was welded into.
+    for (const auto &[name, values] : in.vertex_attributes) {
+        std::vector<float> kept;
+        kept.reserve(out.positions.size());
+        for (VertId v = 0; v < in.positions.size(); ++v)
+            if (rep[v] == v) kept.push_back(values[v]);
+        out.vertex_attributes.push_back({name, std::move(kept)});
+    }
 
     const bool has_n = !in.corner_normals.empty(), has_uv = !in.corner_uvs.empty();
     const double min_area = opt.area_relative * diag * diag;

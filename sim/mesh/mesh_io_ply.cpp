@@ -4,7 +4,8 @@
 // the element (binary) at fault. Every element of the header is read; `vertex` gives
 // x, y, z and, when present, nx, ny, nz and u, v (also s, t and texture_u, texture_v);
 // `face` gives a list `vertex_indices` (or `vertex_index`), fanned into triangles.
-// Other elements and properties are skipped.
+// The vertex's other scalar properties are kept by name as vertex attributes (painted
+// masks, weights: TriangleMesh::vertex_attributes). Other elements are skipped.
 #include <algorithm>
 #include <charconv>
 #include <cmath>
@@ -266,6 +267,7 @@ class BodyReader {
 // Which property of the vertex element is which attribute; -1 = absent.
 struct VertexLayout {
     int x = -1, y = -1, z = -1, nx = -1, ny = -1, nz = -1, u = -1, v = -1;
+    std::vector<int> extra;  // every other scalar property, in header order
     bool normals() const { return nx >= 0 && ny >= 0 && nz >= 0; }
     bool uvs() const { return u >= 0 && v >= 0; }
 };
@@ -285,6 +287,10 @@ VertexLayout vertex_layout(const Element &e) {
         if (n == "u" || n == "s" || n == "texture_u") l.u = i;
         if (n == "v" || n == "t" || n == "texture_v") l.v = i;
     }
+    for (int i = 0; i < int(e.props.size()); ++i)
+        if (!e.props[size_t(i)].list && i != l.x && i != l.y && i != l.z && i != l.nx &&
+            i != l.ny && i != l.nz && i != l.u && i != l.v)
+            l.extra.push_back(i);
     return l;
 }
 
@@ -334,6 +340,10 @@ TriangleMesh read_ply(const std::string &path, MeshReadStats *stats) {
     for (const Element &e : h.elements) {
         const bool is_vertex = &e == vertex, is_face = &e == face;
         if (is_vertex) {
+            // Not reserved: a damaged header may declare many properties and rows; the
+            // values grow with what the file really holds.
+            for (int i : vl.extra)
+                mesh.vertex_attributes.push_back({e.props[size_t(i)].name, {}});
             mesh.positions.reserve(e.count);
             if (vl.normals()) normals.reserve(e.count);
             if (vl.uvs()) uvs.reserve(e.count);
@@ -383,6 +393,13 @@ TriangleMesh read_ply(const std::string &path, MeshReadStats *stats) {
             const Vec3d pos{row[size_t(vl.x)], row[size_t(vl.y)], row[size_t(vl.z)]};
             if (!is_finite(pos)) body.fail(body.what() + ": non-finite coordinate");
             mesh.positions.push_back(pos);
+            for (size_t a = 0; a < vl.extra.size(); ++a) {
+                const double value = row[size_t(vl.extra[a])];
+                if (!std::isfinite(value))
+                    body.fail(body.what() + ": non-finite " +
+                              mesh.vertex_attributes[a].first);
+                mesh.vertex_attributes[a].second.push_back(static_cast<float>(value));
+            }
             if (vl.normals()) {
                 const Vec3d n{row[size_t(vl.nx)], row[size_t(vl.ny)], row[size_t(vl.nz)]};
                 if (!is_finite(n)) body.fail(body.what() + ": non-finite normal");

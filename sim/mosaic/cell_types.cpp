@@ -8,12 +8,14 @@
 #include <set>
 #include <sstream>
 
+#include "sim/control/control_parse.h"
 #include "sim/core/colour_spelling.h"
 #include "sim/core/input_error.h"
 
 namespace pelage::sim {
 
 using nlohmann::json;
+using nlohmann::ordered_json;
 
 CellTypes::CellTypes(std::vector<CellType> types,
                      std::vector<std::vector<double>> mutation,
@@ -150,7 +152,11 @@ class Reader {
 
 constexpr double probability_tolerance = 1e-6;  // rows and initial probabilities sum to 1
 
-CellType parse_type(const Reader &r, const json &t, const std::string &path) {
+// A type's division_time and initial_probability may vary by region (`ot` is the same
+// node read in its listed order); their defaults go into the CellType.
+CellType parse_type(const Reader &r, const json &t, const std::string &path,
+                    const ordered_json &ot, const ControlSpec &control,
+                    LocalValue *division_time, LocalValue *initial_probability) {
     r.check_keys(t, path,
                  {"name", "colour", "color", "eumelanin", "pheomelanin", "division_time",
                   "initial_probability", "notes"});
@@ -174,7 +180,12 @@ CellType parse_type(const Reader &r, const json &t, const std::string &path) {
     if (!t.contains("division_time"))
         r.fail(path + ".division_time", "missing (a number or \"never\")");
     const json &dt = t["division_time"];
-    if (dt.is_string()) {
+    if (is_local_value(ot["division_time"])) {
+        *division_time =
+            parse_local_value(ot["division_time"], path + ".division_time", r.file(),
+                              control, {0, std::numeric_limits<double>::max(), true});
+        c.division_time = division_time->value;
+    } else if (dt.is_string()) {
         if (dt.get<std::string>() != "never")
             r.fail(path + ".division_time", "expected a number > 0 or \"never\"");
     } else {
@@ -183,6 +194,13 @@ CellType parse_type(const Reader &r, const json &t, const std::string &path) {
             r.fail(path + ".division_time",
                    Reader::fmt_value(c.division_time) + ": must be > 0 (or \"never\")");
     }
+    if (t.contains("initial_probability") && is_local_value(ot["initial_probability"])) {
+        *initial_probability =
+            parse_local_value(ot["initial_probability"], path + ".initial_probability",
+                              r.file(), control, {0, 1});
+        c.initial_probability = initial_probability->value;
+        return c;
+    }
     c.initial_probability = r.number(t, path, "initial_probability", 0, true);
     if (c.initial_probability < 0 || c.initial_probability > 1)
         r.fail(path + ".initial_probability",
@@ -190,14 +208,48 @@ CellType parse_type(const Reader &r, const json &t, const std::string &path) {
     return c;
 }
 
-SimParams parse_sim(const Reader &r, const json &s) {
+SimParams parse_plain_sim(const Reader &r, const json &s, const ControlSpec &control);
+
+// w_r, w_d, w_a, anisotropy.magnitude and initial_weight may vary by region (`os` is
+// the same node read in its listed order); their defaults go into SimParams.
+SimParams parse_sim(const Reader &r, const json &s, const ordered_json &os,
+                    ControlSpec *control) {
     const std::string p = "simulation";
     r.check_keys(
         s, p,
         {"initial_cells", "initial_density", "initial_spacing", "initial_relax_steps",
          "initial_relax_alpha", "initial_relax_tolerance", "w_r", "w_d", "w_a",
          "anisotropy", "relax", "local_steps", "rho", "end_time", "target_cells",
-         "division_distribution", "child_radius_factor", "notes"});
+         "division_distribution", "child_radius_factor", "initial_weight", "notes"});
+    // A local value replaces the plain number the checks below read.
+    json plain = s;
+    auto local = [&](const ordered_json &node, json *plain_node, const std::string &path,
+                     const std::string &key, ValueRange range, LocalValue *out) {
+        if (!node.contains(key) || !is_local_value(node[key])) return;
+        *out = parse_local_value(node[key], path + "." + key, r.file(), *control, range);
+        (*plain_node)[key] = out->value;
+    };
+    const double inf = std::numeric_limits<double>::max();
+    local(os, &plain, p, "w_r", {0, inf, true}, &control->w_r);
+    local(os, &plain, p, "w_d", {0, inf, true}, &control->w_d);
+    local(os, &plain, p, "w_a", {0, 1}, &control->w_a);
+    local(os, &plain, p, "initial_weight", {0, inf}, &control->initial_weight);
+    if (os.contains("anisotropy") && os["anisotropy"].is_object())
+        local(os["anisotropy"], &plain["anisotropy"], p + ".anisotropy", "magnitude",
+              {0, inf}, &control->anisotropy_magnitude);
+    if (control->initial_weight.value <= 0 && !control->initial_weight.local())
+        r.fail(p + ".initial_weight", "must be > 0 (a relative density)");
+    const SimParams o = parse_plain_sim(r, plain, *control);
+    // The control holds every one of them, local or constant.
+    control->w_r.value = o.w_r;
+    control->w_d.value = o.w_d;
+    control->w_a.value = o.w_a;
+    control->anisotropy_magnitude.value = o.anisotropy_magnitude;
+    return o;
+}
+
+SimParams parse_plain_sim(const Reader &r, const json &s, const ControlSpec &control) {
+    const std::string p = "simulation";
     SimParams o;
     auto positive = [&](const std::string &key, double v) {
         if (!(v > 0)) r.fail(p + "." + key, Reader::fmt_value(v) + ": must be > 0");
@@ -262,7 +314,10 @@ SimParams parse_sim(const Reader &r, const json &s) {
         o.anisotropy_magnitude = non_negative(
             "anisotropy.magnitude", r.number(a, p + ".anisotropy", "magnitude", 1));
     }
-    if (o.w_a > 0 && o.anisotropy_magnitude == 0)
+    double w_a_max = o.w_a;
+    for (const auto &[region, v] : control.w_a.in) w_a_max = std::max(w_a_max, v);
+    if (w_a_max > 0 && o.anisotropy_magnitude == 0 &&
+        !control.anisotropy_magnitude.local())
         r.fail(p + ".w_a", "w_a > 0 needs an anisotropy {direction or field, magnitude}");
     const std::string relax = r.string(s, p, "relax", "local");
     if (relax == "local")
@@ -312,8 +367,12 @@ Preset parse_preset(const std::string &text, const std::string &file) {
     }
     r.check_keys(j, "",
                  {"name", "description", "source", "types", "mutation", "adhesion",
-                  "repulsiveness", "simulation", "published", "notes", "growth"});
+                  "repulsiveness", "simulation", "published", "regions", "masks", "notes",
+                  "growth"});
+    // The same document with objects in their listed order, for the control blocks.
+    const ordered_json oj = ordered_json::parse(text);
     Preset preset;
+    if (oj.contains("regions")) parse_regions(oj["regions"], file, &preset.control);
     preset.name = r.string(j, "", "name", "", true);
     preset.description = r.string(j, "", "description", "");
 
@@ -325,10 +384,16 @@ Preset parse_preset(const std::string &text, const std::string &file) {
                             " cell types");
     std::vector<CellType> types;
     std::set<std::string> names;
+    std::vector<std::string> type_names;
     double sum = 0;
+    preset.control.division_time.resize(jt.size());
+    preset.control.initial_probability.resize(jt.size());
     for (size_t i = 0; i < jt.size(); ++i) {
         const std::string path = "types[" + std::to_string(i) + "]";
-        types.push_back(parse_type(r, jt[i], path));
+        types.push_back(parse_type(r, jt[i], path, oj["types"][i], preset.control,
+                                   &preset.control.division_time[i],
+                                   &preset.control.initial_probability[i]));
+        type_names.push_back(types.back().name);
         if (!names.insert(types.back().name).second)
             r.fail(path + ".name", "'" + types.back().name + "' is used twice");
         sum += types.back().initial_probability;
@@ -364,8 +429,10 @@ Preset parse_preset(const std::string &text, const std::string &file) {
         for (auto &row : alpha)
             for (double &v : row) v = 1 - v;
 
+    if (j.contains("masks")) parse_masks(oj["masks"], file, type_names, &preset.control);
+
     if (!j.contains("simulation")) r.fail("simulation", "missing");
-    preset.params = parse_sim(r, j["simulation"]);
+    preset.params = parse_sim(r, j["simulation"], oj["simulation"], &preset.control);
     if (j.contains("published") && !j["published"].is_object())
         r.fail("published", "expected an object");
     if (j.contains("growth"))

@@ -18,6 +18,7 @@
 #include <string>
 #include <vector>
 
+#include "sim/control/control_spec.h"
 #include "sim/field/field_spec.h"
 #include "sim/growth/growth_spec.h"
 
@@ -107,6 +108,9 @@ struct Preset {
     std::string name, description;
     CellTypes types;
     SimParams params;
+    // Regions, masks and local parameters (Queiroz & Walter §V); SimParams and the types
+    // hold the defaults of the local ones.
+    ControlSpec control;
     std::string json_text;  // the preset as read (compact JSON), stored in .cells files
     std::optional<GrowthSpec> growth;  // the "growth" block (sim/growth/growth_spec.h)
 };

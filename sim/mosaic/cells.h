@@ -26,6 +26,8 @@ class Cells {
     CellId add(SurfacePoint at, uint8_t type, CellId founder = none);
     // Moves cell c to `to`, keeping buckets consistent (appends to the new bucket).
     void move(CellId c, SurfacePoint to);
+    // Changes c's type (a neural-crest mask switching it, sim/control).
+    void set_type(CellId c, uint8_t type) { m_type[c] = type; }
 
     TriId tri(CellId c) const { return m_tri[c]; }
     Vec2d pos(CellId c) const { return {m_x[c], m_z[c]}; }

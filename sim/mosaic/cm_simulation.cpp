@@ -34,7 +34,12 @@ CmSimulation::CmSimulation(const Crps &crps, CellTypes types, SimParams params,
       m_steps_left(crps.num_triangles(), 0) {
     for (TriId t = 0; t < crps.num_triangles(); ++t) m_area += crps.frame(t).area;
     m_field = anisotropy_field(m_params, crps);
+    remember_field();
+}
+
+void CmSimulation::remember_field() {
     // Each vector in its triangle's edge basis, for surface_changed() to carry it.
+    const Crps &crps = m_crps;
     m_field_edge_coords.resize(m_field.a.size());
     m_field_length.resize(m_field.a.size());
     for (TriId t = 0; t < m_field.a.size(); ++t) {
@@ -45,6 +50,27 @@ CmSimulation::CmSimulation(const Crps &crps, CellTypes types, SimParams params,
         m_field_edge_coords[t] = {cross(a, e2) / det, cross(e1, a) / det};
         m_field_length[t] = length(a);
     }
+}
+
+void CmSimulation::set_control(SurfaceControl control) {
+    m_control = std::move(control);
+    m_control.evaluate_on(m_crps);
+    const ControlSpec &s = m_control.spec();
+    // A local w_a needs the field where its default is 0; a local anisotropy magnitude
+    // scales a unit field cell by cell.
+    if (s.w_a.max() > 0 && (s.w_a.local() || s.anisotropy_magnitude.local())) {
+        SimParams p = m_params;
+        p.w_a = s.w_a.max();
+        if (s.anisotropy_magnitude.local()) p.anisotropy_magnitude = 1.0;
+        m_field = anisotropy_field(p, m_crps);
+        remember_field();
+    }
+}
+
+double CmSimulation::max_radius() const {
+    const LocalValue &w = m_control.spec().w_r;
+    if (!w.local()) return radius();
+    return radius() / m_params.w_r * w.max();
 }
 
 double CmSimulation::radius() const {
@@ -59,8 +85,12 @@ std::vector<size_t> CmSimulation::count_by_type() const {
     return n;
 }
 
-double CmSimulation::division_delay(int type, CounterRng &rng) const {
-    const double mean = m_types[type].division_time;
+double CmSimulation::division_delay(int type, CounterRng &rng, SurfacePoint at) const {
+    const std::vector<LocalValue> &local = m_control.spec().division_time;
+    // A local division time is read where the cell is when it is scheduled.
+    const double mean = size_t(type) < local.size() && local[type].local()
+                            ? m_control.value(local[type], at.tri, at.p)
+                            : m_types[type].division_time;
     if (m_params.division_distribution == DivisionDistribution::exponential) {
         // Divisions as a Poisson process: exponential inter-division times (Teo §3.2).
         return std::max(rng.exponential(mean), 1e-9);
@@ -80,20 +110,78 @@ std::vector<TriId> CmSimulation::all_triangles_with_cells() const {
     return out;
 }
 
+void CmSimulation::fill_local_parameters(const std::vector<TriId> &active,
+                                         RelaxContext *ctx) {
+    const ControlSpec &s = m_control.spec();
+    const bool w_a = s.w_a.local() && !ctx->uniform_alpha,
+               scale = s.anisotropy_magnitude.local() && !ctx->uniform_alpha;
+    if (!s.w_r.local() && !s.w_d.local() && !w_a && !scale) return;
+    const size_t n = m_cells.size();
+    const double unit_r = radius() / m_params.w_r;  // sqrt(A/m)
+    if (s.w_r.local()) m_cell_r.resize(n);
+    if (s.w_d.local()) m_cell_w_d.resize(n);
+    if (w_a) m_cell_w_a.resize(n);
+    if (scale) m_cell_a_scale.resize(n);
+    for (TriId t : active)
+        for (CellId c : m_cells.on(t)) {
+            const Vec2d p = m_cells.pos(c);
+            if (s.w_r.local()) m_cell_r[c] = unit_r * m_control.value(s.w_r, t, p);
+            if (s.w_d.local()) m_cell_w_d[c] = m_control.value(s.w_d, t, p);
+            if (w_a) m_cell_w_a[c] = m_control.value(s.w_a, t, p);
+            if (scale) m_cell_a_scale[c] = m_control.value(s.anisotropy_magnitude, t, p);
+        }
+    if (s.w_r.local()) ctx->cell_r = m_cell_r.data();
+    if (s.w_d.local()) ctx->cell_w_d = m_cell_w_d.data();
+    if (w_a) ctx->cell_w_a = m_cell_w_a.data();
+    if (scale) ctx->cell_a_scale = m_cell_a_scale.data();
+}
+
+void CmSimulation::schedule(CellId c, double time) {
+    if (m_due.size() <= c) m_due.resize(size_t(c) + 1, HUGE_VAL);
+    m_due[c] = time;
+    m_heap.push_back({time, c});
+    std::push_heap(m_heap.begin(), m_heap.end(), std::greater<>());
+}
+
+void CmSimulation::apply_masks_after_move(const std::vector<CellId> &moved) {
+    for (CellId c : moved) {
+        const SurfacePoint at{m_cells.tri(c), m_cells.pos(c)};
+        const int from = m_cells.type(c);
+        const int to = m_control.masked_type_where_zero(from, at.tri, at.p);
+        if (to == from) continue;
+        m_cells.set_type(c, static_cast<uint8_t>(to));
+        if (m_due.empty()) continue;  // initialisation: scheduled afterwards
+        // Growing, the rate is the surface's (grow()), not the type's: it stands.
+        if (m_growth) continue;
+        // Queiroz's switchCellType redraws the division time for the new type.
+        m_due[c] = HUGE_VAL;  // the pending event, if any, is stale
+        CounterRng rng(m_seed, RandomStream::mask_switch, m_switches++);
+        if (m_types[to].divides()) schedule(c, m_now + division_delay(to, rng, at));
+    }
+}
+
 RelaxStepResult CmSimulation::relax(const std::vector<TriId> &active,
                                     bool uniform_alpha) {
     RelaxContext ctx;
     ctx.crps = &m_crps;
     ctx.types = &m_types;
     ctx.field = &m_field;
-    ctx.r = radius();
+    ctx.r = max_radius();
     ctx.w_d = m_params.w_d;
-    ctx.w_a = uniform_alpha ? 0.0 : m_params.w_a;
+    ctx.w_a = uniform_alpha ? 0.0
+                            : (m_control.spec().w_a.local() ? m_control.spec().w_a.max()
+                                                            : m_params.w_a);
     ctx.uniform_alpha = uniform_alpha;
     ctx.alpha = m_params.initial_relax_alpha;
     ctx.seed = m_seed;
+    fill_local_parameters(active, &ctx);
+    std::vector<CellId> moved;
+    if (!m_control.spec().masks.empty())
+        for (TriId t : active)
+            moved.insert(moved.end(), m_cells.on(t).begin(), m_cells.on(t).end());
     const RelaxStepResult r = m_relaxer.step(ctx, m_cells, active);
     m_stats.cell_steps += r.cells_moved;
+    apply_masks_after_move(moved);
     return r;
 }
 
@@ -133,9 +221,22 @@ void CmSimulation::initialize(uint64_t override_cells) {
 
     // --- Turk's method (Walter thesis §6.4): triangle by cumulative area, then a
     //     uniform point in it from two square-rooted numbers ---
+    // Queiroz §V: a local initial_weight scales each triangle's share (area × weight).
+    const ControlSpec &control = m_control.spec();
     std::vector<double> cumulative(nt);
     double sum = 0;
-    for (TriId t = 0; t < nt; ++t) cumulative[t] = (sum += m_crps.frame(t).area);
+    for (TriId t = 0; t < nt; ++t)
+        cumulative[t] =
+            (sum += control.initial_weight.local()
+                        ? m_crps.frame(t).area *
+                              m_control.triangle_mean(control.initial_weight, t)
+                        : m_crps.frame(t).area);
+    if (!(sum > 0))
+        throw InputError("", 0, "simulation.initial_weight",
+                         "is 0 over the whole surface: no initial cell can be placed");
+    bool local_types = false;
+    for (const LocalValue &v : control.initial_probability)
+        local_types = local_types || v.local();
     // --- Initial types: exactly round(P_k·n) cells of type k (largest remainder), in a
     //     seeded random order. Walter lets "the system" pick F cells at random; exact
     //     proportions remove the binomial spread of the few founders (20 F cells in
@@ -171,7 +272,38 @@ void CmSimulation::initialize(uint64_t override_cells) {
         const double s = std::sqrt(rng.uniform()), v = rng.uniform();
         const auto &f = m_crps.frame(t);
         const Vec2d p = f.v[0] * (1 - s) + f.v[1] * (s * (1 - v)) + f.v[2] * (s * v);
-        m_cells.add({t, p}, initial_type[i]);
+        int type = initial_type[i];
+        if (local_types) {
+            // Queiroz §V: each cell's type from the probabilities where it stands,
+            // normalised to sum to 1 (a draw per cell: proportions vary by region).
+            std::vector<double> prob(size_t(m_types.size()));
+            double total = 0;
+            for (int k = 0; k < m_types.size(); ++k)
+                total += prob[size_t(k)] =
+                    control.initial_probability[size_t(k)].local()
+                        ? m_control.value(control.initial_probability[size_t(k)], t, p)
+                        : m_types[k].initial_probability;
+            if (!(total > 0)) {  // every type 0 here: the defaults
+                total = 0;
+                for (int k = 0; k < m_types.size(); ++k)
+                    total += prob[size_t(k)] = m_types[k].initial_probability;
+            }
+            CounterRng draw(m_seed, RandomStream::local_type, i);
+            double u = draw.uniform() * total;
+            type = m_types.size() - 1;
+            for (int k = 0; k < m_types.size(); ++k) {
+                if (u < prob[size_t(k)]) {
+                    type = k;
+                    break;
+                }
+                u -= prob[size_t(k)];
+            }
+        }
+        if (!control.masks.empty()) {
+            CounterRng mask(m_seed, RandomStream::mask_initial, i);
+            type = m_control.draw_masked_type(type, t, p, mask);
+        }
+        m_cells.add({t, p}, static_cast<uint8_t>(type));
     }
     m_stats.initial_cells = n;
 
@@ -184,10 +316,12 @@ void CmSimulation::initialize(uint64_t override_cells) {
 
     // --- First division of every initial cell ---
     m_heap.clear();
+    m_due.assign(m_cells.size(), HUGE_VAL);
     for (CellId c = 0; c < m_cells.size(); ++c) {
         if (!m_types[m_cells.type(c)].divides()) continue;
         CounterRng rng(m_seed, RandomStream::initial_division, c);
-        m_heap.push_back({division_delay(m_cells.type(c), rng), c});
+        m_due[c] = division_delay(m_cells.type(c), rng, {m_cells.tri(c), m_cells.pos(c)});
+        m_heap.push_back({m_due[c], c});
     }
     std::make_heap(m_heap.begin(), m_heap.end(), std::greater<>());
     m_stats.seconds_initial = now_seconds() - t0;
@@ -196,7 +330,7 @@ void CmSimulation::initialize(uint64_t override_cells) {
 void CmSimulation::mark_local(SurfacePoint at) {
     // The cached unfolding of the child's triangle covers radius R ≥ r; the triangles
     // within r of the child are among its entries (bounding circle first, then exact).
-    const double r = radius();
+    const double r = max_radius();  // every cell's own radius is at most this
     Neighbourhoods &nb = m_relaxer.neighbourhoods();
     nb.update(m_crps, r);
     for (const Neighbourhoods::Entry &e : nb.of(at.tri)) {
@@ -223,17 +357,25 @@ std::vector<TriId> CmSimulation::take_local_active() {
 void CmSimulation::divide(Event e) {
     std::pop_heap(m_heap.begin(), m_heap.end(), std::greater<>());
     m_heap.pop_back();
+    if (e.time != m_due[e.cell]) return;  // rescheduled since (a mask switched it)
     const uint64_t k = m_stats.divisions++;
     CounterRng rng(m_seed, RandomStream::division, k);
     const CellId parent = e.cell;
     const int parent_type = m_cells.type(parent);
-    const int child_type = m_types.mutate(parent_type, rng.uniform());
+    const int mutated_type = m_types.mutate(parent_type, rng.uniform());
     // Walter 1998 §3.4: the child is uniformly random within a circle of diameter 1% of
     // r around the parent (radius child_radius_factor·r), then walked onto the surface.
     const double rad = m_params.child_radius_factor * radius() * std::sqrt(rng.uniform());
     const double angle = 6.283185307179586 * rng.uniform();
-    const SurfacePoint at = walk(m_crps, {m_cells.tri(parent), m_cells.pos(parent)},
-                                 {rad * std::cos(angle), rad * std::sin(angle)});
+    const SurfacePoint from{m_cells.tri(parent), m_cells.pos(parent)};
+    const SurfacePoint at =
+        walk(m_crps, from, {rad * std::cos(angle), rad * std::sin(angle)});
+    // Queiroz §V.A: a child of a masked type becomes `otherwise` with probability 1 − m.
+    int child_type = mutated_type;
+    if (!m_control.spec().masks.empty()) {
+        CounterRng mask(m_seed, RandomStream::mask_division, k);
+        child_type = m_control.draw_masked_type(child_type, at.tri, at.p, mask);
+    }
     // The child belongs to its parent's clone (Walter 1998 §3: a clone is every
     // descendant of one initial cell, whatever types mutation gave them).
     const CellId child =
@@ -243,22 +385,22 @@ void CmSimulation::divide(Event e) {
         // reshape, the child gets its own then.
         const double mean = m_growth_mean[parent];
         m_growth_mean.push_back(std::numeric_limits<double>::infinity());
-        if (mean < std::numeric_limits<double>::infinity()) {
-            m_heap.push_back({e.time + std::max(rng.exponential(mean), 1e-9), parent});
-            std::push_heap(m_heap.begin(), m_heap.end(), std::greater<>());
-        }
+        m_due.push_back(HUGE_VAL);
+        if (mean < std::numeric_limits<double>::infinity())
+            schedule(parent, e.time + std::max(rng.exponential(mean), 1e-9));
+        else
+            m_due[parent] = HUGE_VAL;
         if (m_params.relax == RelaxMode::local) mark_local(at);
         return;
     }
     // Both are rescheduled: parent and child divide again after their own delays.
-    if (m_types[parent_type].divides()) {
-        m_heap.push_back({e.time + division_delay(parent_type, rng), parent});
-        std::push_heap(m_heap.begin(), m_heap.end(), std::greater<>());
-    }
-    if (m_types[child_type].divides()) {
-        m_heap.push_back({e.time + division_delay(child_type, rng), child});
-        std::push_heap(m_heap.begin(), m_heap.end(), std::greater<>());
-    }
+    m_due.push_back(HUGE_VAL);
+    if (m_types[parent_type].divides())
+        schedule(parent, e.time + division_delay(parent_type, rng, from));
+    else
+        m_due[parent] = HUGE_VAL;
+    if (m_types[child_type].divides())
+        schedule(child, e.time + division_delay(child_type, rng, at));
     if (m_params.relax == RelaxMode::local) mark_local(at);
 }
 
@@ -304,11 +446,13 @@ void CmSimulation::grow(uint64_t update, double time) {
     // Every cell's next division from its rate over this interval: r = Δt / (k g_i).
     m_growth_mean.assign(m_cells.size(), std::numeric_limits<double>::infinity());
     m_heap.clear();
+    m_due.assign(m_cells.size(), HUGE_VAL);
     for (CellId c = 0; c < m_cells.size(); ++c) {
         if (!(expected[c] > 0)) continue;
         m_growth_mean[c] = interval / expected[c];
         CounterRng rng(m_seed, RandomStream::growth_division, (update << 32) | c);
-        m_heap.push_back({time + std::max(rng.exponential(m_growth_mean[c]), 1e-9), c});
+        m_due[c] = time + std::max(rng.exponential(m_growth_mean[c]), 1e-9);
+        m_heap.push_back({m_due[c], c});
     }
     std::make_heap(m_heap.begin(), m_heap.end(), std::greater<>());
 }
@@ -332,6 +476,7 @@ void CmSimulation::run(const std::function<void(double)> &progress) {
     RunProgress work(n_steps, target, m_cells.size());  // by cells relaxed, not by steps
     for (uint64_t step = 0; open_ended ? step < max_open_steps : step < n_steps; ++step) {
         const double t_next = double(step + 1) * dt;
+        m_now = t_next;
         bool reached = false;
         if (m_growth && step % growth_steps == 0)
             grow(step / growth_steps, double(step) * dt);

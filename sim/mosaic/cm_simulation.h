@@ -23,6 +23,7 @@
 #include <functional>
 #include <vector>
 
+#include "sim/control/surface_control.h"
 #include "sim/core/random.h"
 #include "sim/crps/unfold.h"
 #include "sim/mosaic/cell_types.h"
@@ -59,6 +60,13 @@ class CmSimulation {
     // The CRPS must outlive the simulation.
     CmSimulation(const Crps &crps, CellTypes types, SimParams params, uint64_t seed);
 
+    // Regions, masks and local parameters resolved on this CRPS's surface
+    // (sim/control/surface_control.h), before initialize(). With masks, a cell of a
+    // masked type never stands where its mask is 0: not at initialisation, not as a
+    // child, not after any relaxation step.
+    void set_control(SurfaceControl control);
+    const SurfaceControl &control() const { return m_control; }
+
     // Places the initial cells (count from params, or `override_cells` when > 0), draws
     // their types, relaxes them with one α for all pairs, schedules first divisions.
     void initialize(uint64_t override_cells = 0);
@@ -87,6 +95,8 @@ class CmSimulation {
     const SimParams &params() const { return m_params; }
     double area() const { return m_area; }
     double radius() const;  // r = w_r·sqrt(A/m), Walter 1998 §3.3
+    // The largest local radius anywhere (radius() without a local w_r).
+    double max_radius() const;
     std::vector<size_t> count_by_type() const;
 
   private:
@@ -97,11 +107,18 @@ class CmSimulation {
             return time > o.time || (time == o.time && cell > o.cell);
         }
     };
-    double division_delay(int type, CounterRng &rng) const;
+    // The time to a cell's next division; its mean may depend on where it is.
+    double division_delay(int type, CounterRng &rng, SurfacePoint at) const;
+    void schedule(CellId c, double time);
+    // The masks' switch for cells that moved (Queiroz's switchCellType).
+    void apply_masks_after_move(const std::vector<CellId> &moved);
+    // Per-cell local relaxation parameters of the cells of `active`.
+    void fill_local_parameters(const std::vector<TriId> &active, RelaxContext *ctx);
     // Takes the event by value: it pops the heap, which moves the front element.
     void divide(Event e);
     void grow(uint64_t update, double time);
     void surface_changed();
+    void remember_field();  // m_field in each triangle's edge basis
     void mark_local(SurfacePoint at);
     std::vector<TriId> all_triangles_with_cells() const;
     std::vector<TriId> take_local_active();
@@ -116,6 +133,11 @@ class CmSimulation {
     std::vector<double> m_field_length;
     Cells m_cells;
     Relaxer m_relaxer;
+    SurfaceControl m_control;
+    std::vector<double> m_cell_r, m_cell_w_d, m_cell_w_a, m_cell_a_scale;
+    double m_now = 0;               // simulated time of the current step
+    uint64_t m_switches = 0;        // cells the masks switched after a move
+    std::vector<double> m_due;      // each cell's scheduled division (stale heap entries)
     std::vector<Event> m_heap;      // min-heap via std::push_heap with greater<>
     std::vector<int> m_steps_left;  // local relaxation: S countdown per triangle
     std::vector<TriId> m_marked;    // triangles with m_steps_left > 0

@@ -298,7 +298,7 @@ void Relaxer::size_moves(const std::vector<TriId> &active) {
 // only its own cells).
 void Relaxer::accumulate_forces(const RelaxContext &ctx,
                                 const std::vector<TriId> &active) {
-    const double r = ctx.r, inv_r = 1.0 / r;
+    const double r_all = ctx.r, inv_r_all = 1.0 / r_all;
     const uint8_t *ts = m_st.data();
     const CellId *ids = m_sid.data();
     const bool aniso = ctx.field && !ctx.field->empty() && ctx.w_a > 0;
@@ -323,6 +323,9 @@ void Relaxer::accumulate_forces(const RelaxContext &ctx,
                 Vec2d *D = m_move.data() + m_active_row[ai];
                 for (uint32_t k = mine_begin; k < mine_end; ++k) {
                     const double *oma_row = one_minus_alpha[ts[k]];
+                    // Queiroz §V: a local w_r gives the moving cell its own radius.
+                    const double r = ctx.cell_r ? ctx.cell_r[ids[k]] : r_all;
+                    const double inv_r = ctx.cell_r ? 1.0 / r : inv_r_all;
                     double sx = 0, sz = 0;
                     for_each_neighbour(t, k, r, [&](uint32_t p, Vec2d away, double d2) {
                         // Walter 1998 Fig. 1 step 1: f = 1 − d/r, D = unit(C −
@@ -343,13 +346,18 @@ void Relaxer::accumulate_forces(const RelaxContext &ctx,
                 }
                 // SG01 §3.2.1: C' = C + w_a·O + (1 − w_a)·w_d·D, O = (D·Â)·A
                 for (uint32_t k = 0; k < mine_end - mine_begin; ++k) {
-                    Vec2d m = D[k] * iso_weight;
+                    const CellId id = ids[mine_begin + k];
+                    const double w_a = ctx.cell_w_a ? ctx.cell_w_a[id] : ctx.w_a;
+                    const double w_d = ctx.cell_w_d ? ctx.cell_w_d[id] : ctx.w_d;
+                    const bool local = ctx.cell_w_a || ctx.cell_w_d;
+                    Vec2d m = D[k] * (local ? (1.0 - w_a) * w_d : iso_weight);
                     if (aniso) {
-                        const Vec2d A = ctx.field->a[t];
+                        Vec2d A = ctx.field->a[t];
+                        if (ctx.cell_a_scale) A = A * ctx.cell_a_scale[id];
                         const double a2 = length_squared(A);
                         if (a2 > 0)
-                            m += A * (ctx.w_a * dot(D[k], A) /
-                                      std::sqrt(a2));  // |O| = (D·Â)|A|
+                            m += A *
+                                 (w_a * dot(D[k], A) / std::sqrt(a2));  // |O| = (D·Â)|A|
                     }
                     D[k] = m;
                 }

@@ -86,6 +86,11 @@ struct RelaxContext {
     bool uniform_alpha = false;  // the initial phase: same α for every pair
     double alpha = 0;            // used when uniform_alpha
     uint64_t seed = 0;           // tie-break directions for coincident cells
+    // Local parameters (sim/control), per cell id, or null for the constants above: the
+    // moving cell's own radius (at most r, which the neighbourhoods cover), w_d, w_a
+    // (at most w_a above) and anisotropy scale.
+    const double *cell_r = nullptr, *cell_w_d = nullptr, *cell_w_a = nullptr,
+                 *cell_a_scale = nullptr;
 };
 
 // A neighbour of a cell as the relaxation sees it.
