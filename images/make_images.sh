@@ -50,6 +50,31 @@ $pelage sim --mesh scenes/meshes/cow.off --preset giraffe-reticulata --initial-c
     -o "$tmp/cow3000.cells"
 $pelage preview "$tmp/cow3000.cells" -o images/sim_cow_giraffe_reticulata.png --res 480
 
+font=/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf
+# Spatial control and growth (docs/guide/growth-and-control.md): the zebra's stripes
+# follow a field, the Holstein's white comes from neural-crest masks, the giraffe's legs
+# carry smaller patches; then the growing cow at birth, half grown and adult, its spots
+# riding on the skin. Labelled 3×2 sheet.
+tiles=()
+for preset in zebra holstein-cow giraffe-reticulata-legs; do
+    mkdir -p "$tmp/look_$preset"
+    $pelage look scenes/meshes/cow.off --preset $preset --seed 1 --res 320x200 --spp 32 -q \
+        -o "$tmp/look_$preset/cow.exr"
+    oiiotool "$tmp/look_$preset/cow_preview.png" --ch R,G,B \
+        --text:x=8:y=192:size=15:font=$font "$preset" -o "$tmp/tile_$preset.png"
+    tiles+=("$tmp/tile_$preset.png")
+done
+for frame in 0 24 47; do
+    $pelage render scenes/cow_growing.json --frames $frame --res 320x200 --spp 32 -q \
+        -o "$tmp/growing.####.exr" \
+        --preview "$tmp/growing_preview.####.png"
+    f=$(printf %04d $frame)
+    oiiotool "$tmp/growing_preview.$f.png" --ch R,G,B --text:x=8:y=192:size=15:font=$font \
+        "cow-growing, month $(( frame * 36 / 47 ))" -o "$tmp/tile_growing_$f.png"
+    tiles+=("$tmp/tile_growing_$f.png")
+done
+oiiotool "${tiles[@]}" --mosaic:pad=4 3x2 -o images/control_and_growth.png
+
 # The gallery (fonts-dejavu-core labels it): every preset on the sphere and on the cow, labelled, and the look of each
 # measured by `pelage stats --mesh` (docs/data/gallery.json, shown in
 # docs/guide/presets.md). Presets scaled to the body (initial_spacing) start from about
