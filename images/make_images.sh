@@ -87,7 +87,8 @@ for preset in scenes/presets/*.json; do
     name=$(basename "$preset" .json)
     cells=$(python3 -c 'import json,sys; p=json.load(open(sys.argv[1])); s=p["simulation"]
 f=next(t for t in p["types"] if t["name"]=="F") if any(t["name"]=="F" for t in p["types"]) else p["types"][0]
-print(round(100/f["initial_probability"]) if "initial_spacing" in s else 0)' "$preset")
+ip=f["initial_probability"]; ip=ip["default"] if isinstance(ip, dict) else ip
+print(round(100/ip) if "initial_spacing" in s and ip > 0 else 0)' "$preset")
     for kind in sphere cow; do
         mesh=procedural:sphere:20x20
         [ $kind = cow ] && mesh=scenes/meshes/cow.off
