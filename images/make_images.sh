@@ -75,6 +75,49 @@ for frame in 0 24 47; do
 done
 oiiotool "${tiles[@]}" --mosaic:pad=4 3x2 -o images/control_and_growth.png
 
+# What the spatial control and growth achieve (docs/data/control_growth.json, tabulated
+# in docs/guide/growth-and-control.md): the zebra's stripes against its field, the
+# Holstein's mask adherence, and W01's point: the same founders on cow.off give another
+# adult when the pattern forms during growth, before it, or not at all.
+for preset in zebra holstein-cow; do
+    $pelage stats "$tmp/look_$preset/cow.cells" --mesh scenes/meshes/cow.off --json \
+        >"$tmp/stats_$preset.json"
+done
+python3 - scenes/presets/cow-growing.json "$tmp" <<'PY'
+import json, sys
+preset, tmp = json.load(open(sys.argv[1])), sys.argv[2]
+variants = {"before_growth": {"pattern": "before_growth", "end_time": 1000, "target": 5790},
+            "founders": {"pattern": "before_growth", "end_time": 1000, "target": 1500}}
+for name, v in variants.items():
+    p = json.loads(json.dumps(preset))
+    p["growth"]["pattern"] = v["pattern"]
+    p["simulation"]["end_time"] = v["end_time"]
+    p["simulation"]["target_cells"] = v["target"]
+    json.dump(p, open(f"{tmp}/cow-growing-{name}.json", "w"))
+PY
+for run in during_growth before_growth founders; do
+    preset=scenes/presets/cow-growing.json
+    [ $run != during_growth ] && preset="$tmp/cow-growing-$run.json"
+    $pelage sim --mesh scenes/meshes/cow.off --preset "$preset" --surface input --seed 1 -q \
+        -o "$tmp/growing_$run.cells" --stats-json "$tmp/growing_$run.json"
+done
+python3 - "$tmp" >docs/data/control_growth.json <<'PY'
+import json, sys
+tmp = sys.argv[1]
+def load(name): return json.load(open(f"{tmp}/{name}.json"))
+zebra, holstein = load("stats_zebra"), load("stats_holstein-cow")
+runs = {}
+for run in ["founders", "during_growth", "before_growth"]:
+    d = load("growing_" + run)
+    runs[run] = {k: d[k] for k in ["cells_by_type", "spots", "spot_area_quantiles", "growth",
+                                   "growth_lost_cells", "final_cells"] if k in d}
+print(json.dumps({
+    "mesh": "scenes/meshes/cow.off", "seed": 1,
+    "zebra": {k: zebra[k] for k in zebra if k.startswith("stripe_")},
+    "holstein_cow": {"mask_adherence": holstein["mask_adherence"]},
+    "cow_growing": runs}, indent=2, sort_keys=True))
+PY
+
 # The gallery (fonts-dejavu-core labels it): every preset on the sphere and on the cow, labelled, and the look of each
 # measured by `pelage stats --mesh` (docs/data/gallery.json, shown in
 # docs/guide/presets.md). Presets scaled to the body (initial_spacing) start from about

@@ -23,7 +23,7 @@ import sys
 
 DOCS = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 DATA = os.path.join(DOCS, "data")
-FILES = ["performance.md", "validation.md", "guide/presets.md"]
+FILES = ["performance.md", "validation.md", "guide/presets.md", "guide/growth-and-control.md"]
 MARKER = re.compile(
     r"(<!-- BEGIN generated: (?P<name>[\w.-]+) -->\n)(?P<body>.*?)(<!-- END generated: (?P=name) -->)",
     re.S)
@@ -418,6 +418,38 @@ def t_looks():
                   "background touching a spot"], rows, "llrrrrrrrr")
 
 
+def t_control_measures():
+    d = data("control_growth")
+    z, m = d["zebra"], d["holstein_cow"]["mask_adherence"][0]
+    g = d["cow_growing"]["during_growth"]["growth"]
+    dens = [x["density"] / g[0]["density"] for x in g]
+    return table(["measure", "value", "target"], [
+        ["`zebra`: angle between the stripes and the field, median (quartiles)",
+         f"{z['stripe_alignment_median']:.1f}° ({z['stripe_alignment_q1']:.1f}°, "
+         f"{z['stripe_alignment_q3']:.1f}°)", "< 15°"],
+        [f"`holstein-cow`: share of the area its mask excludes (`{m['only_in']}` = 0) "
+         f"that shows {m['type']}", f"{100 * m['violation']:.2f} %", "< 1 %"],
+        [f"`cow-growing`: cells per unit area over {len(g) - 1} reshapes, area "
+         f"×{g[-1]['area'] / g[0]['area']:.1f}, relative to the start",
+         f"{min(dens):.3f} … {max(dens):.3f}", "within 10 %"],
+    ], "llr")
+
+
+def t_growth_pipelines():
+    d = data("control_growth")["cow_growing"]
+    names = {"founders": "the founders, carried to the adult",
+             "during_growth": "pattern during growth (`cow-growing`)",
+             "before_growth": "pattern on the newborn, then grown (`before_growth`)"}
+    rows = []
+    for run in ["founders", "during_growth", "before_growth"]:
+        r = d[run]
+        q = r["spot_area_quantiles"]
+        rows.append([names[run], f"{num(r['cells_by_type']['F'])} / {num(r['cells_by_type']['B'])}",
+                     num(r["spots"]), f"{q['median']:.5f}", f"{q['q90']:.4f}", f"{q['max']:.3f}"])
+    return table(["adult (areas in the rest mesh's units)", "F / B cells", "spots",
+                  "median spot", "q90", "largest"], rows, "lrrrrr")
+
+
 TABLES = {
     "machine": t_machine, "crps": t_crps, "sim": t_sim, "sim-density": t_sim_density, "sim-neighbours": t_sim_neighbours, "default-job": t_default_job,
     "lookup": t_lookup, "lookup-lanes": t_lookup_lanes,
@@ -425,6 +457,7 @@ TABLES = {
     "compare": t_compare, "hair": t_hair, "fur": t_fur, "noise": t_noise, "presets": t_presets,
     "crps-errors": t_crps_errors, "lookup-quality": t_lookup_quality,
     "hair-furnace": t_hair_furnace, "gallery": t_gallery, "looks": t_looks,
+    "control-measures": t_control_measures, "growth-pipelines": t_growth_pipelines,
 }
 
 
