@@ -33,13 +33,27 @@ CmSimulation::CmSimulation(const Crps &crps, CellTypes types, SimParams params,
       m_cells(crps.num_triangles()),
       m_steps_left(crps.num_triangles(), 0) {
     for (TriId t = 0; t < crps.num_triangles(); ++t) m_area += crps.frame(t).area;
-    m_field = anisotropy_field(m_params, crps);
-    remember_field();
+    build_field(m_params);
 }
 
-void CmSimulation::remember_field() {
-    // Each vector in its triangle's edge basis, for surface_changed() to carry it.
-    const Crps &crps = m_crps;
+void CmSimulation::build_field(const SimParams &p) {
+    m_field_params = p;
+    if (!m_growth) {
+        m_field = anisotropy_field(p, m_crps);
+        remember_field(m_crps);
+        return;
+    }
+    // A growing run starts from the first key's shape, which may be far from the rest
+    // pose (a calf's proportions): the field's box-space points and body axis mean the
+    // rest pose, as the regions' do and as `pelage stats` reads them.
+    const Crps rest = m_growth->rest_crps();
+    m_field = anisotropy_field(p, rest);
+    remember_field(rest);
+    carry_field();
+}
+
+void CmSimulation::remember_field(const Crps &crps) {
+    // Each vector in its triangle's edge basis, for carry_field() to carry it.
     m_field_edge_coords.resize(m_field.a.size());
     m_field_length.resize(m_field.a.size());
     for (TriId t = 0; t < m_field.a.size(); ++t) {
@@ -62,8 +76,7 @@ void CmSimulation::set_control(SurfaceControl control) {
         SimParams p = m_params;
         p.w_a = s.w_a.max();
         if (s.anisotropy_magnitude.local()) p.anisotropy_magnitude = 1.0;
-        m_field = anisotropy_field(p, m_crps);
-        remember_field();
+        build_field(p);
     }
 }
 
@@ -408,12 +421,17 @@ void CmSimulation::set_growth(GrowingSurface *surface) {
     if (surface && &surface->crps() != &m_crps)
         throw std::invalid_argument("CmSimulation::set_growth: built on another CRPS");
     m_growth = surface;
+    if (m_growth && !m_field.empty()) build_field(m_field_params);
 }
 
 void CmSimulation::surface_changed() {
     m_area = 0;
     for (TriId t = 0; t < m_crps.num_triangles(); ++t) m_area += m_crps.frame(t).area;
     m_relaxer.neighbourhoods().invalidate();
+    carry_field();
+}
+
+void CmSimulation::carry_field() {
     // The field is a property of the skin, so it moves with it: each triangle's vector
     // keeps its coordinates in the triangle's edge basis (v1 − v0, v2 − v0), the way the
     // growth map's differential carries a tangent vector, and keeps its length.

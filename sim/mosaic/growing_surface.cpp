@@ -16,6 +16,7 @@ TriangleMesh with_positions(const TriangleMesh &rest, std::vector<Vec3d> positio
 GrowingSurface::GrowingSurface(const TriangleMesh &rest, const Crps &rest_crps,
                                GrowthShape shape)
     : m_mesh(with_positions(rest, shape.at(shape.first_age()))),
+      m_rest_positions(rest.positions),
       m_crps(m_mesh, rest_crps.topology()),
       m_shape(std::move(shape)),
       m_age(m_shape.first_age()) {}
@@ -26,6 +27,10 @@ void GrowingSurface::reshape(double age, Cells &cells) {
     Crps next(m_mesh, m_crps.topology());
     carry_cells(m_crps, next, cells);
     m_crps = std::move(next);
+}
+
+Crps GrowingSurface::rest_crps() const {
+    return Crps(with_positions(m_mesh, m_rest_positions), m_crps.topology());
 }
 
 std::vector<double> GrowingSurface::triangle_areas(double age) const {

@@ -25,6 +25,9 @@ class GrowingSurface {
     const Crps &crps() const { return m_crps; }
     const TriangleMesh &mesh() const { return m_mesh; }
     const GrowthShape &shape() const { return m_shape; }
+    // The CRPS of the rest shape, built on demand: what a preset's regions and fields
+    // are resolved on (their box-space points and body axis mean the rest pose).
+    Crps rest_crps() const;
     double age() const { return m_age; }
     // Takes the shape at `age` and carries every cell to its barycentric point on it.
     void reshape(double age, Cells &cells);
@@ -33,6 +36,7 @@ class GrowingSurface {
 
   private:
     TriangleMesh m_mesh;
+    std::vector<Vec3d> m_rest_positions;
     Crps m_crps;
     GrowthShape m_shape;
     double m_age = 0;
