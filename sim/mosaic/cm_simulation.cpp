@@ -451,15 +451,34 @@ void CmSimulation::grow(uint64_t update, double time) {
         m_params.rho;
     m_growth->reshape(time, m_cells);
     surface_changed();
-    if (m_cell_area == 0)
+    const LocalValue &weight = m_control.spec().initial_weight;
+    if (m_cell_area == 0) {
         m_cell_area = m_area / double(std::max<size_t>(1, m_cells.size()));
+        if (weight.local()) {
+            m_weight_mean = 0;
+            for (TriId t = 0; t < m_crps.num_triangles(); ++t)
+                m_weight_mean +=
+                    m_crps.frame(t).area * m_control.triangle_mean(weight, t) / m_area;
+        }
+    }
     m_stats.growth.push_back({time, m_area, m_cells.size()});
     std::vector<double> now(m_crps.num_triangles());
     for (TriId t = 0; t < now.size(); ++t) now[t] = m_crps.frame(t).area;
+    std::vector<double> next = m_growth->triangle_areas(time + interval);
+    if (weight.local() && m_weight_mean > 0) {
+        // Queiroz §V: a local initial weight w makes a region w / W̄ times as dense as
+        // the mean (W̄ the area-weighted mean weight, initialize()). The growth keeps
+        // each region's density: a cell there has the area a·W̄/w, so a triangle gains
+        // ΔA·w/(a·W̄) cells, the same total as a uniform weight under uniform growth.
+        for (TriId t = 0; t < now.size(); ++t) {
+            const double f = m_control.triangle_mean(weight, t) / m_weight_mean;
+            now[t] *= f;
+            next[t] *= f;
+        }
+    }
     double lost = 0;
     const std::vector<double> expected =
-        growth_divisions(m_crps, m_cells, m_types, now,
-                         m_growth->triangle_areas(time + interval), m_cell_area, &lost);
+        growth_divisions(m_crps, m_cells, m_types, now, next, m_cell_area, &lost);
     m_stats.growth_lost_cells += lost;
     // Every cell's next division from its rate over this interval: r = Δt / (k g_i).
     m_growth_mean.assign(m_cells.size(), std::numeric_limits<double>::infinity());

@@ -151,7 +151,8 @@ class CmSimulation {
     std::vector<TriId> m_marked;    // triangles with m_steps_left > 0
     SimStats m_stats;
     GrowingSurface *m_growth = nullptr;
-    double m_cell_area = 0;  // a = A0 / N0 (thesis §6.2), at the first reshape
+    double m_cell_area = 0;    // a = A0 / N0 (thesis §6.2), at the first reshape
+    double m_weight_mean = 0;  // W̄: the area-weighted mean local initial_weight, then
     std::vector<double> m_growth_mean;  // per cell: mean time between divisions now
 };
 
