@@ -476,9 +476,26 @@ void CmSimulation::grow(uint64_t update, double time) {
             next[t] *= f;
         }
     }
+    // A local division time changes the relative rates where it holds (the growth still
+    // sets how many cells a triangle gains).
+    const std::vector<LocalValue> &local = m_control.spec().division_time;
+    std::vector<double> rates;
+    if (std::any_of(local.begin(), local.end(),
+                    [](const LocalValue &v) { return v.local(); })) {
+        rates.resize(m_cells.size());
+        for (CellId c = 0; c < m_cells.size(); ++c) {
+            const int type = m_cells.type(c);
+            rates[c] =
+                !m_types[type].divides() ? 0.0
+                : size_t(type) < local.size() && local[type].local()
+                    ? 1 / m_control.value(local[type], m_cells.tri(c), m_cells.pos(c))
+                    : 1 / m_types[type].division_time;
+        }
+    }
     double lost = 0;
     const std::vector<double> expected =
-        growth_divisions(m_crps, m_cells, m_types, now, next, m_cell_area, &lost);
+        growth_divisions(m_crps, m_cells, m_types, now, next, m_cell_area, &lost,
+                         rates.empty() ? nullptr : &rates);
     m_stats.growth_lost_cells += lost;
     // Every cell's next division from its rate over this interval: r = Δt / (k g_i).
     m_growth_mean.assign(m_cells.size(), std::numeric_limits<double>::infinity());

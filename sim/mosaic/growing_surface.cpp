@@ -51,15 +51,19 @@ std::vector<double> growth_divisions(const Crps &crps, const Cells &cells,
                                      const CellTypes &types,
                                      const std::vector<double> &area_now,
                                      const std::vector<double> &area_next,
-                                     double cell_area, double *lost) {
+                                     double cell_area, double *lost,
+                                     const std::vector<double> *cell_rates) {
     // g_i ∝ 1 / division_time_i (a type that never divides has g = 0); the normalisation
     // Σ g_i = 1 cancels in k.
     std::vector<double> g(types.size(), 0);
     for (int i = 0; i < types.size(); ++i)
         if (types[i].divides()) g[i] = 1 / types[i].division_time;
+    auto rate = [&](CellId c) {
+        return cell_rates ? (*cell_rates)[c] : g[cells.type(c)];
+    };
     auto weight_on = [&](TriId t) {
         double w = 0;
-        for (CellId c : cells.on(t)) w += g[cells.type(c)];
+        for (CellId c : cells.on(t)) w += rate(c);
         return w;
     };
     std::vector<double> expected(cells.size(), 0);
@@ -72,7 +76,7 @@ std::vector<double> growth_divisions(const Crps &crps, const Cells &cells,
         const double w = weight_on(t);
         if (w > 0) {
             const double k = dN / w;  // thesis L1490: k = ΔN / Σ N_i g_i
-            for (CellId c : cells.on(t)) expected[c] += k * g[cells.type(c)];
+            for (CellId c : cells.on(t)) expected[c] += k * rate(c);
             continue;
         }
         const auto nbrs = crps.topology().neighbours(t);
@@ -84,7 +88,7 @@ std::vector<double> growth_divisions(const Crps &crps, const Cells &cells,
         }
         const double k = dN / wn;
         for (TriId j : nbrs)
-            for (CellId c : cells.on(j)) expected[c] += k * g[cells.type(c)];
+            for (CellId c : cells.on(j)) expected[c] += k * rate(c);
     }
     if (lost) *lost = lost_cells;
     return expected;

@@ -54,12 +54,15 @@ void carry_cells(const Crps &from, const Crps &to, Cells &cells);
 // Deviation, for triangles smaller than a cell: a triangle without a dividing cell hands
 // its ΔN to the dividing cells of its neighbours (edge or vertex), split the same way;
 // with none there either it is lost (counted in *lost, in cells).
+// `cell_rates`, when given, holds each cell's g instead of its type's (a local
+// division_time, read where the cell stands: Queiroz §V).
 // Returns each cell's expected number of divisions over the interval.
 std::vector<double> growth_divisions(const Crps &crps, const Cells &cells,
                                      const CellTypes &types,
                                      const std::vector<double> &area_now,
                                      const std::vector<double> &area_next,
-                                     double cell_area, double *lost);
+                                     double cell_area, double *lost,
+                                     const std::vector<double> *cell_rates = nullptr);
 
 // One update of a growing run: the time, the surface's area and the cells on it.
 struct GrowthSample {

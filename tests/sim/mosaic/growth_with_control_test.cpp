@@ -230,6 +230,66 @@ TEST(GrowthWithControl, ALocalInitialDensityStaysWhileTheSurfaceGrows) {
     EXPECT_NEAR(after / before, 1.0, 0.15) << before << " -> " << after;
 }
 
+TEST(GrowthWithControl, ALocalDivisionTimeSetsTheRelativeRatesWhereItHolds) {
+    // Growing, the count comes from the growth and the division times only split it
+    // between the types (thesis §6.2): F divides three times as fast as B (4 against
+    // 12), except in the lower half, where its local division time 120 makes it ten
+    // times slower. The whole cylinder triples its area; B then takes almost all of the
+    // lower half's new cells, while F outgrows B above.
+    const Surface s = build_surface("procedural:cylinder:16x4");
+    std::string text =
+        preset(R"({"low": {"height": {"axis": [0, 1, 0], "below": 0.5}}})", "[]",
+               R"({"initial_cells": 1500, "initial_relax_steps": 10,
+                   "w_r": 2.0, "w_d": 0.1, "rho": 6, "end_time": 6,
+                   "division_distribution": "exponential"})",
+               R"({"cylinders": [{"name": "c", "from": [0, -1.01, 0],
+                   "to": [0, 1.01, 0], "radius": 1.5}], "keys": [{"age": 0,
+                   "cylinders": {}}, {"age": 6, "cylinders": {"c": {"length": 2,
+                   "radius": 1.5}}}]})");
+    text.replace(text.find(R"("division_time": 4)"), 18,
+                 R"("division_time": {"default": 4, "in": {"low": 120}})");
+    const Preset p = parse_preset(text, "g.json");
+    GrowingSurface growing(s.mesh, s.crps, resolve_growth(*p.growth, s.mesh, s.mesh));
+    CmSimulation sim(growing.crps(), p.types, p.params, 4);
+    sim.set_growth(&growing);
+    sim.set_control(SurfaceControl(p.control, s.mesh, s.crps, "g.json"));
+    sim.initialize();
+    // F's share of the cells on the triangles whose rest centroid is below y = −0.5
+    // (band 0) and above y = 0.5 (band 1): the outer rows.
+    auto f_share = [&](int band) {
+        double f = 0, all = 0;
+        for (TriId t = 0; t < s.crps.num_triangles(); ++t) {
+            const double y = s.crps
+                                 .to_3d(t, (s.crps.frame(t).v[0] + s.crps.frame(t).v[1] +
+                                            s.crps.frame(t).v[2]) *
+                                               (1.0 / 3))
+                                 .y;
+            if (std::abs(y) < 0.5 || (y < 0) != (band == 0)) continue;
+            for (CellId c : sim.cells().on(t)) {
+                f += sim.cells().type(c) == 0;
+                all += 1;
+            }
+        }
+        return f / all;
+    };
+    const double low0 = f_share(0), high0 = f_share(1);
+    sim.run();
+    const double low1 = f_share(0), high1 = f_share(1);
+    RecordProperty("f_share", std::to_string(low0) + " " + std::to_string(high0) +
+                                  " -> " + std::to_string(low1) + " " +
+                                  std::to_string(high1));
+    // Expected, with ~12 cells per triangle (the split between types happens within a
+    // triangle): 2 new cells per initial cell. Above, f ∝ b³ as the cells multiply
+    // (df/db = 3f/b) gives F the share 0.58 at three times the cells; one split with the
+    // initial counts, 0.475. Below, df/db = f/(10b) gives 0.11, one split 0.13. The
+    // same type rates everywhere gave 0.53 and 0.48 (seed 4).
+    EXPECT_NEAR(low0, 0.3, 0.05);
+    EXPECT_NEAR(high0, 0.3, 0.05);
+    EXPECT_GT(high1, 0.42);
+    EXPECT_LT(high1, 0.62);
+    EXPECT_LT(low1, 0.18);
+}
+
 TEST(GrowthWithControl, IdenticalAtOneAndTwoThreads) {
     const Surface s = build_surface("procedural:cylinder:48x16");
     const Preset p =
