@@ -122,24 +122,35 @@ void expect_axial(const Crps &crps, const TangentField &f, bool along, double ma
 // A cylinder of radius 1 and length 5 about Y inside one growth cylinder, keyed from
 // `first` at age 0 to `last` at age 4: every shape is the rest one under the linear map
 // diag(R, L, R) about the pivot, which keeps axial vectors axial and circles circles.
+// `control`: 0 a constant w_a; 1 or 2 a local w_a (0.5 on the lower half, 0 above),
+// whose field set_control builds, given after (1) or before (2) set_growth.
 void field_rides_the_skin(const std::string &field, bool along, const std::string &first,
-                          const std::string &last, double area_ratio) {
+                          const std::string &last, double area_ratio, int control = 0) {
     const Surface s = build_surface(make_cylinder(48, 40, 1.0, 5.0));
     const std::string growth = R"({"cylinders": [{"name": "c", "from": [0, -2.51, 0],
         "to": [0, 2.51, 0], "radius": 1.5}],
         "keys": [{"age": 0, "cylinders": )" +
                                first + R"(}, {"age": 4, "cylinders": )" + last + "}]}";
-    const Preset p =
-        parse_preset(preset("{}", "[]",
-                            R"({"initial_cells": 600, "w_r": 2.0, "w_d": 0.5, "w_a": 0.5,
-                   "anisotropy": {"field": )" +
-                                field + R"(, "magnitude": 0.7}, "rho": 4, "end_time": 4,
+    const std::string w_a =
+        control ? R"({"default": 0, "in": {"low": 0.5}})" : std::string("0.5");
+    const Preset p = parse_preset(
+        preset(
+            control ? R"({"low": {"height": {"axis": [0, 1, 0], "below": 0.5}}})" : "{}",
+            "[]",
+            R"({"initial_cells": 600, "w_r": 2.0, "w_d": 0.5, "w_a": )" + w_a +
+                R"(, "anisotropy": {"field": )" + field +
+                R"(, "magnitude": 0.7}, "rho": 4, "end_time": 4,
                    "division_distribution": "exponential"})",
-                            growth),
-                     "g.json");
+            growth),
+        "g.json");
     GrowingSurface growing(s.mesh, s.crps, resolve_growth(*p.growth, s.mesh, s.mesh));
     CmSimulation sim(growing.crps(), p.types, p.params, 5);
+    auto set_control = [&] {
+        sim.set_control(SurfaceControl(p.control, s.mesh, s.crps, "g.json"));
+    };
+    if (control == 2) set_control();
     sim.set_growth(&growing);
+    if (control == 1) set_control();
     sim.initialize();
     expect_axial(growing.crps(), sim.field(), along, 0.7, "initialisation");
     double first_area = 0;
@@ -174,6 +185,10 @@ TEST(GrowthWithControl, TheFieldIsResolvedOnTheRestShapeLikeTheRegions) {
                          "{}", 5.0);
     field_rides_the_skin(R"({"around": "body_axis"})", false, R"({"c": {"length": 0.2}})",
                          "{}", 5.0);
+    // A local w_a: set_control builds the field, before or after set_growth.
+    for (int control : {1, 2})
+        field_rides_the_skin(R"({"along": "body_axis"})", true,
+                             R"({"c": {"length": 0.2}})", "{}", 5.0, control);
 }
 
 // Cells per unit area on the triangles whose rest centroid lies below y = −0.25, over
