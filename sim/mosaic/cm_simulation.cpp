@@ -33,13 +33,27 @@ CmSimulation::CmSimulation(const Crps &crps, CellTypes types, SimParams params,
       m_cells(crps.num_triangles()),
       m_steps_left(crps.num_triangles(), 0) {
     for (TriId t = 0; t < crps.num_triangles(); ++t) m_area += crps.frame(t).area;
-    m_field = anisotropy_field(m_params, crps);
-    remember_field();
+    build_field(m_params);
 }
 
-void CmSimulation::remember_field() {
-    // Each vector in its triangle's edge basis, for surface_changed() to carry it.
-    const Crps &crps = m_crps;
+void CmSimulation::build_field(const SimParams &p) {
+    m_field_params = p;
+    if (!m_growth) {
+        m_field = anisotropy_field(p, m_crps);
+        remember_field(m_crps);
+        return;
+    }
+    // A growing run starts from the first key's shape, which may be far from the rest
+    // pose (a calf's proportions): the field's box-space points and body axis mean the
+    // rest pose, as the regions' do and as `pelage stats` reads them.
+    const Crps rest = m_growth->rest_crps();
+    m_field = anisotropy_field(p, rest);
+    remember_field(rest);
+    carry_field();
+}
+
+void CmSimulation::remember_field(const Crps &crps) {
+    // Each vector in its triangle's edge basis, for carry_field() to carry it.
     m_field_edge_coords.resize(m_field.a.size());
     m_field_length.resize(m_field.a.size());
     for (TriId t = 0; t < m_field.a.size(); ++t) {
@@ -62,8 +76,7 @@ void CmSimulation::set_control(SurfaceControl control) {
         SimParams p = m_params;
         p.w_a = s.w_a.max();
         if (s.anisotropy_magnitude.local()) p.anisotropy_magnitude = 1.0;
-        m_field = anisotropy_field(p, m_crps);
-        remember_field();
+        build_field(p);
     }
 }
 
@@ -408,12 +421,17 @@ void CmSimulation::set_growth(GrowingSurface *surface) {
     if (surface && &surface->crps() != &m_crps)
         throw std::invalid_argument("CmSimulation::set_growth: built on another CRPS");
     m_growth = surface;
+    if (m_growth && !m_field.empty()) build_field(m_field_params);
 }
 
 void CmSimulation::surface_changed() {
     m_area = 0;
     for (TriId t = 0; t < m_crps.num_triangles(); ++t) m_area += m_crps.frame(t).area;
     m_relaxer.neighbourhoods().invalidate();
+    carry_field();
+}
+
+void CmSimulation::carry_field() {
     // The field is a property of the skin, so it moves with it: each triangle's vector
     // keeps its coordinates in the triangle's edge basis (v1 − v0, v2 − v0), the way the
     // growth map's differential carries a tangent vector, and keeps its length.
@@ -433,15 +451,51 @@ void CmSimulation::grow(uint64_t update, double time) {
         m_params.rho;
     m_growth->reshape(time, m_cells);
     surface_changed();
-    if (m_cell_area == 0)
+    const LocalValue &weight = m_control.spec().initial_weight;
+    if (m_cell_area == 0) {
         m_cell_area = m_area / double(std::max<size_t>(1, m_cells.size()));
+        if (weight.local()) {
+            m_weight_mean = 0;
+            for (TriId t = 0; t < m_crps.num_triangles(); ++t)
+                m_weight_mean +=
+                    m_crps.frame(t).area * m_control.triangle_mean(weight, t) / m_area;
+        }
+    }
     m_stats.growth.push_back({time, m_area, m_cells.size()});
     std::vector<double> now(m_crps.num_triangles());
     for (TriId t = 0; t < now.size(); ++t) now[t] = m_crps.frame(t).area;
+    std::vector<double> next = m_growth->triangle_areas(time + interval);
+    if (weight.local() && m_weight_mean > 0) {
+        // Queiroz §V: a local initial weight w makes a region w / W̄ times as dense as
+        // the mean (W̄ the area-weighted mean weight, initialize()). The growth keeps
+        // each region's density: a cell there has the area a·W̄/w, so a triangle gains
+        // ΔA·w/(a·W̄) cells, the same total as a uniform weight under uniform growth.
+        for (TriId t = 0; t < now.size(); ++t) {
+            const double f = m_control.triangle_mean(weight, t) / m_weight_mean;
+            now[t] *= f;
+            next[t] *= f;
+        }
+    }
+    // A local division time changes the relative rates where it holds (the growth still
+    // sets how many cells a triangle gains).
+    const std::vector<LocalValue> &local = m_control.spec().division_time;
+    std::vector<double> rates;
+    if (std::any_of(local.begin(), local.end(),
+                    [](const LocalValue &v) { return v.local(); })) {
+        rates.resize(m_cells.size());
+        for (CellId c = 0; c < m_cells.size(); ++c) {
+            const int type = m_cells.type(c);
+            rates[c] =
+                !m_types[type].divides() ? 0.0
+                : size_t(type) < local.size() && local[type].local()
+                    ? 1 / m_control.value(local[type], m_cells.tri(c), m_cells.pos(c))
+                    : 1 / m_types[type].division_time;
+        }
+    }
     double lost = 0;
     const std::vector<double> expected =
-        growth_divisions(m_crps, m_cells, m_types, now,
-                         m_growth->triangle_areas(time + interval), m_cell_area, &lost);
+        growth_divisions(m_crps, m_cells, m_types, now, next, m_cell_area, &lost,
+                         rates.empty() ? nullptr : &rates);
     m_stats.growth_lost_cells += lost;
     // Every cell's next division from its rate over this interval: r = Δt / (k g_i).
     m_growth_mean.assign(m_cells.size(), std::numeric_limits<double>::infinity());

@@ -83,13 +83,16 @@ class CmSimulation {
     // Poisson process at each cell's rate (exponential waits, memoryless across
     // reshapes); a child divides from the next reshape on. The run ends at end_time, or
     // at the last key's age when end_time is 0; the surface ends in the shape of the
-    // final time. Call before run().
+    // final time. The anisotropy field is resolved again on the surface's rest shape,
+    // like the regions, and rides on the skin from there. Call before run().
     void set_growth(GrowingSurface *surface);
     // One relaxation step over `active` triangles (tests drive this directly).
     RelaxStepResult relax(const std::vector<TriId> &active, bool uniform_alpha);
 
     const Cells &cells() const { return m_cells; }
     Cells &cells() { return m_cells; }
+    // The anisotropy vectors the relaxation reads, per triangle of the current shape.
+    const TangentField &field() const { return m_field; }
     const SimStats &stats() const { return m_stats; }
     const CellTypes &types() const { return m_types; }
     const SimParams &params() const { return m_params; }
@@ -118,7 +121,11 @@ class CmSimulation {
     void divide(Event e);
     void grow(uint64_t update, double time);
     void surface_changed();
-    void remember_field();  // m_field in each triangle's edge basis
+    // Resolves the anisotropy field with `p`: on the rest shape when growing (where
+    // the regions are resolved), carried to the current shape.
+    void build_field(const SimParams &p);
+    void remember_field(const Crps &on);  // m_field (on `on`) in the edge bases
+    void carry_field();                   // m_field from the edge bases on m_crps
     void mark_local(SurfacePoint at);
     std::vector<TriId> all_triangles_with_cells() const;
     std::vector<TriId> take_local_active();
@@ -129,6 +136,7 @@ class CmSimulation {
     uint64_t m_seed;
     double m_area = 0;
     TangentField m_field;
+    SimParams m_field_params;                // what m_field is resolved with
     std::vector<Vec2d> m_field_edge_coords;  // m_field in each triangle's edge basis
     std::vector<double> m_field_length;
     Cells m_cells;
@@ -143,7 +151,8 @@ class CmSimulation {
     std::vector<TriId> m_marked;    // triangles with m_steps_left > 0
     SimStats m_stats;
     GrowingSurface *m_growth = nullptr;
-    double m_cell_area = 0;  // a = A0 / N0 (thesis §6.2), at the first reshape
+    double m_cell_area = 0;    // a = A0 / N0 (thesis §6.2), at the first reshape
+    double m_weight_mean = 0;  // W̄: the area-weighted mean local initial_weight, then
     std::vector<double> m_growth_mean;  // per cell: mean time between divisions now
 };
 

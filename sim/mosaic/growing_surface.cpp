@@ -16,6 +16,7 @@ TriangleMesh with_positions(const TriangleMesh &rest, std::vector<Vec3d> positio
 GrowingSurface::GrowingSurface(const TriangleMesh &rest, const Crps &rest_crps,
                                GrowthShape shape)
     : m_mesh(with_positions(rest, shape.at(shape.first_age()))),
+      m_rest_positions(rest.positions),
       m_crps(m_mesh, rest_crps.topology()),
       m_shape(std::move(shape)),
       m_age(m_shape.first_age()) {}
@@ -26,6 +27,10 @@ void GrowingSurface::reshape(double age, Cells &cells) {
     Crps next(m_mesh, m_crps.topology());
     carry_cells(m_crps, next, cells);
     m_crps = std::move(next);
+}
+
+Crps GrowingSurface::rest_crps() const {
+    return Crps(with_positions(m_mesh, m_rest_positions), m_crps.topology());
 }
 
 std::vector<double> GrowingSurface::triangle_areas(double age) const {
@@ -46,15 +51,19 @@ std::vector<double> growth_divisions(const Crps &crps, const Cells &cells,
                                      const CellTypes &types,
                                      const std::vector<double> &area_now,
                                      const std::vector<double> &area_next,
-                                     double cell_area, double *lost) {
+                                     double cell_area, double *lost,
+                                     const std::vector<double> *cell_rates) {
     // g_i ∝ 1 / division_time_i (a type that never divides has g = 0); the normalisation
     // Σ g_i = 1 cancels in k.
     std::vector<double> g(types.size(), 0);
     for (int i = 0; i < types.size(); ++i)
         if (types[i].divides()) g[i] = 1 / types[i].division_time;
+    auto rate = [&](CellId c) {
+        return cell_rates ? (*cell_rates)[c] : g[cells.type(c)];
+    };
     auto weight_on = [&](TriId t) {
         double w = 0;
-        for (CellId c : cells.on(t)) w += g[cells.type(c)];
+        for (CellId c : cells.on(t)) w += rate(c);
         return w;
     };
     std::vector<double> expected(cells.size(), 0);
@@ -67,7 +76,7 @@ std::vector<double> growth_divisions(const Crps &crps, const Cells &cells,
         const double w = weight_on(t);
         if (w > 0) {
             const double k = dN / w;  // thesis L1490: k = ΔN / Σ N_i g_i
-            for (CellId c : cells.on(t)) expected[c] += k * g[cells.type(c)];
+            for (CellId c : cells.on(t)) expected[c] += k * rate(c);
             continue;
         }
         const auto nbrs = crps.topology().neighbours(t);
@@ -79,7 +88,7 @@ std::vector<double> growth_divisions(const Crps &crps, const Cells &cells,
         }
         const double k = dN / wn;
         for (TriId j : nbrs)
-            for (CellId c : cells.on(j)) expected[c] += k * g[cells.type(c)];
+            for (CellId c : cells.on(j)) expected[c] += k * rate(c);
     }
     if (lost) *lost = lost_cells;
     return expected;

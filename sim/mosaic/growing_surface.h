@@ -25,6 +25,9 @@ class GrowingSurface {
     const Crps &crps() const { return m_crps; }
     const TriangleMesh &mesh() const { return m_mesh; }
     const GrowthShape &shape() const { return m_shape; }
+    // The CRPS of the rest shape, built on demand: what a preset's regions and fields
+    // are resolved on (their box-space points and body axis mean the rest pose).
+    Crps rest_crps() const;
     double age() const { return m_age; }
     // Takes the shape at `age` and carries every cell to its barycentric point on it.
     void reshape(double age, Cells &cells);
@@ -33,6 +36,7 @@ class GrowingSurface {
 
   private:
     TriangleMesh m_mesh;
+    std::vector<Vec3d> m_rest_positions;
     Crps m_crps;
     GrowthShape m_shape;
     double m_age = 0;
@@ -50,12 +54,15 @@ void carry_cells(const Crps &from, const Crps &to, Cells &cells);
 // Deviation, for triangles smaller than a cell: a triangle without a dividing cell hands
 // its ΔN to the dividing cells of its neighbours (edge or vertex), split the same way;
 // with none there either it is lost (counted in *lost, in cells).
+// `cell_rates`, when given, holds each cell's g instead of its type's (a local
+// division_time, read where the cell stands: Queiroz §V).
 // Returns each cell's expected number of divisions over the interval.
 std::vector<double> growth_divisions(const Crps &crps, const Cells &cells,
                                      const CellTypes &types,
                                      const std::vector<double> &area_now,
                                      const std::vector<double> &area_next,
-                                     double cell_area, double *lost);
+                                     double cell_area, double *lost,
+                                     const std::vector<double> *cell_rates = nullptr);
 
 // One update of a growing run: the time, the surface's area and the cells on it.
 struct GrowthSample {

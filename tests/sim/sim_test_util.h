@@ -26,6 +26,15 @@ inline std::string preset_json(const std::string &simulation, bool two_types = f
            R"(, "simulation": )" + simulation + "}";
 }
 
+// A region's documented profile (docs/guide/growth-and-control.md): 1 up to the limit,
+// smoothstep down to 0 over `blend` beyond, written out independently of sim/control.
+inline double expected_profile(double over, double blend) {
+    if (over <= 0) return 1;
+    if (over >= blend) return 0;
+    const double x = over / blend;
+    return 1 - (3 * x * x - 2 * x * x * x);
+}
+
 // Coefficient of variation of the nearest-neighbour distance (3D; fine for measuring
 // spacing on a smooth closed surface where neighbours are close).
 double nearest_neighbour_cv(const sim::Crps &crps, const sim::Cells &cells);

@@ -19,6 +19,7 @@
 #include "sim/mesh/procedural_mesh.h"
 #include "sim/mosaic/cm_simulation.h"
 #include "tests/oracle/exact_geodesic_oracle.h"
+#include "tests/sim/sim_test_util.h"
 #include "tests/test_paths.h"
 
 namespace pelage::sim {
@@ -38,14 +39,7 @@ std::string preset(const std::string &regions, const std::string &masks,
            "}";
 }
 
-// 1 up to the limit, smoothstep down to 0 over `blend` beyond: the documented profile,
-// written out independently of the code under test.
-double expected_profile(double over, double blend) {
-    if (over <= 0) return 1;
-    if (over >= blend) return 0;
-    const double x = over / blend;
-    return 1 - (3 * x * x - 2 * x * x * x);
-}
+using test::expected_profile;
 
 TEST(Regions, HeightOnASphereIsTheAnalyticBand) {
     const Surface s = build_surface(make_uv_sphere(24, 24));

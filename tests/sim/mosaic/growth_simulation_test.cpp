@@ -12,6 +12,7 @@
 #include "sim/crps/surface.h"
 #include "sim/mosaic/cm_simulation.h"
 #include "sim/mosaic/growing_surface.h"
+#include "tests/sim/mosaic/growth_test_util.h"
 
 namespace pelage::sim {
 namespace {
@@ -57,19 +58,11 @@ GrowingRun run_growing(const std::string &mesh, const std::string &growth,
 }
 
 double max_deviation(const GrowingRun &r) {
-    const double d0 = double(r.samples[0].cells) / r.samples[0].area;
-    double m = 0;
-    for (const GrowthSample &g : r.samples)
-        m = std::max(m, std::abs(double(g.cells) / g.area / d0 - 1));
-    return m;
+    return test::max_density_deviation(r.samples);
 }
 
 void expect_density_within(const GrowingRun &r, double tolerance) {
-    ASSERT_GE(r.samples.size(), 2u);
-    const double d0 = double(r.samples[0].cells) / r.samples[0].area;
-    for (const GrowthSample &g : r.samples)
-        EXPECT_NEAR(double(g.cells) / g.area / d0, 1.0, tolerance)
-            << "at t = " << g.time << ": " << g.cells << " cells on area " << g.area;
+    test::expect_density_within(r.samples, tolerance);
 }
 
 TEST(GrowingSimulation, DensityStaysConstantOnAUniformlyScaledSphere) {
