@@ -140,10 +140,12 @@ TEST(Regions, NearAgreesWithCgalExactGeodesics) {
 void expect_mask_kept(const CmSimulation &sim, const char *when) {
     const SurfaceControl &c = sim.control();
     const Cells &cells = sim.cells();
-    for (CellId i = 0; i < cells.size(); ++i)
-        if (cells.type(i) == 0)
+    for (CellId i = 0; i < cells.size(); ++i) {
+        if (cells.type(i) == 0) {
             ASSERT_GT(c.mask(c.spec().masks[0], cells.tri(i), cells.pos(i)), 0)
                 << when << ": cell " << i;
+        }
+    }
 }
 
 TEST(Masks, MaskedTypeNeverStandsWhereTheMaskIsZeroAtAnyStep) {
