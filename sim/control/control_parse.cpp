@@ -15,7 +15,7 @@ using nlohmann::ordered_json;
 
 bool ControlSpec::any_local() const {
     if (w_r.local() || w_d.local() || w_a.local() || anisotropy_magnitude.local() ||
-        initial_weight.local())
+        initial_weight.local() || !adhesion_in.empty())
         return true;
     for (const LocalValue &v : division_time)
         if (v.local()) return true;

@@ -71,6 +71,9 @@ struct ControlSpec {
     LocalValue w_r, w_d, w_a, anisotropy_magnitude, initial_weight{1, {}};
     // Per cell type, indexed like the preset's types (empty: all constant).
     std::vector<LocalValue> division_time, initial_probability;
+    // Adhesion α by region (Walter 1998 Table 1): starting from the preset's matrix, each
+    // (region, matrix) pair in the listed order moves α[c][p] to lerp(current, α', m).
+    std::vector<std::pair<int, std::vector<std::vector<double>>>> adhesion_in;
 
     bool any_local() const;
     // Masks and local values name regions, so regions alone say whether there is

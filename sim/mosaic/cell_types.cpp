@@ -422,8 +422,25 @@ Preset parse_preset(const std::string &text, const std::string &file) {
     if (has_a == has_r)
         r.fail("adhesion", has_a ? "adhesion and repulsiveness conflict: give one"
                                  : "missing (or give repulsiveness = 1 - adhesion)");
+    // Adhesion may vary by region: {"default": matrix, "in": {region: matrix, ...}}.
+    const bool local_adhesion = has_a && j["adhesion"].is_object();
+    if (local_adhesion) {
+        r.check_keys(j["adhesion"], "adhesion", {"default", "in"});
+        if (!j["adhesion"].contains("default")) r.fail("adhesion.default", "missing");
+        const ordered_json &in = oj["adhesion"]["in"];
+        if (!in.is_object() || in.empty())
+            r.fail("adhesion.in", "expected an object {region: matrix, ...}");
+        for (const auto &[name, m] : in.items()) {
+            const int region = preset.control.find_region(name);
+            if (region < 0)
+                r.fail("adhesion.in." + name, "unknown region '" + name + "'");
+            preset.control.adhesion_in.push_back(
+                {region, r.matrix(json(m), "adhesion.in." + name, n, 0, 1)});
+        }
+    }
     std::vector<std::vector<double>> alpha =
-        has_a ? r.matrix(j["adhesion"], "adhesion", n, 0, 1)
+        has_a ? r.matrix(local_adhesion ? j["adhesion"]["default"] : j["adhesion"],
+                         local_adhesion ? "adhesion.default" : "adhesion", n, 0, 1)
               : r.matrix(j["repulsiveness"], "repulsiveness", n, 0, 1);
     if (has_r)
         for (auto &row : alpha)

@@ -127,7 +127,26 @@ void CmSimulation::fill_local_parameters(const std::vector<TriId> &active,
                                          RelaxContext *ctx) {
     const ControlSpec &s = m_control.spec();
     const bool w_a = s.w_a.local() && !ctx->uniform_alpha,
-               scale = s.anisotropy_magnitude.local() && !ctx->uniform_alpha;
+               scale = s.anisotropy_magnitude.local() && !ctx->uniform_alpha,
+               adhesion = !s.adhesion_in.empty() && !ctx->uniform_alpha;
+    if (adhesion) {
+        // Each moving cell's row of 1 − α, lerped towards each region's matrix by the
+        // region's value where the cell stands (the initial phase keeps one α).
+        m_cell_one_minus_alpha.resize(m_cells.size() * max_cell_types);
+        for (TriId t : active)
+            for (CellId c : m_cells.on(t)) {
+                const int type = m_cells.type(c);
+                double *row = m_cell_one_minus_alpha.data() + size_t(c) * max_cell_types;
+                for (int q = 0; q < m_types.size(); ++q) {
+                    double a = m_types.alpha(type, q);
+                    for (const auto &[region, matrix] : s.adhesion_in)
+                        a += (matrix[size_t(type)][size_t(q)] - a) *
+                             m_control.region(region, t, m_cells.pos(c));
+                    row[q] = 1.0 - a;
+                }
+            }
+        ctx->cell_one_minus_alpha = m_cell_one_minus_alpha.data();
+    }
     if (!s.w_r.local() && !s.w_d.local() && !w_a && !scale) return;
     const size_t n = m_cells.size();
     const double unit_r = radius() / m_params.w_r;  // sqrt(A/m)

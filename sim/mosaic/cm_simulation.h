@@ -143,8 +143,9 @@ class CmSimulation {
     Relaxer m_relaxer;
     SurfaceControl m_control;
     std::vector<double> m_cell_r, m_cell_w_d, m_cell_w_a, m_cell_a_scale;
-    double m_now = 0;               // simulated time of the current step
-    uint64_t m_switches = 0;        // cells the masks switched after a move
+    std::vector<double> m_cell_one_minus_alpha;  // max_cell_types per cell
+    double m_now = 0;                            // simulated time of the current step
+    uint64_t m_switches = 0;                     // cells the masks switched after a move
     std::vector<double> m_due;      // each cell's scheduled division (stale heap entries)
     std::vector<Event> m_heap;      // min-heap via std::push_heap with greater<>
     std::vector<int> m_steps_left;  // local relaxation: S countdown per triangle

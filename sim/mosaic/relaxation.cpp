@@ -322,7 +322,10 @@ void Relaxer::accumulate_forces(const RelaxContext &ctx,
                 if (mine_begin == mine_end) continue;
                 Vec2d *D = m_move.data() + m_active_row[ai];
                 for (uint32_t k = mine_begin; k < mine_end; ++k) {
-                    const double *oma_row = one_minus_alpha[ts[k]];
+                    const double *oma_row =
+                        ctx.cell_one_minus_alpha && !ctx.uniform_alpha
+                            ? ctx.cell_one_minus_alpha + size_t(ids[k]) * max_cell_types
+                            : one_minus_alpha[ts[k]];
                     // Queiroz §V: a local w_r gives the moving cell its own radius.
                     const double r = ctx.cell_r ? ctx.cell_r[ids[k]] : r_all;
                     const double inv_r = ctx.cell_r ? 1.0 / r : inv_r_all;

@@ -91,6 +91,9 @@ struct RelaxContext {
     // (at most w_a above) and anisotropy scale.
     const double *cell_r = nullptr, *cell_w_d = nullptr, *cell_w_a = nullptr,
                  *cell_a_scale = nullptr;
+    // 1 − α felt by each cell from each type (max_cell_types per cell) where adhesion
+    // varies by region; null: the types' matrix.
+    const double *cell_one_minus_alpha = nullptr;
 };
 
 // A neighbour of a cell as the relaxation sees it.

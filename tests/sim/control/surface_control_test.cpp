@@ -327,6 +327,49 @@ TEST(LocalParameters, LocalDisplacementWeightsActOnlyInTheirRegion) {
     }
 }
 
+TEST(LocalParameters, LocalAdhesionActsOnlyInItsRegion) {
+    // α = 1 for every pair on top: 1 − α = 0 there, so no neighbour pushes a cell on top
+    // (Walter 1998 Fig. 1 step 1(c)); below, α = 0 and cells move as usual.
+    const Surface s = build_surface("procedural:sphere:20x20");
+    std::string text =
+        preset(R"({"top": {"height": {"above": 0.5}}})", "[]",
+               R"({"initial_cells": 500, "initial_relax_steps": 0, "w_r": 2, "w_d": 0.1,
+                   "rho": 1, "end_time": 0})",
+               "\"never\"", "0.5", "0.5");
+    const std::string fixed = R"("adhesion": [[0.8, 0.0], [0.0, 0.5]])";
+    ASSERT_NE(text.find(fixed), std::string::npos);
+    text.replace(text.find(fixed), fixed.size(),
+                 R"("adhesion": {"default": [[0, 0], [0, 0]],
+                                 "in": {"top": [[1, 1], [1, 1]]}})");
+    const Preset p = parse_preset(text, "t.json");
+    ASSERT_EQ(p.control.adhesion_in.size(), 1u);
+    EXPECT_EQ(p.types.alpha(0, 1), 0.0);
+    const Moves m = relax_moves(s, p, 2);
+    size_t still = 0, moved = 0;
+    for (size_t i = 0; i < m.before.size(); ++i) {
+        const double d = length(m.after[i] - m.before[i]);
+        if (m.before[i].y > 0.01) {
+            EXPECT_EQ(d, 0.0) << i;
+            ++still;
+        }
+        if (m.before[i].y < -0.2) moved += d > 1e-3;
+    }
+    EXPECT_GT(still, 150u);
+    EXPECT_GT(moved, 150u);
+    // The same preset with a constant adhesion moves the cells on top too.
+    const Preset plain = parse_preset(preset(R"({"top": {"height": {"above": 0.5}}})", "[]",
+                                             R"({"initial_cells": 500,
+                   "initial_relax_steps": 0, "w_r": 2, "w_d": 0.1, "rho": 1,
+                   "end_time": 0})",
+                                             "\"never\"", "0.5", "0.5"),
+                                      "t.json");
+    const Moves q = relax_moves(s, plain, 2);
+    size_t moved_on_top = 0;
+    for (size_t i = 0; i < q.before.size(); ++i)
+        if (q.before[i].y > 0.01) moved_on_top += length(q.after[i] - q.before[i]) > 1e-3;
+    EXPECT_GT(moved_on_top, 150u);
+}
+
 TEST(LocalParameters, InitialWeightSetsTheInitialDensity) {
     const Surface s = build_surface("procedural:sphere:30x30");
     const Preset p = parse_preset(
@@ -416,7 +459,21 @@ TEST(ControlParser, ErrorsNameTheJsonPath) {
     EXPECT_EQ(field(preset(top, "[]",
                            R"({"initial_cells": 10, "w_r": 2, "w_d": 0.1, "rho": 1,
                                "end_time": 0, "w_a": {"default": 0, "in": {"top": 0.5}}})")),
-              "simulation.w_a");
+              "simulation.w_a");    auto with_adhesion = [&](const std::string &adhesion) {
+        std::string text = preset(top, "[]", sim);
+        const std::string fixed = R"("adhesion": [[0.8, 0.0], [0.0, 0.5]])";
+        text.replace(text.find(fixed), fixed.size(), "\"adhesion\": " + adhesion);
+        return text;
+    };
+    EXPECT_EQ(field(with_adhesion(R"({"default": [[0, 0], [0, 0]], "in": {"x": [[1, 1],
+              [1, 1]]}})")),
+              "adhesion.in.x");
+    EXPECT_EQ(field(with_adhesion(R"({"default": [[0, 0], [0, 0]], "in": {"top": [[2, 1],
+              [1, 1]]}})")).rfind("adhesion.in.top", 0),
+              0u);
+    EXPECT_EQ(field(with_adhesion(R"({"in": {"top": [[1, 1], [1, 1]]}})")),
+              "adhesion.default");
+    EXPECT_EQ(field(with_adhesion(R"({"default": [[0, 0], [0, 0]]})")), "adhesion.in");
 }
 
 TEST(Regions, PlyVertexAttributeDrivesARegion) {
