@@ -62,9 +62,7 @@ class Fields {
         return v;
     }
     std::string string(const ordered_json &obj, const std::string &key) const {
-        const auto it = obj.find(key);
-        if (it == obj.end()) fail(key, "missing");
-        return m_fields.non_empty_string(*it, at(key));
+        return m_fields.non_empty_string(*m_fields.find(obj, m_path, key, true), at(key));
     }
     std::array<double, 3> point(const ordered_json &v, const std::string &key) const {
         const std::vector<double> p =

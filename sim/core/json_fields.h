@@ -59,16 +59,22 @@ class JsonFields {
         return d;
     }
 
+    // obj[key], or nullptr when `obj` has no `key`; absent and `required` is an error.
+    template <class Json>
+    const Json *find(const Json &obj, const std::string &path, const std::string &key,
+                     bool required) const {
+        const auto it = obj.find(key);
+        if (it != obj.end()) return &*it;
+        if (required) fail(join(path, key), "missing");
+        return nullptr;
+    }
+
     // obj[key] as a finite number; `fallback` when absent, unless `required`.
     template <class Json>
     double number(const Json &obj, const std::string &path, const std::string &key,
                   double fallback, bool required = false) const {
-        const auto it = obj.find(key);
-        if (it == obj.end()) {
-            if (required) fail(join(path, key), "missing");
-            return fallback;
-        }
-        return number(*it, join(path, key));
+        const Json *v = find(obj, path, key, required);
+        return v ? number(*v, join(path, key)) : fallback;
     }
 
     // `v` is an array of `n` finite numbers. A non-finite one is reported at its index as
@@ -108,12 +114,8 @@ class JsonFields {
     template <class Json>
     std::string string(const Json &obj, const std::string &path, const std::string &key,
                        const std::string &fallback, bool required = false) const {
-        const auto it = obj.find(key);
-        if (it == obj.end()) {
-            if (required) fail(join(path, key), "missing");
-            return fallback;
-        }
-        return string(*it, join(path, key));
+        const Json *v = find(obj, path, key, required);
+        return v ? string(*v, join(path, key)) : fallback;
     }
 
     // `v` is a string of at least one character.
