@@ -5,9 +5,9 @@
 #include <functional>
 #include <limits>
 #include <set>
-#include <sstream>
 
 #include "sim/core/input_error.h"
+#include "sim/core/json_fields.h"
 
 namespace pelage::sim {
 
@@ -39,63 +39,44 @@ int ControlSpec::find_region(const std::string &name) const {
 
 namespace {
 
-std::string fmt(double v) {
-    std::ostringstream s;
-    s << v;
-    return s.str();
-}
-
+// The fields of the block at `path` (sim/core/json_fields.h); a key names a field
+// relative to it, "" the block itself.
 class Fields {
   public:
     Fields(const std::string &file, std::string path)
-        : m_file(file), m_path(std::move(path)) {}
+        : m_fields(file), m_path(std::move(path)) {}
     [[noreturn]] void fail(const std::string &key, const std::string &message) const {
-        throw InputError(m_file, 0, key.empty() ? m_path : m_path + "." + key, message);
+        m_fields.fail(at(key), message);
     }
     void keys(const ordered_json &obj, const std::set<std::string> &allowed) const {
-        if (!obj.is_object()) fail("", "expected an object");
-        for (const auto &[key, value] : obj.items())
-            if (!allowed.count(key)) fail(key, "unknown key");
+        m_fields.check_keys(obj, m_path, allowed);
     }
     double number(const ordered_json &obj, const std::string &key, double fallback,
                   bool required = false) const {
-        const auto it = obj.find(key);
-        if (it == obj.end()) {
-            if (required) fail(key, "missing");
-            return fallback;
-        }
-        if (!it->is_number()) fail(key, "expected a number");
-        const double v = it->get<double>();
-        if (!std::isfinite(v)) fail(key, "expected a finite number");
-        return v;
+        return m_fields.number(obj, m_path, key, fallback, required);
     }
     double non_negative(const ordered_json &obj, const std::string &key,
                         double fallback) const {
         const double v = number(obj, key, fallback);
-        if (v < 0) fail(key, fmt(v) + ": must be >= 0");
+        if (v < 0) fail(key, JsonFields::format(v) + ": must be >= 0");
         return v;
     }
     std::string string(const ordered_json &obj, const std::string &key) const {
-        const auto it = obj.find(key);
-        if (it == obj.end()) fail(key, "missing");
-        if (!it->is_string() || it->get<std::string>().empty())
-            fail(key, "expected a non-empty string");
-        return it->get<std::string>();
+        return m_fields.non_empty_string(*m_fields.find(obj, m_path, key, true), at(key));
     }
     std::array<double, 3> point(const ordered_json &v, const std::string &key) const {
-        if (!v.is_array() || v.size() != 3) fail(key, "expected 3 numbers");
-        std::array<double, 3> p{};
-        for (int k = 0; k < 3; ++k) {
-            if (!v[k].is_number()) fail(key, "expected 3 numbers");
-            p[k] = v[k].get<double>();
-            if (!std::isfinite(p[k])) fail(key, "expected finite numbers");
-        }
-        return p;
+        const std::vector<double> p =
+            m_fields.numbers(v, at(key), 3, "expected finite numbers");
+        return {p[0], p[1], p[2]};
     }
     const std::string &path() const { return m_path; }
 
   private:
-    const std::string &m_file;
+    std::string at(const std::string &key) const {
+        return key.empty() ? m_path : m_path + "." + key;
+    }
+
+    JsonFields m_fields;
     std::string m_path;
 };
 
@@ -277,10 +258,12 @@ LocalValue parse_local_value(const ordered_json &v, const std::string &path,
     auto checked = [&](const std::string &key, double x) {
         if (x >= range.lo && x <= range.hi && !(range.lo_open && x == range.lo)) return x;
         if (range.hi == std::numeric_limits<double>::max())
-            f.fail(key, fmt(x) + ": must be " + (range.lo_open ? "> " : ">= ") +
-                            fmt(range.lo));
-        f.fail(key, fmt(x) + ": must be in " + (range.lo_open ? "(" : "[") +
-                        fmt(range.lo) + ", " + fmt(range.hi) + "]");
+            f.fail(key, JsonFields::format(x) + ": must be " +
+                            (range.lo_open ? "> " : ">= ") +
+                            JsonFields::format(range.lo));
+        f.fail(key, JsonFields::format(x) + ": must be in " +
+                        (range.lo_open ? "(" : "[") + JsonFields::format(range.lo) +
+                        ", " + JsonFields::format(range.hi) + "]");
         return x;
     };
     LocalValue out;

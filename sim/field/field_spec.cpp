@@ -6,6 +6,7 @@
 #include <set>
 
 #include "sim/core/input_error.h"
+#include "sim/core/json_fields.h"
 #include "sim/crps/body_length.h"
 #include "sim/field/vector_heat.h"
 
@@ -15,42 +16,16 @@ using nlohmann::json;
 
 namespace {
 
-class Parser {
+// The field block's fields (sim/core/json_fields.h) and directions.
+class Parser : public JsonFields {
   public:
-    explicit Parser(const std::string &file) : m_file(file) {}
+    using JsonFields::JsonFields;
 
-    [[noreturn]] void fail(const std::string &path, const std::string &message) const {
-        throw InputError(m_file, 0, path, message);
-    }
-    void check_keys(const json &o, const std::string &path,
-                    const std::set<std::string> &allowed) const {
-        if (!o.is_object()) fail(path, "expected an object");
-        for (const auto &[key, value] : o.items())
-            if (!allowed.count(key)) fail(path + "." + key, "unknown key");
-    }
-    Vec3d vec3(const json &v, const std::string &path) const {
-        if (!v.is_array() || v.size() != 3) fail(path, "expected 3 numbers");
-        double c[3];
-        for (int i = 0; i < 3; ++i) {
-            if (!v[i].is_number()) fail(path, "expected 3 numbers");
-            c[i] = v[i].get<double>();
-            if (!std::isfinite(c[i]))
-                fail(path + "[" + std::to_string(i) + "]", "not finite");
-        }
-        return {c[0], c[1], c[2]};
-    }
     Vec3d direction(const json &v, const std::string &path) const {
         const Vec3d d = vec3(v, path);
         if (!(length(d) > 0)) fail(path, "must not be the zero vector");
         return normalize(d);
     }
-    std::string string(const json &v, const std::string &path) const {
-        if (!v.is_string()) fail(path, "expected a string");
-        return v.get<std::string>();
-    }
-
-  private:
-    const std::string &m_file;
 };
 
 Vec2d closest_in_triangle(const std::array<Vec2d, 3> &v, Vec2d p) {

@@ -7,6 +7,7 @@
 #include <set>
 
 #include "sim/core/input_error.h"
+#include "sim/core/json_fields.h"
 
 namespace pelage::sim {
 
@@ -14,42 +15,22 @@ using nlohmann::json;
 
 namespace {
 
-class Reader {
+// The growth block's fields (sim/core/json_fields.h), positive numbers and points.
+class Reader : public JsonFields {
   public:
-    explicit Reader(std::string file) : m_file(std::move(file)) {}
-    [[noreturn]] void fail(const std::string &path, const std::string &message) const {
-        throw InputError(m_file, 0, path, message);
-    }
-    void keys(const json &obj, const std::string &path,
-              const std::set<std::string> &allowed) const {
-        if (!obj.is_object()) fail(path, "expected an object");
-        for (const auto &[key, value] : obj.items())
-            if (!allowed.count(key)) fail(path + "." + key, "unknown key");
-    }
-    double number(const json &v, const std::string &path) const {
-        if (!v.is_number()) fail(path, "expected a number");
-        const double d = v.get<double>();
-        if (!std::isfinite(d)) fail(path, "expected a finite number");
-        return d;
-    }
+    using JsonFields::JsonFields;
+
     double positive(const json &v, const std::string &path) const {
         const double d = number(v, path);
         if (!(d > 0)) fail(path, "must be > 0");
         return d;
     }
+    // Each coordinate is checked at its own index, unlike JsonFields::vec3.
     Vec3d point(const json &v, const std::string &path) const {
         if (!v.is_array() || v.size() != 3) fail(path, "expected [x, y, z]");
         return {number(v[0], path + "[0]"), number(v[1], path + "[1]"),
                 number(v[2], path + "[2]")};
     }
-    std::string text(const json &v, const std::string &path) const {
-        if (!v.is_string() || v.get<std::string>().empty())
-            fail(path, "expected a non-empty string");
-        return v.get<std::string>();
-    }
-
-  private:
-    std::string m_file;
 };
 
 std::vector<GrowthCylinder> parse_cylinders(const Reader &r, const json &v,
@@ -59,11 +40,11 @@ std::vector<GrowthCylinder> parse_cylinders(const Reader &r, const json &v,
     for (size_t i = 0; i < v.size(); ++i) {
         const std::string p = path + "[" + std::to_string(i) + "]";
         const json &c = v[i];
-        r.keys(c, p, {"name", "from", "to", "radius", "parent"});
+        r.check_keys(c, p, {"name", "from", "to", "radius", "parent"});
         for (const char *k : {"name", "from", "to", "radius"})
             if (!c.contains(k)) r.fail(p + "." + k, "missing");
         GrowthCylinder cyl;
-        cyl.name = r.text(c["name"], p + ".name");
+        cyl.name = r.non_empty_string(c["name"], p + ".name");
         for (const GrowthCylinder &o : out)
             if (o.name == cyl.name)
                 r.fail(p + ".name", "'" + cyl.name + "' is used twice");
@@ -72,7 +53,7 @@ std::vector<GrowthCylinder> parse_cylinders(const Reader &r, const json &v,
         if (!(length(cyl.to - cyl.from) > 0)) r.fail(p + ".to", "equals from: no axis");
         cyl.radius = r.positive(c["radius"], p + ".radius");
         if (c.contains("parent")) {
-            const std::string parent = r.text(c["parent"], p + ".parent");
+            const std::string parent = r.non_empty_string(c["parent"], p + ".parent");
             for (size_t k = 0; k < out.size(); ++k)
                 if (out[k].name == parent) cyl.parent = int(k);
             if (cyl.parent < 0)
@@ -87,7 +68,7 @@ std::vector<GrowthCylinder> parse_cylinders(const Reader &r, const json &v,
 GrowthKey parse_key(const Reader &r, const json &k, const std::string &p,
                     const std::vector<GrowthCylinder> &cylinders,
                     const std::string &base_dir) {
-    r.keys(k, p, {"age", "scale", "mesh", "cylinders"});
+    r.check_keys(k, p, {"age", "scale", "mesh", "cylinders"});
     GrowthKey key;
     key.path = p;
     if (!k.contains("age")) r.fail(p + ".age", "missing");
@@ -102,7 +83,7 @@ GrowthKey parse_key(const Reader &r, const json &k, const std::string &p,
         key.scale = r.positive(k["scale"], p + ".scale");
     } else if (k.contains("mesh")) {
         key.kind = GrowthKey::Kind::mesh;
-        const std::string m = r.text(k["mesh"], p + ".mesh");
+        const std::string m = r.non_empty_string(k["mesh"], p + ".mesh");
         const std::filesystem::path mp(m);
         key.mesh =
             mp.is_absolute() || base_dir.empty()
@@ -120,7 +101,7 @@ GrowthKey parse_key(const Reader &r, const json &k, const std::string &p,
             for (size_t i = 0; i < cylinders.size(); ++i)
                 if (cylinders[i].name == name) index = int(i);
             if (index < 0) r.fail(np, "no cylinder of that name in growth.cylinders");
-            r.keys(value, np, {"length", "radius"});
+            r.check_keys(value, np, {"length", "radius"});
             if (value.contains("length"))
                 key.cylinder_scales[index][0] =
                     r.positive(value["length"], np + ".length");
@@ -143,11 +124,13 @@ bool GrowthSpec::has_mesh_keys() const {
 GrowthSpec parse_growth(const json &node, const std::string &path,
                         const std::string &file, const std::string &base_dir) {
     const Reader r(file);
-    r.keys(node, path, {"keys", "interpolation", "interval", "cylinders", "pattern"});
+    r.check_keys(node, path,
+                 {"keys", "interpolation", "interval", "cylinders", "pattern"});
     GrowthSpec spec;
     spec.file = file;
     if (node.contains("interpolation")) {
-        const std::string s = r.text(node["interpolation"], path + ".interpolation");
+        const std::string s =
+            r.non_empty_string(node["interpolation"], path + ".interpolation");
         if (s == "linear")
             spec.interpolation = GrowthInterpolation::linear;
         else if (s == "smooth")
@@ -157,7 +140,7 @@ GrowthSpec parse_growth(const json &node, const std::string &path,
                    "'" + s + "' is not one of \"linear\", \"smooth\"");
     }
     if (node.contains("pattern")) {
-        const std::string s = r.text(node["pattern"], path + ".pattern");
+        const std::string s = r.non_empty_string(node["pattern"], path + ".pattern");
         if (s != "during_growth" && s != "before_growth")
             r.fail(path + ".pattern",
                    "'" + s + "' is not one of \"during_growth\", \"before_growth\"");

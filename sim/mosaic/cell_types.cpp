@@ -11,6 +11,7 @@
 #include "sim/control/control_parse.h"
 #include "sim/core/colour_spelling.h"
 #include "sim/core/input_error.h"
+#include "sim/core/json_fields.h"
 
 namespace pelage::sim {
 
@@ -61,66 +62,11 @@ int CellTypes::background() const {
 
 namespace {
 
-// Reads one JSON object with known keys; every error names the file and JSON path, and
-// unknown keys are errors (never warn-and-ignore).
-class Reader {
+// The preset's fields (sim/core/json_fields.h) and its square matrices of numbers in a
+// range.
+class Reader : public JsonFields {
   public:
-    explicit Reader(std::string file) : m_file(std::move(file)) {}
-
-    [[noreturn]] void fail(const std::string &path, const std::string &message) const {
-        throw InputError(m_file, 0, path, message);
-    }
-    const std::string &file() const { return m_file; }
-
-    void check_keys(const json &obj, const std::string &path,
-                    const std::set<std::string> &allowed) const {
-        if (!obj.is_object())
-            fail(path.empty() ? "(top level)" : path, "expected an object");
-        for (const auto &[key, value] : obj.items())
-            if (!allowed.count(key)) fail(join(path, key), "unknown key");
-    }
-
-    static std::string join(const std::string &path, const std::string &key) {
-        return path.empty() ? key : path + "." + key;
-    }
-
-    double number(const json &obj, const std::string &path, const std::string &key,
-                  double fallback, bool required = false) const {
-        const auto it = obj.find(key);
-        if (it == obj.end()) {
-            if (required) fail(join(path, key), "missing");
-            return fallback;
-        }
-        if (!it->is_number()) fail(join(path, key), "expected a number");
-        const double v = it->get<double>();
-        if (!std::isfinite(v)) fail(join(path, key), "expected a finite number");
-        return v;
-    }
-
-    std::string string(const json &obj, const std::string &path, const std::string &key,
-                       const std::string &fallback, bool required = false) const {
-        const auto it = obj.find(key);
-        if (it == obj.end()) {
-            if (required) fail(join(path, key), "missing");
-            return fallback;
-        }
-        if (!it->is_string()) fail(join(path, key), "expected a string");
-        return it->get<std::string>();
-    }
-
-    std::vector<double> numbers(const json &v, const std::string &path, size_t n) const {
-        if (!v.is_array() || v.size() != n)
-            fail(path, "expected " + std::to_string(n) + " numbers");
-        std::vector<double> out;
-        for (size_t i = 0; i < n; ++i) {
-            if (!v[i].is_number())
-                fail(path, "expected " + std::to_string(n) + " numbers");
-            out.push_back(v[i].get<double>());
-            if (!std::isfinite(out.back()))
-                fail(path + "[" + std::to_string(i) + "]", "not finite");
-        }
-        return out;
-    }
+    using JsonFields::JsonFields;
 
     std::vector<std::vector<double>> matrix(const json &v, const std::string &path,
                                             size_t n, double lo, double hi) const {
@@ -134,20 +80,11 @@ class Reader {
             for (size_t j = 0; j < n; ++j)
                 if (m[i][j] < lo || m[i][j] > hi)
                     fail(row + "[" + std::to_string(j) + "]",
-                         fmt_value(m[i][j]) + ": must be in [" + fmt_value(lo) + ", " +
-                             fmt_value(hi) + "]");
+                         format(m[i][j]) + ": must be in [" + format(lo) + ", " +
+                             format(hi) + "]");
         }
         return m;
     }
-
-    static std::string fmt_value(double v) {
-        std::ostringstream s;
-        s << v;
-        return s.str();
-    }
-
-  private:
-    std::string m_file;
 };
 
 constexpr double probability_tolerance = 1e-6;  // rows and initial probabilities sum to 1
@@ -192,7 +129,7 @@ CellType parse_type(const Reader &r, const json &t, const std::string &path,
         c.division_time = r.number(t, path, "division_time", 0);
         if (c.division_time <= 0)
             r.fail(path + ".division_time",
-                   Reader::fmt_value(c.division_time) + ": must be > 0 (or \"never\")");
+                   Reader::format(c.division_time) + ": must be > 0 (or \"never\")");
     }
     if (t.contains("initial_probability") && is_local_value(ot["initial_probability"])) {
         *initial_probability =
@@ -204,7 +141,7 @@ CellType parse_type(const Reader &r, const json &t, const std::string &path,
     c.initial_probability = r.number(t, path, "initial_probability", 0, true);
     if (c.initial_probability < 0 || c.initial_probability > 1)
         r.fail(path + ".initial_probability",
-               Reader::fmt_value(c.initial_probability) + ": must be in [0, 1]");
+               Reader::format(c.initial_probability) + ": must be in [0, 1]");
     return c;
 }
 
@@ -252,17 +189,17 @@ SimParams parse_plain_sim(const Reader &r, const json &s, const ControlSpec &con
     const std::string p = "simulation";
     SimParams o;
     auto positive = [&](const std::string &key, double v) {
-        if (!(v > 0)) r.fail(p + "." + key, Reader::fmt_value(v) + ": must be > 0");
+        if (!(v > 0)) r.fail(p + "." + key, Reader::format(v) + ": must be > 0");
         return v;
     };
     auto non_negative = [&](const std::string &key, double v) {
-        if (v < 0) r.fail(p + "." + key, Reader::fmt_value(v) + ": must be >= 0");
+        if (v < 0) r.fail(p + "." + key, Reader::format(v) + ": must be >= 0");
         return v;
     };
     auto integer = [&](const std::string &key, double v, double hi) {
         if (v != std::floor(v) || v < 0 || v > hi)
-            r.fail(p + "." + key, Reader::fmt_value(v) + ": must be an integer in [0, " +
-                                      Reader::fmt_value(hi) + "]");
+            r.fail(p + "." + key, Reader::format(v) + ": must be an integer in [0, " +
+                                      Reader::format(hi) + "]");
         return v;
     };
     o.initial_cells = static_cast<uint64_t>(
@@ -273,7 +210,7 @@ SimParams parse_plain_sim(const Reader &r, const json &s, const ControlSpec &con
         non_negative("initial_spacing", r.number(s, p, "initial_spacing", 0));
     if (o.initial_spacing > 1)
         r.fail(p + ".initial_spacing",
-               Reader::fmt_value(o.initial_spacing) +
+               Reader::format(o.initial_spacing) +
                    ": a fraction of the body length, expected at most 1");
     const int given =
         (o.initial_cells > 0) + (o.initial_density > 0) + (o.initial_spacing > 0);
@@ -292,7 +229,7 @@ SimParams parse_plain_sim(const Reader &r, const json &s, const ControlSpec &con
     o.w_d = positive("w_d", r.number(s, p, "w_d", 0, true));
     o.w_a = r.number(s, p, "w_a", 0);
     if (o.w_a < 0 || o.w_a > 1)
-        r.fail(p + ".w_a", Reader::fmt_value(o.w_a) + ": must be in [0, 1]");
+        r.fail(p + ".w_a", Reader::format(o.w_a) + ": must be in [0, 1]");
     if (s.contains("anisotropy")) {
         const json &a = s["anisotropy"];
         r.check_keys(a, p + ".anisotropy", {"direction", "field", "magnitude"});
@@ -400,7 +337,7 @@ Preset parse_preset(const std::string &text, const std::string &file) {
     }
     if (std::abs(sum - 1) > probability_tolerance)
         r.fail("types[*].initial_probability",
-               "sum to " + Reader::fmt_value(sum) + ", expected 1");
+               "sum to " + Reader::format(sum) + ", expected 1");
     const size_t n = types.size();
 
     // --- Mutation (row = parent), identity by default ---
@@ -413,7 +350,7 @@ Preset parse_preset(const std::string &text, const std::string &file) {
             for (double v : mutation[i]) row += v;
             if (std::abs(row - 1) > probability_tolerance)
                 r.fail("mutation[" + std::to_string(i) + "]",
-                       "sums to " + Reader::fmt_value(row) + ", expected 1");
+                       "sums to " + Reader::format(row) + ", expected 1");
         }
     }
 
