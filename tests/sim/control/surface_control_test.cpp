@@ -357,12 +357,13 @@ TEST(LocalParameters, LocalAdhesionActsOnlyInItsRegion) {
     EXPECT_GT(still, 150u);
     EXPECT_GT(moved, 150u);
     // The same preset with a constant adhesion moves the cells on top too.
-    const Preset plain = parse_preset(preset(R"({"top": {"height": {"above": 0.5}}})", "[]",
-                                             R"({"initial_cells": 500,
+    const Preset plain =
+        parse_preset(preset(R"({"top": {"height": {"above": 0.5}}})", "[]",
+                            R"({"initial_cells": 500,
                    "initial_relax_steps": 0, "w_r": 2, "w_d": 0.1, "rho": 1,
                    "end_time": 0})",
-                                             "\"never\"", "0.5", "0.5"),
-                                      "t.json");
+                            "\"never\"", "0.5", "0.5"),
+                     "t.json");
     const Moves q = relax_moves(s, plain, 2);
     size_t moved_on_top = 0;
     for (size_t i = 0; i < q.before.size(); ++i)
@@ -459,7 +460,8 @@ TEST(ControlParser, ErrorsNameTheJsonPath) {
     EXPECT_EQ(field(preset(top, "[]",
                            R"({"initial_cells": 10, "w_r": 2, "w_d": 0.1, "rho": 1,
                                "end_time": 0, "w_a": {"default": 0, "in": {"top": 0.5}}})")),
-              "simulation.w_a");    auto with_adhesion = [&](const std::string &adhesion) {
+              "simulation.w_a");
+    auto with_adhesion = [&](const std::string &adhesion) {
         std::string text = preset(top, "[]", sim);
         const std::string fixed = R"("adhesion": [[0.8, 0.0], [0.0, 0.5]])";
         text.replace(text.find(fixed), fixed.size(), "\"adhesion\": " + adhesion);
@@ -469,7 +471,8 @@ TEST(ControlParser, ErrorsNameTheJsonPath) {
               [1, 1]]}})")),
               "adhesion.in.x");
     EXPECT_EQ(field(with_adhesion(R"({"default": [[0, 0], [0, 0]], "in": {"top": [[2, 1],
-              [1, 1]]}})")).rfind("adhesion.in.top", 0),
+              [1, 1]]}})"))
+                  .rfind("adhesion.in.top", 0),
               0u);
     EXPECT_EQ(field(with_adhesion(R"({"in": {"top": [[1, 1], [1, 1]]}})")),
               "adhesion.default");
