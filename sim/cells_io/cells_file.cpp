@@ -385,4 +385,10 @@ void check_cells_match_mesh(const CellsData &data, const TriangleMesh &mesh,
                              std::to_string(mesh_hash(mesh)) + ")");
 }
 
+int find_type(const CellsData &d, const std::string &name, int fallback) {
+    for (size_t i = 0; i < d.types.size(); ++i)
+        if (d.types[i].name == name) return static_cast<int>(i);
+    return fallback < static_cast<int>(d.types.size()) ? fallback : -1;
+}
+
 }  // namespace pelage::sim

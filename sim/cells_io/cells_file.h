@@ -82,4 +82,8 @@ TriangleMesh surface_mesh(const CellsData &data, const std::string &path);
 void check_cells_match_mesh(const CellsData &data, const TriangleMesh &mesh,
                             const std::string &path);
 
+// The index of the type called `name`, else `fallback` when the file has that many types,
+// else −1 (the F and B of a pattern: by name, else types 0 and 1).
+int find_type(const CellsData &d, const std::string &name, int fallback);
+
 }  // namespace pelage::sim

@@ -8,16 +8,6 @@
 
 namespace pelage::sim {
 
-namespace {
-
-int find_type(const CellsData &d, const std::string &name, int fallback) {
-    for (size_t i = 0; i < d.types.size(); ++i)
-        if (d.types[i].name == name) return static_cast<int>(i);
-    return fallback < static_cast<int>(d.types.size()) ? fallback : -1;
-}
-
-}  // namespace
-
 PatternStats compute_pattern_stats(const CellsData &d) {
     PatternStats s;
     const size_t n = d.num_cells();

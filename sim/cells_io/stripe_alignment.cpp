@@ -8,12 +8,6 @@ namespace pelage::sim {
 
 namespace {
 
-int find_type(const CellsData &d, const std::string &name, int fallback) {
-    for (size_t i = 0; i < d.types.size(); ++i)
-        if (d.types[i].name == name) return static_cast<int>(i);
-    return fallback < static_cast<int>(d.types.size()) ? fallback : -1;
-}
-
 double quantile(const std::vector<double> &sorted, double q) {
     if (sorted.empty()) return 0;
     const double x = q * double(sorted.size() - 1);
