@@ -23,7 +23,7 @@
 extern "C" {
 #endif
 
-#define PELAGE_SHADER_ABI 2u
+#define PELAGE_SHADER_ABI 3u
 #define PELAGE_SHADER_ENTRY "pelage_shader_plugin"
 #define PELAGE_SHADER_AOV_SLOTS 4
 #define PELAGE_SHADER_MATTE_SLOTS 3
@@ -60,17 +60,39 @@ typedef struct PelageParamValue {
     const char *s;
 } PelageParamValue;
 
-/* A read-only view of the object's mesh (object space) and its optional .cells file. */
+/* A material of the mesh file (OBJ's .mtl, glTF's base colour, FBX's diffuse colour). */
+typedef struct PelageMeshMaterial {
+    const char *name;            /* never NULL */
+    float diffuse[3];            /* scene-linear, as the file gives it */
+    const char *diffuse_texture; /* absolute path, or "" when the material has none */
+} PelageMeshMaterial;
+
+/* A read-only view of the object's mesh (object space) and its optional .cells file,
+ * valid during `create` only. Everything a plugin needs of the mesh is here: plugins
+ * never open the mesh file. */
 typedef struct PelageMeshView {
     uint32_t num_vertices, num_triangles;
-    const float *positions;    /* 3 floats per vertex                       */
-    const uint32_t *triangles; /* 3 indices per triangle                    */
-    const float *corner_uvs;   /* 6 floats per triangle, or NULL            */
-    const char *cells_path;    /* absolute path of the object's .cells, or NULL */
-    const char *mesh_path;     /* absolute path (or "procedural:...") the mesh was
-                                  loaded from; triangles are in the order pelage's
-                                  loader (sim/mesh/mesh_load.h) gives them */
+    const float *positions;             /* 3 floats per vertex, as rendered (after any
+                                           deformation or growth)                       */
+    const double *rest_positions;       /* 3 doubles per vertex: the mesh as loaded and
+                                           cleaned, before deformation or growth — exactly
+                                           what `pelage sim` grows on, so a .cells file's
+                                           mesh hash can be checked against it          */
+    const uint32_t *triangles;          /* 3 indices per triangle                       */
+    const float *corner_uvs;            /* 6 floats per triangle, or NULL               */
+    const uint32_t *triangle_materials; /* per triangle an index into `materials`, or
+                                           0xFFFFFFFF for none; NULL when the file has
+                                           no materials */
+    const PelageMeshMaterial *materials;
+    uint32_t num_materials;
+    uint32_t reserved;      /* zero */
+    const char *cells_path; /* absolute path of the object's .cells, or NULL */
+    const char *mesh_name;  /* the mesh reference of the scene (a path, "FILE#OBJECT" or
+                               "procedural:..."), for messages only */
 } PelageMeshView;
+
+/* Prints one warning for the user (the renderer prefixes the object's name). */
+typedef void (*PelageWarnFn)(void *context, const char *message);
 
 typedef struct PelageParamSet {
     uint32_t count;
@@ -80,6 +102,8 @@ typedef struct PelageParamSet {
     const char *scene_dir;   /* folder of the scene file: relative paths in STRING
                                 parameters resolve against it; "" when unknown */
     const char *object_name; /* the object's name in the scene (never NULL) */
+    PelageWarnFn warn;       /* never NULL */
+    void *warn_context;
 } PelageParamSet;
 
 typedef struct PelageError {
@@ -102,7 +126,9 @@ typedef struct PelageHit {
     uint32_t reserved; /* zero */
 } PelageHit;
 
-/* What a plugin returns. The renderer fills defaults before calling `shade`. */
+/* What a plugin returns. The renderer fills defaults before calling `shade`. The
+ * eumelanin and pheomelanin concentrations and the cell type are typed fields (the fur
+ * reads them at each strand's root); the AOV slots are for images only. */
 typedef struct PelageShade {
     float albedo[3]; /* diffuse reflectance, [0, 1]; default (0.5, 0.5, 0.5) */
     float roughness; /* coat roughness override, < 0 keeps the material's */
@@ -118,7 +144,18 @@ typedef struct PelageShade {
        hits only. */
     uint32_t matte[PELAGE_SHADER_MATTE_SLOTS];
     uint32_t matte_written;
+    /* The pattern's cell type at the hit (0-based, the plugin's own numbering; fur
+       grooms per type), or -1 (default) when the plugin has no types. */
+    int32_t cell_type;
 } PelageShade;
+
+/* The values a plugin's `shade` starts from: what a hit shows when the plugin writes
+ * nothing. */
+static inline PelageShade pelage_default_shade(void) {
+    PelageShade s = {{0.5f, 0.5f, 0.5f}, -1.0f, 0.0f, 0.0f, {0, 0, 0, 0}, 0u, 0.0f,
+                     {0u, 0u, 0u},       0u,    -1};
+    return s;
+}
 
 typedef struct PelageShaderPlugin {
     uint32_t abi;                  /* == PELAGE_SHADER_ABI, checked at load */
@@ -146,12 +183,12 @@ typedef const PelageShaderPlugin *(*PelageShaderEntry)(void);
 
 #ifdef __cplusplus
 }
-static_assert(sizeof(PelageShade) == 64,
+static_assert(sizeof(PelageShade) == 68,
               "PelageShade is part of the ABI: bump PELAGE_SHADER_ABI");
 static_assert(sizeof(PelageHit) == 64,
               "PelageHit is part of the ABI: bump PELAGE_SHADER_ABI");
 #else
-_Static_assert(sizeof(PelageShade) == 64, "PelageShade is part of the ABI");
+_Static_assert(sizeof(PelageShade) == 68, "PelageShade is part of the ABI");
 _Static_assert(sizeof(PelageHit) == 64, "PelageHit is part of the ABI");
 #endif
 

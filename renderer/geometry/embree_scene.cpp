@@ -28,6 +28,12 @@ std::shared_ptr<MeshData> load_mesh_data(const ObjectDesc &o,
             std::string(e.what()).substr(std::string(e.what()).find(": ") + 2) +
                 " (objects[" + std::to_string(index) + "].mesh in " + scene_path + ")");
     }
+    auto rest = std::make_shared<MeshData::Rest>();
+    rest->positions.reserve(3 * mesh.num_vertices());
+    for (const sim::Vec3d &v : mesh.positions)
+        rest->positions.insert(rest->positions.end(), {v.x, v.y, v.z});
+    rest->materials = mesh.materials;
+    rest->triangle_material = mesh.triangle_material;
     if (!o.deform_mesh.empty() && o.deform_weight > 0)
         apply_pose(mesh, o.deform_mesh, o.deform_weight, scene_path,
                    "objects[" + std::to_string(index) + "].deform");
@@ -40,6 +46,7 @@ std::shared_ptr<MeshData> load_mesh_data(const ObjectDesc &o,
     }
     auto m = std::make_shared<MeshData>();
     m->source = o.mesh;
+    m->rest = std::move(rest);
     m->num_vertices = uint32_t(mesh.num_vertices());
     m->num_triangles = uint32_t(mesh.num_triangles());
     m->object_positions.resize(size_t(m->num_vertices) * 3 + 1, 0.0f);

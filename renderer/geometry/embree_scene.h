@@ -20,6 +20,7 @@
 
 #include "renderer/core/math.h"
 #include "renderer/scene_file/scene_file.h"
+#include "sim/mesh/mesh.h"
 
 namespace pelage::renderer {
 
@@ -31,6 +32,15 @@ struct MeshData {
     std::vector<float> corner_normals;    // 9 per triangle, or empty (flat shading)
     std::vector<float> corner_uvs;        // 6 per triangle, or empty
     std::vector<float> object_positions;  // untransformed copy for plugins (same layout)
+    // What shader plugins need of the mesh file beyond the rendered triangles, shared by
+    // baked copies: the loaded positions before deformation or growth, exact (a .cells
+    // file's mesh hash is over them), and the file's materials.
+    struct Rest {
+        std::vector<double> positions;  // xyz per vertex
+        std::vector<sim::MeshMaterial> materials;
+        std::vector<uint32_t> triangle_material;  // per triangle, or empty
+    };
+    std::shared_ptr<const Rest> rest;
 };
 
 struct ObjectGeometry {

@@ -358,9 +358,7 @@ template <typename Instr>
     }
     ph.footprint = sv.footprint * og.to_object_length;
     ph.depth = uint32_t(depth);
-    PelageShade sh{};
-    sh.albedo[0] = sh.albedo[1] = sh.albedo[2] = 0.5f;
-    sh.roughness = -1;
+    PelageShade sh = pelage_default_shade();
     instr.shade(m_scene.materials()[sv.object], ph, sh, stats);
     *albedo = {std::isfinite(sh.albedo[0]) ? std::clamp(sh.albedo[0], 0.0f, 1.0f) : 0.0f,
                std::isfinite(sh.albedo[1]) ? std::clamp(sh.albedo[1], 0.0f, 1.0f) : 0.0f,

@@ -58,12 +58,27 @@ void Scene::build(const SceneDesc &desc, const PluginRegistry &plugins) {
         ps.mesh.num_vertices = mesh.num_vertices;
         ps.mesh.num_triangles = mesh.num_triangles;
         ps.mesh.positions = mesh.object_positions.data();
+        ps.mesh.rest_positions = mesh.rest->positions.data();
         ps.mesh.triangles = mesh.triangles.data();
         ps.mesh.corner_uvs = mesh.corner_uvs.empty() ? nullptr : mesh.corner_uvs.data();
+        std::vector<PelageMeshMaterial> materials;
+        for (const sim::MeshMaterial &mm : mesh.rest->materials)
+            materials.push_back(
+                {mm.name.c_str(),
+                 {float(mm.diffuse.x), float(mm.diffuse.y), float(mm.diffuse.z)},
+                 mm.diffuse_texture.c_str()});
+        ps.mesh.materials = materials.data();
+        ps.mesh.num_materials = uint32_t(materials.size());
+        ps.mesh.triangle_materials = mesh.rest->triangle_material.empty()
+                                         ? nullptr
+                                         : mesh.rest->triangle_material.data();
         ps.mesh.cells_path = o.cells.empty() ? nullptr : o.cells.c_str();
-        ps.mesh.mesh_path = o.mesh.c_str();
+        ps.mesh.mesh_name = o.mesh.c_str();
         ps.scene_dir = desc.dir.c_str();
         ps.object_name = o.name.c_str();
+        ps.warn = [](void *, const char *message) {
+            std::fprintf(stderr, "%s\n", message);
+        };
         PelageError err{};
         Material &m = m_materials[i];
         m.plugin = chosen[i]->desc;
@@ -104,9 +119,7 @@ void Scene::build(const SceneDesc &desc, const PluginRegistry &plugins) {
                 hit.n[0] = n.x, hit.n[1] = n.y, hit.n[2] = n.z;
                 hit.depth =
                     1;  // not a camera hit: no antialiasing blend across cell edges
-                PelageShade sh{};
-                sh.albedo[0] = sh.albedo[1] = sh.albedo[2] = 0.5f;
-                sh.roughness = -1;
+                PelageShade sh = pelage_default_shade();
                 mat.plugin->shade(mat.instance, &hit, &sh);
                 shader::fur::RootPigment rp{sh.eumelanin, sh.pheomelanin, -1};
                 // Matte ids only when the film keeps Cryptomatte (16 bytes a strand).
@@ -115,13 +128,7 @@ void Scene::build(const SceneDesc &desc, const PluginRegistry &plugins) {
                         rp.matte[k] = sh.matte[k];
                     rp.matte_written = sh.matte_written;
                 }
-                // The cell type, when the plugin names an AOV slot "cell_type".
-                if (sh.aov_written && mat.plugin->aov_names)
-                    for (int k = 0;
-                         k < PELAGE_SHADER_AOV_SLOTS && mat.plugin->aov_names[k]; ++k)
-                        if (std::string(mat.plugin->aov_names[k]) == "cell_type" &&
-                            std::isfinite(sh.aov[k]) && sh.aov[k] >= 0)
-                            rp.cell_type = int(sh.aov[k]);
+                rp.cell_type = std::max(sh.cell_type, -1);
                 return rp;
             };
             m_fur = std::make_unique<FurGeometry>(desc, *m_geometry, pigment);

@@ -118,7 +118,7 @@ float noise_quantile(const Scene &scene, size_t object,
     std::vector<float> values;
     values.reserve(hits.size());
     for (const PelageHit &h : hits) {
-        PelageShade sh{};
+        PelageShade sh = pelage_default_shade();
         mat.plugin->shade(mat.instance, &h, &sh);
         values.push_back(sh.aov[slot]);
     }
@@ -282,7 +282,7 @@ CompareResult compare_shaders(const SceneDesc &desc, const CompareOptions &optio
         float sink = 0;
         auto shade_all = [&] {
             for (const PelageHit &h : shader_hits) {
-                PelageShade sh{};
+                PelageShade sh = pelage_default_shade();
                 mat.plugin->shade(mat.instance, &h, &sh);
                 sink += sh.albedo[0];
             }

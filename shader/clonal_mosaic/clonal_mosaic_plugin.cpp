@@ -314,11 +314,26 @@ void cell_look(const ClonalMosaic &cm, uint32_t cell, CellLook &look) {
     look.founder = look.id;
 }
 
+// The mesh the renderer loaded, before any deformation: the simulation's own surface
+// when the .cells file was grown on it (its hash is over these exact positions).
+sim::TriangleMesh rest_mesh(const PelageMeshView &view) {
+    sim::TriangleMesh mesh;
+    mesh.positions.resize(view.num_vertices);
+    for (uint32_t v = 0; v < view.num_vertices; ++v)
+        mesh.positions[v] = {view.rest_positions[3 * v], view.rest_positions[3 * v + 1],
+                             view.rest_positions[3 * v + 2]};
+    mesh.triangles.resize(view.num_triangles);
+    for (uint32_t t = 0; t < view.num_triangles; ++t)
+        for (int c = 0; c < 3; ++c) mesh.triangles[t][c] = view.triangles[3 * t + c];
+    return mesh;
+}
+
 std::unique_ptr<ClonalMosaic> make(const PelageParamSet &ps) {
     if (!ps.mesh.cells_path)
         throw std::invalid_argument(
             "needs the object's \"cells\": a .cells file made by pelage sim");
-    if (!ps.mesh.mesh_path) throw std::invalid_argument("the renderer gave no mesh path");
+    if (!ps.mesh.rest_positions || !ps.mesh.triangles)
+        throw std::invalid_argument("the renderer gave no mesh");
     const shader::sdk::Params p(params, ps);
     auto cm = std::make_unique<ClonalMosaic>();
     cm->jitter = p.get_float("jitter");
@@ -332,21 +347,25 @@ std::unique_ptr<ClonalMosaic> make(const PelageParamSet &ps) {
         throw std::invalid_argument("neighbourhood: \"" + neighbourhood +
                                     "\" is none of \"geodesic\", \"edges\", \"teo\"");
 
+    const std::string mesh_name = ps.mesh.mesh_name ? ps.mesh.mesh_name : "the mesh";
     cm->pattern = std::make_unique<shader::clonal_mosaic::MosaicPattern>(
-        ps.mesh.cells_path, ps.mesh.mesh_path,
+        ps.mesh.cells_path, rest_mesh(ps.mesh), mesh_name,
         neighbourhood == "geodesic" ? shader::clonal_mosaic::Neighbourhood::geodesic
         : neighbourhood == "teo"    ? shader::clonal_mosaic::Neighbourhood::unfolding_teo
                                  : shader::clonal_mosaic::Neighbourhood::unfolding_edges);
     cm->transfer = cm->pattern->transfer();
-    if (cm->transfer)
-        std::fprintf(stderr,
-                     "clonal_mosaic: %s was grown on another mesh of this shape (%zu "
-                     "triangles%s); it is rendered on %s (%zu triangles) through the "
-                     "closest points of that surface, at most %.2f %% of its size away\n",
-                     ps.mesh.cells_path, cm->pattern->num_triangles(),
-                     cm->transfer->similarity_applied() ? ", another size or place" : "",
-                     ps.mesh.mesh_path, cm->transfer->num_render_triangles(),
-                     100 * cm->transfer->max_deviation());
+    if (cm->transfer) {
+        char message[1024];
+        std::snprintf(message, sizeof message,
+                      "clonal_mosaic: %s was grown on another mesh of this shape (%zu "
+                      "triangles%s); it is rendered on %s (%zu triangles) through the "
+                      "closest points of that surface, at most %.2f %% of its size away",
+                      ps.mesh.cells_path, cm->pattern->num_triangles(),
+                      cm->transfer->similarity_applied() ? ", another size or place" : "",
+                      mesh_name.c_str(), cm->transfer->num_render_triangles(),
+                      100 * cm->transfer->max_deviation());
+        ps.warn(ps.warn_context, message);
+    }
     const size_t render_triangles = cm->transfer ? cm->transfer->num_render_triangles()
                                                  : cm->pattern->num_triangles();
     if (render_triangles != ps.mesh.num_triangles)
@@ -422,6 +441,7 @@ void shade_as(const ClonalMosaic &cm, const CellLook &cell, float f1, PelageShad
     out->aov[1] = type.aov_type;
     out->aov[2] = f1;
     out->aov_written = 1;
+    out->cell_type = int32_t(cell.type);
     out->matte[matte_type] = cell.type;
     out->matte[matte_cell] = cell.id;
     out->matte[matte_lineage] = cell.founder;
@@ -531,6 +551,7 @@ void shade_cells(const ClonalMosaic &cm, const PelageHit *hit, PelageShade *out,
                 out->aov[1] = cm.types[cell.type].aov_type;
                 out->aov[2] = c.f1;
                 out->aov_written = 1;
+                out->cell_type = int32_t(cell.type);
                 out->matte[matte_type] = cell.type;
                 out->matte[matte_cell] = cell.id;
                 out->matte[matte_lineage] = cell.founder;

@@ -4,17 +4,21 @@ namespace pelage::shader::clonal_mosaic {
 
 MosaicPattern::MosaicPattern(const std::string &cells_path, const std::string &mesh_path,
                              Neighbourhood neighbourhood)
-    : m_data(sim::read_cells_file(cells_path)),
-      // The same loader as `pelage sim` and the renderer: for the mesh the cells were
-      // grown on, identical triangles, so a hit's primitive id is the .cells triangle.
-      m_surface(std::make_unique<sim::Surface>(sim::build_surface(mesh_path))) {
-    if (m_data.num_triangles() != m_surface->mesh.num_triangles() ||
-        m_data.mesh_hash != sim::mesh_hash(m_surface->mesh)) {
-        const sim::TriangleMesh render = std::move(m_surface->mesh);
+    // The same loader as `pelage sim` and the renderer: for the mesh the cells were grown
+    // on, identical triangles, so a hit's primitive id is the .cells triangle.
+    : MosaicPattern(cells_path, sim::load_mesh(mesh_path), mesh_path, neighbourhood) {}
+
+MosaicPattern::MosaicPattern(const std::string &cells_path, sim::TriangleMesh render,
+                             const std::string &render_name, Neighbourhood neighbourhood)
+    : m_data(sim::read_cells_file(cells_path)) {
+    if (m_data.num_triangles() == render.num_triangles() &&
+        m_data.mesh_hash == sim::mesh_hash(render)) {
+        m_surface = std::make_unique<sim::Surface>(sim::build_surface(std::move(render)));
+    } else {
         m_surface = std::make_unique<sim::Surface>(
             sim::build_surface(sim::surface_mesh(m_data, cells_path)));
-        m_transfer =
-            std::make_unique<SurfaceTransfer>(*m_surface, render, cells_path, mesh_path);
+        m_transfer = std::make_unique<SurfaceTransfer>(*m_surface, render, cells_path,
+                                                       render_name);
     }
     std::vector<CellOnSurface> list;
     list.reserve(m_data.num_cells());

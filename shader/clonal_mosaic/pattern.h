@@ -24,6 +24,11 @@ class MosaicPattern {
     // is not the shape the cells were grown on.
     MosaicPattern(const std::string &cells_path, const std::string &mesh_path,
                   Neighbourhood neighbourhood = Neighbourhood::geodesic);
+    // The same for a render mesh already loaded (sim/mesh/mesh_load.h) — the renderer's,
+    // handed to the plugin; `render_name` names it in messages.
+    MosaicPattern(const std::string &cells_path, sim::TriangleMesh render,
+                  const std::string &render_name,
+                  Neighbourhood neighbourhood = Neighbourhood::geodesic);
 
     // Triangles of the simulation surface (what the index and cells refer to).
     size_t num_triangles() const { return m_cells.num_triangles(); }

@@ -5,9 +5,8 @@
  * stored (like the texture plugin), through OpenImageIO's TextureSystem, repeating
  * outside [0, 1].
  *
- * The renderer hands the mesh's path (mesh_path, "FILE#OBJECT" included); the plugin
- * reads the file again through pelage's loader (sim/mesh/mesh_load.h), so its triangles
- * are the renderer's, in the same order, and checks that they are as many.
+ * The renderer hands the file's materials and each triangle's material in the mesh view
+ * (PelageMeshView::materials, triangle_materials).
  *
  * | parameter | type | default         | meaning                                       |
  * | default   | rgb  | (0.5, 0.5, 0.5) | albedo of triangles the file gives no material |
@@ -26,7 +25,6 @@
 #include "shader/pelage_shader.h"
 #include "shader/sdk/create_guard.h"
 #include "shader/sdk/params.h"
-#include "sim/mesh/mesh_load.h"
 
 namespace {
 
@@ -60,31 +58,29 @@ const PelageParamSpec params[] = {
 
 std::unique_ptr<MeshMaterials> make(const PelageParamSet &ps) {
     const Params p(params, ps);
-    if (!ps.mesh.mesh_path) throw std::invalid_argument("the renderer gave no mesh path");
-    const pelage::sim::TriangleMesh mesh = pelage::sim::load_mesh(ps.mesh.mesh_path);
-    if (mesh.num_triangles() != ps.mesh.num_triangles)
+    if (!ps.mesh.triangle_materials || ps.mesh.num_materials == 0)
         throw std::invalid_argument(
-            "the renderer's mesh has " + std::to_string(ps.mesh.num_triangles) +
-            " triangles, the file's " + std::to_string(mesh.num_triangles()));
-    if (mesh.materials.empty())
-        throw std::invalid_argument(std::string(ps.mesh.mesh_path) +
-                                    " defines no materials (an OBJ needs its .mtl)");
+            std::string(ps.mesh.mesh_name ? ps.mesh.mesh_name : "the mesh") +
+            " defines no materials (an OBJ needs its .mtl)");
     auto m = std::make_unique<MeshMaterials>();
-    m->material = mesh.triangle_material;
+    m->material.assign(ps.mesh.triangle_materials,
+                       ps.mesh.triangle_materials + ps.mesh.num_triangles);
     const bool textures = p.get_int("textures") != 0;
-    for (const pelage::sim::MeshMaterial &mm : mesh.materials) {
-        m->colour.push_back({float(std::clamp(mm.diffuse.x, 0.0, 1.0)),
-                             float(std::clamp(mm.diffuse.y, 0.0, 1.0)),
-                             float(std::clamp(mm.diffuse.z, 0.0, 1.0))});
+    for (uint32_t k = 0; k < ps.mesh.num_materials; ++k) {
+        const PelageMeshMaterial &mm = ps.mesh.materials[k];
+        const std::string name = mm.name, texture = mm.diffuse_texture;
+        m->colour.push_back({std::clamp(mm.diffuse[0], 0.0f, 1.0f),
+                             std::clamp(mm.diffuse[1], 0.0f, 1.0f),
+                             std::clamp(mm.diffuse[2], 0.0f, 1.0f)});
         OIIO::TextureSystem::TextureHandle *handle = nullptr;
-        if (textures && !mm.diffuse_texture.empty()) {
+        if (textures && !texture.empty()) {
             if (!ps.mesh.corner_uvs)
                 throw std::invalid_argument(
-                    "material \"" + mm.name + "\" has the texture " + mm.diffuse_texture +
+                    "material \"" + name + "\" has the texture " + texture +
                     " but the mesh has no UVs (set \"textures\": 0)");
-            if (!std::filesystem::exists(mm.diffuse_texture))
-                throw std::invalid_argument("material \"" + mm.name +
-                                            "\": no such image " + mm.diffuse_texture);
+            if (!std::filesystem::exists(texture))
+                throw std::invalid_argument("material \"" + name + "\": no such image " +
+                                            texture);
             // The process-wide shared texture system, as in the texture plugin (a
             // private one would go through OIIO 2.4's mis-sized delete).
             if (!m->system) {
@@ -92,11 +88,11 @@ std::unique_ptr<MeshMaterials> make(const PelageParamSet &ps) {
                     OIIO::TextureSystem::create(true), [](OIIO::TextureSystem *) {});
                 m->system->attribute("automip", 1);
             }
-            const OIIO::ustring file(mm.diffuse_texture);
+            const OIIO::ustring file(texture);
             m->system->invalidate(file, false);
             handle = m->system->get_texture_handle(file);
             if (!handle || !m->system->imagespec(handle, nullptr))
-                throw std::runtime_error(mm.diffuse_texture +
+                throw std::runtime_error(texture +
                                          ": cannot read: " + m->system->geterror());
         }
         m->texture.push_back(handle);
@@ -110,7 +106,7 @@ void shade(const void *self, const PelageHit *hit, PelageShade *out) {
     const MeshMaterials &m = *static_cast<const MeshMaterials *>(self);
     const uint32_t k = hit->primitive_id < m.material.size()
                            ? m.material[hit->primitive_id]
-                           : pelage::sim::invalid_id;
+                           : 0xFFFFFFFFu;
     const size_t slot = k < m.texture.size() ? k : m.colour.size() - 1;
     float rgb[3] = {m.colour[slot][0], m.colour[slot][1], m.colour[slot][2]};
     if (slot < m.texture.size() && m.texture[slot] && hit->has_uv) {

@@ -17,6 +17,7 @@
 #include "sim/mesh/mesh_load.h"
 #include "sim/mesh/procedural_mesh.h"
 #include "tests/renderer/render_helpers.h"
+#include "tests/shader/plugin_mesh_view.h"
 #include "tests/test_paths.h"
 
 namespace pelage::test {
@@ -127,22 +128,12 @@ void check_case(const Case &c) {
     const renderer::LoadedPlugin plugin = renderer::open_plugin(plugin_file());
     const renderer::PluginParams params = renderer::validate_plugin_params(
         *plugin.desc, nlohmann::json{{"antialias", 0}}, "test.json", "params");
-    std::vector<float> positions;
-    std::vector<uint32_t> triangles;
-    for (const auto &v : mesh.positions)
-        positions.insert(positions.end(), {float(v.x), float(v.y), float(v.z)});
-    for (const auto &t : mesh.triangles)
-        triangles.insert(triangles.end(), t.begin(), t.end());
+    const test::PluginMeshView view(mesh, mesh_path, cells_path.c_str());
     PelageParamSet ps{};
     ps.count = uint32_t(params.values.size());
     ps.values = params.values.data();
-    ps.mesh = {uint32_t(mesh.num_vertices()),
-               uint32_t(mesh.num_triangles()),
-               positions.data(),
-               triangles.data(),
-               nullptr,
-               cells_path.c_str(),
-               mesh_path.c_str()};
+    ps.mesh = view.view;
+    ps.warn = test::PluginMeshView::warn;
     PelageError err{};
     void *self = plugin.desc->create(&ps, &err);
     ASSERT_NE(self, nullptr) << err.message;

@@ -10,15 +10,15 @@
 #include "renderer/core/install_layout.h"
 #include "renderer/plugins/plugin_loader.h"
 #include "sim/mesh/mesh_load.h"
+#include "tests/shader/plugin_mesh_view.h"
 
 namespace pelage::test {
 
 struct MosaicPluginInstance {
     renderer::LoadedPlugin plugin;
     renderer::PluginParams params;
-    sim::TriangleMesh mesh;
-    std::vector<float> positions;
-    std::vector<uint32_t> triangles;
+    PluginMeshView view;
+    const sim::TriangleMesh &mesh = view.mesh;
     void *self = nullptr;  // null when create() refused; `error` says why
     std::string error;
 
@@ -29,21 +29,12 @@ struct MosaicPluginInstance {
                                        "/shaders/clonal_mosaic.so")),
           params(
               renderer::validate_plugin_params(*plugin.desc, p, "test.json", "params")),
-          mesh(sim::load_mesh(mesh_path)) {
-        for (const auto &v : mesh.positions)
-            positions.insert(positions.end(), {float(v.x), float(v.y), float(v.z)});
-        for (const auto &t : mesh.triangles)
-            triangles.insert(triangles.end(), t.begin(), t.end());
+          view(sim::load_mesh(mesh_path), mesh_path, cells) {
         PelageParamSet ps{};
         ps.count = uint32_t(params.values.size());
         ps.values = params.values.data();
-        ps.mesh = {uint32_t(mesh.num_vertices()),
-                   uint32_t(mesh.num_triangles()),
-                   positions.data(),
-                   triangles.data(),
-                   nullptr,
-                   cells,
-                   mesh_path.c_str()};
+        ps.mesh = view.view;
+        ps.warn = PluginMeshView::warn;
         PelageError err{};
         self = plugin.desc->create(&ps, &err);
         error = err.message;

@@ -22,6 +22,7 @@ renderer::LoadedPlugin load(const std::string &name) {
 
 // One triangle in object space, with corner UVs.
 const float positions[] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
+const double rest_positions[] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
 const uint32_t triangles[] = {0, 1, 2};
 const float uvs[] = {0, 0, 1, 0, 0, 1};
 
@@ -35,7 +36,15 @@ Created create(const renderer::LoadedPlugin &p, const std::vector<PelageParamVal
     PelageParamSet ps{};
     ps.count = uint32_t(v.size());
     ps.values = v.data();
-    ps.mesh = {3, 1, positions, triangles, uvs, cells, "procedural:test"};
+    ps.mesh.num_vertices = 3;
+    ps.mesh.num_triangles = 1;
+    ps.mesh.positions = positions;
+    ps.mesh.rest_positions = rest_positions;
+    ps.mesh.triangles = triangles;
+    ps.mesh.corner_uvs = uvs;
+    ps.mesh.cells_path = cells;
+    ps.mesh.mesh_name = "procedural:test";
+    ps.warn = [](void *, const char *) {};
     ps.scene_dir = "";
     PelageError err{};
     Created c;

@@ -26,6 +26,7 @@ struct Instance {
     renderer::LoadedPlugin plugin;
     renderer::PluginParams params;
     float positions[9] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
+    double rest_positions[9] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
     uint32_t triangles[3] = {0, 1, 2};
     float uvs[6] = {0, 0, 1, 0, 0, 1};
     void *self = nullptr;
@@ -38,7 +39,15 @@ struct Instance {
         PelageParamSet ps{};
         ps.count = uint32_t(params.values.size());
         ps.values = params.values.data();
-        ps.mesh = {3, 1, positions, triangles, uvs, nullptr, "test"};
+        ps.mesh.num_vertices = 3;
+        ps.mesh.num_triangles = 1;
+        ps.mesh.positions = positions;
+        ps.mesh.rest_positions = rest_positions;
+        ps.mesh.triangles = triangles;
+        ps.mesh.corner_uvs = uvs;
+        ps.mesh.cells_path = nullptr;
+        ps.mesh.mesh_name = "test";
+        ps.warn = [](void *, const char *) {};
         ps.scene_dir = "";
         ps.object_name = "test";
         PelageError err{};
