@@ -19,10 +19,10 @@
 #include <iostream>
 
 #include "renderer/cli/bench.h"
-#include "shader/clonal_mosaic/closest_cell.h"
-#include "shader/clonal_mosaic/coherent_lookup.h"
-#include "shader/clonal_mosaic/edge_consistency.h"
-#include "shader/clonal_mosaic/mosaic_lod.h"
+#include "shader/mosaic/closest_cell.h"
+#include "shader/mosaic/coherent_lookup.h"
+#include "shader/mosaic/edge_consistency.h"
+#include "shader/mosaic/mosaic_lod.h"
 #include "sim/core/input_error.h"
 #include "sim/crps/surface.h"
 #include "sim/crps/surface_sampling.h"
@@ -43,7 +43,7 @@ struct BenchLookupOptions {
     BenchOutput out;
 };
 
-using Query = std::pair<sim::TriId, shader::clonal_mosaic::Vec2f>;
+using Query = std::pair<sim::TriId, shader::mosaic::Vec2f>;
 
 // This thread's CPU seconds: on a shared machine wall time also counts the time other
 // jobs hold the cores, CPU time only the lookups' own (cache contention still shows).
@@ -61,14 +61,13 @@ class CpuTimer {
     double m_start;
 };
 
-nlohmann::json measure(const sim::Surface &s,
-                       const shader::clonal_mosaic::CellTable &cells,
+nlohmann::json measure(const sim::Surface &s, const shader::mosaic::CellTable &cells,
                        const std::vector<Query> &queries,
                        const std::vector<Query> &coherent,
-                       shader::clonal_mosaic::Neighbourhood neighbourhood,
-                       uint32_t subdivision, const sim::WindowsByFace &exact) {
-    const shader::clonal_mosaic::ClosestCellIndex index(s.crps, cells,
-                                                        {neighbourhood, subdivision});
+                       shader::mosaic::Neighbourhood neighbourhood, uint32_t subdivision,
+                       const sim::WindowsByFace &exact) {
+    const shader::mosaic::ClosestCellIndex index(s.crps, cells,
+                                                 {neighbourhood, subdivision});
     // --- Against exact geodesics: the first 20 000 queries ---
     size_t compared = 0, same = 0, same_colour = 0, impossible = 0;
     double worst = 0;
@@ -76,9 +75,9 @@ nlohmann::json measure(const sim::Surface &s,
         const auto &[t, q] = queries[i];
         const sim::Vec2d qd{q.x, q.y};
         const sim::WindowsByFace::Nearest truth = exact.nearest(t, qd);
-        const shader::clonal_mosaic::ClosestCell c = index.find_nearest(t, q);
+        const shader::mosaic::ClosestCell c = index.find_nearest(t, q);
         if (truth.source == sim::invalid_id ||
-            c.index == shader::clonal_mosaic::ClosestCell::none)
+            c.index == shader::mosaic::ClosestCell::none)
             continue;
         ++compared;
         same += c.index == truth.source;
@@ -99,9 +98,9 @@ nlohmann::json measure(const sim::Surface &s,
     const double ns_wall = 1e9 * wall.seconds() / queries.size();
     // The same lookups with the four-lane scans (lane_scan.h): their time, and that they
     // find the same cells.
-    shader::clonal_mosaic::ClosestCellOptions narrow_options{neighbourhood, subdivision};
+    shader::mosaic::ClosestCellOptions narrow_options{neighbourhood, subdivision};
     narrow_options.wide_lanes = false;
-    const shader::clonal_mosaic::ClosestCellIndex narrow(s.crps, cells, narrow_options);
+    const shader::mosaic::ClosestCellIndex narrow(s.crps, cells, narrow_options);
     uint64_t wide_sink = 0, narrow_sink = 0;
     for (const auto &[t, q] : queries) wide_sink += index.find(t, q).index;
     const CpuTimer four_lanes;
@@ -141,18 +140,18 @@ nlohmann::json measure(const sim::Surface &s,
     for (const Step &w : walk)
         sink += index.find_three_within(w.t, w.b1, w.b2, band).index[1];
     const double ns_walk = 1e9 * walked.seconds() / walk.size();
-    shader::clonal_mosaic::CoherentLookup reuse;
+    shader::mosaic::CoherentLookup reuse;
     const CpuTimer reused;
     for (const Step &w : walk)
         sink += reuse.find_three_within(index, 1, w.t, w.b1, w.b2, band).index[1];
     const double ns_walk_reuse = 1e9 * reused.seconds() / walk.size();
     // Indirect hits with wide footprints (the material's level of detail): the filtered
     // look at random points, in random order.
-    const shader::clonal_mosaic::MosaicLod lod(
+    const shader::mosaic::MosaicLod lod(
         s, index,
         [&](uint32_t c) {
             const float v = float(cells.type[c]);
-            return shader::clonal_mosaic::FilteredLook{{v, 1 - v, 0.5f * v, v, 1 - v}};
+            return shader::mosaic::FilteredLook{{v, 1 - v, 0.5f * v, v, 1 - v}};
         },
         2);
     std::vector<std::array<float, 2>> bary;  // hits come with barycentrics
@@ -173,16 +172,16 @@ nlohmann::json measure(const sim::Surface &s,
     size_t agree = 0;
     const CpuTimer exhaustive;
     for (size_t i = 0; i < n_ex; ++i) {
-        const shader::clonal_mosaic::ClosestCell a =
+        const shader::mosaic::ClosestCell a =
             index.find_exhaustive(queries[i].first, queries[i].second);
-        const shader::clonal_mosaic::ClosestCell b =
+        const shader::mosaic::ClosestCell b =
             index.find(queries[i].first, queries[i].second);
         agree += a.index == b.index && a.f2 == b.f2;
     }
     const double ns_ex = 1e9 * exhaustive.seconds() / n_ex - ns;  // minus the pruned call
-    const shader::clonal_mosaic::EdgeConsistency edges =
-        shader::clonal_mosaic::measure_edge_consistency(s.mesh, s.crps, index);
-    using shader::clonal_mosaic::Neighbourhood;
+    const shader::mosaic::EdgeConsistency edges =
+        shader::mosaic::measure_edge_consistency(s.mesh, s.crps, index);
+    using shader::mosaic::Neighbourhood;
     return {{"neighbourhood", neighbourhood == Neighbourhood::geodesic ? "geodesic"
                               : neighbourhood == Neighbourhood::unfolding_edges
                                   ? "unfolding_edges"
@@ -223,15 +222,14 @@ nlohmann::json measure(const sim::Surface &s,
 
 // Area-uniform random cells stand in for a simulated mosaic: same density, and the
 // search does not care how the cells got there. Types alternate.
-shader::clonal_mosaic::CellTable random_cells(const sim::Crps &crps, size_t n,
-                                              uint64_t seed) {
-    std::vector<shader::clonal_mosaic::CellOnSurface> list;
+shader::mosaic::CellTable random_cells(const sim::Crps &crps, size_t n, uint64_t seed) {
+    std::vector<shader::mosaic::CellOnSurface> list;
     uint32_t id = 0;
     for (const auto &p : sim::sample_surface_uniform(crps, n, seed)) {
         list.push_back({p.tri, p.p.x, p.p.y, id, uint8_t(id % 2)});
         ++id;
     }
-    return shader::clonal_mosaic::make_cell_table(crps.num_triangles(), list);
+    return shader::mosaic::make_cell_table(crps.num_triangles(), list);
 }
 
 int run(const BenchLookupOptions &o) {
@@ -249,8 +247,7 @@ int run(const BenchLookupOptions &o) {
     nlohmann::json runs = nlohmann::json::array();
     for (const std::string &mesh : meshes) {
         const sim::Surface s = sim::build_surface(mesh);
-        const shader::clonal_mosaic::CellTable cells =
-            random_cells(s.crps, o.cells, o.seed);
+        const shader::mosaic::CellTable cells = random_cells(s.crps, o.cells, o.seed);
         std::vector<Query> queries;
         for (const auto &p : sim::sample_surface_uniform(s.crps, o.queries, o.seed + 1))
             queries.push_back({p.tri, {float(p.p.x), float(p.p.y)}});
@@ -275,7 +272,7 @@ int run(const BenchLookupOptions &o) {
         sim::WindowsByFace exact;
         exact.build(geodesic_mesh, sources,
                     4 * std::sqrt(area / double(std::max<size_t>(cells.size(), 1))));
-        using shader::clonal_mosaic::Neighbourhood;
+        using shader::mosaic::Neighbourhood;
         nlohmann::json run = measure(s, cells, queries, coherent, Neighbourhood::geodesic,
                                      o.subdivision, exact);
         run["mesh"] = mesh;
@@ -300,7 +297,7 @@ int run(const BenchLookupOptions &o) {
             if (level > 0) mesh = sim::subdivide(mesh, sim::Subdivision::midpoint);
             const sim::Surface s = sim::build_surface(mesh);
             const auto cells = random_cells(s.crps, o.cells, o.seed);
-            const shader::clonal_mosaic::ClosestCellIndex index(s.crps, cells);
+            const shader::mosaic::ClosestCellIndex index(s.crps, cells);
             std::vector<Query> queries;
             for (const auto &p : sim::sample_surface_uniform(
                      s.crps, std::min<size_t>(o.queries, 200000), o.seed + 1))

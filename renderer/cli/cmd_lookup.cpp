@@ -11,7 +11,7 @@
 #include <sstream>
 
 #include "renderer/cli/common.h"
-#include "shader/clonal_mosaic/pattern.h"
+#include "shader/mosaic/pattern.h"
 #include "sim/core/input_error.h"
 #include "sim/core/text_lines.h"
 
@@ -25,7 +25,7 @@ struct LookupOptions {
 
 int run(const LookupOptions &o) {
     const Timer load;
-    const shader::clonal_mosaic::MosaicPattern pattern(o.cells, o.mesh);
+    const shader::mosaic::MosaicPattern pattern(o.cells, o.mesh);
     const double seconds_load = load.seconds();
     std::ifstream in(o.points, std::ios::binary);
     if (!in) throw InputError(o.points, 0, "", "cannot open file");
@@ -71,11 +71,11 @@ int run(const LookupOptions &o) {
     double sum = 0, max = 0;
     for (const Query &q : queries) {
         // As the renderer: carried onto the simulation surface when the mesh is another.
-        shader::clonal_mosaic::SurfaceTransfer::Target at{q.face, q.b1, q.b2};
+        shader::transfer::SurfaceTransfer::Target at{q.face, q.b1, q.b2};
         if (pattern.transfer()) at = pattern.transfer()->map(q.face, q.b1, q.b2);
-        const shader::clonal_mosaic::ClosestCell c =
+        const shader::mosaic::ClosestCell c =
             pattern.index().find_nearest(at.tri, at.b1, at.b2);
-        if (c.index == shader::clonal_mosaic::ClosestCell::none) {
+        if (c.index == shader::mosaic::ClosestCell::none) {
             std::printf("none none inf\n");
             continue;
         }

@@ -1,9 +1,9 @@
 // `pelage stats FILE.cells [--mesh MESH] [--json]`: pattern statistics of a .cells file
 // (sim/cells_io/pattern_stats.h). JSON keys are a contract: cells_by_type, spot_fraction,
 // spots, mean_spot_area; with --mesh also the area each type covers as the renderer
-// shows it (shader/clonal_mosaic/area_fractions.h): area_fraction_by_type,
+// shows it (shader/statistics/area_fractions.h): area_fraction_by_type,
 // spot_fraction_by_area, area_samples; and the look of the spots measured on the surface
-// (shader/clonal_mosaic/spot_statistics.h): spot_count, spot_area_mean, spot_area_sd,
+// (shader/statistics/spot_statistics.h): spot_count, spot_area_mean, spot_area_sd,
 // spot_area_share_mean, spot_neighbours_mean, spot_circularity_mean, spot_complexity,
 // background_components, background_largest_share, background_near_spot,
 // grid_resolution; for cells grown with anisotropy, how their F/B boundaries follow its
@@ -18,8 +18,8 @@
 
 #include "renderer/cli/common.h"
 #include "renderer/cli/mask_adherence.h"
-#include "shader/clonal_mosaic/area_fractions.h"
-#include "shader/clonal_mosaic/spot_statistics.h"
+#include "shader/statistics/area_fractions.h"
+#include "shader/statistics/spot_statistics.h"
 #include "sim/cells_io/cells_file.h"
 #include "sim/cells_io/pattern_stats.h"
 #include "sim/cells_io/stripe_alignment.h"
@@ -43,9 +43,9 @@ struct StatsOptions {
 // Adds the area keys: each type's share of the surface, and F / (F + B) by area (the
 // count-based spot_fraction's definition, measured by area).
 void add_area_fractions(const StatsOptions &o, nlohmann::json *j) {
-    const shader::clonal_mosaic::MosaicPattern pattern(o.file, o.mesh);
-    const shader::clonal_mosaic::AreaFractions a =
-        shader::clonal_mosaic::measure_area_fractions(pattern, o.area_samples, o.seed);
+    const shader::mosaic::MosaicPattern pattern(o.file, o.mesh);
+    const shader::statistics::AreaFractions a =
+        shader::statistics::measure_area_fractions(pattern, o.area_samples, o.seed);
     nlohmann::json by_type = nlohmann::json::object();
     double f = 0, b = 0;
     for (size_t k = 0; k < a.by_type.size(); ++k) {
@@ -58,8 +58,8 @@ void add_area_fractions(const StatsOptions &o, nlohmann::json *j) {
     (*j)["spot_fraction_by_area"] = f + b > 0 ? f / (f + b) : 0.0;
     (*j)["area_samples"] = a.samples;
 
-    const shader::clonal_mosaic::SpotStatistics l =
-        shader::clonal_mosaic::measure_spot_statistics(pattern, o.grid_resolution);
+    const shader::statistics::SpotStatistics l =
+        shader::statistics::measure_spot_statistics(pattern, o.grid_resolution);
     (*j)["spot_count"] = l.spots;
     (*j)["spot_area_mean"] = l.spot_area_mean;
     (*j)["spot_area_sd"] = l.spot_area_sd;

@@ -9,7 +9,7 @@
 namespace pelage::renderer::cli {
 
 std::vector<MaskAdherence> measure_mask_adherence(
-    const shader::clonal_mosaic::MosaicPattern &pattern, const std::string &mesh_path,
+    const shader::mosaic::MosaicPattern &pattern, const std::string &mesh_path,
     const sim::Preset &preset, const std::string &preset_file, size_t samples,
     uint64_t seed) {
     const sim::ControlSpec &spec = preset.control;
@@ -25,9 +25,9 @@ std::vector<MaskAdherence> measure_mask_adherence(
     std::vector<size_t> zero(spec.masks.size(), 0), wrong(spec.masks.size(), 0);
     size_t found = 0;
     for (const auto &s : sim::sample_surface_uniform(surface.crps, samples, seed)) {
-        const shader::clonal_mosaic::ClosestCell c =
+        const shader::mosaic::ClosestCell c =
             pattern.index().find_nearest(s.tri, {float(s.p.x), float(s.p.y)});
-        if (c.index == shader::clonal_mosaic::ClosestCell::none) continue;
+        if (c.index == shader::mosaic::ClosestCell::none) continue;
         ++found;
         const int type = pattern.cells().type[c.index];
         for (size_t k = 0; k < spec.masks.size(); ++k) {

@@ -9,7 +9,7 @@
 #include <cstdint>
 #include <nlohmann/json.hpp>
 
-#include "shader/clonal_mosaic/pattern.h"
+#include "shader/mosaic/pattern.h"
 #include "sim/mosaic/cell_types.h"
 
 namespace pelage::renderer::cli {
@@ -25,7 +25,7 @@ struct MaskAdherence {
 // One entry per mask of `preset` (resolved on the pattern's simulation surface; the
 // pattern's mesh file `mesh_path` supplies attributes and UVs).
 std::vector<MaskAdherence> measure_mask_adherence(
-    const shader::clonal_mosaic::MosaicPattern &pattern, const std::string &mesh_path,
+    const shader::mosaic::MosaicPattern &pattern, const std::string &mesh_path,
     const sim::Preset &preset, const std::string &preset_file, size_t samples,
     uint64_t seed);
 

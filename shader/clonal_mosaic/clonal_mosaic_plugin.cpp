@@ -17,9 +17,9 @@
 #include <string>
 #include <vector>
 
-#include "shader/clonal_mosaic/coherent_lookup.h"
-#include "shader/clonal_mosaic/mosaic_lod.h"
-#include "shader/clonal_mosaic/pattern.h"
+#include "shader/mosaic/coherent_lookup.h"
+#include "shader/mosaic/mosaic_lod.h"
+#include "shader/mosaic/pattern.h"
 #include "shader/pelage_shader.h"
 #include "shader/sdk/create_guard.h"
 #include "shader/sdk/params.h"
@@ -50,15 +50,15 @@ struct CellLook {
 };
 
 struct ClonalMosaic {
-    std::unique_ptr<shader::clonal_mosaic::MosaicPattern> pattern;
-    const shader::clonal_mosaic::CellTable *cells_ptr = nullptr;
-    const shader::clonal_mosaic::ClosestCellIndex *index = nullptr;
+    std::unique_ptr<shader::mosaic::MosaicPattern> pattern;
+    const shader::mosaic::CellTable *cells_ptr = nullptr;
+    const shader::mosaic::ClosestCellIndex *index = nullptr;
     // Rendering another mesh of the simulation surface's shape: hits are carried onto it
     // (surface_transfer.h); null when the render mesh is the simulation's own.
-    const shader::clonal_mosaic::SurfaceTransfer *transfer = nullptr;
+    const shader::transfer::SurfaceTransfer *transfer = nullptr;
     std::vector<TypeLook> types;
-    std::vector<CellLook> looks;                            // per cell, CellTable order
-    std::unique_ptr<shader::clonal_mosaic::MosaicLod> lod;  // null: lod = 0
+    std::vector<CellLook> looks;                     // per cell, CellTable order
+    std::unique_ptr<shader::mosaic::MosaicLod> lod;  // null: lod = 0
     float jitter = 0, edge_width = 0;
     bool antialias = true, coherence = true;
     // shade()'s fast path for camera hits: their footprints up to this width see the
@@ -80,7 +80,7 @@ std::atomic<uint64_t> instances_created{0};
 // a static TLS surplus for them (rtld.optional_static_tls, 512 bytes by default; this
 // object is ~100), and loading fails cleanly, not silently, if it ever ran out.
 [[gnu::tls_model(
-    "initial-exec")]] thread_local shader::clonal_mosaic::CoherentLookup coherent_lookup;
+    "initial-exec")]] thread_local shader::mosaic::CoherentLookup coherent_lookup;
 
 const PelageParamSpec params[] = {
     {"jitter",
@@ -348,11 +348,11 @@ std::unique_ptr<ClonalMosaic> make(const PelageParamSet &ps) {
                                     "\" is none of \"geodesic\", \"edges\", \"teo\"");
 
     const std::string mesh_name = ps.mesh.mesh_name ? ps.mesh.mesh_name : "the mesh";
-    cm->pattern = std::make_unique<shader::clonal_mosaic::MosaicPattern>(
+    cm->pattern = std::make_unique<shader::mosaic::MosaicPattern>(
         ps.mesh.cells_path, rest_mesh(ps.mesh), mesh_name,
-        neighbourhood == "geodesic" ? shader::clonal_mosaic::Neighbourhood::geodesic
-        : neighbourhood == "teo"    ? shader::clonal_mosaic::Neighbourhood::unfolding_teo
-                                 : shader::clonal_mosaic::Neighbourhood::unfolding_edges);
+        neighbourhood == "geodesic" ? shader::mosaic::Neighbourhood::geodesic
+        : neighbourhood == "teo"    ? shader::mosaic::Neighbourhood::unfolding_teo
+                                    : shader::mosaic::Neighbourhood::unfolding_edges);
     cm->transfer = cm->pattern->transfer();
     if (cm->transfer) {
         char message[1024];
@@ -410,14 +410,14 @@ std::unique_ptr<ClonalMosaic> make(const PelageParamSet &ps) {
         cm->matte_bits |= 1u << matte_lineage;
     }
     if (p.get_bool("lod"))
-        cm->lod = std::make_unique<shader::clonal_mosaic::MosaicLod>(
+        cm->lod = std::make_unique<shader::mosaic::MosaicLod>(
             *cm->pattern,
             [&](uint32_t cell) {
                 const CellLook &look = cm->looks[cell];
                 const TypeLook &type = cm->types[look.type];
-                return shader::clonal_mosaic::FilteredLook{{look.rgb[0], look.rgb[1],
-                                                            look.rgb[2], type.eumelanin,
-                                                            type.pheomelanin}};
+                return shader::mosaic::FilteredLook{{look.rgb[0], look.rgb[1],
+                                                     look.rgb[2], type.eumelanin,
+                                                     type.pheomelanin}};
             },
             cm->types.size());
     cm->num_triangles = uint32_t(cm->cells_ptr->num_triangles());
@@ -453,13 +453,13 @@ void shade_as(const ClonalMosaic &cm, const CellLook &cell, float f1, PelageShad
 // (F1 = F2 = F3), zero once a cell is 2w farther than the nearest. Continuous everywhere
 // except where four cells lie within 2w of each other's distance.
 inline void shade_blend(const ClonalMosaic &cm,
-                        const shader::clonal_mosaic::CoherentLookup::Result &n, float w,
+                        const shader::mosaic::CoherentLookup::Result &n, float w,
                         PelageShade *out) {
     const float f1 = std::sqrt(n.d2[0]);
     const CellLook &nearest = cm.looks[n.index[0]];
     // No other cell within 2w (most hits): the blend is the nearest cell's look exactly
     // (weight 1, total 1), so skip the arithmetic.
-    if (n.index[1] == shader::clonal_mosaic::ClosestCell::none) {
+    if (n.index[1] == shader::mosaic::ClosestCell::none) {
         shade_as(cm, nearest, f1, out);
         return;
     }
@@ -469,8 +469,7 @@ inline void shade_blend(const ClonalMosaic &cm,
     // nearest cell's 0 · inf a NaN.)
     const float inv_width = 1 / std::max(2 * w, std::numeric_limits<float>::min());
     float rgb[3] = {0, 0, 0}, eu = 0, pheo = 0, total = 0;
-    for (int i = 0; i < 3 && n.index[i] != shader::clonal_mosaic::ClosestCell::none;
-         ++i) {
+    for (int i = 0; i < 3 && n.index[i] != shader::mosaic::ClosestCell::none; ++i) {
         const float x = std::min((std::sqrt(n.d2[i]) - f1) * inv_width, 1.0f);
         const float weight = 1 - x * x * (3 - 2 * x);
         if (weight <= 0) break;
@@ -492,16 +491,16 @@ inline void shade_blend(const ClonalMosaic &cm,
 // `tried`: this thread's CoherentLookup when shade()'s fast path already found its
 // reuse impossible (null otherwise).
 void shade_cells(const ClonalMosaic &cm, const PelageHit *hit, PelageShade *out,
-                 shader::clonal_mosaic::CoherentLookup *tried) {
+                 shader::mosaic::CoherentLookup *tried) {
     // Boundaries are blended over w: the user's soft width, or at least the footprint.
     // Antialiasing matters for what the camera sees; indirect bounces average over wide
     // footprints anyway, so they take the cheaper nearest-cell path.
     const float w =
         std::max(cm.edge_width, cm.antialias && hit->depth == 0 ? hit->footprint : 0.0f);
     if (w <= 0) {
-        const shader::clonal_mosaic::ClosestCell c =
+        const shader::mosaic::ClosestCell c =
             cm.index->find_nearest(hit->primitive_id, hit->b1, hit->b2);
-        if (c.index == shader::clonal_mosaic::ClosestCell::none)
+        if (c.index == shader::mosaic::ClosestCell::none)
             return;  // a component without cells
         shade_as(cm, cm.looks[c.index], c.f1, out);
         return;
@@ -515,7 +514,7 @@ void shade_cells(const ClonalMosaic &cm, const PelageHit *hit, PelageShade *out,
                        ? tried->search(*cm.index, cm.serial, t, hit->b1, hit->b2, band)
                        : coherent_lookup.find_three_within(*cm.index, cm.serial, t,
                                                            hit->b1, hit->b2, band);
-    if (n.index[0] == shader::clonal_mosaic::ClosestCell::none) return;
+    if (n.index[0] == shader::mosaic::ClosestCell::none) return;
     shade_blend(cm, n, w, out);
 }
 
@@ -530,7 +529,7 @@ void shade_cells(const ClonalMosaic &cm, const PelageHit *hit, PelageShade *out,
 // frame and with few instructions.
 [[gnu::noinline]] void shade_any(const ClonalMosaic &cm, const PelageHit *hit,
                                  PelageShade *out,
-                                 shader::clonal_mosaic::CoherentLookup *tried) {
+                                 shader::mosaic::CoherentLookup *tried) {
     const uint32_t t = hit->primitive_id;
     if (t >= cm.num_triangles) return;  // defaults stay
     const float weight = cm.lod ? cm.lod->weight(t, hit->footprint) : 0.0f;
@@ -543,9 +542,9 @@ void shade_cells(const ClonalMosaic &cm, const PelageHit *hit, PelageShade *out,
         if (type.roughness >= 0) out->roughness = type.roughness;
         if (type.ior > 0) out->ior = type.ior;
         if (hit->depth == 0) {
-            const shader::clonal_mosaic::ClosestCell c =
+            const shader::mosaic::ClosestCell c =
                 cm.index->find_nearest(t, hit->b1, hit->b2);
-            if (c.index != shader::clonal_mosaic::ClosestCell::none) {
+            if (c.index != shader::mosaic::ClosestCell::none) {
                 const CellLook &cell = cm.looks[c.index];
                 out->aov[0] = cell.aov_id;
                 out->aov[1] = cm.types[cell.type].aov_type;
@@ -558,7 +557,7 @@ void shade_cells(const ClonalMosaic &cm, const PelageHit *hit, PelageShade *out,
                 out->matte_written = cm.matte_bits;
             }
         }
-        const shader::clonal_mosaic::FilteredLook f = cm.lod->at(t, hit->b1, hit->b2);
+        const shader::mosaic::FilteredLook f = cm.lod->at(t, hit->b1, hit->b2);
         for (int k = 0; k < 3; ++k) out->albedo[k] = f.v[k];
         out->eumelanin = f.v[3];
         out->pheomelanin = f.v[4];
@@ -588,9 +587,9 @@ void shade(const void *self, const PelageHit *render_hit, PelageShade *out) {
         t < cm.num_triangles) {
         const float w = std::max(cm.edge_width, hit->footprint);
         if (w > 0) {
-            shader::clonal_mosaic::CoherentLookup &coherent =
+            shader::mosaic::CoherentLookup &coherent =
                 coherent_lookup;  // one TLS look-up
-            shader::clonal_mosaic::CoherentLookup::Result n;
+            shader::mosaic::CoherentLookup::Result n;
             if (coherent.reuse(cm.serial, t, hit->b1, hit->b2, 2 * w, n)) {
                 shade_blend(cm, n, w, out);
                 return;

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <limits>
 
-#include "sim/control/closest_point.h"
+#include "sim/mesh/closest_point.h"
 
 namespace pelage::sim {
 namespace {

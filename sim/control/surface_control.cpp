@@ -6,12 +6,12 @@
 #include <cmath>
 #include <limits>
 
-#include "sim/control/closest_point.h"
 #include "sim/control/corner_transfer.h"
 #include "sim/core/input_error.h"
 #include "sim/crps/body_length.h"
 #include "sim/geodesic/geodesic_mesh.h"
 #include "sim/geodesic/window_propagation.h"
+#include "sim/mesh/closest_point.h"
 
 namespace pelage::sim {
 namespace {

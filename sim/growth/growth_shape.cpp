@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "sim/core/input_error.h"
+#include "sim/mesh/closest_point.h"
 #include "sim/mesh/mesh_load.h"
 
 namespace pelage::sim {
@@ -164,42 +165,6 @@ std::vector<Vec3d> key_positions(const GrowthSpec &spec, size_t k,
     return out;
 }
 
-namespace {
-
-// Ericson, Real-Time Collision Detection §5.1.5: the closest point of triangle abc to p,
-// as barycentrics.
-Vec3d closest_on_triangle(Vec3d p, Vec3d a, Vec3d b, Vec3d c) {
-    const Vec3d ab = b - a, ac = c - a, ap = p - a;
-    const double d1 = dot(ab, ap), d2 = dot(ac, ap);
-    if (d1 <= 0 && d2 <= 0) return {1, 0, 0};
-    const Vec3d bp = p - b;
-    const double d3 = dot(ab, bp), d4 = dot(ac, bp);
-    if (d3 >= 0 && d4 <= d3) return {0, 1, 0};
-    const double vc = d1 * d4 - d3 * d2;
-    if (vc <= 0 && d1 >= 0 && d3 <= 0) {
-        const double v = d1 / (d1 - d3);
-        return {1 - v, v, 0};
-    }
-    const Vec3d cp = p - c;
-    const double d5 = dot(ab, cp), d6 = dot(ac, cp);
-    if (d6 >= 0 && d5 <= d6) return {0, 0, 1};
-    const double vb = d5 * d2 - d1 * d6;
-    if (vb <= 0 && d2 >= 0 && d6 <= 0) {
-        const double w = d2 / (d2 - d6);
-        return {1 - w, 0, w};
-    }
-    const double va = d3 * d6 - d5 * d4;
-    if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0) {
-        const double w = (d4 - d3) / ((d4 - d3) + (d5 - d6));
-        return {0, 1 - w, w};
-    }
-    const double denom = 1 / (va + vb + vc);
-    const double v = vb * denom, w = vc * denom;
-    return {1 - v - w, v, w};
-}
-
-}  // namespace
-
 std::vector<MeshPoint> closest_points(const TriangleMesh &mesh,
                                       const std::vector<Vec3d> &points) {
     const size_t nt = mesh.num_triangles();
@@ -247,7 +212,8 @@ std::vector<MeshPoint> closest_points(const TriangleMesh &mesh,
                         for (TriId t : grid[(size_t(z) * ny + y) * nx + x]) {
                             const Vec3d b =
                                 closest_on_triangle(p, mesh.vertex(t, 0),
-                                                    mesh.vertex(t, 1), mesh.vertex(t, 2));
+                                                    mesh.vertex(t, 1), mesh.vertex(t, 2))
+                                    .bary;
                             const Vec3d q = mesh.vertex(t, 0) * b.x +
                                             mesh.vertex(t, 1) * b.y +
                                             mesh.vertex(t, 2) * b.z;

@@ -11,11 +11,11 @@
 #include <cmath>
 #include <fstream>
 
-#include "sim/control/closest_point.h"
 #include "sim/control/corner_transfer.h"
 #include "sim/core/input_error.h"
 #include "sim/crps/body_length.h"
 #include "sim/crps/surface.h"
+#include "sim/mesh/closest_point.h"
 #include "sim/mesh/procedural_mesh.h"
 #include "sim/mosaic/cm_simulation.h"
 #include "tests/oracle/exact_geodesic_oracle.h"

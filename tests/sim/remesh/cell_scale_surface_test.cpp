@@ -13,10 +13,10 @@
 #include <map>
 #include <utility>
 
-#include "shader/clonal_mosaic/surface_transfer.h"
 #include "sim/core/input_error.h"
 #include "sim/crps/surface.h"
 #include "sim/crps/surface_sampling.h"
+#include "sim/mesh/closest_point.h"
 #include "sim/mesh/mesh_load.h"
 #include "sim/mesh/subdivide.h"
 #include "sim/remesh/simplify.h"
@@ -25,7 +25,7 @@
 namespace pelage::sim {
 namespace {
 
-using shader::clonal_mosaic::closest_point_on_triangle;
+using sim::closest_point_on_triangle;
 
 double distance_to_mesh(Vec3d p, const TriangleMesh &m) {
     double best = 1e300;

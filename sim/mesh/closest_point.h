@@ -1,0 +1,63 @@
+// The closest point of a triangle, and of a whole mesh, to a point in space: the one
+// implementation the landmark regions (sim/control), the growth's rest-shape points
+// (sim/growth) and the rendering of a pattern on another mesh (shader/transfer) use.
+#pragma once
+
+#include "sim/mesh/mesh.h"
+
+namespace pelage::sim {
+
+struct TrianglePoint {
+    Vec3d point;  // the closest point itself
+    Vec3d bary;   // its barycentric coordinates (weights of a, b, c)
+};
+
+// The closest point of triangle abc to p by Voronoi regions of the vertices, edges and
+// face (C. Ericson, Real-Time Collision Detection, 2005, §5.1.5). Inline: callers that
+// need only one of the two results let the compiler drop the other.
+inline TrianglePoint closest_on_triangle(Vec3d p, Vec3d a, Vec3d b, Vec3d c) {
+    const Vec3d ab = b - a, ac = c - a, ap = p - a;
+    const double d1 = dot(ab, ap), d2 = dot(ac, ap);
+    if (d1 <= 0 && d2 <= 0) return {a, {1, 0, 0}};  // vertex region a
+    const Vec3d bp = p - b;
+    const double d3 = dot(ab, bp), d4 = dot(ac, bp);
+    if (d3 >= 0 && d4 <= d3) return {b, {0, 1, 0}};  // vertex region b
+    const double vc = d1 * d4 - d3 * d2;
+    if (vc <= 0 && d1 >= 0 && d3 <= 0) {  // edge ab
+        const double v = d1 / (d1 - d3);
+        return {a + ab * v, {1 - v, v, 0}};
+    }
+    const Vec3d cp = p - c;
+    const double d5 = dot(ab, cp), d6 = dot(ac, cp);
+    if (d6 >= 0 && d5 <= d6) return {c, {0, 0, 1}};  // vertex region c
+    const double vb = d5 * d2 - d1 * d6;
+    if (vb <= 0 && d2 >= 0 && d6 <= 0) {  // edge ac
+        const double w = d2 / (d2 - d6);
+        return {a + ac * w, {1 - w, 0, w}};
+    }
+    const double va = d3 * d6 - d5 * d4;
+    if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0) {  // edge bc
+        const double w = (d4 - d3) / ((d4 - d3) + (d5 - d6));
+        return {b + (c - b) * w, {0, 1 - w, w}};
+    }
+    const double denom = 1 / (va + vb + vc);  // inside the face
+    const double v = vb * denom, w = vc * denom;
+    return {a + ab * v + ac * w, {1 - v - w, v, w}};
+}
+
+inline Vec3d closest_point_on_triangle(Vec3d p, Vec3d a, Vec3d b, Vec3d c) {
+    return closest_on_triangle(p, a, b, c).point;
+}
+
+struct ClosestSurfacePoint {
+    TriId tri = 0;
+    Vec3d point;
+    double distance = 0;
+};
+
+// The closest point of a mesh by testing every triangle, for a few points (the
+// landmarks of a "near" region); the lowest-numbered triangle among the closest ones
+// (deterministic).
+ClosestSurfacePoint closest_surface_point(const TriangleMesh &mesh, Vec3d p);
+
+}  // namespace pelage::sim
