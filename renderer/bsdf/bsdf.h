@@ -5,7 +5,8 @@
 //   * pdf(wo, wi) is the solid-angle density of sample();
 //   * sample() returns nullopt for "no sample" (never a zero pdf), and its weight is
 //     f · |cos θ_i| / pdf.
-// Both built-in BSDFs are reflective only: wo and wi on the +z side, else f = 0.
+// The skin BSDFs (Lambert, coated) are reflective only: wo and wi on the +z side, else
+// f = 0. The hair BSDF (hair_bsdf.h) is two-sided and transmissive, in its fibre frame.
 #pragma once
 
 #include <concepts>

@@ -1,7 +1,7 @@
 // `pelage bench hair`: the Chiang et al. 2016 hair BSDF (shader/hair). Prints one JSON
 // object: furnace_max_error (a contract: the worst |∫ f|cos θ_i| dω − 1| over a
 // fixed, seeded set of σ_a = 0 fibres with random β_m, β_n ∈ [0.1, 1], α ∈ [−5°, 5°],
-// h and wo, by the midpoint quadrature of shader/hair/hair_furnace.h), the worst
+// h and wo, by the midpoint quadrature of renderer/bsdf/hair_furnace.h), the worst
 // |∫ pdf dω − 1|, and nanoseconds per eval / pdf / sample call on one thread.
 #include <algorithm>
 #include <cmath>
@@ -9,9 +9,9 @@
 #include <random>
 #include <vector>
 
+#include "renderer/bsdf/hair_bsdf.h"
+#include "renderer/bsdf/hair_furnace.h"
 #include "renderer/cli/bench.h"
-#include "shader/hair/hair_bsdf.h"
-#include "shader/hair/hair_furnace.h"
 
 namespace pelage::renderer::cli {
 namespace {
@@ -35,10 +35,10 @@ struct Rng {
     std::mt19937 gen;
 };
 
-shader::hair::HairParams random_params(Rng &rng, bool absorbing) {
-    shader::hair::HairParams p = absorbing ? shader::hair::HairParams::from_melanin(
-                                                 rng.in(0, 4), rng.in(0, 2), 0.3f, 0.3f)
-                                           : shader::hair::HairParams{};
+renderer::HairParams random_params(Rng &rng, bool absorbing) {
+    renderer::HairParams p = absorbing ? renderer::HairParams::from_melanin(
+                                             rng.in(0, 4), rng.in(0, 2), 0.3f, 0.3f)
+                                       : renderer::HairParams{};
     p.beta_m = rng.in(0.1f, 1.0f);
     p.beta_n = rng.in(0.1f, 1.0f);
     p.alpha = rng.in(-5.0f, 5.0f) * pi / 180;
@@ -51,9 +51,9 @@ int run(const BenchHairOptions &o) {
     double furnace_max = 0, pdf_max = 0;
     const Timer furnace_timer;
     for (int k = 0; k < o.configs; ++k) {
-        const shader::hair::HairBsdf white(random_params(rng, false), rng.in(-1, 1));
+        const renderer::HairBsdf white(random_params(rng, false), rng.in(-1, 1));
         const Vec3f wo = rng.direction();
-        const shader::hair::FurnaceResult r = shader::hair::furnace_quadrature(
+        const renderer::FurnaceResult r = renderer::furnace_quadrature(
             white, wo, o.theta_steps, 2 * o.theta_steps, true);
         for (int c = 0; c < 3; ++c)
             furnace_max =
@@ -63,7 +63,7 @@ int run(const BenchHairOptions &o) {
     const double furnace_seconds = furnace_timer.seconds();
 
     // --- Timing: 256 absorbing fibres, 2^20 calls each of eval, pdf, sample ---
-    std::vector<shader::hair::HairBsdf> fibres;
+    std::vector<renderer::HairBsdf> fibres;
     for (int k = 0; k < 256; ++k)
         fibres.emplace_back(random_params(rng, true), rng.in(-1, 1));
     const int n = 1 << 20;
@@ -81,16 +81,16 @@ int run(const BenchHairOptions &o) {
         return 1e9 * t.seconds() / n;
     };
     const double eval_ns = time_ns(
-        [&](const shader::hair::HairBsdf &b, int k) { return b.eval(wo[k], wi[k]).y; });
-    const double pdf_ns = time_ns(
-        [&](const shader::hair::HairBsdf &b, int k) { return b.pdf(wo[k], wi[k]); });
-    const double sample_ns = time_ns([&](const shader::hair::HairBsdf &b, int k) {
+        [&](const renderer::HairBsdf &b, int k) { return b.eval(wo[k], wi[k]).y; });
+    const double pdf_ns =
+        time_ns([&](const renderer::HairBsdf &b, int k) { return b.pdf(wo[k], wi[k]); });
+    const double sample_ns = time_ns([&](const renderer::HairBsdf &b, int k) {
         const auto s = b.sample(wo[k], u[3 * k], u[3 * k + 1], u[3 * k + 2]);
         return s ? s->weight.y : 0.0f;
     });
     const Timer build_timer;
     for (int k = 0; k < n; ++k) {
-        const shader::hair::HairBsdf b(fibres[k & 255].params(), 2 * u[k] - 1);
+        const renderer::HairBsdf b(fibres[k & 255].params(), 2 * u[k] - 1);
         sink += b.h();
     }
     const double construct_ns = 1e9 * build_timer.seconds() / n;

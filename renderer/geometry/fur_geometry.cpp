@@ -6,9 +6,9 @@
 #include <optional>
 #include <stdexcept>
 
+#include "renderer/bsdf/hair_bsdf.h"
 #include "renderer/core/setup_phase.h"
 #include "renderer/geometry/embree_scene.h"
-#include "shader/hair/hair_bsdf.h"
 #include "sim/core/input_error.h"
 
 namespace pelage::renderer {
@@ -141,7 +141,7 @@ FurGeometry::FurGeometry(const SceneDesc &desc, EmbreeScene &scene,
         if (!desc.objects[i].fur) continue;
         // The comb is in object space, so the coat turns with its object (turntables);
         // gravity stays world −y.
-        shader::fur::FurParams params = *desc.objects[i].fur;
+        FurParams params = *desc.objects[i].fur;
         {
             const Vec3f w = desc.objects[i].transform.vector(params.comb_direction);
             if (length(w) > 0) params.comb_direction = w;
@@ -150,21 +150,20 @@ FurGeometry::FurGeometry(const SceneDesc &desc, EmbreeScene &scene,
         const ObjectGeometry &og = scene.objects()[i];
         const WorldMesh wm = world_mesh(og);
         params.scale_defaults_to(object_radius(wm));
-        shader::fur::SkinMesh skin;
+        SkinMesh skin;
         skin.positions = wm.positions.data();
         skin.triangles = og.mesh->triangles.data();
         skin.corner_normals = wm.normals.empty() ? nullptr : wm.normals.data();
         skin.num_vertices = og.mesh->num_vertices;
         skin.num_triangles = og.mesh->num_triangles;
 
-        const shader::fur::PigmentLookup lookup = [&](const shader::fur::SurfacePoint &s,
-                                                      Vec3f p, Vec3f n) {
+        const PigmentLookup lookup = [&](const SurfacePoint &s, Vec3f p, Vec3f n) {
             return pigment(i, s, p, n);
         };
 
         FurLayer layer;
         layer.object = uint32_t(i);
-        layer.round = params.curve == shader::fur::FurParams::Curve::round;
+        layer.round = params.curve == FurParams::Curve::round;
         layer.beta_m = params.beta_m;
         layer.beta_n = params.beta_n;
         layer.alpha = params.alpha_deg * pi / 180;
@@ -174,12 +173,12 @@ FurGeometry::FurGeometry(const SceneDesc &desc, EmbreeScene &scene,
             // validated here, once per layer (as scatter_at_strand() builds them; each
             // strand's σ_a is a non-negative combination of melanin that grow_fur() keeps
             // finite and >= 0).
-            shader::hair::HairParams hp;
+            HairParams hp;
             hp.beta_m = layer.beta_m;
             hp.beta_n = layer.beta_n;
             hp.alpha = layer.alpha;
-            shader::hair::HairBsdf::validate(hp, 0);
-            layer.strands = shader::fur::grow_fur(params, skin, lookup);
+            HairBsdf::validate(hp, 0);
+            layer.strands = grow_fur(params, skin, lookup);
         } catch (const std::invalid_argument &e) {
             throw InputError(desc.path, 0, field, e.what());
         }
@@ -198,7 +197,7 @@ FurGeometry::FurGeometry(const SceneDesc &desc, EmbreeScene &scene,
     const auto t1 = Clock::now();
     for (size_t li = 0; li < m_layers.size(); ++li) {
         FurLayer &layer = m_layers[li];
-        const shader::fur::Strands &s = layer.strands;
+        const Strands &s = layer.strands;
         RTCGeometry g = rtcNewGeometry(scene.device(),
                                        layer.round ? RTC_GEOMETRY_TYPE_ROUND_BSPLINE_CURVE
                                                    : RTC_GEOMETRY_TYPE_FLAT_LINEAR_CURVE);

@@ -26,15 +26,15 @@
 #include <vector>
 
 #include "renderer/core/math.h"
+#include "renderer/fur/fur_grow.h"
 #include "renderer/geometry/embree_scene.h"
 #include "renderer/scene_file/scene_file.h"
-#include "shader/fur/fur_grow.h"
 
 namespace pelage::renderer {
 
 // A root's pigment on object `object`: the skin's material evaluated at that point.
-using ObjectPigmentLookup = std::function<shader::fur::RootPigment(
-    size_t object, const shader::fur::SurfacePoint &, Vec3f p, Vec3f n)>;
+using ObjectPigmentLookup =
+    std::function<RootPigment(size_t object, const SurfacePoint &, Vec3f p, Vec3f n)>;
 
 struct FurLayer {
     uint32_t object = 0;  // the scene object the fur grows on
@@ -42,7 +42,7 @@ struct FurLayer {
     uint32_t strand_offset = 0;  // global index of this layer's first strand
     bool round = true;
     float beta_m = 0.25f, beta_n = 0.3f, alpha = 0;  // alpha in radians
-    shader::fur::Strands strands;
+    Strands strands;
 
     // Centre-line point and unit tangent (root to tip: the hair BSDF's +x, which the
     // cuticle tilt depends on) of segment `prim` at curve parameter u.

@@ -1,4 +1,4 @@
-// A path vertex on a fur strand: the Chiang et al. 2016 hair BSDF (shader/hair) with
+// A path vertex on a fur strand: the Chiang et al. 2016 hair BSDF (renderer/bsdf) with
 // next-event estimation and MIS like any surface vertex, in the fibre's frame
 // (x along the strand's tangent, z the tube's normal at the hit, facing the ray).
 //
@@ -11,27 +11,25 @@
 // (fur_geometry.h).
 #pragma once
 
+#include "renderer/bsdf/hair_bsdf.h"
 #include "renderer/integrator/integrator_path.h"
 
 namespace pelage::renderer {
 
-// The path state a strand vertex reads and updates.
-struct FurPathState {
-    Rgb &L, &beta;
-    Vec3f &o, &d;
-    float &prev_pdf;
-    bool &prev_specular;
-    Vec3f &prev_ng;
-    unsigned &skip_id;  // the next ray's id (fur_geometry.h)
+// The fibre frame: x the tangent, z ⊥ x facing wo, y = z × x.
+struct FibreFrame {
+    Vec3f x, y, z;
+    Vec3f to_local(Vec3f v) const { return {dot(v, x), dot(v, y), dot(v, z)}; }
+    Vec3f to_world(Vec3f v) const { return x * v.x + y * v.y + z * v.z; }
 };
 
-// Shades the hit `rh` on `layer` at path vertex `depth`: sets the film's first-hit values
-// at depth 0, adds direct light and samples the continuation (unless `last`). Returns
-// false when the path ends here. `instr`: NoInstrumentation or Instrumented.
-template <typename Instr>
-bool scatter_at_strand(const Scene &scene, const FurLayer &layer, const RTCRayHit &rh,
-                       int depth, bool last, Sampler &sampler, FurPathState &st,
-                       FilmSample &fs, FilmPointAovs *aovs, const CameraRay &cam,
-                       RenderStats &stats, const Instr &instr);
+struct PathIntegrator::StrandVertex {
+    const FurLayer &layer;
+    uint32_t strand;  // within the layer
+    Vec3f p, wo;
+    float t_hit;
+    FibreFrame frame;
+    HairBsdf bsdf;  // from the strand's melanin, at the hit's offset h across the fibre
+};
 
 }  // namespace pelage::renderer

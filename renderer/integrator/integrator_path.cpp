@@ -146,17 +146,6 @@ void PathIntegrator::render_tile(Film &film, Sampler &sampler, int x0, int y0, i
 
 // --- The path ---
 
-struct PathIntegrator::PathState {
-    Rgb L{}, beta{1, 1, 1};
-    Vec3f o, d;
-    float prev_pdf = 0;  // solid-angle density of the BSDF sample that made d
-    bool prev_specular = false;
-    Vec3f prev_ng{0, 0, 1};  // geometric normal at the vertex d left
-    float footprint = 0;     // ray cone width at the ray origin (ray_cone.h)
-    float spread;            // ... and its full angle, radians
-    unsigned fur_skip = 0;   // the strand the ray leaves, + 1 (fur_geometry.h)
-};
-
 struct PathIntegrator::SurfaceVertex {
     uint32_t object, prim;
     float b0, b1, b2;  // barycentrics
@@ -191,12 +180,10 @@ Rgb PathIntegrator::radiance(const CameraRay &cam, const RTCRayHit &first,
         bool scattered;
         if (const FurLayer *layer =
                 m_scene.fur() ? m_scene.fur()->layer_of(rh.hit.geomID) : nullptr) {
-            FurPathState st{path.L,       path.beta,     path.o,
-                            path.d,       path.prev_pdf, path.prev_specular,
-                            path.prev_ng, path.fur_skip};
+            const StrandVertex v = strand_vertex(*layer, rh, path);
+            if (depth == 0) set_first_hit(v, cam, fs, aovs);
             scattered =
-                scatter_at_strand(m_scene, *layer, rh, depth, depth >= m_max_depth,
-                                  sampler, st, fs, aovs, cam, stats, instr);
+                depth < m_max_depth && scatter_at_strand(v, sampler, path, stats, instr);
         } else {
             const SurfaceVertex sv = surface_vertex(rh, path);
             Rgb albedo;

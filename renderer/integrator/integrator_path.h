@@ -42,6 +42,7 @@ class PathIntegrator {
   private:
     struct PathState;      // what a path carries from vertex to vertex
     struct SurfaceVertex;  // a hit on a mesh, before shading
+    struct StrandVertex;   // a hit on a fur strand, in its fibre frame (integrator_fur.h)
     struct VertexSamples;  // the sampler dimensions a vertex consumes
 
     // The path from camera ray `cam`, whose first hit (traced in a packet by
@@ -69,6 +70,14 @@ class PathIntegrator {
     template <typename Bsdf, typename Instr>
     bool scatter(const Bsdf &bsdf, const SurfaceVertex &sv, const VertexSamples &u,
                  PathState &path, RenderStats &stats, const Instr &instr) const;
+    // The same steps at a fur strand (integrator_fur.cpp).
+    StrandVertex strand_vertex(const FurLayer &layer, const RTCRayHit &rh,
+                               const PathState &path) const;
+    void set_first_hit(const StrandVertex &v, const CameraRay &cam, FilmSample &fs,
+                       FilmPointAovs *aovs) const;
+    template <typename Instr>
+    bool scatter_at_strand(const StrandVertex &v, Sampler &sampler, PathState &path,
+                           RenderStats &stats, const Instr &instr) const;
     bool continue_path(int depth, Sampler &sampler, PathState &path) const;
     void set_matte_keys(const SurfaceVertex &sv, const PelageShade &sh,
                         FilmSample &fs) const;
@@ -86,6 +95,17 @@ class PathIntegrator {
                              // (ray_cone.h)
     const CameraMotion *m_motion = nullptr;
     int m_mattes;  // the film's Cryptomatte layers (Scene::matte_layers())
+};
+
+struct PathIntegrator::PathState {
+    Rgb L{}, beta{1, 1, 1};
+    Vec3f o, d;
+    float prev_pdf = 0;  // solid-angle density of the BSDF sample that made d
+    bool prev_specular = false;
+    Vec3f prev_ng{0, 0, 1};  // geometric normal at the vertex d left
+    float footprint = 0;     // ray cone width at the ray origin (ray_cone.h)
+    float spread;            // ... and its full angle, radians
+    unsigned fur_skip = 0;   // the strand the ray leaves, + 1 (fur_geometry.h)
 };
 
 }  // namespace pelage::renderer

@@ -107,8 +107,8 @@ void Scene::build(const SceneDesc &desc, const PluginRegistry &plugins) {
     for (const ObjectDesc &o : desc.objects)
         if (o.fur) {
             // Each root's pigment: the skin's own material plugin at that point.
-            const auto pigment = [this](size_t i, const shader::fur::SurfacePoint &s,
-                                        Vec3f p, Vec3f n) {
+            const auto pigment = [this](size_t i, const SurfacePoint &s, Vec3f p,
+                                        Vec3f n) {
                 const Material &mat = m_materials[i];
                 PelageHit hit{};
                 hit.object_id = uint32_t(i);
@@ -121,7 +121,7 @@ void Scene::build(const SceneDesc &desc, const PluginRegistry &plugins) {
                     1;  // not a camera hit: no antialiasing blend across cell edges
                 PelageShade sh = pelage_default_shade();
                 mat.plugin->shade(mat.instance, &hit, &sh);
-                shader::fur::RootPigment rp{sh.eumelanin, sh.pheomelanin, -1};
+                RootPigment rp{sh.eumelanin, sh.pheomelanin, -1};
                 // Matte ids only when the film keeps Cryptomatte (16 bytes a strand).
                 if (!m_desc.film.cryptomatte.empty()) {
                     for (int k = 0; k < PELAGE_SHADER_MATTE_SLOTS; ++k)

@@ -13,7 +13,7 @@
 #include <vector>
 
 #include "renderer/core/math.h"
-#include "shader/fur/fur_params.h"
+#include "renderer/fur/fur_params.h"
 
 namespace pelage::renderer {
 
@@ -113,7 +113,7 @@ struct ObjectDesc {
     };
     std::optional<Grow> grow;
     double grow_age = 0;  // the age rendered: set by the parser (to) and scene_at_frame()
-    std::optional<shader::fur::FurParams>
+    std::optional<FurParams>
         fur;  // strands on this object (renderer/scene_file/scene_fur.h)
 };
 

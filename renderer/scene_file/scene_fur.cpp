@@ -32,11 +32,11 @@ float num(JsonFields &r, const std::string &key, float def, double lo, double hi
 
 }  // namespace
 
-shader::fur::FurParams read_fur(const json &j, const std::string &field,
-                                const std::string &scene_path) {
+FurParams read_fur(const json &j, const std::string &field,
+                   const std::string &scene_path) {
     JsonFields r(j, field, scene_path);
-    shader::fur::FurParams p;
-    using F = shader::fur::FurParams;
+    FurParams p;
+    using F = FurParams;
     for (const auto &[key, bit] :
          {std::pair<const char *, uint32_t>{"density", F::given_density},
           {"length", F::given_length},
@@ -60,7 +60,7 @@ shader::fur::FurParams read_fur(const json &j, const std::string &field,
     p.segments = int(r.unsigned_integer("segments", uint64_t(p.segments), 1, 64));
     if (const json *v = r.take("comb")) {
         if (v->is_string() && v->get<std::string>() == "normal") {
-            p.comb = shader::fur::FurParams::Comb::normal;
+            p.comb = FurParams::Comb::normal;
         } else if (v->is_array() && v->size() == 3) {
             for (int k = 0; k < 3; ++k)
                 (k == 0   ? p.comb_direction.x
@@ -116,15 +116,15 @@ shader::fur::FurParams read_fur(const json &j, const std::string &field,
     if (const json *v = r.take("curve")) {
         const std::string s = v->is_string() ? v->get<std::string>() : "";
         if (s == "round")
-            p.curve = shader::fur::FurParams::Curve::round;
+            p.curve = FurParams::Curve::round;
         else if (s == "flat")
-            p.curve = shader::fur::FurParams::Curve::flat;
+            p.curve = FurParams::Curve::flat;
         else
             r.fail(r.field("curve"),
                    "expected \"round\" (B-spline tubes, close-ups) or "
                    "\"flat\" (linear ribbons, distance)");
     }
-    if (p.curve == shader::fur::FurParams::Curve::round && p.segments < 2)
+    if (p.curve == FurParams::Curve::round && p.segments < 2)
         r.fail(r.field("segments"),
                "a round (B-spline) strand needs at least 2 segments");
     r.finish();

@@ -6,12 +6,12 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
-#include "shader/fur/fur_params.h"
+#include "renderer/fur/fur_params.h"
 
 namespace pelage::renderer {
 
 // `field` is the block's JSON path ("objects[0].fur"), `scene_path` the file.
-shader::fur::FurParams read_fur(const nlohmann::json &j, const std::string &field,
-                                const std::string &scene_path);
+FurParams read_fur(const nlohmann::json &j, const std::string &field,
+                   const std::string &scene_path);
 
 }  // namespace pelage::renderer

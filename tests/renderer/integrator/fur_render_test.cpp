@@ -119,7 +119,7 @@ TEST(FurRender, UnsetDefaultsScaleWithTheObjectsSize) {
         const renderer::SceneDesc desc = renderer::parse_scene(scene, "/tmp/s.json");
         const renderer::PluginRegistry plugins;
         const renderer::Scene s(desc, plugins);
-        const shader::fur::Strands &st = s.fur()->layers().at(0).strands;
+        const renderer::Strands &st = s.fur()->layers().at(0).strands;
         const float *p = st.points.data();
         const size_t last = 4 * (st.points_per_strand - 2);  // the tip (no phantom)
         const double dx = p[last] - p[4], dy = p[last + 1] - p[5],
@@ -154,7 +154,7 @@ TEST(FurRender, EachStrandTakesTheMosaicsMelaninAtItsRoot) {
     const renderer::Scene s(desc, plugins);
     ASSERT_NE(s.fur(), nullptr);
     const renderer::FurLayer &layer = s.fur()->layers().at(0);
-    const shader::fur::Strands &strands = layer.strands;
+    const renderer::Strands &strands = layer.strands;
     ASSERT_GT(strands.size(), 1000u);
     const renderer::Material &m = s.materials()[0];
     size_t dark = 0, light = 0;
@@ -200,7 +200,7 @@ TEST(FurRender, RaysFromInsideARoundStrandPassOutOfIt) {
     const renderer::PluginRegistry plugins;
     const renderer::Scene s(desc, plugins);
     ASSERT_NE(s.fur(), nullptr);
-    const shader::fur::Strands &strands = s.fur()->layers().at(0).strands;
+    const renderer::Strands &strands = s.fur()->layers().at(0).strands;
     ASSERT_EQ(strands.size(), 1u);
     // Control points: a phantom, the root, ..., the tip, a phantom; the middle one lies
     // on the axis, half way up the straight strand.

@@ -30,7 +30,7 @@ TEST(SceneFur, EveryKeyReachesTheParameters) {
         "alpha": -3, "curve": "flat", "melanin": [0.25, 1.5]})");
     ASSERT_FALSE(s.objects[0].fur.has_value());
     ASSERT_TRUE(s.objects[1].fur.has_value());
-    const shader::fur::FurParams &p = *s.objects[1].fur;
+    const renderer::FurParams &p = *s.objects[1].fur;
     EXPECT_EQ(p.density, 1234);
     EXPECT_EQ(p.density_by_type, (std::vector<float>{1.5f, 0.5f}));
     EXPECT_EQ(p.seed, 9u);
@@ -41,7 +41,7 @@ TEST(SceneFur, EveryKeyReachesTheParameters) {
     EXPECT_FLOAT_EQ(p.root_radius, 0.01f);
     EXPECT_FLOAT_EQ(p.tip_radius, 0.002f);
     EXPECT_EQ(p.segments, 5);
-    EXPECT_EQ(p.comb, shader::fur::FurParams::Comb::world);
+    EXPECT_EQ(p.comb, renderer::FurParams::Comb::world);
     EXPECT_EQ(p.comb_direction, (Vec3f{1, 0, 0}));
     EXPECT_FLOAT_EQ(p.comb_angle_deg, 45);
     EXPECT_FLOAT_EQ(p.comb_jitter_deg, 3);
@@ -58,21 +58,21 @@ TEST(SceneFur, EveryKeyReachesTheParameters) {
     EXPECT_FLOAT_EQ(p.beta_m, 0.4f);
     EXPECT_FLOAT_EQ(p.beta_n, 0.5f);
     EXPECT_FLOAT_EQ(p.alpha_deg, -3);
-    EXPECT_EQ(p.curve, shader::fur::FurParams::Curve::flat);
+    EXPECT_EQ(p.curve, renderer::FurParams::Curve::flat);
 
-    const shader::fur::FurParams d = *with_fur("{}").objects[1].fur;
-    EXPECT_EQ(d.density, shader::fur::FurParams{}.density);
-    EXPECT_EQ(d.curve, shader::fur::FurParams::Curve::round);
+    const renderer::FurParams d = *with_fur("{}").objects[1].fur;
+    EXPECT_EQ(d.density, renderer::FurParams{}.density);
+    EXPECT_EQ(d.curve, renderer::FurParams::Curve::round);
     EXPECT_FALSE(d.own_melanin);
     // Cycles' melanin 0.8, redness 1: q = ln 5, all pheomelanin, 1.833 q (Cycles'
     // coefficient 0.343 over d'Eon's 0.187 on red).
-    const shader::fur::FurParams c =
+    const renderer::FurParams c =
         *with_fur(R"({"cycles_melanin": [0.8, 1]})").objects[1].fur;
     EXPECT_TRUE(c.own_melanin);
     EXPECT_FLOAT_EQ(c.eumelanin, 0);
     EXPECT_NEAR(c.pheomelanin, 0.343 / 0.187 * std::log(5.0), 0.005);
     EXPECT_EQ(with_fur(R"({"comb": "normal"})").objects[1].fur->comb,
-              shader::fur::FurParams::Comb::normal);
+              renderer::FurParams::Comb::normal);
 }
 
 TEST(SceneFur, BadValuesNameTheirJsonPath) {

@@ -1,14 +1,14 @@
 // shader/fur: roots are area-uniform, counts follow density × area (per cell type),
 // strands are identical at any thread count, each strand's pigment is the skin's at its
 // root, and strand shapes honour length, comb angle, radii and the skin.
-#include "shader/fur/fur_grow.h"
+#include "renderer/fur/fur_grow.h"
 
 #include <gtest/gtest.h>
 #include <tbb/task_arena.h>
 
 #include <cmath>
 
-namespace pelage::shader::fur {
+namespace pelage::renderer {
 namespace {
 
 // Eight separate triangles in the y = 0 plane (normal +y) with areas k/2, k = 1..8.
@@ -223,4 +223,4 @@ TEST(FurGrow, RefusesMoreStrandsThanMaxStrands) {
 }
 
 }  // namespace
-}  // namespace pelage::shader::fur
+}  // namespace pelage::renderer

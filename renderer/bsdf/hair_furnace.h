@@ -9,9 +9,9 @@
 // standard deviation ~0.04 rad, so 512 × 1024 (steps 0.006 rad) is ~6 points per width.
 #pragma once
 
-#include "shader/hair/hair_bsdf.h"
+#include "renderer/bsdf/hair_bsdf.h"
 
-namespace pelage::shader::hair {
+namespace pelage::renderer {
 
 struct FurnaceResult {
     Rgb f_cos_integral;   // ∫ f |cos θ_i| dω_i, per channel
@@ -21,4 +21,4 @@ struct FurnaceResult {
 FurnaceResult furnace_quadrature(const HairBsdf &bsdf, Vec3f wo, int n_theta = 512,
                                  int n_phi = 1024, bool with_pdf = false);
 
-}  // namespace pelage::shader::hair
+}  // namespace pelage::renderer

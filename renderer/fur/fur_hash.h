@@ -6,7 +6,7 @@
 
 #include "sim/core/hash.h"
 
-namespace pelage::shader::fur {
+namespace pelage::renderer {
 
 // Random streams of the fur layer (one per purpose, so adding a dimension to one never
 // shifts another).
@@ -25,4 +25,4 @@ inline double uniform(uint64_t seed, Stream s, uint64_t index, uint32_t dim) {
     return double(h >> 11) * 0x1p-53;
 }
 
-}  // namespace pelage::shader::fur
+}  // namespace pelage::renderer

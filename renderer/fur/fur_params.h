@@ -9,7 +9,7 @@
 
 #include "sim/core/vec.h"
 
-namespace pelage::shader::fur {
+namespace pelage::renderer {
 
 struct FurParams {
     // --- Roots ---
@@ -69,4 +69,4 @@ struct FurParams {
     }
 };
 
-}  // namespace pelage::shader::fur
+}  // namespace pelage::renderer

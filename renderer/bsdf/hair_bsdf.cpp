@@ -1,7 +1,7 @@
 // Chiang, Bitterli, Tappan, Burley 2016, doi:10.1111/cgf.12830 — see hair_bsdf.h for the
 // frame and conventions. The structure follows pbrt-v4's HairBxDF (the paper's reference
 // implementation guide is pbrt's "The Implementation of a Hair Scattering Model").
-#include "shader/hair/hair_bsdf.h"
+#include "renderer/bsdf/hair_bsdf.h"
 
 #include <algorithm>
 #include <cmath>
@@ -9,10 +9,10 @@
 #include <stdexcept>
 #include <string>
 
-#include "shader/hair/hair_pigments.h"
+#include "renderer/bsdf/hair_pigments.h"
 #include "sim/core/check.h"
 
-namespace pelage::shader::hair {
+namespace pelage::renderer {
 namespace {
 
 constexpr float two_pi = 2 * pi;
@@ -69,10 +69,6 @@ float logistic(float x, float s) {
 }
 
 float logistic_cdf(float x, float s) { return 1 / (1 + std::exp(-x / s)); }
-
-float trimmed_logistic(float x, float s, float a, float b) {
-    return logistic(x, s) / (logistic_cdf(b, s) - logistic_cdf(a, s));
-}
 
 // Inverse CDF of the logistic trimmed to [a, b].
 float sample_trimmed_logistic(float u, float s, float a, float b) {
@@ -161,13 +157,6 @@ float np_eval(float phi, int p, float s, float inv_trim, float gamma_o, float ga
 float longitudinal_scattering(float cos_theta_i, float cos_theta_o, float sin_theta_i,
                               float sin_theta_o, float v) {
     return mp_eval(cos_theta_i, cos_theta_o, sin_theta_i, sin_theta_o, v, mp_norm(v));
-}
-
-float azimuthal_scattering(float phi, int p, float s, float gamma_o, float gamma_t) {
-    float dphi = phi - azimuthal_deflection(p, gamma_o, gamma_t);
-    // Remap Δφ to [−π, π]
-    dphi = std::remainder(dphi, two_pi);
-    return trimmed_logistic(dphi, s, -pi, pi);
 }
 
 float offset_h(Vec3f x, Vec3f n, Vec3f wo) {
@@ -382,7 +371,7 @@ float HairBsdf::pdf(Vec3f wo, Vec3f wi) const {
     return pdf;
 }
 
-std::optional<HairSample> HairBsdf::sample(Vec3f wo, float u_lobe, float u1,
+std::optional<BsdfSample> HairBsdf::sample(Vec3f wo, float u_lobe, float u1,
                                            float u2) const {
     PELAGE_DCHECK(is_unit(wo));
     const Refraction r = refract(wo.x, m_params.eta, m_h);
@@ -425,7 +414,7 @@ std::optional<HairSample> HairBsdf::sample(Vec3f wo, float u_lobe, float u1,
     evaluate(wo, wi, &f, &pdf_wi);
     const float abs_cos = std::abs(wi.z);
     if (!(pdf_wi > 0) || !(abs_cos > 0)) return std::nullopt;
-    return HairSample{wi, f, pdf_wi, f * (abs_cos / pdf_wi), p};
+    return BsdfSample{wi, f, pdf_wi, f * (abs_cos / pdf_wi), false};
 }
 
-}  // namespace pelage::shader::hair
+}  // namespace pelage::renderer

@@ -4,9 +4,9 @@
 
 #include <cstdint>
 
-#include "shader/fur/fur_params.h"
+#include "renderer/fur/fur_params.h"
 
-namespace pelage::shader::fur {
+namespace pelage::renderer {
 
 inline constexpr int max_segments = 64;
 
@@ -25,4 +25,4 @@ void grow_centre_line(const FurParams &params, Vec3f p, Vec3f n, float L,
 // is parallel to n).
 Vec3f comb_tangent(const FurParams &params, Vec3f n);
 
-}  // namespace pelage::shader::fur
+}  // namespace pelage::renderer

@@ -6,9 +6,9 @@
 #include <cstdint>
 #include <vector>
 
-#include "shader/fur/fur_params.h"
+#include "renderer/fur/fur_params.h"
 
-namespace pelage::shader::fur {
+namespace pelage::renderer {
 
 // A triangle mesh in world space. corner_normals (9 floats per triangle) may be null:
 // face normals are used then.
@@ -42,4 +42,4 @@ class RootSampler {
 // the fraction (a hash of the seed), so the count's mean is exact.
 uint64_t candidate_count(double expected, uint64_t seed);
 
-}  // namespace pelage::shader::fur
+}  // namespace pelage::renderer

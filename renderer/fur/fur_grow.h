@@ -13,10 +13,10 @@
 #include <stdexcept>
 #include <vector>
 
-#include "shader/fur/fur_params.h"
-#include "shader/fur/root_sampling.h"
+#include "renderer/fur/fur_params.h"
+#include "renderer/fur/root_sampling.h"
 
-namespace pelage::shader::fur {
+namespace pelage::renderer {
 
 // What the skin says at a root: its pigment, its cell type (−1 when unknown), and its
 // matte ids (PelageShade::matte; bit k of matte_written set when matte[k] holds one).
@@ -54,4 +54,4 @@ Strands grow_fur(const FurParams &params, const SkinMesh &mesh,
 // The expected strand count before thinning: density × max(density_by_type) × area.
 double expected_candidates(const FurParams &params, double area);
 
-}  // namespace pelage::shader::fur
+}  // namespace pelage::renderer

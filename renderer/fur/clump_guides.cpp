@@ -1,11 +1,11 @@
-#include "shader/fur/clump_guides.h"
+#include "renderer/fur/clump_guides.h"
 
 #include <cmath>
 
-#include "shader/fur/fur_hash.h"
-#include "shader/fur/strand_shape.h"
+#include "renderer/fur/fur_hash.h"
+#include "renderer/fur/strand_shape.h"
 
-namespace pelage::shader::fur {
+namespace pelage::renderer {
 
 namespace {
 constexpr float clump_pi = 3.14159265358979323846f;
@@ -74,4 +74,4 @@ void ClumpGuides::pull(Vec3f *line) const {
     }
 }
 
-}  // namespace pelage::shader::fur
+}  // namespace pelage::renderer

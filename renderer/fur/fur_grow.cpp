@@ -1,4 +1,4 @@
-#include "shader/fur/fur_grow.h"
+#include "renderer/fur/fur_grow.h"
 
 #include <tbb/parallel_for.h>
 
@@ -6,11 +6,11 @@
 #include <cmath>
 #include <string>
 
-#include "shader/fur/clump_guides.h"
-#include "shader/fur/fur_hash.h"
-#include "shader/fur/strand_shape.h"
+#include "renderer/fur/clump_guides.h"
+#include "renderer/fur/fur_hash.h"
+#include "renderer/fur/strand_shape.h"
 
-namespace pelage::shader::fur {
+namespace pelage::renderer {
 
 namespace {
 
@@ -152,4 +152,4 @@ Strands grow_fur(const FurParams &params, const SkinMesh &mesh,
     return out;
 }
 
-}  // namespace pelage::shader::fur
+}  // namespace pelage::renderer

@@ -18,7 +18,7 @@
 
 #include "sim/core/vec.h"
 
-namespace pelage::shader::hair {
+namespace pelage::renderer {
 
 // d'Eon et al. 2011: absorption per unit concentration of each pigment.
 inline constexpr Rgb eumelanin_sigma_a{0.419f, 0.697f, 1.37f};
@@ -31,4 +31,4 @@ Rgb sigma_a_from_melanin(float eumelanin, float pheomelanin);
 // (0, 1]; 1 gives σ_a = 0) for azimuthal roughness beta_n ∈ (0, 1].
 Rgb sigma_a_from_colour(Rgb colour, float beta_n);
 
-}  // namespace pelage::shader::hair
+}  // namespace pelage::renderer

@@ -1,7 +1,7 @@
 // Property tests of the Chiang et al. 2016 hair BSDF (shader/hair): white furnace,
 // eval/pdf/sample agreement, a chi-square test of sample() against pdf(), reciprocity,
 // pigments, parameter validation. Every RNG is seeded; tolerances say why.
-#include "shader/hair/hair_bsdf.h"
+#include "renderer/bsdf/hair_bsdf.h"
 
 #include <gtest/gtest.h>
 
@@ -13,10 +13,10 @@
 #include <string>
 #include <vector>
 
-#include "shader/hair/hair_furnace.h"
-#include "shader/hair/hair_pigments.h"
+#include "renderer/bsdf/hair_furnace.h"
+#include "renderer/bsdf/hair_pigments.h"
 
-namespace pelage::shader::hair {
+namespace pelage::renderer {
 namespace {
 
 constexpr float deg = pi / 180;
@@ -471,7 +471,7 @@ TEST(HairBsdf, ConstructorChecksItsPreconditionInDebugBuilds) {
 }
 
 }  // namespace
-}  // namespace pelage::shader::hair
+}  // namespace pelage::renderer
 
 // `pelage bench hair` output contract: one JSON object with furnace_max_error.
 // A small, fast set (2 fibres, 128 × 256 grid); the error bound is the required 1 %.

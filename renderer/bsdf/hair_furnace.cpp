@@ -1,9 +1,9 @@
 // Midpoint-rule sphere quadrature of the hair BSDF; see hair_furnace.h.
-#include "shader/hair/hair_furnace.h"
+#include "renderer/bsdf/hair_furnace.h"
 
 #include <cmath>
 
-namespace pelage::shader::hair {
+namespace pelage::renderer {
 
 FurnaceResult furnace_quadrature(const HairBsdf &bsdf, Vec3f wo, int n_theta, int n_phi,
                                  bool with_pdf) {
@@ -29,4 +29,4 @@ FurnaceResult furnace_quadrature(const HairBsdf &bsdf, Vec3f wo, int n_theta, in
     return {Rgb{float(sum[0]), float(sum[1]), float(sum[2])}, sum_pdf};
 }
 
-}  // namespace pelage::shader::hair
+}  // namespace pelage::renderer

@@ -1,9 +1,9 @@
-#include "shader/fur/strand_shape.h"
+#include "renderer/fur/strand_shape.h"
 
 #include <algorithm>
 #include <cmath>
 
-namespace pelage::shader::fur {
+namespace pelage::renderer {
 
 namespace {
 
@@ -70,4 +70,4 @@ void grow_centre_line(const FurParams &params, Vec3f p, Vec3f n, float L,
     }
 }
 
-}  // namespace pelage::shader::fur
+}  // namespace pelage::renderer

@@ -1,11 +1,11 @@
-#include "shader/fur/root_sampling.h"
+#include "renderer/fur/root_sampling.h"
 
 #include <algorithm>
 #include <cmath>
 
-#include "shader/fur/fur_hash.h"
+#include "renderer/fur/fur_hash.h"
 
-namespace pelage::shader::fur {
+namespace pelage::renderer {
 
 namespace {
 
@@ -67,4 +67,4 @@ uint64_t candidate_count(double expected, uint64_t seed) {
            (uniform(seed, Stream::thinning, ~0ull, 0) < expected - whole);
 }
 
-}  // namespace pelage::shader::fur
+}  // namespace pelage::renderer

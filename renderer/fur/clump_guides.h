@@ -8,10 +8,10 @@
 #include <unordered_map>
 #include <vector>
 
-#include "shader/fur/fur_params.h"
-#include "shader/fur/root_sampling.h"
+#include "renderer/fur/fur_params.h"
+#include "renderer/fur/root_sampling.h"
 
-namespace pelage::shader::fur {
+namespace pelage::renderer {
 
 class ClumpGuides {
   public:
@@ -32,4 +32,4 @@ class ClumpGuides {
     std::unordered_map<uint64_t, std::vector<uint32_t>> m_grid;
 };
 
-}  // namespace pelage::shader::fur
+}  // namespace pelage::renderer

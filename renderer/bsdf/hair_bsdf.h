@@ -13,7 +13,7 @@
 //     direction from the axis to the hit for a round curve), y = z × x.
 //   * h ∈ [-1, 1] is the offset across the fibre where the ray hits it (h = sin γ_o):
 //     h = 0 at the axis, ±1 at the silhouettes. It is constant for one hit.
-// Conventions shared with renderer/bsdf/bsdf.h, so the renderer can wrap this class 1:1:
+// It is a Bsdf (renderer/bsdf/bsdf.h) and shares its conventions:
 //   * eval(wo, wi) returns f WITHOUT the |cos θ_i| factor, where cos θ_i = wi.z.
 //   Internally
 //     f = S(wo, wi) / |wi.z|, S = Σ_p M_p A_p N_p the fibre scattering function, so the
@@ -37,9 +37,9 @@
 #include <optional>
 #include <string>
 
-#include "sim/core/vec.h"
+#include "renderer/bsdf/bsdf.h"
 
-namespace pelage::shader::hair {
+namespace pelage::renderer {
 
 // The model's parameters; HairBsdf::validate() checks their ranges.
 struct HairParams {
@@ -54,14 +54,6 @@ struct HairParams {
                                    float beta_n);
     // σ_a from a target colour (Chiang et al. 2016 §4.2, hair_pigments.h).
     static HairParams from_colour(Rgb colour, float beta_m, float beta_n);
-};
-
-struct HairSample {
-    Vec3f wi;
-    Rgb f;       // excludes |cos θ_i|
-    float pdf;   // solid angle
-    Rgb weight;  // f·|cos θ_i|/pdf
-    int lobe;    // p: 0 = R, 1 = TT, 2 = TRT, 3 = residual
 };
 
 class HairBsdf {
@@ -83,7 +75,7 @@ class HairBsdf {
     Rgb eval(Vec3f wo, Vec3f wi) const;
     float pdf(Vec3f wo, Vec3f wi) const;
     // u_lobe picks the lobe (then is reused for N_p); u1, u2 sample M_p. All in [0, 1).
-    std::optional<HairSample> sample(Vec3f wo, float u_lobe, float u1, float u2) const;
+    std::optional<BsdfSample> sample(Vec3f wo, float u_lobe, float u1, float u2) const;
     // Σ_p A_p at normal incidence (θ_o = 0) and this h: a colour for AOVs / albedo
     // passes.
     Rgb albedo() const;
@@ -113,14 +105,7 @@ class HairBsdf {
     std::array<float, 3> m_cos_2k_alpha;
 };
 
-// The signatures renderer/bsdf/bsdf.h's Bsdf concept expects, on the core vector types
-// (sim/core/vec.h) the renderer shares: a wrapper passes its arguments through.
-static_assert(requires(const HairBsdf &b, Vec3f w, float u) {
-    { b.eval(w, w) } -> std::same_as<Rgb>;
-    { b.pdf(w, w) } -> std::same_as<float>;
-    { b.sample(w, u, u, u) } -> std::same_as<std::optional<HairSample>>;
-    { b.albedo() } -> std::same_as<Rgb>;
-});
+static_assert(Bsdf<HairBsdf>);
 
 // h = sin(φ_o − φ_n) = x·(n × wo) / |wo projected ⊥ x|, for the fibre tangent x, the
 // cylinder's outward unit normal n at the hit (⊥ x) and wo, all in one frame (e.g.
@@ -132,9 +117,7 @@ float offset_h(Vec3f x, Vec3f n, Vec3f wo);
 // ∫ M_p cos θ_i dθ_i = 1; log-space Bessel I0 for v <= 0.1. Symmetric in (i, o).
 float longitudinal_scattering(float cos_theta_i, float cos_theta_o, float sin_theta_i,
                               float sin_theta_o, float v);
-// N_p: a logistic of scale s trimmed to [-π, π], centred on Φ(p, γ_o, γ_t).
-float azimuthal_scattering(float phi, int p, float s, float gamma_o, float gamma_t);
 // Unpolarised Fresnel reflectance of a dielectric interface (from outside, IOR eta).
 float fresnel_dielectric(float cos_theta_i, float eta);
 
-}  // namespace pelage::shader::hair
+}  // namespace pelage::renderer

@@ -1,11 +1,11 @@
 // Pigment and colour → σ_a; see hair_pigments.h for the sources.
-#include "shader/hair/hair_pigments.h"
+#include "renderer/bsdf/hair_pigments.h"
 
 #include <cmath>
 #include <stdexcept>
 #include <string>
 
-namespace pelage::shader::hair {
+namespace pelage::renderer {
 namespace {
 
 void check_concentration(const char *name, float c) {
@@ -46,4 +46,4 @@ Rgb sigma_a_from_colour(Rgb colour, float beta_n) {
     return sigma_a;
 }
 
-}  // namespace pelage::shader::hair
+}  // namespace pelage::renderer
