@@ -27,7 +27,7 @@
 #include <sstream>
 
 #include "renderer/cli/bench.h"
-#include "renderer/cli/grow_cells.h"
+#include "renderer/cli/grow_shown.h"
 #include "renderer/cli/input_hash.h"
 #include "renderer/core/install_layout.h"
 #include "renderer/integrator/render.h"
@@ -67,7 +67,7 @@ std::string default_cache_dir() {
 
 std::string reference_key(const BenchNoiseOptions &o, const SceneDesc &desc,
                           const PluginRegistry &plugins) {
-    InputHash h;
+    ContentHash h;
     h.add_file(desc.path);
     for (const std::string &f : scene_input_files(desc)) h.add_file(f);
     // The renderer's code: bin/pelage is only a launcher.

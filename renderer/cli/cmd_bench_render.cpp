@@ -16,7 +16,7 @@
 #include <thread>
 
 #include "renderer/cli/bench.h"
-#include "renderer/cli/grow_cells.h"
+#include "renderer/cli/grow_shown.h"
 #include "renderer/geometry/packet_intersect.h"
 #include "renderer/integrator/render.h"
 #include "renderer/scene_file/scene_file.h"

@@ -10,7 +10,7 @@
 #include <sstream>
 
 #include "renderer/cli/common.h"
-#include "renderer/cli/grow_cells.h"
+#include "renderer/cli/grow_shown.h"
 #include "renderer/image/contact_sheet.h"
 #include "renderer/image/image_output.h"
 #include "renderer/plugins/plugin_loader.h"

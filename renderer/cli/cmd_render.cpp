@@ -12,7 +12,7 @@
 #include "renderer/camera/camera.h"
 #include "renderer/cli/common.h"
 #include "renderer/cli/frame_list.h"
-#include "renderer/cli/grow_cells.h"
+#include "renderer/cli/grow_shown.h"
 #include "renderer/cli/input_hash.h"
 #include "renderer/cli/render_plan.h"
 #include "renderer/cli/render_tiles.h"

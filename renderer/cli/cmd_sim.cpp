@@ -12,7 +12,7 @@
 #include <cstdio>
 
 #include "renderer/cli/common.h"
-#include "renderer/cli/grow_cells.h"
+#include "renderer/cli/grow_shown.h"
 #include "sim/cells_io/cells_file.h"
 #include "sim/cells_io/pattern_stats.h"
 #include "sim/core/input_error.h"
@@ -37,21 +37,20 @@ int run_sim(const SimOptions &o) {
                      "pelage sim: warning: no -o given, the cells will not be saved "
                      "(only the summary%s is written)\n",
                      o.stats_json.wanted() ? " and --stats-json" : "");
-    GrowRequest request;
+    sim::GrowRequest request;
     request.mesh = o.mesh;
     request.preset = o.preset;
     request.seed = o.seed;
     request.initial_cells = o.cells;
     request.relax = o.relax;
     request.simplify = o.surface == "auto";
-    request.progress = !o.quiet;
     if (!o.quiet)
         request.note = [](const std::string &text) {
             fmt::print("pelage sim: {}\n", text);
         };
     // Inputs first: grow_cells() reads and checks them all before simulating, and
     // nothing is written unless the run succeeds.
-    const GrownCells grown = grow_cells(request);
+    const sim::GrownCells grown = grow_cells_shown(request, "pelage sim", !o.quiet);
     const sim::Preset &preset = grown.preset;
     const sim::SimStats &st = grown.stats;
     const sim::CellScaleReport &cell_scale = grown.cell_scale;

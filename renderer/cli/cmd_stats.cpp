@@ -10,15 +10,15 @@
 // field (sim/cells_io/stripe_alignment.h): stripe_alignment_median, stripe_alignment_q1,
 // stripe_alignment_q3 (degrees), stripe_alignment_samples, stripe_coherence_median;
 // and, when the preset has neural-crest masks, mask_adherence
-// (renderer/cli/mask_adherence.h).
+// (shader/statistics/mask_adherence.h).
 #include <fmt/core.h>
 
 #include <cstdio>
 #include <iostream>
 
 #include "renderer/cli/common.h"
-#include "renderer/cli/mask_adherence.h"
 #include "shader/statistics/area_fractions.h"
+#include "shader/statistics/mask_adherence.h"
 #include "shader/statistics/spot_statistics.h"
 #include "sim/cells_io/cells_file.h"
 #include "sim/cells_io/pattern_stats.h"
@@ -39,6 +39,19 @@ struct StatsOptions {
     QuietOption quiet;
     StatsJsonOption stats_json;
 };
+
+// The mask adherence keys, one object per mask.
+nlohmann::json to_json(const std::vector<shader::statistics::MaskAdherence> &a) {
+    nlohmann::json j = nlohmann::json::array();
+    for (const shader::statistics::MaskAdherence &m : a)
+        j.push_back({{"type", m.type},
+                     {m.only_in ? "only_in" : "not_in", m.region},
+                     {"otherwise", m.otherwise},
+                     {"masked_out_share", m.masked_out_share},
+                     {"masked_out_samples", m.masked_out_samples},
+                     {"violation", m.violation}});
+    return j;
+}
 
 // Adds the area keys: each type's share of the surface, and F / (F + B) by area (the
 // count-based spot_fraction's definition, measured by area).
@@ -84,7 +97,7 @@ void add_area_fractions(const StatsOptions &o, nlohmann::json *j) {
         return sim::parse_preset(params["preset"].dump(), o.file);
     }();
     if (!preset.control.masks.empty())
-        (*j)["mask_adherence"] = to_json(measure_mask_adherence(
+        (*j)["mask_adherence"] = to_json(shader::statistics::measure_mask_adherence(
             pattern, o.mesh, preset, preset_file, o.area_samples, o.seed));
 }
 

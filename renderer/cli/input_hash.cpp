@@ -1,8 +1,6 @@
 #include "renderer/cli/input_hash.h"
 
-#define XXH_INLINE_ALL
 #include <OpenImageIO/imageio.h>
-#include <xxhash.h>
 
 #include <cstdio>
 #include <filesystem>
@@ -17,38 +15,6 @@
 namespace pelage::renderer::cli {
 
 namespace fs = std::filesystem;
-
-struct InputHash::State {
-    XXH3_state_t xxh;
-};
-
-InputHash::InputHash() : m_state(std::make_unique<State>()) {
-    XXH3_64bits_reset(&m_state->xxh);
-}
-
-InputHash::~InputHash() = default;
-
-void InputHash::add(const std::string &text) {
-    XXH3_64bits_update(&m_state->xxh, text.c_str(), text.size() + 1);
-}
-
-void InputHash::add_file(const std::string &path) {
-    add(path);
-    std::ifstream in(path, std::ios::binary);
-    std::vector<char> buf(1 << 16);
-    while (in) {
-        in.read(buf.data(), std::streamsize(buf.size()));
-        XXH3_64bits_update(&m_state->xxh, buf.data(), size_t(in.gcount()));
-    }
-}
-
-uint64_t InputHash::digest() const { return XXH3_64bits_digest(&m_state->xxh); }
-
-std::string InputHash::hex() const {
-    char buf[17];
-    std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(digest()));
-    return buf;
-}
 
 namespace {
 
@@ -92,7 +58,7 @@ std::vector<std::string> scene_input_files(const SceneDesc &desc) {
 
 std::string settings_hash(const SceneDesc &desc, const PluginRegistry &plugins,
                           uint64_t seed, const std::string &version) {
-    InputHash h;
+    ContentHash h;
     std::ifstream in(desc.path, std::ios::binary);
     std::ostringstream text;
     text << in.rdbuf();
@@ -127,7 +93,7 @@ std::string settings_hash(const SceneDesc &desc, const PluginRegistry &plugins,
 }
 
 std::string frame_settings_hash(const std::string &settings, int frame) {
-    InputHash h;
+    ContentHash h;
     h.add(settings);
     h.add("frame " + std::to_string(frame));
     return h.hex();

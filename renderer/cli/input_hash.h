@@ -5,30 +5,14 @@
 #pragma once
 
 #include <cstdint>
-#include <memory>
 #include <string>
 #include <vector>
 
 #include "renderer/plugins/plugin_loader.h"
 #include "renderer/scene_file/scene_file.h"
+#include "sim/core/content_hash.h"
 
 namespace pelage::renderer::cli {
-
-// An XXH3-64 digest fed piece by piece.
-class InputHash {
-  public:
-    InputHash();
-    ~InputHash();
-    void add(const std::string &text);  // its bytes and a terminating NUL
-    // The file's name and content; a missing file adds its name only.
-    void add_file(const std::string &path);
-    uint64_t digest() const;
-    std::string hex() const;  // 16 lower-case hex digits
-
-  private:
-    struct State;
-    std::unique_ptr<State> m_state;
-};
 
 // The files `desc` reads, in a fixed order: every object's mesh, deformation meshes and
 // cells file, every environment image, and every string in a material's parameters

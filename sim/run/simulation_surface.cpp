@@ -1,4 +1,4 @@
-#include "renderer/cli/simulation_surface.h"
+#include "sim/run/simulation_surface.h"
 
 #include <sys/resource.h>
 #include <unistd.h>
@@ -6,16 +6,15 @@
 #include <algorithm>
 #include <cmath>
 
-#include "renderer/core/setup_phase.h"
 #include "sim/mosaic/cm_simulation.h"
 #include "sim/mosaic/final_cells.h"
+#include "sim/run/setup_step.h"
 
-namespace pelage::renderer::cli {
+namespace pelage::sim {
 
-SimulationSurface::SimulationSurface(sim::Surface input_surface,
-                                     const std::string &mesh_path,
-                                     const sim::Preset &preset, uint64_t cells,
-                                     bool simplify)
+SimulationSurface::SimulationSurface(
+    sim::Surface input_surface, const std::string &mesh_path, const sim::Preset &preset,
+    uint64_t cells, bool simplify, const std::function<void(const std::string &)> &phase)
     : m_input(std::move(input_surface)) {
     const sim::Surface &input = *m_input;
     m_initial = cells > 0 ? cells : sim::initial_cell_count(preset.params, input.crps);
@@ -43,7 +42,7 @@ SimulationSurface::SimulationSurface(sim::Surface input_surface,
         sim::check_neighbourhood_memory(m_report, 0.75 * available, mesh_path);
     if (!m_report.simplified) return;
     // The input's CRPS and topology go before the simplification's own structures come.
-    const renderer::SetupPhase phase("remeshing to the cells' scale");
+    const SetupStep step(phase, "remeshing to the cells' scale");
     sim::TriangleMesh mesh = std::move(m_input->mesh);
     m_input.reset();
     m_simplified.emplace(
@@ -51,4 +50,4 @@ SimulationSurface::SimulationSurface(sim::Surface input_surface,
     if (preset.control.needs_mesh_data()) m_input_mesh = std::move(mesh);
 }
 
-}  // namespace pelage::renderer::cli
+}  // namespace pelage::sim

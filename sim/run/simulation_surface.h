@@ -4,6 +4,7 @@
 // both surfaces give the same pattern scale.
 #pragma once
 
+#include <functional>
 #include <optional>
 #include <string>
 
@@ -11,7 +12,7 @@
 #include "sim/mosaic/cell_types.h"
 #include "sim/remesh/cell_scale_surface.h"
 
-namespace pelage::renderer::cli {
+namespace pelage::sim {
 
 class SimulationSurface {
   public:
@@ -19,9 +20,11 @@ class SimulationSurface {
     // The input is released once a simplified copy stands for it: a dense mesh would
     // otherwise weigh on the whole run; its mesh (without CRPS) stays when the preset's
     // regions read vertex attributes or UVs (sim/control).
-    // InputError naming mesh_path when the run would not fit in memory.
-    SimulationSurface(sim::Surface input, const std::string &mesh_path,
-                      const sim::Preset &preset, uint64_t cells, bool simplify);
+    // InputError naming mesh_path when the run would not fit in memory. `phase` is told
+    // of the remeshing step (setup_step.h).
+    SimulationSurface(Surface input, const std::string &mesh_path, const Preset &preset,
+                      uint64_t cells, bool simplify,
+                      const std::function<void(const std::string &)> &phase = {});
     const sim::Surface &surface() const {
         return m_simplified ? *m_simplified : *m_input;
     }
@@ -40,4 +43,4 @@ class SimulationSurface {
     sim::CellScaleReport m_report;
 };
 
-}  // namespace pelage::renderer::cli
+}  // namespace pelage::sim

@@ -1,18 +1,19 @@
 // How well a grown pattern keeps to its neural-crest masks (Queiroz & Walter §V.A;
 // sim/control): for each mask, the share of the masked-out surface (where the mask is
 // 0) that shows the masked type, as the renderer shows it: n area-uniform surface
-// points, each taking the type of its closest cell (as shader/clonal_mosaic/
-// area_fractions.h). Cells never stand where their mask is 0, but a cell near the edge
-// of a mask covers part of it with its Voronoi region.
+// points, each taking the type of its closest cell (as area_fractions.h). Cells never
+// stand where their mask is 0, but a cell near the edge of a mask covers part of it with
+// its Voronoi region.
 #pragma once
 
 #include <cstdint>
-#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
 
 #include "shader/mosaic/pattern.h"
 #include "sim/mosaic/cell_types.h"
 
-namespace pelage::renderer::cli {
+namespace pelage::shader::statistics {
 
 struct MaskAdherence {
     std::string type, region, otherwise;
@@ -24,11 +25,10 @@ struct MaskAdherence {
 
 // One entry per mask of `preset` (resolved on the pattern's simulation surface; the
 // pattern's mesh file `mesh_path` supplies attributes and UVs).
-std::vector<MaskAdherence> measure_mask_adherence(
-    const shader::mosaic::MosaicPattern &pattern, const std::string &mesh_path,
-    const sim::Preset &preset, const std::string &preset_file, size_t samples,
-    uint64_t seed);
+std::vector<MaskAdherence> measure_mask_adherence(const mosaic::MosaicPattern &pattern,
+                                                  const std::string &mesh_path,
+                                                  const sim::Preset &preset,
+                                                  const std::string &preset_file,
+                                                  size_t samples, uint64_t seed);
 
-nlohmann::json to_json(const std::vector<MaskAdherence> &a);
-
-}  // namespace pelage::renderer::cli
+}  // namespace pelage::shader::statistics

@@ -1,4 +1,4 @@
-#include "renderer/cli/mask_adherence.h"
+#include "shader/statistics/mask_adherence.h"
 
 #include <optional>
 
@@ -6,12 +6,13 @@
 #include "sim/crps/surface_sampling.h"
 #include "sim/mesh/mesh_load.h"
 
-namespace pelage::renderer::cli {
+namespace pelage::shader::statistics {
 
-std::vector<MaskAdherence> measure_mask_adherence(
-    const shader::mosaic::MosaicPattern &pattern, const std::string &mesh_path,
-    const sim::Preset &preset, const std::string &preset_file, size_t samples,
-    uint64_t seed) {
+std::vector<MaskAdherence> measure_mask_adherence(const mosaic::MosaicPattern &pattern,
+                                                  const std::string &mesh_path,
+                                                  const sim::Preset &preset,
+                                                  const std::string &preset_file,
+                                                  size_t samples, uint64_t seed) {
     const sim::ControlSpec &spec = preset.control;
     std::vector<MaskAdherence> out(spec.masks.size());
     if (spec.masks.empty()) return out;
@@ -25,9 +26,9 @@ std::vector<MaskAdherence> measure_mask_adherence(
     std::vector<size_t> zero(spec.masks.size(), 0), wrong(spec.masks.size(), 0);
     size_t found = 0;
     for (const auto &s : sim::sample_surface_uniform(surface.crps, samples, seed)) {
-        const shader::mosaic::ClosestCell c =
+        const mosaic::ClosestCell c =
             pattern.index().find_nearest(s.tri, {float(s.p.x), float(s.p.y)});
-        if (c.index == shader::mosaic::ClosestCell::none) continue;
+        if (c.index == mosaic::ClosestCell::none) continue;
         ++found;
         const int type = pattern.cells().type[c.index];
         for (size_t k = 0; k < spec.masks.size(); ++k) {
@@ -50,16 +51,4 @@ std::vector<MaskAdherence> measure_mask_adherence(
     return out;
 }
 
-nlohmann::json to_json(const std::vector<MaskAdherence> &a) {
-    nlohmann::json j = nlohmann::json::array();
-    for (const MaskAdherence &m : a)
-        j.push_back({{"type", m.type},
-                     {m.only_in ? "only_in" : "not_in", m.region},
-                     {"otherwise", m.otherwise},
-                     {"masked_out_share", m.masked_out_share},
-                     {"masked_out_samples", m.masked_out_samples},
-                     {"violation", m.violation}});
-    return j;
-}
-
-}  // namespace pelage::renderer::cli
+}  // namespace pelage::shader::statistics

@@ -1,4 +1,4 @@
-#include "renderer/cli/grow_cells.h"
+#include "sim/run/grow_cells.h"
 
 #include <fmt/core.h>
 
@@ -9,26 +9,23 @@
 #include <memory>
 #include <sstream>
 
-#include "renderer/cli/common.h"
-#include "renderer/cli/input_hash.h"
-#include "renderer/cli/simulation_surface.h"
-#include "renderer/core/progress.h"
-#include "renderer/core/setup_phase.h"
-#include "renderer/scene_file/scene_file.h"
 #include "sim/cells_io/cells_file.h"
+#include "sim/core/content_hash.h"
 #include "sim/core/input_error.h"
 #include "sim/crps/body_length.h"
 #include "sim/crps/surface.h"
 #include "sim/growth/growth_shape.h"
 #include "sim/mosaic/growing_surface.h"
+#include "sim/run/setup_step.h"
+#include "sim/run/simulation_surface.h"
 
-namespace pelage::renderer::cli {
+namespace pelage::sim {
 namespace {
 
 // The mesh's identity for a cached pattern: its content, not its name, so a scene and
 // its files can move together.
 std::string mesh_content_hash(const std::string &mesh) {
-    InputHash h;
+    ContentHash h;
     if (mesh.rfind("procedural:", 0) == 0) {
         h.add(mesh);
     } else {
@@ -51,7 +48,7 @@ nlohmann::json growth_mesh_hashes(const sim::Preset &preset) {
 }
 
 sim::Preset read_preset(const GrowRequest &r) {
-    sim::Preset preset = sim::load_preset(r.preset, data_path("scenes/presets"));
+    sim::Preset preset = sim::load_preset(r.preset, r.preset_dir);
     if (r.relax == "local")
         preset.params.relax = sim::RelaxMode::local;
     else if (r.relax == "global")
@@ -64,14 +61,12 @@ sim::Preset read_preset(const GrowRequest &r) {
 GrownCells grow_cells(const GrowRequest &r) {
     GrownCells g;
     g.preset = read_preset(r);
-    const bool tty = r.progress && Progress::stderr_is_tty();
-    SetupPhase::show(r.label, tty);
     const SimulationSurface chosen(
         [&] {
-            const SetupPhase phase("loading the mesh, building its CRPS");
+            const SetupStep step(r.phase, "loading the mesh, building its CRPS");
             return sim::build_surface(r.mesh);
         }(),
-        r.mesh, g.preset, r.initial_cells, r.simplify);
+        r.mesh, g.preset, r.initial_cells, r.simplify, r.phase);
     const sim::Surface &surface = chosen.surface();
     g.cell_scale = chosen.report();
     g.triangles = surface.mesh.num_triangles();
@@ -90,7 +85,7 @@ GrownCells grow_cells(const GrowRequest &r) {
     // points (sim/mosaic/growing_surface.h).
     std::unique_ptr<sim::GrowingSurface> growing;
     if (g.preset.growth) {
-        const SetupPhase phase("resolving the growth keys on the surface");
+        const SetupStep step(r.phase, "resolving the growth keys on the surface");
         const bool reload = g.cell_scale.simplified && g.preset.growth->has_mesh_keys();
         const sim::TriangleMesh rest =
             reload ? sim::load_mesh(r.mesh) : sim::TriangleMesh();
@@ -114,13 +109,13 @@ GrownCells grow_cells(const GrowRequest &r) {
     if (!g.preset.control.empty()) {
         // Resolved on the rest shape, where the preset's box-space points and heights
         // are meant; the values ride on the skin as it grows.
-        const SetupPhase phase("resolving regions on the surface");
+        const SetupStep step(r.phase, "resolving regions on the surface");
         simulation.set_control(sim::SurfaceControl(
             g.preset.control, surface.mesh, surface.crps, r.preset, &chosen.data_mesh()));
     }
     {
         // The line names this step; the bar that follows measures the growth alone.
-        const SetupPhase phase("placing and relaxing the initial cells");
+        const SetupStep step(r.phase, "placing and relaxing the initial cells");
         // On a growing surface the preset's count or density applies to the first
         // age's shape.
         simulation.initialize(growing ? r.initial_cells : chosen.initial_cells());
@@ -128,16 +123,10 @@ GrownCells grow_cells(const GrowRequest &r) {
             g.stats.growth.push_back(
                 {growing->age(), simulation.area(), simulation.cells().size()});
     }
-    {
-        Progress progress(r.label, 1000, tty);
-        uint64_t shown = 0;
-        simulation.run([&](double f) {
-            const uint64_t now = static_cast<uint64_t>(std::clamp(f, 0.0, 1.0) * 1000);
-            if (now > shown) progress.advance(now - shown);
-            shown = std::max(shown, now);
-        });
-        progress.finish();
-    }
+    if (r.progress) r.progress(0);
+    simulation.run([&](double f) {
+        if (r.progress) r.progress(f);
+    });
     {
         // Pattern before growth: the one sample is the start.
         std::vector<sim::GrowthSample> before = std::move(g.stats.growth);
@@ -208,29 +197,4 @@ bool cells_match(const std::string &path, const GrowRequest &r, std::string *why
     return true;
 }
 
-void grow_scene_patterns(const SceneDesc &scene, bool quiet) {
-    for (const ObjectDesc &o : scene.objects) {
-        if (!o.pattern) continue;
-        GrowRequest request;
-        request.mesh = o.mesh;
-        request.preset = o.pattern->preset;
-        request.seed = o.pattern->seed;
-        request.progress = !quiet;
-        request.label = "pattern of " + o.name;
-        std::string why;
-        if (cells_match(o.cells, request, &why)) continue;
-        if (!quiet)
-            std::fprintf(stderr, "%s: %s, growing %s (seed %llu) on %s\n",
-                         o.cells.c_str(), why.c_str(), o.pattern->preset.c_str(),
-                         static_cast<unsigned long long>(o.pattern->seed),
-                         o.mesh.c_str());
-        const Timer timer;
-        const GrownCells grown = grow_cells(request);
-        sim::write_cells_file(o.cells, grown.data);
-        if (!quiet)
-            std::fprintf(stderr, "%s: %zu cells, %.1f s\n", o.cells.c_str(),
-                         grown.data.num_cells(), timer.seconds());
-    }
-}
-
-}  // namespace pelage::renderer::cli
+}  // namespace pelage::sim

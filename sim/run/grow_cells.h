@@ -1,6 +1,8 @@
-// Growing a Clonal Mosaic on a mesh, as `pelage sim`, `pelage look` and a scene object's
-// "pattern" block ask for it: the preset read, the simulation surface chosen
-// (simulation_surface.h), the cells grown and packed as a .cells file would hold them.
+// Growing a Clonal Mosaic on a mesh from a preset, as `pelage sim`, `pelage look` and a
+// scene object's "pattern" block ask for it: the preset read, the simulation surface
+// chosen (simulation_surface.h), the cells grown and packed as a .cells file would hold
+// them. The library's one call from a mesh and a preset to a coat; what it shows the
+// user (set-up steps, a progress bar, notes) goes through the request's callbacks.
 #pragma once
 
 #include <cstdint>
@@ -13,26 +15,29 @@
 #include "sim/mosaic/cm_simulation.h"
 #include "sim/remesh/cell_scale_surface.h"
 
-namespace pelage::renderer::cli {
+namespace pelage::sim {
 
 struct GrowRequest {
-    std::string mesh;    // a mesh file or a "procedural:..." spec
-    std::string preset;  // a preset name (the shipped presets) or a preset file
+    std::string mesh;        // a mesh file or a "procedural:..." spec
+    std::string preset;      // a preset name (of `preset_dir`) or a preset file
+    std::string preset_dir;  // the shipped presets' folder
     uint64_t seed = 1;
     uint64_t initial_cells = 0;  // > 0 overrides the preset's count
     std::string relax;           // "", "local" or "global" (overrides the preset)
     bool simplify = true;        // simulate on a copy at the cells' scale when finer
-    bool progress = false;       // set-up lines and a bar on stderr
-    std::string label = "pelage sim";  // names the progress lines
+    // Told the name of each set-up step as it starts and "" as it ends.
+    std::function<void(const std::string &)> phase;
+    // Told the growth's fraction done, from 0 before the first step to 1.
+    std::function<void(double)> progress;
     // Told what the run does before it starts, e.g. that it simplifies the surface.
     std::function<void(const std::string &)> note;
 };
 
 struct GrownCells {
-    sim::Preset preset;
-    sim::CellsData data;  // what write_cells_file() stores
-    sim::SimStats stats;
-    sim::CellScaleReport cell_scale;
+    Preset preset;
+    CellsData data;  // what write_cells_file() stores
+    SimStats stats;
+    CellScaleReport cell_scale;
     size_t triangles = 0;  // of the simulation surface
     double body_length = 0;
     nlohmann::json params;  // the run's parameters, as data.params_json records them
@@ -47,17 +52,4 @@ GrownCells grow_cells(const GrowRequest &request);
 // says what differs (or that the file is missing or unreadable).
 bool cells_match(const std::string &path, const GrowRequest &request, std::string *why);
 
-}  // namespace pelage::renderer::cli
-
-namespace pelage::renderer {
-struct SceneDesc;
-}
-
-namespace pelage::renderer::cli {
-
-// Grows every object's "pattern" whose cells file is missing or was grown otherwise
-// (cells_match), writing the file atomically; a line on stderr says why unless `quiet`
-// (stdout may carry a command's JSON).
-void grow_scene_patterns(const SceneDesc &scene, bool quiet);
-
-}  // namespace pelage::renderer::cli
+}  // namespace pelage::sim
