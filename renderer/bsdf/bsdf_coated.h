@@ -55,8 +55,6 @@ class BsdfCoated {
     Rgb eval_pdf(Vec3f wo, Vec3f wi, float *pdf) const;
     std::optional<BsdfSample> sample(Vec3f wo, float u_lobe, float u1, float u2) const;
     Rgb albedo() const { return m_colour; }
-    // The base's own Lambertian albedo ρ that gives the colour (file header).
-    Rgb base_albedo() const { return m_rho; }
 
     // Unpolarized Fresnel reflectance of a dielectric with relative index eta.
     static float fresnel_dielectric(float cos_i, float eta);

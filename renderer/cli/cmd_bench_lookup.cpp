@@ -355,8 +355,6 @@ Runner add_bench_lookup(CLI::App &bench) {
         ->check(CLI::Range(0, 4));
     o->threads.add_to(*sub);
     o->out.add_to(*sub);
-    add_renamed_option(*sub, "--cells", "--cell-count",
-                       "--cells is kept for .cells files");
     return [o] { return run(*o); };
 }
 

@@ -238,8 +238,6 @@ Runner add_bench_sim(CLI::App &bench) {
         ->check(CLI::Range(1, 20));
     o->threads.add_to(*sub);
     o->out.add_to(*sub);
-    add_renamed_option(*sub, "--cells", "--initial-cells",
-                       "--cells is kept for .cells files");
     return [o] { return run(*o); };
 }
 

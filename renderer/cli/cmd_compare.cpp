@@ -203,7 +203,6 @@ Runner add_compare_command(CLI::App &app) {
     sub->add_option("--view", o->view, "OCIO view for the sheet (default: the scene's)");
     o->quiet.add_to(*sub);
     o->threads.add_to(*sub);
-    add_renamed_option(*sub, "--report", "--stats-json");
     return [o] { return run(*o); };
 }
 

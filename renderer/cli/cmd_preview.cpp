@@ -59,9 +59,6 @@ Runner add_preview_command(CLI::App &app) {
         ->expected(3);
     sub->add_option("--dot", o->view.dot_radius, "Dot radius in pixels")
         ->check(CLI::Range(0, 16));
-    add_renamed_option(*sub, "--size", "--res");
-    add_renamed_option(*sub, "--view", "--direction",
-                       "--view means an OpenColorIO view in pelage");
     return [o] { return run_preview(*o); };
 }
 

@@ -178,8 +178,6 @@ Runner add_sim_command(CLI::App &app) {
     o->stats_json.add_to(*sub, "the run summary");
     o->quiet.add_to(*sub);
     o->threads.add_to(*sub);
-    add_renamed_option(*sub, "--cells", "--initial-cells",
-                       "--cells is kept for .cells files");
     return [o] { return run_sim(*o); };
 }
 

@@ -90,23 +90,6 @@ void parse_resolution(const std::string &text, int max_side, int *width, int *he
     *height = r.height;
 }
 
-void add_renamed_option(CLI::App &app, const std::string &old_name,
-                        const std::string &new_name, const std::string &why) {
-    std::string command = app.get_name();  // "pelage bench sim", for the message
-    for (const CLI::App *p = app.get_parent(); p; p = p->get_parent())
-        command = p->get_name() + " " + command;
-    const std::string message = command + ": " + old_name + " was renamed " + new_name +
-                                (why.empty() ? "" : " (" + why + ")");
-    app.add_option_function<std::vector<std::string>>(
-           old_name,
-           [message](const std::vector<std::string> &) {
-               throw CLI::ValidationError(message);
-           })
-        ->expected(0, CLI::detail::expected_max_vector_size)
-        ->trigger_on_parse()
-        ->group("");
-}
-
 void write_json_file(const std::string &path, const nlohmann::json &j) {
     write_file_atomically(path, [&](std::ostream &out) { out << j.dump(2) << "\n"; });
 }

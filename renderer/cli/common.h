@@ -1,6 +1,6 @@
 // Pieces every subcommand shares: how a subcommand is registered, the options every
-// command spells the same way (--threads, -q/--quiet, --stats-json, --res, the old
-// names of renamed options), locating the project's data, timing.
+// command spells the same way (--threads, -q/--quiet, --stats-json, --res), locating
+// the project's data, timing.
 #pragma once
 
 #include <tbb/global_control.h>
@@ -76,12 +76,6 @@ Resolution parse_resolution(const std::string &text, int max_side, ResolutionFor
                             const std::string &field = "--res", int min_side = 1);
 // "1280x720" into a film's width and height.
 void parse_resolution(const std::string &text, int max_side, int *width, int *height);
-
-// An option's old name: a hidden option whose use fails the parse (exit 2) with
-// "OLD was renamed NEW", plus `why` when the old name now means something else. Old
-// scripts get told what to write instead of an unknown-option error.
-void add_renamed_option(CLI::App &app, const std::string &old_name,
-                        const std::string &new_name, const std::string &why = "");
 
 // Writes `j` to `path` atomically (pretty-printed, trailing newline).
 void write_json_file(const std::string &path, const nlohmann::json &j);

@@ -24,45 +24,6 @@ bool read_number(const std::string &s, size_t *i, int *value) {
     return *i > start;
 }
 
-// A frame-number token in `name` at [begin, end) and its width (0 = no padding).
-struct Token {
-    size_t begin = std::string::npos, end = 0;
-    int width = 0;
-};
-
-// The last token of `name`, or begin = npos.
-Token last_token(const std::string &name) {
-    Token best;
-    for (size_t i = 0; i < name.size(); ++i) {
-        Token t;
-        if (name[i] == '#') {
-            size_t j = i;
-            while (j < name.size() && name[j] == '#') ++j;
-            t = {i, j, int(j - i)};
-        } else if (name[i] == '%') {  // %d, %0Nd
-            size_t j = i + 1;
-            int width = 0;
-            if (j < name.size() && name[j] == '0') {
-                ++j;
-                if (!read_number(name, &j, &width)) continue;
-            }
-            if (j >= name.size() || name[j] != 'd') continue;
-            t = {i, j + 1, width};
-        } else if (name[i] == '$' && i + 1 < name.size() && name[i + 1] == 'F') {
-            size_t j = i + 2;  // $F, $FN
-            int width = 0;
-            if (j < name.size() && name[j] >= '1' && name[j] <= '9')
-                read_number(name, &j, &width);
-            t = {i, j, width};
-        } else {
-            continue;
-        }
-        best = t;
-        i = t.end - 1;
-    }
-    return best;
-}
-
 }  // namespace
 
 std::vector<FrameRange> parse_frame_ranges(const std::string &spec, int default_step,
@@ -120,18 +81,6 @@ std::vector<int> expand_frames(const std::vector<FrameRange> &ranges) {
     std::sort(frames.begin(), frames.end());
     frames.erase(std::unique(frames.begin(), frames.end()), frames.end());
     return frames;
-}
-
-bool has_frame_token(const std::string &name) {
-    return last_token(name).begin != std::string::npos;
-}
-
-std::string substitute_frame(const std::string &name, int frame) {
-    const Token t = last_token(name);
-    if (t.begin == std::string::npos) return name;
-    std::string num = std::to_string(frame);
-    if (int(num.size()) < t.width) num.insert(0, size_t(t.width) - num.size(), '0');
-    return name.substr(0, t.begin) + num + name.substr(t.end);
 }
 
 }  // namespace pelage::renderer::cli

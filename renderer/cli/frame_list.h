@@ -1,9 +1,7 @@
 // Frame lists as render-farm managers write them (Deadline, OpenCue, Blender's
-// command line), and the frame-number tokens of sequence file names.
-//   --frames: comma-separated items, each N, FIRST-LAST or FIRST-LASTxSTEP, e.g.
-//   "1001-1120", "1,5,9", "1-100x5", "0-20x5,33". Strict: no spaces, signs or junk.
-//   File names: a run of N '#' (N digits, "####"), printf's "%d" / "%0Nd", or Houdini's
-//   "$F" / "$FN"; the frame number is zero-padded to N digits.
+// command line): comma-separated items, each N, FIRST-LAST or FIRST-LASTxSTEP, e.g.
+// "1001-1120", "1,5,9", "1-100x5", "0-20x5,33". Strict: no spaces, signs or junk.
+// The frame-number tokens of file names are renderer/image/frame_pattern.h's.
 #pragma once
 
 #include <string>
@@ -24,13 +22,5 @@ std::vector<FrameRange> parse_frame_ranges(const std::string &spec, int default_
 
 // Every frame of the ranges, ascending, each once.
 std::vector<int> expand_frames(const std::vector<FrameRange> &ranges);
-
-// True when `name` holds a frame-number token (see above).
-bool has_frame_token(const std::string &name);
-
-// `name` with its last frame-number token replaced by `frame`, zero-padded to the
-// token's width: out.####.exr, out.%04d.exr and out.$F4.exr all give out.0007.exr for
-// frame 7. A name without a token is returned unchanged.
-std::string substitute_frame(const std::string &name, int frame);
 
 }  // namespace pelage::renderer::cli

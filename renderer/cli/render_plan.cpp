@@ -4,6 +4,7 @@
 #include <filesystem>
 
 #include "renderer/cli/frame_list.h"
+#include "renderer/image/frame_pattern.h"
 #include "sim/core/input_error.h"
 
 namespace pelage::renderer::cli {

@@ -1,5 +1,6 @@
 #include "renderer/image/frame_pattern.h"
 
+#include <algorithm>
 #include <cctype>
 
 namespace pelage::renderer {
@@ -9,6 +10,15 @@ namespace {
 constexpr int max_width = 10;  // an int has at most 10 digits
 
 bool is_digit(char c) { return std::isdigit(static_cast<unsigned char>(c)) != 0; }
+
+// The whole run of digits at s[*e...], advancing *e past it. Any run above max_width
+// reads as max_width + 1, so a long width is refused rather than cut short or overflowed.
+int read_width(const std::string &s, size_t *e) {
+    int w = 0;
+    for (; *e < s.size() && is_digit(s[*e]); ++*e)
+        w = std::min(10 * w + (s[*e] - '0'), max_width + 1);
+    return w;
+}
 
 // A placeholder starting at `at`: its length and width, or length 0 when there is none.
 struct Token {
@@ -22,21 +32,21 @@ Token token_at(const std::string &s, size_t at) {
         size_t e = at;
         while (e < s.size() && s[e] == '#') ++e;
         t.length = e - at;
-        t.width = int(t.length);
+        t.width = int(std::min(t.length, size_t(max_width + 1)));
         return t;
     }
     if (s[at] == '%') {  // %d or %0Nd
         if (s.compare(at, 2, "%d") == 0) return {2, 1};
         if (at + 1 >= s.size() || s[at + 1] != '0') return t;
-        size_t e = at + 2, w = 0;
-        while (e < s.size() && is_digit(s[e]) && e - at < 5) w = 10 * w + (s[e++] - '0');
+        size_t e = at + 2;
+        const int w = read_width(s, &e);
         if (e == at + 2 || e >= s.size() || s[e] != 'd') return t;
-        return {e + 1 - at, int(w)};
+        return {e + 1 - at, w};
     }
     if (s.compare(at, 2, "$F") == 0) {  // $F or $FN
-        size_t e = at + 2, w = 0;
-        while (e < s.size() && is_digit(s[e]) && e - at < 4) w = 10 * w + (s[e++] - '0');
-        return {e - at, e == at + 2 ? 1 : int(w)};
+        size_t e = at + 2;
+        const int w = read_width(s, &e);
+        return {e - at, e == at + 2 ? 1 : w};
     }
     return t;
 }
@@ -86,6 +96,15 @@ std::optional<int> match_frame(const FramePattern &p, const std::string &text) {
     // cow.####.exr.
     if (format_frame(p, int(n)) != text) return std::nullopt;
     return int(n);
+}
+
+bool has_frame_token(const std::string &name) {
+    return parse_frame_pattern(name).has_value();
+}
+
+std::string substitute_frame(const std::string &name, int frame) {
+    const auto p = parse_frame_pattern(name);
+    return p ? format_frame(*p, frame) : name;
 }
 
 }  // namespace pelage::renderer

@@ -7,9 +7,9 @@
 #include <set>
 #include <sstream>
 
-#include "renderer/scene_file/json_fields.h"
 #include "renderer/scene_file/scene_fur.h"
 #include "sim/core/input_error.h"
+#include "sim/core/json_fields.h"
 #include "sim/growth/growth_spec.h"
 #include "sim/mesh/mesh_objects.h"
 
@@ -18,13 +18,14 @@ namespace {
 
 namespace fs = std::filesystem;
 using json = nlohmann::json;
+using sim::json_type_name;
 
-// One object of the scene file (json_fields.h), with paths resolved against the file's
-// folder.
-class Reader : public JsonFields {
+// One object of the scene file (sim/core/json_fields.h), with paths resolved against the
+// file's folder.
+class Reader : public sim::JsonObjectFields {
   public:
     Reader(const json &j, std::string path, const SceneDesc &scene)
-        : JsonFields(j, std::move(path), scene.path), m_scene(scene) {}
+        : JsonObjectFields(j, std::move(path), scene.path), m_scene(scene) {}
 
     // A path relative to the scene file, made absolute.
     std::string path(const std::string &key, bool required = false) {

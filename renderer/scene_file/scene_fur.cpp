@@ -3,16 +3,17 @@
 #include <algorithm>
 #include <cmath>
 
-#include "renderer/scene_file/json_fields.h"
+#include "sim/core/json_fields.h"
 
 namespace pelage::renderer {
 
 namespace {
 
 using json = nlohmann::json;
+using sim::JsonObjectFields;
 
 // A list of per-cell-type multipliers, each in (0, 1000] (or [0, 1000] when zero_ok).
-std::vector<float> per_type(JsonFields &r, const std::string &key, bool zero_ok) {
+std::vector<float> per_type(JsonObjectFields &r, const std::string &key, bool zero_ok) {
     const json *v = r.take(key);
     if (!v) return {};
     if (!v->is_array() || v->empty() || v->size() > 16)
@@ -25,7 +26,7 @@ std::vector<float> per_type(JsonFields &r, const std::string &key, bool zero_ok)
 }
 
 // An optional number in [lo, hi] ((lo, hi] when open_lo), as the float FurParams holds.
-float num(JsonFields &r, const std::string &key, float def, double lo, double hi,
+float num(JsonObjectFields &r, const std::string &key, float def, double lo, double hi,
           bool open_lo = false) {
     return float(r.number(key, def, lo, hi, false, open_lo));
 }
@@ -34,7 +35,7 @@ float num(JsonFields &r, const std::string &key, float def, double lo, double hi
 
 FurParams read_fur(const json &j, const std::string &field,
                    const std::string &scene_path) {
-    JsonFields r(j, field, scene_path);
+    JsonObjectFields r(j, field, scene_path);
     FurParams p;
     using F = FurParams;
     for (const auto &[key, bit] :

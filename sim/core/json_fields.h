@@ -1,21 +1,48 @@
-// Reading the fields of a JSON preset block: every error is an InputError naming the
-// file and the JSON path of the offending value, unknown keys are errors (never
-// warn-and-ignore), and numbers must be finite. The preset parsers (cell types, growth,
-// fields, spatial control) build their own checks (ranges, matrices, directions) on
-// these primitives, so one mistake reads the same in every block.
+// Reading the fields of JSON input: every error is an InputError naming the file and
+// the JSON path of the offending value, unknown keys are errors (never warn-and-ignore),
+// and numbers must be finite. The preset parsers (cell types, growth, fields, spatial
+// control) build their own checks (ranges, matrices, directions) on JsonFields'
+// primitives, so one mistake reads the same in every block. The scene file reads each
+// of its objects through JsonObjectFields, the same reader bound to one object.
 #pragma once
 
 #include <cmath>
+#include <cstdint>
 #include <nlohmann/json.hpp>
 #include <set>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "sim/core/input_error.h"
 #include "sim/core/vec.h"
 
 namespace pelage::sim {
+
+// "a string", "an array", ...: what a value is, for messages.
+template <class Json>
+const char *json_type_name(const Json &j) {
+    switch (j.type()) {
+        case Json::value_t::null:
+            return "null";
+        case Json::value_t::boolean:
+            return "a boolean";
+        case Json::value_t::string:
+            return "a string";
+        case Json::value_t::array:
+            return "an array";
+        case Json::value_t::object:
+            return "an object";
+        case Json::value_t::number_integer:
+        case Json::value_t::number_unsigned:
+            return "an integer";
+        case Json::value_t::number_float:
+            return "a number";
+        default:
+            return "an unknown value";
+    }
+}
 
 // Works on nlohmann::json and nlohmann::ordered_json alike (the `Json` parameter).
 class JsonFields {
@@ -128,6 +155,73 @@ class JsonFields {
 
   private:
     std::string m_file;
+};
+
+// One JSON object read field by field (the scene file's camera, lights, objects...):
+// every field is taken at most once, typed and range-checked, and finish() rejects the
+// keys nobody took. A key holding "colour" is found in either spelling, "colour" or
+// "color" (colour_spelling.h), and named in messages as the file spells it. Messages
+// say what was found instead ("objects[0].fur.length = -1: must be in (0, 1e+09]",
+// "film.width: expected an integer, got a string").
+class JsonObjectFields : public JsonFields {
+  public:
+    using json = nlohmann::json;
+
+    // `path` is the object's JSON path ("" at the top level), `file` the input file.
+    JsonObjectFields(const json &j, std::string path, std::string file);
+
+    // The JSON path of one of this object's keys, spelled as in the file.
+    std::string field(const std::string &key) const { return join(m_path, spelled(key)); }
+    // `key` as the object spells it (colour or color); `key` when absent.
+    std::string spelled(const std::string &key) const;
+    const std::string &path_prefix() const { return m_path; }
+
+    bool has(const std::string &key) const { return m_j.contains(spelled(key)); }
+    // The key's value (nullptr when absent), marked as known either way.
+    const json *take(const std::string &key);
+    const json &require(const std::string &key);
+
+    // A finite number in [lo, hi], or in (lo, hi] when open_lo.
+    double number(const std::string &key, double def, double lo, double hi,
+                  bool required = false, bool open_lo = false);
+    int integer(const std::string &key, int def, long lo, long hi);
+    uint64_t unsigned_integer(const std::string &key, uint64_t def, uint64_t lo,
+                              uint64_t hi);
+    bool boolean(const std::string &key, bool def);
+    std::string string(const std::string &key, const std::string &def,
+                       bool required = false);
+    template <typename E>
+    E choice(const std::string &key, E def,
+             const std::vector<std::pair<std::string, E>> &options) {
+        const json *v = take(key);
+        if (!v) return def;
+        if (!v->is_string())
+            fail(field(key), std::string("expected a string, got ") + json_type_name(*v));
+        const std::string s = v->get<std::string>();
+        std::string all;
+        for (const auto &[name, e] : options) {
+            if (name == s) return e;
+            all += (all.empty() ? "" : ", ") + name;
+        }
+        fail(field(key), "unknown value \"" + s + "\" (expected one of " + all + ")");
+    }
+    Vec3f vec3(const std::string &key, Vec3f def, double lo = -1e30, double hi = 1e30,
+               bool required = false);
+    // A colour: [r, g, b] or one number for grey, each in [0, hi].
+    Rgb color(const std::string &key, Rgb def, double hi = 1e30);
+
+    // Checks of a value found elsewhere (an array element); `f` is its JSON path.
+    double check_number(const json &v, const std::string &f, double lo, double hi,
+                        bool open_lo = false) const;
+    Vec3f check_vec3(const json &v, const std::string &f, double lo, double hi) const;
+
+    // Rejects every key not taken.
+    void finish() const;
+
+  private:
+    const json &m_j;
+    std::string m_path;
+    std::set<std::string> m_taken;
 };
 
 }  // namespace pelage::sim

@@ -60,7 +60,6 @@ void Neighbourhoods::update(const Crps &crps, double r) {
         std::optional<WindowPropagation> propagation;
         std::vector<GeodesicWindow> windows;
         std::vector<TriId> tris;
-        size_t dropped = 0, replaced = 0;
     };
     tbb::enumerable_thread_specific<Scratch> scratch;
     const double R = m_radius, tolerance = image_tolerance * R;
@@ -209,20 +208,11 @@ void Neighbourhoods::update(const Crps &crps, double r) {
                             }
                         }
                     }
-                    if (best == none || best_error > tolerance) {
-                        ++s.dropped;
-                        continue;
-                    }
-                    if (best != s.first[j]) ++s.replaced;
+                    if (best == none || best_error > tolerance) continue;
                     out.push_back({j, s.queue[best].to_t.inverse()});
                 }
             }
         });
-    m_dropped = m_replaced = 0;
-    for (const Scratch &s : scratch) {
-        m_dropped += s.dropped;
-        m_replaced += s.replaced;
-    }
     m_seconds +=
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }

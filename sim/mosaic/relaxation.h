@@ -63,17 +63,15 @@ class Neighbourhoods {
     double radius() const { return m_radius; }
     size_t rebuilds() const { return m_rebuilds; }
     double seconds() const { return m_seconds; }  // total time spent building
-    // Images of the last build dropped or replaced by another image of their triangle.
-    size_t images_dropped() const { return m_dropped; }
-    size_t images_replaced() const { return m_replaced; }
-    size_t entries() const;  // over all triangles
+    // The entries over all triangles, and the memory they take.
+    size_t entries() const;
     size_t bytes() const;
 
   private:
     std::vector<std::vector<Entry>> m_entries;
     std::vector<double> m_bounding;
     double m_radius = 0;
-    size_t m_rebuilds = 0, m_dropped = 0, m_replaced = 0;
+    size_t m_rebuilds = 0;
     double m_seconds = 0;
     bool m_verified = true;
 };

@@ -1,7 +1,7 @@
-// One command-line vocabulary across the subcommands: an old option name fails naming
-// the new one, `--res WxH` is accepted wherever there is a resolution, `-q` leaves
-// standard output empty, `--stats-json` is written, and `colour`/`color` both read
-// (docs/guide/compositing-outputs.md, "Options every command spells the same").
+// One command-line vocabulary across the subcommands: `--res WxH` is accepted wherever
+// there is a resolution, `-q` leaves standard output empty, `--stats-json` is written,
+// and `colour`/`color` both read (docs/guide/compositing-outputs.md, "Options every
+// command spells the same").
 #include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
 
@@ -46,33 +46,6 @@ std::vector<float> pixels(const std::string &path) {
 nlohmann::json read_json(const std::string &path) {
     std::ifstream in(path);
     return nlohmann::json::parse(in, nullptr, false);
-}
-
-struct Renamed {
-    std::string command, old_name, new_name;
-};
-
-TEST(CliVocabulary, EveryOldNameExitsTwoNamingTheNewOne) {
-    TempDir tmp;
-    const std::string cells = tmp.file("c.cells"), out = tmp.file("out");
-    const std::vector<Renamed> cases = {
-        {"preview " + cells + " -o " + out + " --size 256", "--size", "--res"},
-        {"preview " + cells + " -o " + out + " --view 0 0 1", "--view", "--direction"},
-        {"compare scene.json --report " + out, "--report", "--stats-json"},
-        {"sim --mesh procedural:sphere:8x8 --preset teo-table-7.2 -o " + out +
-             " --cells 300",
-         "--cells", "--initial-cells"},
-        {"bench sim --cells 100 200", "--cells", "--initial-cells"},
-        {"bench lookup --cells 100", "--cells", "--cell-count"},
-    };
-    for (const Renamed &c : cases) {
-        std::string stdout_text, err;
-        EXPECT_EQ(run_pelage(c.command, &stdout_text, &err), 2) << c.command;
-        EXPECT_NE(err.find(c.old_name + " was renamed " + c.new_name), std::string::npos)
-            << c.command << "\n"
-            << err;
-        EXPECT_FALSE(std::filesystem::exists(out)) << c.command;
-    }
 }
 
 TEST(CliVocabulary, ResTakesWidthXHeightEverywhere) {

@@ -1,5 +1,4 @@
-// Frame lists and frame-number tokens: every accepted form, and every refusal naming
-// the offending item.
+// Frame lists: every accepted form, and every refusal naming the offending item.
 #include "renderer/cli/frame_list.h"
 
 #include <gtest/gtest.h>
@@ -80,28 +79,6 @@ TEST(FrameList, RefusesMalformedItemsNamingThem) {
         EXPECT_NE(msg.find(why), std::string::npos) << spec << " -> " << msg;
     }
     EXPECT_NE(refusal("0-10x2", 3).find("both --step"), std::string::npos);
-}
-
-TEST(FrameList, TokensOfEveryFormArePadded) {
-    EXPECT_EQ(substitute_frame("out.####.exr", 7), "out.0007.exr");
-    EXPECT_EQ(substitute_frame("out.#.exr", 7), "out.7.exr");
-    EXPECT_EQ(substitute_frame("out.##.exr", 1001), "out.1001.exr");
-    EXPECT_EQ(substitute_frame("out.%04d.exr", 7), "out.0007.exr");
-    EXPECT_EQ(substitute_frame("out.%d.exr", 42), "out.42.exr");
-    EXPECT_EQ(substitute_frame("out.$F4.exr", 7), "out.0007.exr");
-    EXPECT_EQ(substitute_frame("out.$F.exr", 7), "out.7.exr");
-    EXPECT_EQ(substitute_frame("out_$F6", 1001), "out_001001");
-    // The last token is the frame; earlier ones stay as written.
-    EXPECT_EQ(substitute_frame("take#2/out.###.exr", 5), "take#2/out.005.exr");
-    EXPECT_EQ(substitute_frame("a%04d.$F2.exr", 5), "a%04d.05.exr");
-    // Not tokens: a lone %, %s, %4d (space padding), $G, and no token at all.
-    for (const std::string name :
-         {"out.exr", "100%.exr", "out.%s.exr", "out.%4d.exr", "out.$G4.exr"}) {
-        EXPECT_FALSE(has_frame_token(name)) << name;
-        EXPECT_EQ(substitute_frame(name, 3), name);
-    }
-    for (const std::string name : {"a.#.exr", "a.%d.exr", "a.%03d.exr", "a.$F.exr"})
-        EXPECT_TRUE(has_frame_token(name)) << name;
 }
 
 }  // namespace

@@ -65,6 +65,58 @@ TEST(FramePattern, MatchesOnlyWhatFormatWouldWrite) {
     EXPECT_FALSE(match_frame(unpadded, "cow.07.exr"));
 }
 
+// What `pelage render` writes (substitute_frame) is what `pelage movie` reads back.
+TEST(FramePattern, TokensOfEveryFormArePadded) {
+    EXPECT_EQ(substitute_frame("out.####.exr", 7), "out.0007.exr");
+    EXPECT_EQ(substitute_frame("out.#.exr", 7), "out.7.exr");
+    EXPECT_EQ(substitute_frame("out.##.exr", 1001), "out.1001.exr");
+    EXPECT_EQ(substitute_frame("out.%04d.exr", 7), "out.0007.exr");
+    EXPECT_EQ(substitute_frame("out.%d.exr", 42), "out.42.exr");
+    EXPECT_EQ(substitute_frame("out.$F4.exr", 7), "out.0007.exr");
+    EXPECT_EQ(substitute_frame("out.$F.exr", 7), "out.7.exr");
+    EXPECT_EQ(substitute_frame("out_$F6", 1001), "out_001001");
+    // The last token is the frame; earlier ones stay as written.
+    EXPECT_EQ(substitute_frame("take#2/out.###.exr", 5), "take#2/out.005.exr");
+    EXPECT_EQ(substitute_frame("a%04d.$F2.exr", 5), "a%04d.05.exr");
+    // Not tokens: a lone %, %s, %4d (space padding), $G, and no token at all.
+    for (const std::string name :
+         {"out.exr", "100%.exr", "out.%s.exr", "out.%4d.exr", "out.$G4.exr"}) {
+        EXPECT_FALSE(has_frame_token(name)) << name;
+        EXPECT_EQ(substitute_frame(name, 3), name);
+    }
+    for (const std::string name : {"a.#.exr", "a.%d.exr", "a.%03d.exr", "a.$F.exr"})
+        EXPECT_TRUE(has_frame_token(name)) << name;
+}
+
+// The rules on which render's and movie's parsers once disagreed. A width is read whole
+// and must be 1 to 10 digits (an int's); a name whose last token is outside that has no
+// token, and is neither written frame by frame nor read as a sequence.
+TEST(FramePattern, WidthsAreReadWholeAndBoundedForRenderAndMovieAlike) {
+    // $F followed by a zero: the zero is part of the width ($F04 is four digits), so
+    // $F0 is a width of 0, which no frame has.
+    EXPECT_EQ(substitute_frame("out.$F04.exr", 7), "out.0007.exr");
+    EXPECT_EQ(parse_frame_pattern("out.$F04.exr")->token, "$F04");
+    // Widths of more than two ($F) or three (%0Nd) digits are read to their end.
+    EXPECT_EQ(substitute_frame("out.%00004d.exr", 7), "out.0007.exr");
+    EXPECT_EQ(parse_frame_pattern("out.%00004d.exr")->token, "%00004d");
+    EXPECT_EQ(substitute_frame("out.$F010.exr", 7), "out.0000000007.exr");
+    // Widths of 0 or above 10, however written, are refused.
+    for (const char *s :
+         {"out.%00d.exr", "out.$F0.exr", "out.%011d.exr", "out.$F11.exr", "out.$F100.exr",
+          "out.%01234d.exr", "out.###########.exr", "out.$F99999999999.exr"}) {
+        EXPECT_FALSE(parse_frame_pattern(s)) << s;
+        EXPECT_FALSE(has_frame_token(s)) << s;
+        EXPECT_EQ(substitute_frame(s, 7), s);
+    }
+    // An unusable last token is not passed over for an earlier one.
+    EXPECT_FALSE(has_frame_token("take_####/out.%00d.exr"));
+    EXPECT_TRUE(has_frame_token("take_%00d/out.####.exr"));
+    // Ten digits, the widest, round-trips.
+    const FramePattern ten = *parse_frame_pattern("out.##########.exr");
+    EXPECT_EQ(format_frame(ten, 2147483647), "out.2147483647.exr");
+    EXPECT_EQ(match_frame(ten, "out.0000000007.exr"), 7);
+}
+
 void touch(const TempDir &tmp, const std::string &name) {
     std::ofstream(tmp.file(name)) << "x";
 }

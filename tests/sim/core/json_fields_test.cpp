@@ -1,5 +1,6 @@
 // sim/core/json_fields.h: each primitive's error names the file and the JSON path and
-// says what was expected; the preset parsers' messages are these, word for word.
+// says what was expected; the preset parsers' and the scene file's messages are these,
+// word for word.
 #include "sim/core/json_fields.h"
 
 #include <gtest/gtest.h>
@@ -85,6 +86,57 @@ TEST(JsonFieldsPreset, Strings) {
               "p.json: absent: missing");
     EXPECT_EQ(error_of([&] { f.non_empty_string(j["e"], "o.e"); }),
               "p.json: o.e: expected a non-empty string");
+}
+
+// JsonObjectFields, as the scene file reads its objects: each message says what was
+// found, keys are taken once and the rest are unknown, colour has two spellings.
+TEST(JsonObjectFields, FieldsAreTypedRangedAndTheRestUnknown) {
+    const json j = json::parse(
+        R"({"n": 2, "i": "x", "b": 1, "v": [1, 2], "c": 0.5, "k": "z", "u": -3})");
+    JsonObjectFields f(j, "film", "s.json");
+    EXPECT_EQ(f.number("n", 0, 0, 10), 2);
+    EXPECT_EQ(f.number("absent", 7, 0, 10), 7);
+    EXPECT_EQ(error_of([&] { f.number("n", 0, 3, 10); }),
+              "s.json: film.n: = 2: must be in [3, 10]");
+    EXPECT_EQ(error_of([&] { f.number("n", 0, 2, 10, false, true); }),
+              "s.json: film.n: = 2: must be in (2, 10]");
+    EXPECT_EQ(error_of([&] { f.number("absent", 0, 0, 1, true); }),
+              "s.json: film.absent: missing required field");
+    EXPECT_EQ(error_of([&] { f.integer("i", 0, 0, 1); }),
+              "s.json: film.i: expected an integer, got a string");
+    EXPECT_EQ(error_of([&] { f.unsigned_integer("u", 0, 0, 9); }),
+              "s.json: film.u: expected a non-negative integer, got a negative one");
+    EXPECT_EQ(error_of([&] { f.boolean("b", false); }),
+              "s.json: film.b: expected true or false, got an integer");
+    EXPECT_EQ(error_of([&] { f.vec3("v", {}); }),
+              "s.json: film.v: expected an array of 3 numbers, got an array of 2");
+    const Rgb grey = f.color("c", {});
+    EXPECT_EQ(grey.x, 0.5f);
+    EXPECT_EQ(grey.z, 0.5f);
+    EXPECT_EQ(error_of([&] {
+                  f.choice<int>("k", 0, {{"a", 1}, {"b", 2}});
+              }),
+              "s.json: film.k: unknown value \"z\" (expected one of a, b)");
+    EXPECT_EQ(error_of([&] { f.finish(); }), "");
+    JsonObjectFields g(j, "", "s.json");
+    g.take("n");
+    EXPECT_EQ(error_of([&] { g.finish(); }), "s.json: b: unknown field");
+    EXPECT_EQ(error_of([&] { JsonObjectFields(json(3), "x", "s.json"); }),
+              "s.json: x: expected an object, got an integer");
+}
+
+TEST(JsonObjectFields, ColourIsFoundInEitherSpellingAndNamedAsWritten) {
+    const json j = json::parse(R"({"color": [1, 0, 0]})");
+    JsonObjectFields f(j, "lights[0]", "s.json");
+    EXPECT_TRUE(f.has("colour"));
+    EXPECT_EQ(f.field("colour"), "lights[0].color");
+    EXPECT_EQ(f.color("colour", {}).x, 1.0f);
+    EXPECT_EQ(error_of([&] { f.finish(); }), "");
+    const json both = json::parse(R"({"color": 1, "colour": 1})");
+    EXPECT_NE(error_of([&] {
+                  JsonObjectFields(both, "", "s.json").take("colour");
+              }).find("given twice"),
+              std::string::npos);
 }
 
 }  // namespace

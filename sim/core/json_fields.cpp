@@ -1,51 +1,23 @@
-#include "renderer/scene_file/json_fields.h"
+#include "sim/core/json_fields.h"
 
 #include <cmath>
 #include <sstream>
 
 #include "sim/core/colour_spelling.h"
-#include "sim/core/input_error.h"
 
-namespace pelage::renderer {
+namespace pelage::sim {
 
-const char *json_type_name(const nlohmann::json &j) {
-    using json = nlohmann::json;
-    switch (j.type()) {
-        case json::value_t::null:
-            return "null";
-        case json::value_t::boolean:
-            return "a boolean";
-        case json::value_t::string:
-            return "a string";
-        case json::value_t::array:
-            return "an array";
-        case json::value_t::object:
-            return "an object";
-        case json::value_t::number_integer:
-        case json::value_t::number_unsigned:
-            return "an integer";
-        case json::value_t::number_float:
-            return "a number";
-        default:
-            return "an unknown value";
-    }
-}
-
-JsonFields::JsonFields(const json &j, std::string path, std::string file)
-    : m_j(j), m_path(std::move(path)), m_file(std::move(file)) {
+JsonObjectFields::JsonObjectFields(const json &j, std::string path, std::string file)
+    : JsonFields(std::move(file)), m_j(j), m_path(std::move(path)) {
     if (!j.is_object())
         fail(m_path, std::string("expected an object, got ") + json_type_name(j));
 }
 
-void JsonFields::fail(const std::string &field, const std::string &message) const {
-    throw InputError(m_file, 0, field, message);
+std::string JsonObjectFields::spelled(const std::string &key) const {
+    return spelling_in(m_j, key, file(), join(m_path, key));
 }
 
-std::string JsonFields::spelled(const std::string &key) const {
-    return spelling_in(m_j, key, m_file, join(key));
-}
-
-const nlohmann::json *JsonFields::take(const std::string &key) {
+const nlohmann::json *JsonObjectFields::take(const std::string &key) {
     m_taken.insert(key);
     if (const std::string other = other_colour_spelling(key); !other.empty())
         m_taken.insert(other);
@@ -53,19 +25,19 @@ const nlohmann::json *JsonFields::take(const std::string &key) {
     return it == m_j.end() ? nullptr : &*it;
 }
 
-const nlohmann::json &JsonFields::require(const std::string &key) {
+const nlohmann::json &JsonObjectFields::require(const std::string &key) {
     const json *v = take(key);
     if (!v) fail(field(key), "missing required field");
     return *v;
 }
 
-double JsonFields::number(const std::string &key, double def, double lo, double hi,
-                          bool required, bool open_lo) {
+double JsonObjectFields::number(const std::string &key, double def, double lo, double hi,
+                                bool required, bool open_lo) {
     const json *v = required ? &require(key) : take(key);
     return v ? check_number(*v, field(key), lo, hi, open_lo) : def;
 }
 
-int JsonFields::integer(const std::string &key, int def, long lo, long hi) {
+int JsonObjectFields::integer(const std::string &key, int def, long lo, long hi) {
     const json *v = take(key);
     if (!v) return def;
     if (!v->is_number_integer())
@@ -77,8 +49,8 @@ int JsonFields::integer(const std::string &key, int def, long lo, long hi) {
     return int(x);
 }
 
-uint64_t JsonFields::unsigned_integer(const std::string &key, uint64_t def, uint64_t lo,
-                                      uint64_t hi) {
+uint64_t JsonObjectFields::unsigned_integer(const std::string &key, uint64_t def,
+                                            uint64_t lo, uint64_t hi) {
     const json *v = take(key);
     if (!v) return def;
     if (!v->is_number_unsigned() && !(v->is_number_integer() && v->get<int64_t>() >= 0))
@@ -92,7 +64,7 @@ uint64_t JsonFields::unsigned_integer(const std::string &key, uint64_t def, uint
     return x;
 }
 
-bool JsonFields::boolean(const std::string &key, bool def) {
+bool JsonObjectFields::boolean(const std::string &key, bool def) {
     const json *v = take(key);
     if (!v) return def;
     if (!v->is_boolean())
@@ -101,8 +73,8 @@ bool JsonFields::boolean(const std::string &key, bool def) {
     return v->get<bool>();
 }
 
-std::string JsonFields::string(const std::string &key, const std::string &def,
-                               bool required) {
+std::string JsonObjectFields::string(const std::string &key, const std::string &def,
+                                     bool required) {
     const json *v = required ? &require(key) : take(key);
     if (!v) return def;
     if (!v->is_string())
@@ -110,13 +82,13 @@ std::string JsonFields::string(const std::string &key, const std::string &def,
     return v->get<std::string>();
 }
 
-Vec3f JsonFields::vec3(const std::string &key, Vec3f def, double lo, double hi,
-                       bool required) {
+Vec3f JsonObjectFields::vec3(const std::string &key, Vec3f def, double lo, double hi,
+                             bool required) {
     const json *v = required ? &require(key) : take(key);
     return v ? check_vec3(*v, field(key), lo, hi) : def;
 }
 
-Rgb JsonFields::color(const std::string &key, Rgb def, double hi) {
+Rgb JsonObjectFields::color(const std::string &key, Rgb def, double hi) {
     const json *v = take(key);
     if (!v) return def;
     if (v->is_number()) {
@@ -126,8 +98,8 @@ Rgb JsonFields::color(const std::string &key, Rgb def, double hi) {
     return check_vec3(*v, field(key), 0, hi);
 }
 
-double JsonFields::check_number(const json &v, const std::string &f, double lo, double hi,
-                                bool open_lo) const {
+double JsonObjectFields::check_number(const json &v, const std::string &f, double lo,
+                                      double hi, bool open_lo) const {
     if (!v.is_number())
         fail(f, std::string("expected a number, got ") + json_type_name(v));
     const double x = v.get<double>();
@@ -140,8 +112,8 @@ double JsonFields::check_number(const json &v, const std::string &f, double lo, 
     return x;
 }
 
-Vec3f JsonFields::check_vec3(const json &v, const std::string &f, double lo,
-                             double hi) const {
+Vec3f JsonObjectFields::check_vec3(const json &v, const std::string &f, double lo,
+                                   double hi) const {
     if (!v.is_array() || v.size() != 3)
         fail(f, std::string("expected an array of 3 numbers, got ") + json_type_name(v) +
                     (v.is_array() ? " of " + std::to_string(v.size()) : std::string()));
@@ -150,9 +122,9 @@ Vec3f JsonFields::check_vec3(const json &v, const std::string &f, double lo,
             float(check_number(v[2], f + "[2]", lo, hi))};
 }
 
-void JsonFields::finish() const {
+void JsonObjectFields::finish() const {
     for (auto it = m_j.begin(); it != m_j.end(); ++it)
         if (!m_taken.count(it.key())) fail(field(it.key()), "unknown field");
 }
 
-}  // namespace pelage::renderer
+}  // namespace pelage::sim
