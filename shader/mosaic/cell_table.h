@@ -28,7 +28,6 @@ struct CellTable {
 
     size_t size() const { return x.size(); }
     size_t num_triangles() const { return row.empty() ? 0 : row.size() - 1; }
-    uint32_t count_on(sim::TriId t) const { return row[t + 1] - row[t]; }
 };
 
 // Groups cells by triangle, in (triangle, id) order so the layout is deterministic.

@@ -161,5 +161,24 @@ TEST(ShadersCli, WrongAbiPluginIsRefusedNamingTheFile) {
     EXPECT_FALSE(std::filesystem::exists(tmp.file("o.exr")));
 }
 
+TEST(ShadersCli, AnAbi2PluginIsRefusedAskingForARebuild) {
+    TempDir tmp;
+    const std::string scene = tmp.write("s.json", R"({"camera": {}, "objects": [
+        {"mesh": "procedural:icosphere:1", "material": {"shader": "old_abi"}}]})");
+    const std::string env =
+        "PELAGE_SHADER_PATH=" + std::string(PELAGE_TEST_PLUGIN_DIR) + " ";
+    const int rc = std::system((env + PELAGE_BINARY + " render " + scene + " -o " +
+                                tmp.file("o.exr") + " 2>" + tmp.file("err"))
+                                   .c_str());
+    std::ifstream in(tmp.file("err"));
+    const std::string err(std::istreambuf_iterator<char>(in), {});
+    EXPECT_NE(WEXITSTATUS(rc), 0);
+    EXPECT_NE(err.find("old_abi.so: shader plugin ABI version 2, this pelage needs 3 "
+                       "(rebuild the plugin"),
+              std::string::npos)
+        << err;
+    EXPECT_FALSE(std::filesystem::exists(tmp.file("o.exr")));
+}
+
 }  // namespace
 }  // namespace pelage::test

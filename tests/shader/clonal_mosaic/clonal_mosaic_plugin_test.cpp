@@ -39,6 +39,42 @@ shader::mosaic::CellTable table_of(const sim::CellsData &data) {
     return shader::mosaic::make_cell_table(data.num_triangles(), list);
 }
 
+// ABI 3: the plugin builds its surface from the renderer's mesh view; the mesh file is
+// never opened (its name is for messages only), and the pattern is the one the file's
+// own loading gives.
+TEST(ClonalMosaicPlugin, BuildsFromTheMeshViewWithoutOpeningTheMeshFile) {
+    TempDir tmp;
+    const std::string cells = simulate_two_type_cells(tmp, mesh_spec, 300);
+    const Instance reference({{"antialias", 0}}, cells.c_str());
+    ASSERT_NE(reference.self, nullptr) << reference.error;
+
+    const renderer::LoadedPlugin plugin =
+        renderer::open_plugin(renderer::package_lib_dir() + "/shaders/clonal_mosaic.so");
+    const renderer::PluginParams params = renderer::validate_plugin_params(
+        *plugin.desc, nlohmann::json{{"antialias", 0}}, "test.json", "params");
+    const PluginMeshView view(sim::load_mesh(mesh_spec), tmp.file("no/such/mesh.off"),
+                              cells.c_str());
+    PelageParamSet ps{};
+    ps.count = uint32_t(params.values.size());
+    ps.values = params.values.data();
+    ps.mesh = view.view;
+    ps.warn = PluginMeshView::warn;
+    PelageError err{};
+    void *self = plugin.desc->create(&ps, &err);
+    ASSERT_NE(self, nullptr) << err.message;
+    for (uint32_t prim = 0; prim < view.mesh.num_triangles(); prim += 7) {
+        PelageHit hit{};
+        hit.primitive_id = prim;
+        hit.b1 = hit.b2 = 0.3f;
+        PelageShade sh = pelage_default_shade();
+        plugin.desc->shade(self, &hit, &sh);
+        const PelageShade expected = reference.shade(prim, 0.3f, 0.3f);
+        ASSERT_EQ(sh.aov[0], expected.aov[0]) << prim;
+        ASSERT_EQ(sh.cell_type, expected.cell_type) << prim;
+    }
+    plugin.desc->destroy(self);
+}
+
 TEST(ClonalMosaicPlugin, ColourAndAovsAreTheNearestCellsType) {
     TempDir tmp;
     const std::string cells = simulate_two_type_cells(tmp, mesh_spec, 600);
@@ -68,6 +104,7 @@ TEST(ClonalMosaicPlugin, ColourAndAovsAreTheNearestCellsType) {
         ASSERT_EQ(uint32_t(sh.aov[0]), table.id[c.index]);
         const sim::CellType &type = data.types[table.type[c.index]];
         ASSERT_EQ(sh.aov[1], float(table.type[c.index]));
+        ASSERT_EQ(sh.cell_type, int32_t(table.type[c.index]));
         for (int k = 0; k < 3; ++k) ASSERT_FLOAT_EQ(sh.albedo[k], type.colour[k]);
         ASSERT_FLOAT_EQ(sh.eumelanin, type.eumelanin);
         ASSERT_NEAR(sh.aov[2], c.f1, 1e-6);

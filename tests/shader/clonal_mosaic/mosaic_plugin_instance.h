@@ -55,6 +55,7 @@ struct MosaicPluginInstance {
         hit.footprint = footprint;
         PelageShade out{};
         out.roughness = -1;
+        out.cell_type = -1;
         plugin.desc->shade(self, &hit, &out);
         return out;
     }
