@@ -1,7 +1,7 @@
-// `pelage bench hair`: the Chiang et al. 2016 hair BSDF (shader/hair). Prints one JSON
-// object: furnace_max_error (a contract: the worst |∫ f|cos θ_i| dω − 1| over a
-// fixed, seeded set of σ_a = 0 fibres with random β_m, β_n ∈ [0.1, 1], α ∈ [−5°, 5°],
-// h and wo, by the midpoint quadrature of renderer/bsdf/hair_furnace.h), the worst
+// `pelage bench hair`: the Chiang et al. 2016 hair BSDF (renderer/bsdf/hair_bsdf.h).
+// Prints one JSON object: furnace_max_error (a contract: the worst |∫ f|cos θ_i| dω − 1|
+// over a fixed, seeded set of σ_a = 0 fibres with random β_m, β_n ∈ [0.1, 1], α ∈ [−5°,
+// 5°], h and wo, by the midpoint quadrature of renderer/bsdf/hair_furnace.h), the worst
 // |∫ pdf dω − 1|, and nanoseconds per eval / pdf / sample call on one thread.
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-// Fur in the Embree scene: for every object with a `"fur"` block, shader/fur grows its
+// Fur in the Embree scene: for every object with a `"fur"` block, renderer/fur grows its
 // strands on the object's world-space mesh, each taking its pigment from the object's
 // own material plugin at the root (so fur follows whatever pattern the skin shows), and
 // the strands become one Embree curve geometry in the scene's top level:
@@ -67,7 +67,7 @@ class FurGeometry {
     }
     const std::vector<FurLayer> &layers() const { return m_layers; }
     size_t num_strands() const;
-    double grow_seconds() const { return m_grow_seconds; }      // strands (shader/fur)
+    double grow_seconds() const { return m_grow_seconds; }      // strands (renderer/fur)
     double embree_seconds() const { return m_embree_seconds; }  // curves + BVH commit
 
   private:

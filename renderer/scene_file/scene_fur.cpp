@@ -98,7 +98,7 @@ FurParams read_fur(const json &j, const std::string &field,
         // Cycles' Principled Hair: Melanin m and Melanin Redness r give concentrations
         // q (1 − r) and q r with q = −ln(1 − m), times its own absorption coefficients,
         // (0.506, 0.841, 1.653) and (0.343, 0.733, 1.924): 1.207 and 1.833 times
-        // d'Eon's, which shader/hair uses (within 0.1 % per channel).
+        // d'Eon's, which renderer/bsdf/hair_pigments uses (within 0.1 % per channel).
         const std::string f = r.field("cycles_melanin");
         if (p.own_melanin) r.fail(f, "give either \"melanin\" or \"cycles_melanin\"");
         if (!v->is_array() || v->size() != 2)

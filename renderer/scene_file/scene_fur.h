@@ -1,5 +1,5 @@
 // The `"fur": {…}` block of a scene object (docs/guide/fur.md): parsed and fully
-// validated into shader/fur's FurParams. Unknown keys and values out of range are
+// validated into renderer/fur's FurParams. Unknown keys and values out of range are
 // pelage::InputError naming the scene file and the JSON path (objects[i].fur.length).
 #pragma once
 

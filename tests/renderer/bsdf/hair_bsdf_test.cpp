@@ -1,6 +1,6 @@
-// Property tests of the Chiang et al. 2016 hair BSDF (shader/hair): white furnace,
-// eval/pdf/sample agreement, a chi-square test of sample() against pdf(), reciprocity,
-// pigments, parameter validation. Every RNG is seeded; tolerances say why.
+// Property tests of the Chiang et al. 2016 hair BSDF (renderer/bsdf/hair_bsdf.h): white
+// furnace, eval/pdf/sample agreement, a chi-square test of sample() against pdf(),
+// reciprocity, pigments, parameter validation. Every RNG is seeded; tolerances say why.
 #include "renderer/bsdf/hair_bsdf.h"
 
 #include <gtest/gtest.h>

@@ -1,4 +1,4 @@
-// shader/fur: roots are area-uniform, counts follow density × area (per cell type),
+// renderer/fur: roots are area-uniform, counts follow density × area (per cell type),
 // strands are identical at any thread count, each strand's pigment is the skin's at its
 // root, and strand shapes honour length, comb angle, radii and the skin.
 #include "renderer/fur/fur_grow.h"

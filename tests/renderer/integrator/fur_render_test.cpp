@@ -88,8 +88,8 @@ TEST(FurRender, FlatRibbonsLookLikeRoundTubes) {
 
 // σ_a = 0 fibres (the diffuse skin has no melanin) on a white Lambertian skin, inside a
 // uniform environment of radiance 1: nothing absorbs, so every pixel converges to 1
-// (the hair BSDF conserves energy to ~1 %, shader/hair tests). The same coat on a grey
-// skin must lose energy: the test can fail.
+// (the hair BSDF conserves energy to ~1 %, renderer/bsdf/hair_bsdf_test.cpp). The same
+// coat on a grey skin must lose energy: the test can fail.
 TEST(FurRender, WhiteFurnaceReturnsTheEnvironment) {
     TempDir tmp;
     const std::string white_env = R"([{"type": "environment", "color": [1, 1, 1]}])";
