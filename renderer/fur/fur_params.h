@@ -43,8 +43,7 @@ struct FurParams {
     bool own_melanin = false;
     float eumelanin = 0, pheomelanin = 0;
     float melanin_jitter = 0.1f;  // each strand's melanin × U[1 − j, 1 + j]
-    float beta_m = 0.25f, beta_n = 0.3f,
-          alpha_deg = 2;  // hair BSDF (renderer/bsdf/hair_bsdf.h)
+    float beta_m = 0.25f, beta_n = 0.3f, alpha_deg = 2;  // hair BSDF (renderer/bsdf)
     enum class Curve { round, flat } curve = Curve::round;
 
     // The defaults above are for an object of bounding radius 1. Lengths and radii not
