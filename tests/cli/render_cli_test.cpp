@@ -143,41 +143,43 @@ TEST(ShadersCli, ListsDiffuseAndItsParameters) {
     EXPECT_NE(err.find("wroley"), std::string::npos);
 }
 
-TEST(ShadersCli, WrongAbiPluginIsRefusedNamingTheFile) {
+// Renders an icosphere with the test plugin `shader` (tests/data/plugins): the exit
+// status and stderr; `written` says whether the EXR appeared.
+int render_with_test_plugin(const std::string &shader, std::string *err, bool *written) {
     TempDir tmp;
-    const std::string scene = tmp.write("s.json", R"({"camera": {}, "objects": [
-        {"mesh": "procedural:icosphere:1", "material": {"shader": "bad_abi"}}]})");
-    std::string err;
+    const std::string scene = tmp.write(
+        "s.json", R"({"camera": {}, "objects": [{"mesh": "procedural:icosphere:1",
+            "material": {"shader": ")" +
+                      shader + R"("}}]})");
     const std::string env =
         "PELAGE_SHADER_PATH=" + std::string(PELAGE_TEST_PLUGIN_DIR) + " ";
     const int rc = std::system((env + PELAGE_BINARY + " render " + scene + " -o " +
                                 tmp.file("o.exr") + " 2>" + tmp.file("err"))
                                    .c_str());
     std::ifstream in(tmp.file("err"));
-    err.assign(std::istreambuf_iterator<char>(in), {});
-    EXPECT_NE(WEXITSTATUS(rc), 0);
+    err->assign(std::istreambuf_iterator<char>(in), {});
+    *written = std::filesystem::exists(tmp.file("o.exr"));
+    return WEXITSTATUS(rc);
+}
+
+TEST(ShadersCli, WrongAbiPluginIsRefusedNamingTheFile) {
+    std::string err;
+    bool written = true;
+    EXPECT_NE(render_with_test_plugin("bad_abi", &err, &written), 0);
     EXPECT_NE(err.find("bad_abi.so"), std::string::npos) << err;
     EXPECT_NE(err.find("ABI version 999"), std::string::npos) << err;
-    EXPECT_FALSE(std::filesystem::exists(tmp.file("o.exr")));
+    EXPECT_FALSE(written);
 }
 
 TEST(ShadersCli, AnAbi2PluginIsRefusedAskingForARebuild) {
-    TempDir tmp;
-    const std::string scene = tmp.write("s.json", R"({"camera": {}, "objects": [
-        {"mesh": "procedural:icosphere:1", "material": {"shader": "old_abi"}}]})");
-    const std::string env =
-        "PELAGE_SHADER_PATH=" + std::string(PELAGE_TEST_PLUGIN_DIR) + " ";
-    const int rc = std::system((env + PELAGE_BINARY + " render " + scene + " -o " +
-                                tmp.file("o.exr") + " 2>" + tmp.file("err"))
-                                   .c_str());
-    std::ifstream in(tmp.file("err"));
-    const std::string err(std::istreambuf_iterator<char>(in), {});
-    EXPECT_NE(WEXITSTATUS(rc), 0);
+    std::string err;
+    bool written = true;
+    EXPECT_NE(render_with_test_plugin("old_abi", &err, &written), 0);
     EXPECT_NE(err.find("old_abi.so: shader plugin ABI version 2, this pelage needs 3 "
                        "(rebuild the plugin"),
               std::string::npos)
         << err;
-    EXPECT_FALSE(std::filesystem::exists(tmp.file("o.exr")));
+    EXPECT_FALSE(written);
 }
 
 }  // namespace

@@ -48,31 +48,15 @@ TEST(ClonalMosaicPlugin, BuildsFromTheMeshViewWithoutOpeningTheMeshFile) {
     const Instance reference({{"antialias", 0}}, cells.c_str());
     ASSERT_NE(reference.self, nullptr) << reference.error;
 
-    const renderer::LoadedPlugin plugin =
-        renderer::open_plugin(renderer::package_lib_dir() + "/shaders/clonal_mosaic.so");
-    const renderer::PluginParams params = renderer::validate_plugin_params(
-        *plugin.desc, nlohmann::json{{"antialias", 0}}, "test.json", "params");
-    const PluginMeshView view(sim::load_mesh(mesh_spec), tmp.file("no/such/mesh.off"),
-                              cells.c_str());
-    PelageParamSet ps{};
-    ps.count = uint32_t(params.values.size());
-    ps.values = params.values.data();
-    ps.mesh = view.view;
-    ps.warn = PluginMeshView::warn;
-    PelageError err{};
-    void *self = plugin.desc->create(&ps, &err);
-    ASSERT_NE(self, nullptr) << err.message;
-    for (uint32_t prim = 0; prim < view.mesh.num_triangles(); prim += 7) {
-        PelageHit hit{};
-        hit.primitive_id = prim;
-        hit.b1 = hit.b2 = 0.3f;
-        PelageShade sh = pelage_default_shade();
-        plugin.desc->shade(self, &hit, &sh);
+    const MosaicPluginInstance inst({{"antialias", 0}}, cells.c_str(), mesh_spec,
+                                    tmp.file("no/such/mesh.off"));
+    ASSERT_NE(inst.self, nullptr) << inst.error;
+    for (uint32_t prim = 0; prim < inst.mesh.num_triangles(); prim += 7) {
+        const PelageShade sh = inst.shade(prim, 0.3f, 0.3f);
         const PelageShade expected = reference.shade(prim, 0.3f, 0.3f);
         ASSERT_EQ(sh.aov[0], expected.aov[0]) << prim;
         ASSERT_EQ(sh.cell_type, expected.cell_type) << prim;
     }
-    plugin.desc->destroy(self);
 }
 
 TEST(ClonalMosaicPlugin, ColourAndAovsAreTheNearestCellsType) {

@@ -22,14 +22,16 @@ struct MosaicPluginInstance {
     void *self = nullptr;  // null when create() refused; `error` says why
     std::string error;
 
-    // `cells` may be null (no .cells file given).
+    // `cells` may be null (no .cells file given). The view names the mesh `mesh_name`
+    // (`mesh_path` when empty), as the scene does; the plugin only prints it.
     MosaicPluginInstance(const nlohmann::json &p, const char *cells,
-                         const std::string &mesh_path)
+                         const std::string &mesh_path, const std::string &mesh_name = "")
         : plugin(renderer::open_plugin(renderer::package_lib_dir() +
                                        "/shaders/clonal_mosaic.so")),
           params(
               renderer::validate_plugin_params(*plugin.desc, p, "test.json", "params")),
-          view(sim::load_mesh(mesh_path), mesh_path, cells) {
+          view(sim::load_mesh(mesh_path), mesh_name.empty() ? mesh_path : mesh_name,
+               cells) {
         PelageParamSet ps{};
         ps.count = uint32_t(params.values.size());
         ps.values = params.values.data();
