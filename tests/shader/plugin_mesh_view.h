@@ -53,6 +53,16 @@ struct PluginMeshView {
     PluginMeshView(const PluginMeshView &) = delete;
     PluginMeshView &operator=(const PluginMeshView &) = delete;
 
+    // One triangle in object space with corner UVs: for plugins that need a mesh's
+    // presence more than its shape.
+    static sim::TriangleMesh unit_triangle() {
+        sim::TriangleMesh m;
+        m.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
+        m.triangles = {{0, 1, 2}};
+        m.corner_uvs = {{0, 0}, {1, 0}, {0, 1}};
+        return m;
+    }
+
     // The renderer's warning callback: one line on stderr.
     static void warn(void *, const char *message) {
         std::fprintf(stderr, "%s\n", message);

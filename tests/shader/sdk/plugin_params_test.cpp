@@ -11,6 +11,7 @@
 
 #include "renderer/core/install_layout.h"
 #include "renderer/plugins/plugin_loader.h"
+#include "tests/shader/plugin_mesh_view.h"
 
 namespace pelage::test {
 namespace {
@@ -20,12 +21,6 @@ renderer::LoadedPlugin load(const std::string &name) {
                                  ".so");
 }
 
-// One triangle in object space, with corner UVs.
-const float positions[] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
-const double rest_positions[] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
-const uint32_t triangles[] = {0, 1, 2};
-const float uvs[] = {0, 0, 1, 0, 0, 1};
-
 struct Created {
     void *self = nullptr;
     std::string error;
@@ -33,18 +28,12 @@ struct Created {
 
 Created create(const renderer::LoadedPlugin &p, const std::vector<PelageParamValue> &v,
                const char *cells = nullptr) {
+    const PluginMeshView view(PluginMeshView::unit_triangle(), "procedural:test", cells);
     PelageParamSet ps{};
     ps.count = uint32_t(v.size());
     ps.values = v.data();
-    ps.mesh.num_vertices = 3;
-    ps.mesh.num_triangles = 1;
-    ps.mesh.positions = positions;
-    ps.mesh.rest_positions = rest_positions;
-    ps.mesh.triangles = triangles;
-    ps.mesh.corner_uvs = uvs;
-    ps.mesh.cells_path = cells;
-    ps.mesh.mesh_name = "procedural:test";
-    ps.warn = [](void *, const char *) {};
+    ps.mesh = view.view;
+    ps.warn = PluginMeshView::warn;
     ps.scene_dir = "";
     PelageError err{};
     Created c;

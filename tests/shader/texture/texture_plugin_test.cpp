@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include "renderer/plugins/plugin_loader.h"
+#include "tests/shader/plugin_mesh_view.h"
 #include "tests/test_paths.h"
 
 namespace pelage::test {
@@ -25,10 +26,7 @@ std::string plugin_file() {
 struct Instance {
     renderer::LoadedPlugin plugin;
     renderer::PluginParams params;
-    float positions[9] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
-    double rest_positions[9] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
-    uint32_t triangles[3] = {0, 1, 2};
-    float uvs[6] = {0, 0, 1, 0, 0, 1};
+    PluginMeshView view{PluginMeshView::unit_triangle(), "test", nullptr};
     void *self = nullptr;
     std::string error;
 
@@ -39,15 +37,8 @@ struct Instance {
         PelageParamSet ps{};
         ps.count = uint32_t(params.values.size());
         ps.values = params.values.data();
-        ps.mesh.num_vertices = 3;
-        ps.mesh.num_triangles = 1;
-        ps.mesh.positions = positions;
-        ps.mesh.rest_positions = rest_positions;
-        ps.mesh.triangles = triangles;
-        ps.mesh.corner_uvs = uvs;
-        ps.mesh.cells_path = nullptr;
-        ps.mesh.mesh_name = "test";
-        ps.warn = [](void *, const char *) {};
+        ps.mesh = view.view;
+        ps.warn = PluginMeshView::warn;
         ps.scene_dir = "";
         ps.object_name = "test";
         PelageError err{};
