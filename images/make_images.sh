@@ -100,6 +100,7 @@ for run in during_growth before_growth founders; do
     [ $run != during_growth ] && preset="$tmp/cow-growing-$run.json"
     $pelage sim --mesh scenes/meshes/cow.off --preset "$preset" --surface input --seed 1 -q \
         -o "$tmp/growing_$run.cells" --stats-json "$tmp/growing_$run.json"
+    $pelage stats "$tmp/growing_$run.cells" --json >"$tmp/growing_stats_$run.json"
 done
 python3 - "$tmp" >docs/data/control_growth.json <<'PY'
 import json, sys
@@ -108,9 +109,10 @@ def load(name): return json.load(open(f"{tmp}/{name}.json"))
 zebra, holstein = load("stats_zebra"), load("stats_holstein-cow")
 runs = {}
 for run in ["founders", "during_growth", "before_growth"]:
-    d = load("growing_" + run)
-    runs[run] = {k: d[k] for k in ["cells_by_type", "spots", "spot_area_quantiles", "growth",
-                                   "growth_lost_cells", "final_cells"] if k in d}
+    d, st = load("growing_" + run), load("growing_stats_" + run)
+    runs[run] = {k: d[k] for k in ["cells_by_type", "growth", "growth_lost_cells",
+                                   "final_cells"] if k in d}
+    runs[run].update({k: st[k] for k in ["spot_count", "spot_area_quantiles"]})
 print(json.dumps({
     "mesh": "scenes/meshes/cow.off", "seed": 1,
     "zebra": {k: zebra[k] for k in zebra if k.startswith("stripe_")},

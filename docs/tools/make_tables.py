@@ -188,7 +188,7 @@ def t_default_job():
         ["divisions, relaxation steps", f"{num(s['divisions'])}, {num(s['relax_steps'])} "
                                         f"(+{s['initial_relax_steps']} initial, {s['relax']})"],
         ["seconds (one thread)", f"{num(s['seconds'])} ({num(s['seconds_initial'])} initial relaxation)"],
-        ["spot fraction, spots, largest spot", f"{st['spot_fraction']:.3f}, {st['spots']}, "
+        ["spot fraction, spots, largest spot", f"{st['spot_fraction']:.3f}, {st['spot_count']}, "
                                                f"{num(st['largest_spot_cells'])} cells"],
         ["spot fraction by area", f"{st['spot_fraction_by_area']:.3f} "
                                   f"({num(st['area_samples'])} surface points)"],
@@ -445,7 +445,7 @@ def t_growth_pipelines():
         r = d[run]
         q = r["spot_area_quantiles"]
         rows.append([names[run], f"{num(r['cells_by_type']['F'])} / {num(r['cells_by_type']['B'])}",
-                     num(r["spots"]), f"{q['median']:.5f}", f"{q['q90']:.4f}", f"{q['max']:.3f}"])
+                     num(r["spot_count"]), f"{q['median']:.5f}", f"{q['q90']:.4f}", f"{q['max']:.3f}"])
     return table(["adult (areas in the rest mesh's units)", "F / B cells", "spots",
                   "median spot", "q90", "largest"], rows, "lrrrrr")
 

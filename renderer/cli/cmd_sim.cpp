@@ -1,10 +1,9 @@
 // `pelage sim --mesh FILE --preset NAME|FILE`: grows a Clonal Mosaic on the mesh's CRPS
 // and writes the .cells file (sim/mosaic/cm_simulation.h, sim/cells_io/cells_file.h). The
-// keys of
-// --stats-json are a contract: triangles, area, cells_by_type, spot_fraction,
-// divisions, relax_steps, seconds, peak_rss_mb; spot_area_quantiles (of the spots on the
-// mesh the cells are written on); growth (a growing run: time, area, cells, density at
-// each reshape and at the end; empty otherwise) and growth_lost_cells.
+// keys of --stats-json are a contract: triangles, area, cells_by_type, spot_fraction (by
+// count), divisions, relax_steps, seconds, peak_rss_mb; growth (a growing run: time,
+// area, cells, density at each reshape and at the end; empty otherwise) and
+// growth_lost_cells. The spots are measured by `pelage stats` on the file written.
 #include <fmt/core.h>
 
 #include <algorithm>
@@ -72,8 +71,8 @@ int run_sim(const SimOptions &o) {
                        body_length);
         fmt::print("  cells         {} -> {}   {}\n", st.initial_cells, data.num_cells(),
                    by_type.dump());
-        fmt::print("  spot fraction {:.4f}   spots {}   mean spot area {:.4g}\n",
-                   ps.spot_fraction, ps.spots, ps.mean_spot_area);
+        fmt::print("  spot fraction {:.4f} by count (spots: pelage stats FILE.cells)\n",
+                   ps.spot_fraction);
         fmt::print(
             "  divisions     {}   relaxation steps {} (+{} initial, {} mode)   time "
             "{:.3g}\n",
@@ -85,21 +84,13 @@ int run_sim(const SimOptions &o) {
     }
 
     // A growing run: cells per unit area at every reshape (Walter thesis §6.2 keeps it
-    // constant), and the spots' areas.
+    // constant).
     nlohmann::json growth = nlohmann::json::array();
     for (const sim::GrowthSample &g : st.growth)
         growth.push_back({{"time", g.time},
                           {"area", g.area},
                           {"cells", g.cells},
                           {"density", double(g.cells) / g.area}});
-    const nlohmann::json spot_area_quantiles = {
-        {"min", sim::quantile(ps.spot_areas, 0)},
-        {"q10", sim::quantile(ps.spot_areas, 0.1)},
-        {"q25", sim::quantile(ps.spot_areas, 0.25)},
-        {"median", sim::quantile(ps.spot_areas, 0.5)},
-        {"q75", sim::quantile(ps.spot_areas, 0.75)},
-        {"q90", sim::quantile(ps.spot_areas, 0.9)},
-        {"max", sim::quantile(ps.spot_areas, 1)}};
     if (!o.quiet && st.growth.size() > 1) {
         const sim::GrowthSample &a = st.growth.front(), &b = st.growth.back();
         fmt::print(
@@ -113,7 +104,6 @@ int run_sim(const SimOptions &o) {
         o.stats_json.write({
             {"growth", growth},
             {"growth_lost_cells", st.growth_lost_cells},
-            {"spot_area_quantiles", spot_area_quantiles},
             {"preset", preset.name},
             {"mesh", o.mesh},
             {"seed", o.seed},
@@ -127,8 +117,6 @@ int run_sim(const SimOptions &o) {
             {"final_cells", data.num_cells()},
             {"cells_by_type", by_type},
             {"spot_fraction", ps.spot_fraction},
-            {"spots", ps.spots},
-            {"mean_spot_area", ps.mean_spot_area},
             {"divisions", st.divisions},
             {"relax_steps", st.relax_steps},
             {"initial_relax_steps", st.initial_relax_steps},

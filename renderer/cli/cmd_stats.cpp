@@ -1,15 +1,17 @@
-// `pelage stats FILE.cells [--mesh MESH] [--json]`: pattern statistics of a .cells file
-// (sim/cells_io/pattern_stats.h). JSON keys are a contract: cells_by_type, spot_fraction,
-// spots, mean_spot_area; with --mesh also the area each type covers as the renderer
-// shows it (shader/statistics/area_fractions.h): area_fraction_by_type,
-// spot_fraction_by_area, area_samples; and the look of the spots measured on the surface
-// (shader/statistics/spot_statistics.h): spot_count, spot_area_mean, spot_area_sd,
-// spot_area_share_mean, spot_neighbours_mean, spot_circularity_mean, spot_complexity,
-// background_components, background_largest_share, background_near_spot,
-// grid_resolution; for cells grown with anisotropy, how their F/B boundaries follow its
-// field (sim/cells_io/stripe_alignment.h): stripe_alignment_median, stripe_alignment_q1,
-// stripe_alignment_q3 (degrees), stripe_alignment_samples, stripe_coherence_median;
-// and, when the preset has neural-crest masks, mask_adherence
+// `pelage stats FILE.cells [--mesh MESH] [--json]`: pattern statistics of a .cells file.
+// JSON keys are a contract. Counts (sim/cells_io/pattern_stats.h): cells_by_type,
+// spot_fraction. The look as the renderer shows it, measured through the closest-cell
+// search on the surface the cells were grown on (the one the file carries, or --mesh):
+// the area each type covers (shader/statistics/area_fractions.h): area_fraction_by_type,
+// spot_fraction_by_area, area_samples; the spots (shader/statistics/spot_statistics.h,
+// pelage's one definition of a spot): spot_count, spot_area_mean, spot_area_sd,
+// spot_area_share_mean, spot_area_quantiles, largest_spot_cells, spot_neighbours_mean,
+// spot_circularity_mean, spot_complexity, background_components,
+// background_largest_share, background_near_spot, grid_resolution; for cells grown with
+// anisotropy, how their F/B boundaries follow its field
+// (sim/cells_io/stripe_alignment.h): stripe_alignment_median, stripe_alignment_q1,
+// stripe_alignment_q3 (degrees), stripe_alignment_samples, stripe_coherence_median; and,
+// with --mesh when the preset has neural-crest masks, mask_adherence
 // (shader/statistics/mask_adherence.h).
 #include <fmt/core.h>
 
@@ -53,10 +55,18 @@ nlohmann::json to_json(const std::vector<shader::statistics::MaskAdherence> &a) 
     return j;
 }
 
+// The pattern on --mesh when given (its shape is checked), else on the file's own
+// surface.
+shader::mosaic::MosaicPattern load_pattern(const StatsOptions &o) {
+    if (o.mesh.empty()) return shader::mosaic::MosaicPattern(o.file);
+    return shader::mosaic::MosaicPattern(o.file, o.mesh);
+}
+
 // Adds the area keys: each type's share of the surface, and F / (F + B) by area (the
-// count-based spot_fraction's definition, measured by area).
-void add_area_fractions(const StatsOptions &o, nlohmann::json *j) {
-    const shader::mosaic::MosaicPattern pattern(o.file, o.mesh);
+// count-based spot_fraction's definition, measured by area); then the spots.
+void add_surface_statistics(const StatsOptions &o,
+                            const shader::mosaic::MosaicPattern &pattern,
+                            nlohmann::json *j) {
     const shader::statistics::AreaFractions a =
         shader::statistics::measure_area_fractions(pattern, o.area_samples, o.seed);
     nlohmann::json by_type = nlohmann::json::object();
@@ -77,6 +87,17 @@ void add_area_fractions(const StatsOptions &o, nlohmann::json *j) {
     (*j)["spot_area_mean"] = l.spot_area_mean;
     (*j)["spot_area_sd"] = l.spot_area_sd;
     (*j)["spot_area_share_mean"] = l.area > 0 ? l.spot_area_mean / l.area : 0.0;
+    nlohmann::json quantiles = nlohmann::json::object();
+    for (const auto &[name, q] : {std::pair{"min", 0.0},
+                                  {"q10", 0.1},
+                                  {"q25", 0.25},
+                                  {"median", 0.5},
+                                  {"q75", 0.75},
+                                  {"q90", 0.9},
+                                  {"max", 1.0}})
+        quantiles[name] = shader::statistics::spot_area_quantile(l, q);
+    (*j)["spot_area_quantiles"] = quantiles;
+    (*j)["largest_spot_cells"] = l.largest_spot_cells;
     (*j)["spot_neighbours_mean"] = l.spot_neighbours_mean;
     (*j)["spot_circularity_mean"] = l.spot_circularity_mean;
     (*j)["spot_complexity"] = l.spot_complexity;
@@ -84,7 +105,12 @@ void add_area_fractions(const StatsOptions &o, nlohmann::json *j) {
     (*j)["background_largest_share"] = l.background_largest_share;
     (*j)["background_near_spot"] = l.background_near_spot;
     (*j)["grid_resolution"] = o.grid_resolution;
+}
 
+// Adds mask_adherence when the preset (given, else the file's) has neural-crest masks;
+// the masks' attributes and UVs come from the mesh file.
+void add_mask_adherence(const StatsOptions &o,
+                        const shader::mosaic::MosaicPattern &pattern, nlohmann::json *j) {
     // The preset given, else the one the file was grown from.
     std::string preset_file = o.preset;
     const sim::Preset preset = [&] {
@@ -135,17 +161,13 @@ int run_stats(const StatsOptions &o) {
     nlohmann::json by_type = nlohmann::json::object();
     for (const auto &[name, n] : s.cells_by_type) by_type[name] = n;
     nlohmann::json j = {
-        {"file", o.file},
-        {"triangles", data.num_triangles()},
-        {"area", s.area},
-        {"cells", s.total_cells},
-        {"cells_by_type", by_type},
-        {"spot_fraction", s.spot_fraction},
-        {"spots", s.spots},
-        {"mean_spot_area", s.mean_spot_area},
-        {"largest_spot_cells", s.largest_spot_cells},
+        {"file", o.file},           {"triangles", data.num_triangles()},
+        {"area", s.area},           {"cells", s.total_cells},
+        {"cells_by_type", by_type}, {"spot_fraction", s.spot_fraction},
     };
-    if (!o.mesh.empty()) add_area_fractions(o, &j);
+    const shader::mosaic::MosaicPattern pattern = load_pattern(o);
+    add_surface_statistics(o, pattern, &j);
+    if (!o.mesh.empty()) add_mask_adherence(o, pattern, &j);
     add_stripe_alignment(o, data, &j);
     o.stats_json.write(j);
     if (o.json) {
@@ -154,8 +176,7 @@ int run_stats(const StatsOptions &o) {
         fmt::print("pelage stats: {}\n", o.file);
         fmt::print("  triangles {}  area {:.6g}  cells {}  {}\n", data.num_triangles(),
                    s.area, s.total_cells, by_type.dump());
-        fmt::print("  spot fraction {:.4f}  spots {}  mean spot area {:.4g}\n",
-                   s.spot_fraction, s.spots, s.mean_spot_area);
+        fmt::print("  spot fraction {:.4f} (by count)\n", s.spot_fraction);
         if (j.contains("stripe_alignment_median"))
             fmt::print(
                 "  stripes against the anisotropy field: median {:.1f}° (quartiles "
@@ -181,7 +202,7 @@ int run_stats(const StatsOptions &o) {
                         .get<std::string>(),
                     m["masked_out_share"].get<double>(),
                     100 * m["violation"].get<double>(), m["type"].get<std::string>());
-        if (j.contains("spot_count")) {
+        {
             fmt::print(
                 "  spots {}  area mean {:.4g} sd {:.4g} ({:.3g} % of the surface "
                 "each)  neighbours {:.2f}  circularity {:.3f}  complexity {:.3f}\n",
@@ -211,9 +232,9 @@ Runner add_stats_command(CLI::App &app) {
     sub->add_flag("--json", o->json, "Print the JSON on stdout instead of text");
     sub->add_option("--mesh", o->mesh,
                     "The mesh the cells were grown on, or another of its shape (a "
-                    "simplified copy's input): adds the area each type covers "
-                    "(area_fraction_by_type, spot_fraction_by_area); another shape is "
-                    "refused");
+                    "simplified copy's input), for the neural-crest masks' attributes "
+                    "(mask_adherence); another shape is refused. Without it the "
+                    "statistics are measured on the surface the file carries");
     sub->add_option("--preset", o->preset,
                     "With --mesh: the preset whose neural-crest masks to check "
                     "(mask_adherence; default: the preset stored in the file)");

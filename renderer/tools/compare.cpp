@@ -14,8 +14,8 @@
 #include "renderer/integrator/render.h"
 #include "renderer/plugins/plugin_loader.h"
 #include "renderer/scene/scene.h"
+#include "shader/statistics/spot_statistics.h"
 #include "sim/cells_io/cells_file.h"
-#include "sim/cells_io/pattern_stats.h"
 #include "sim/core/input_error.h"
 #include "sim/mesh/mesh_load.h"
 
@@ -161,8 +161,11 @@ nlohmann::json matched_baseline_params(const PelageShaderPlugin &plugin,
                                        const std::string &cells_path) {
     const BaselineModel model = baseline_model(plugin);
     if (model == BaselineModel::none) return nlohmann::json::object();
-    const sim::CellsData data = sim::read_cells_file(cells_path);
-    const sim::PatternStats stats = sim::compute_pattern_stats(data);
+    // The spots as the renderer shows them, on the surface the file carries.
+    const shader::mosaic::MosaicPattern pattern(cells_path);
+    const shader::statistics::SpotStatistics stats =
+        shader::statistics::measure_spot_statistics(pattern);
+    const sim::CellsData &data = pattern.data();
     // Spot type: F when present, else the darkest; base: B when present, else the most
     // common other type.
     std::vector<size_t> count(data.types.size(), 0);
@@ -185,7 +188,7 @@ nlohmann::json matched_baseline_params(const PelageShaderPlugin &plugin,
                &bc = data.types[size_t(base)].colour;
     const double area = std::max(data.area(), 1e-300);
     double fraction =
-        stats.total_cells ? double(count[size_t(spot)]) / double(stats.total_cells) : 0.3;
+        data.num_cells() ? double(count[size_t(spot)]) / double(data.num_cells()) : 0.3;
     fraction = std::clamp(fraction, 0.01, 0.99);
     // Spots per unit area of the mosaic (at least one over the whole surface).
     const double spots_per_area = double(std::max<size_t>(stats.spots, 1)) / area;
@@ -196,18 +199,18 @@ nlohmann::json matched_baseline_params(const PelageShaderPlugin &plugin,
         // Poisson–Voronoi tessellation of intensity λ into λ_A ≈ 1.4558 λ^(2/3) cells
         // per unit area (Okabe, Boots, Sugihara, Chiu 2000, Spatial Tessellations, §5.5),
         // and the plugin's intensity is mean_points · frequency³. Neighbouring spot cells
-        // merge into one spot, so λ_A is a few times spots / fraction: the factor 2.5 is
+        // merge into one spot, so λ_A is a few times spots / fraction: the factor 2.85 is
         // fitted by eye (spot count and size) on the cheetah sphere's contact sheet.
-        const double mean_points = 3, lambda_a = 2.5 * spots_per_area / fraction;
+        const double mean_points = 3, lambda_a = 2.85 * spots_per_area / fraction;
         const double lambda = std::pow(lambda_a / 1.4558, 1.5);
         p["frequency"] = std::cbrt(lambda / mean_points);
         p["mean_points"] = mean_points;
         p["spot_fraction"] = fraction;
     } else {
-        // About 2.5 blobs above the threshold per base-lattice square of the surface:
+        // About 2.9 base-lattice squares of the surface per spot above the threshold:
         // fitted by eye on the cheetah sphere's contact sheet (fBm's blob count also
         // depends on the threshold, so it is an approximation).
-        p["frequency"] = 1.6 * std::sqrt(spots_per_area);
+        p["frequency"] = 1.71 * std::sqrt(spots_per_area);
         p["spot_fraction"] = fraction;  // compare_shaders turns it into a threshold
     }
     return p;

@@ -20,6 +20,17 @@ MosaicPattern::MosaicPattern(const std::string &cells_path, sim::TriangleMesh re
         m_transfer = std::make_unique<transfer::SurfaceTransfer>(*m_surface, render,
                                                                  cells_path, render_name);
     }
+    index_cells(neighbourhood);
+}
+
+MosaicPattern::MosaicPattern(const std::string &cells_path, Neighbourhood neighbourhood)
+    : m_data(sim::read_cells_file(cells_path)) {
+    m_surface = std::make_unique<sim::Surface>(
+        sim::build_surface(sim::surface_mesh(m_data, cells_path)));
+    index_cells(neighbourhood);
+}
+
+void MosaicPattern::index_cells(Neighbourhood neighbourhood) {
     std::vector<CellOnSurface> list;
     list.reserve(m_data.num_cells());
     for (sim::TriId t = 0; t < m_data.num_triangles(); ++t)

@@ -29,6 +29,10 @@ class MosaicPattern {
     MosaicPattern(const std::string &cells_path, sim::TriangleMesh render,
                   const std::string &render_name,
                   Neighbourhood neighbourhood = Neighbourhood::geodesic);
+    // On the surface the .cells file carries (the one it was grown on): for tools that
+    // measure the pattern itself, with no render mesh at hand (`pelage stats`, `sim`).
+    explicit MosaicPattern(const std::string &cells_path,
+                           Neighbourhood neighbourhood = Neighbourhood::geodesic);
 
     // Triangles of the simulation surface (what the index and cells refer to).
     size_t num_triangles() const { return m_cells.num_triangles(); }
@@ -46,6 +50,9 @@ class MosaicPattern {
     const sim::Surface &surface() const { return *m_surface; }  // the simulation's
 
   private:
+    // The cell table, closest-cell index and triangle frames of m_data on m_surface.
+    void index_cells(Neighbourhood neighbourhood);
+
     sim::CellsData m_data;
     std::unique_ptr<sim::Surface> m_surface;
     CellTable m_cells;

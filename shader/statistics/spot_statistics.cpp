@@ -133,17 +133,21 @@ SpotStatistics measure_spot_statistics(const mosaic::MosaicPattern &pattern,
     std::vector<uint32_t> spot_of(m, none);
     std::vector<uint32_t> spot_id_of_root(m, none);
     std::vector<double> spot_area;
+    std::vector<size_t> spot_cells;
     for (uint32_t c = 0; c < m; ++c) {
         if (!is_spot(c) || cell_area[c] == 0) continue;
         uint32_t &id = spot_id_of_root[sets.find(c)];
         if (id == none) {
             id = uint32_t(spot_area.size());
             spot_area.push_back(0);
+            spot_cells.push_back(0);
         }
         spot_of[c] = id;
         spot_area[id] += cell_area[c];
+        ++spot_cells[id];
     }
     s.spots = spot_area.size();
+    for (size_t n : spot_cells) s.largest_spot_cells = std::max(s.largest_spot_cells, n);
 
     // --- Perimeters (Cauchy-Crofton over the three edge families of every grid) ---
     std::vector<double> perimeter(s.spots, 0.0);
@@ -243,6 +247,15 @@ SpotStatistics measure_spot_statistics(const mosaic::MosaicPattern &pattern,
         }
     }
     return s;
+}
+
+double spot_area_quantile(const SpotStatistics &s, double q) {
+    const std::vector<double> &v = s.spot_areas;  // descending
+    if (v.empty()) return 0;
+    const double x = (1 - std::clamp(q, 0.0, 1.0)) * double(v.size() - 1);
+    const size_t i = size_t(x);
+    if (i + 1 >= v.size()) return v.back();
+    return v[i] + (v[i + 1] - v[i]) * (x - double(i));
 }
 
 }  // namespace pelage::shader::statistics

@@ -44,6 +44,7 @@ struct SpotStatistics {
     double spot_circularity_mean = 0;  // over spots with a border
     double spot_complexity = 0;        // 1 − area-weighted mean circularity
     std::vector<double> spot_areas;    // per spot, largest first
+    size_t largest_spot_cells = 0;     // cells in the spot of most cells
     size_t background_components = 0;
     double background_largest_share = 0;  // of the background's area
     double background_near_spot = 0;      // share of background area touching a spot
@@ -55,5 +56,9 @@ struct SpotStatistics {
 // spot.
 SpotStatistics measure_spot_statistics(const mosaic::MosaicPattern &pattern,
                                        double resolution = 6);
+
+// The q-quantile (q in [0, 1]) of the spots' areas, linear between order statistics; 0
+// when there is no spot.
+double spot_area_quantile(const SpotStatistics &s, double q);
 
 }  // namespace pelage::shader::statistics

@@ -50,10 +50,15 @@ TEST(GrowthCli, DensityPerReshapeInStatsJson) {
     // The .cells file is on the rest sphere (area of the scale-1 shape).
     EXPECT_NEAR(s["area"].get<double>(), s["growth"][6]["area"].get<double>(), 1e-9);
     EXPECT_EQ(s["final_cells"], s["growth"][6]["cells"]);
+    // The adult's spots, measured by `pelage stats` on the surface the file carries.
+    std::string out;
+    ASSERT_EQ(run_pelage("stats " + tmp.file("g.cells") + " --json", &out), 0);
+    const auto st = nlohmann::json::parse(out);
+    EXPECT_NEAR(st["area"].get<double>(), s["area"].get<double>(), 1e-12);
     for (const char *q : {"min", "q10", "median", "q90", "max"})
-        EXPECT_TRUE(s["spot_area_quantiles"].contains(q)) << q;
-    EXPECT_LE(s["spot_area_quantiles"]["median"].get<double>(),
-              s["spot_area_quantiles"]["max"].get<double>());
+        EXPECT_TRUE(st["spot_area_quantiles"].contains(q)) << q;
+    EXPECT_LE(st["spot_area_quantiles"]["median"].get<double>(),
+              st["spot_area_quantiles"]["max"].get<double>());
     // No growth: an empty list.
     ASSERT_EQ(run_pelage("sim --mesh procedural:sphere:20x20 --preset teo-table-7.2 "
                          "--initial-cells 300 -q --stats-json " +

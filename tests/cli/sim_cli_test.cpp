@@ -33,16 +33,26 @@ TEST(SimCli, StatsJsonHasTheContractKeys) {
     EXPECT_EQ(f + b, 1500 + s["divisions"].get<size_t>());
     EXPECT_NEAR(s["spot_fraction"].get<double>(), double(f) / double(f + b), 1e-12);
 
+    // Without --mesh the statistics are measured on the surface the file carries; with
+    // the mesh it was grown on they are the same numbers (one definition of a spot,
+    // through the renderer's closest-cell search).
     std::string out;
-    ASSERT_EQ(run_pelage("stats " + tmp.file("a.cells") + " --json", &out), 0);
+    ASSERT_EQ(
+        run_pelage("stats " + tmp.file("a.cells") + " --area-samples 5000 --json", &out),
+        0);
     const auto st = nlohmann::json::parse(out);
-    for (const char *k : {"cells_by_type", "spot_fraction", "spots", "mean_spot_area"})
+    for (const char *k : {"cells_by_type", "spot_fraction", "spot_count",
+                          "spot_area_mean", "spot_area_quantiles", "largest_spot_cells"})
         EXPECT_TRUE(st.contains(k)) << k;
+    EXPECT_FALSE(st.contains("spots"));  // the count-based definition is gone
     EXPECT_EQ(st["cells_by_type"], s["cells_by_type"]);
-    EXPECT_GT(st["spots"].get<size_t>(), 0u);
-    EXPECT_LE(st["spots"].get<size_t>(), f);
-    // Without --mesh there is no surface to sample; with it, the area each type covers.
-    EXPECT_FALSE(st.contains("spot_fraction_by_area"));
+    EXPECT_GT(st["spot_count"].get<size_t>(), 0u);
+    EXPECT_LE(st["spot_count"].get<size_t>(), f);
+    EXPECT_LE(st["largest_spot_cells"].get<size_t>(), f);
+    const auto &q = st["spot_area_quantiles"];
+    EXPECT_LE(q["min"].get<double>(), q["median"].get<double>());
+    EXPECT_LE(q["median"].get<double>(), q["max"].get<double>());
+    EXPECT_GE(q["max"].get<double>(), st["spot_area_mean"].get<double>());
     ASSERT_EQ(run_pelage("stats " + tmp.file("a.cells") +
                              " --mesh procedural:sphere:20x20 --area-samples 5000 --json",
                          &out),
@@ -54,6 +64,9 @@ TEST(SimCli, StatsJsonHasTheContractKeys) {
     EXPECT_NEAR(af + ab, 1.0, 1e-12);
     EXPECT_NEAR(sa["spot_fraction_by_area"].get<double>(), af / (af + ab), 1e-12);
     EXPECT_EQ(sa["area_samples"], 5000);
+    for (const char *k : {"spot_count", "spot_area_mean", "largest_spot_cells",
+                          "area_fraction_by_type", "background_components"})
+        EXPECT_EQ(sa[k], st[k]) << k;
 
     ASSERT_EQ(run_pelage("preview " + tmp.file("a.cells") + " --res 64 -o " +
                          tmp.file("p.png")),
