@@ -58,7 +58,6 @@ json fur_block(const LookSetup &s) {
             {"gravity", 0.2},
             {"clump", 0.2},
             {"clump_radius", round6(0.004 * k)},
-            {"melanin_scale", 2.5},
             {"seed", s.seed}};
 }
 

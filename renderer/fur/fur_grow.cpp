@@ -6,6 +6,7 @@
 #include <cmath>
 #include <string>
 
+#include "renderer/bsdf/hair_pigments.h"
 #include "renderer/fur/clump_guides.h"
 #include "renderer/fur/fur_hash.h"
 #include "renderer/fur/strand_shape.h"
@@ -16,6 +17,41 @@ namespace {
 
 float by_type(const std::vector<float> &scale, int type) {
     return type >= 0 && size_t(type) < scale.size() ? scale[size_t(type)] : 1.0f;
+}
+
+// A strand's σ_a before scale and jitter, and whether it comes from melanins (then the
+// two pigments are jittered independently, as natural hair's ratio varies).
+struct StrandAbsorption {
+    Rgb sigma_a;
+    bool melanin;
+    float eumelanin, pheomelanin;
+};
+
+StrandAbsorption absorption(const FurParams &params, const RootPigment &pg) {
+    using Kind = FurParams::Pigment::Kind;
+    const FurParams::Pigment &pig =
+        pg.cell_type >= 0 && size_t(pg.cell_type) < params.pigment_by_type.size()
+            ? params.pigment_by_type[size_t(pg.cell_type)]
+            : params.pigment;
+    auto finite = [](float x) { return std::isfinite(x) ? std::max(x, 0.0f) : 0.0f; };
+    switch (pig.kind) {
+        case Kind::skin_melanin:
+        case Kind::melanin: {
+            const bool skin = pig.kind == Kind::skin_melanin;
+            const float eu = finite(skin ? pg.eumelanin : pig.eumelanin);
+            const float ph = finite(skin ? pg.pheomelanin : pig.pheomelanin);
+            return {sigma_a_from_melanin(eu, ph), true, eu, ph};
+        }
+        case Kind::colour:
+            return {sigma_a_from_colour(pig.colour, params.beta_n), false, 0, 0};
+        case Kind::skin:
+            break;
+    }
+    // The skin's albedo, kept inside the inversion's domain (0, 1]: a black skin gives
+    // the darkest fibre the fit reaches rather than infinite absorption.
+    auto in_domain = [&](float x) { return std::clamp(finite(x), 1e-3f, 1.0f); };
+    const Rgb c{in_domain(pg.colour.x), in_domain(pg.colour.y), in_domain(pg.colour.z)};
+    return {sigma_a_from_colour(c, params.beta_n), false, 0, 0};
 }
 
 void check(bool ok, const std::string &what) {
@@ -84,7 +120,7 @@ Strands grow_fur(const FurParams &params, const SkinMesh &mesh,
     out.candidates = n;
     const size_t m = index.size();
     out.points.resize(m * out.points_per_strand * 4);
-    out.melanin.resize(2 * m);
+    out.sigma_a.resize(m);
     out.roots.resize(m);
     bool any_matte = false;
     for (const uint64_t i : index) any_matte = any_matte || pigment[i].matte_written;
@@ -130,18 +166,19 @@ Strands grow_fur(const FurParams &params, const SkinMesh &mesh,
                 put(line[S] * 2 - line[S - 1],
                     std::max(2 * radius(S) - radius(S - 1), 0.0f));
 
-            // --- Pigment: the skin's at the root, scaled and jittered per strand ---
+            // --- Absorption: from the skin at the root, scaled and jittered ---
             const float j_eu = float(2 * uniform(params.seed, Stream::pigment, i, 0) - 1);
             const float j_ph = float(2 * uniform(params.seed, Stream::pigment, i, 1) - 1);
-            auto clean = [](float x) {
+            const StrandAbsorption a = absorption(params, pg);
+            const float k = params.melanin_scale, jit = params.melanin_jitter;
+            const Rgb sa =
+                a.melanin ? sigma_a_from_melanin(a.eumelanin * k * (1 + jit * j_eu),
+                                                 a.pheomelanin * k * (1 + jit * j_ph))
+                          : a.sigma_a * (k * (1 + jit * j_eu));
+            auto finite = [](float x) {
                 return std::isfinite(x) ? std::max(x, 0.0f) : 0.0f;
             };
-            const float eu = params.own_melanin ? params.eumelanin : pg.eumelanin;
-            const float ph = params.own_melanin ? params.pheomelanin : pg.pheomelanin;
-            out.melanin[2 * j] =
-                clean(eu * params.melanin_scale * (1 + params.melanin_jitter * j_eu));
-            out.melanin[2 * j + 1] =
-                clean(ph * params.melanin_scale * (1 + params.melanin_jitter * j_ph));
+            out.sigma_a[j] = {finite(sa.x), finite(sa.y), finite(sa.z)};
             out.roots[j] = root;
             if (any_matte) {
                 for (int k = 0; k < 3; ++k) out.matte[4 * j + k] = pg.matte[k];

@@ -1,5 +1,6 @@
 // Grows the fur of one object: area-uniform roots (thinned per cell type when density
-// depends on it), each strand's pigment from the skin's own lookup at its root, the
+// depends on it), each strand's absorption from the skin's own lookup at its root (by
+// default the colour the skin shows there, FurParams::Pigment), the
 // strand's centre line (comb, gravity, curl, clumping) and its radii, written in the
 // layout Embree's curves read (FLOAT4: x, y, z, radius per control point).
 //
@@ -18,9 +19,11 @@
 
 namespace pelage::renderer {
 
-// What the skin says at a root: its pigment, its cell type (−1 when unknown), and its
-// matte ids (PelageShade::matte; bit k of matte_written set when matte[k] holds one).
+// What the skin says at a root: the colour it shows (PelageShade::albedo), its pigment,
+// its cell type (−1 when unknown), and its matte ids (PelageShade::matte; bit k of
+// matte_written set when matte[k] holds one).
 struct RootPigment {
+    Rgb colour{0.5f, 0.5f, 0.5f};
     float eumelanin = 0, pheomelanin = 0;
     int cell_type = -1;
     uint32_t matte[3] = {0, 0, 0};
@@ -36,7 +39,8 @@ struct Strands {
     // curve starts exactly at the root and ends at the tip; flat curves are the
     // polyline itself (linear).
     std::vector<float> points;
-    std::vector<float> melanin;  // eumelanin, pheomelanin per strand (jittered, scaled)
+    std::vector<Rgb>
+        sigma_a;  // absorption per fibre radius, per strand (hair_pigments.h)
     std::vector<SurfacePoint> roots;
     // The root's matte ids and their bits, 4 per strand, so a strand shows in the
     // skin's Cryptomatte layers; empty when no root had any.

@@ -36,13 +36,21 @@ struct FurParams {
     float clump_radius = 0.01f;      // guide spacing: one guide per π·r² of skin
 
     // --- Pigment and look ---
-    float melanin_scale = 1;  // multiplies the skin's eumelanin and pheomelanin
-    // Every strand's eumelanin and pheomelanin instead of the skin's (then scaled and
-    // jittered as the skin's would be): one pigment for the whole coat, e.g. to match
-    // another renderer's melanin parameters (docs/guide/fur.md).
-    bool own_melanin = false;
-    float eumelanin = 0, pheomelanin = 0;
-    float melanin_jitter = 0.1f;  // each strand's melanin × U[1 − j, 1 + j]
+    // Where a strand's absorption σ_a comes from (renderer/bsdf/hair_pigments.h).
+    struct Pigment {
+        enum class Kind {
+            skin,          // the colour the skin shows under the root, inverted (§4.2)
+            skin_melanin,  // the skin's eumelanin and pheomelanin at the root
+            colour,        // `colour`, inverted with Chiang et al. 2016 §4.2
+            melanin        // `eumelanin`, `pheomelanin`
+        } kind = Kind::skin;
+        Rgb colour{1, 1, 1};  // each channel in (0, 1]
+        float eumelanin = 0, pheomelanin = 0;
+    };
+    Pigment pigment;                       // the whole coat
+    std::vector<Pigment> pigment_by_type;  // per cell type, {} = `pigment` everywhere
+    float melanin_scale = 1;               // multiplies every strand's σ_a
+    float melanin_jitter = 0.1f;  // σ_a × U[1 − j, 1 + j] (melanins: each independently)
     float beta_m = 0.25f, beta_n = 0.3f, alpha_deg = 2;  // hair BSDF (renderer/bsdf)
     enum class Curve { round, flat } curve = Curve::round;
 

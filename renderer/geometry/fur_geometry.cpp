@@ -171,8 +171,7 @@ FurGeometry::FurGeometry(const SceneDesc &desc, EmbreeScene &scene,
         try {
             // The strands' HairBsdf only DCHECKs its parameters at each hit, so they are
             // validated here, once per layer (as scatter_at_strand() builds them; each
-            // strand's σ_a is a non-negative combination of melanin that grow_fur() keeps
-            // finite and >= 0).
+            // strand's σ_a is one grow_fur() keeps finite and >= 0).
             HairParams hp;
             hp.beta_m = layer.beta_m;
             hp.beta_n = layer.beta_n;

@@ -1,11 +1,12 @@
 // Fur in the Embree scene: for every object with a `"fur"` block, renderer/fur grows its
 // strands on the object's world-space mesh, each taking its pigment from the object's
-// own material plugin at the root (so fur follows whatever pattern the skin shows), and
-// the strands become one Embree curve geometry in the scene's top level:
+// own material plugin at the root (so fur follows whatever pattern the skin shows, in
+// the colours it shows), and the strands become one Embree curve geometry in the scene's
+// top level:
 // RTC_GEOMETRY_TYPE_ROUND_BSPLINE_CURVE (tubes, close-ups) or FLAT_LINEAR_CURVE
 // (ray-facing ribbons, distance). Control points are shared with Embree as FLOAT4
-// (x, y, z, radius), 16 bytes each; per strand the renderer keeps only its two melanin
-// concentrations.
+// (x, y, z, radius), 16 bytes each; per strand the renderer keeps only its absorption
+// σ_a (12 bytes).
 //
 // Self-intersection: a ray leaving a strand carries (global strand index + 1) in its
 // `id`; the curves' filter function rejects hits on that strand, so transmitted (TT)

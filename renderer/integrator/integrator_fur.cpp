@@ -62,9 +62,10 @@ PathIntegrator::StrandVertex PathIntegrator::strand_vertex(const FurLayer &layer
     frame.z = dot(n, wo) >= 0 ? n : wo_perp;
     frame.y = cross(frame.z, frame.x);
 
-    const float eu = layer.strands.melanin[2 * size_t(strand)],
-                pheo = layer.strands.melanin[2 * size_t(strand) + 1];
-    HairParams hp = HairParams::from_melanin(eu, pheo, layer.beta_m, layer.beta_n);
+    HairParams hp;
+    hp.sigma_a = layer.strands.sigma_a[size_t(strand)];
+    hp.beta_m = layer.beta_m;
+    hp.beta_n = layer.beta_n;
     hp.alpha = layer.alpha;
     return {layer, strand, p, wo, rh.ray.tfar, frame, HairBsdf(hp, h)};
 }

@@ -106,7 +106,7 @@ void Scene::build(const SceneDesc &desc, const PluginRegistry &plugins) {
     // --- Fur: strands grown from each furry object's skin, added to the Embree scene ---
     for (const ObjectDesc &o : desc.objects)
         if (o.fur) {
-            // Each root's pigment: the skin's own material plugin at that point.
+            // Each root's colour and pigment: the skin's own material plugin there.
             const auto pigment = [this](size_t i, const SurfacePoint &s, Vec3f p,
                                         Vec3f n) {
                 const Material &mat = m_materials[i];
@@ -121,7 +121,10 @@ void Scene::build(const SceneDesc &desc, const PluginRegistry &plugins) {
                     1;  // not a camera hit: no antialiasing blend across cell edges
                 PelageShade sh = pelage_default_shade();
                 mat.plugin->shade(mat.instance, &hit, &sh);
-                RootPigment rp{sh.eumelanin, sh.pheomelanin, -1};
+                RootPigment rp;
+                rp.colour = {sh.albedo[0], sh.albedo[1], sh.albedo[2]};
+                rp.eumelanin = sh.eumelanin;
+                rp.pheomelanin = sh.pheomelanin;
                 // Matte ids only when the film keeps Cryptomatte (16 bytes a strand).
                 if (!m_desc.film.cryptomatte.empty()) {
                     for (int k = 0; k < PELAGE_SHADER_MATTE_SLOTS; ++k)

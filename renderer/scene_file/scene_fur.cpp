@@ -31,6 +31,74 @@ float num(JsonObjectFields &r, const std::string &key, float def, double lo, dou
     return float(r.number(key, def, lo, hi, false, open_lo));
 }
 
+// Cycles' Principled Hair: Melanin m and Melanin Redness r give concentrations q (1 − r)
+// and q r with q = −ln(1 − m), times its own absorption coefficients, (0.506, 0.841,
+// 1.653) and (0.343, 0.733, 1.924): 1.207 and 1.833 times d'Eon's, which
+// renderer/bsdf/hair_pigments uses (within 0.1 % per channel).
+FurParams::Pigment cycles_melanin(const JsonObjectFields &r, const json &v,
+                                  const std::string &f) {
+    if (!v.is_array() || v.size() != 2)
+        r.fail(f, "expected [melanin, redness], as Cycles' Principled Hair has them");
+    const double m = r.check_number(v[0], f + "[0]", 0, 0.9999);
+    const double red = r.check_number(v[1], f + "[1]", 0, 1);
+    const double q = -std::log(1 - m);
+    FurParams::Pigment p;
+    p.kind = FurParams::Pigment::Kind::melanin;
+    p.eumelanin = float(1.207 * q * (1 - red));
+    p.pheomelanin = float(1.833 * q * red);
+    return p;
+}
+
+FurParams::Pigment melanin(const JsonObjectFields &r, const json &v,
+                           const std::string &f) {
+    if (!v.is_array() || v.size() != 2) r.fail(f, "expected [eumelanin, pheomelanin]");
+    FurParams::Pigment p;
+    p.kind = FurParams::Pigment::Kind::melanin;
+    p.eumelanin = float(r.check_number(v[0], f + "[0]", 0, 100));
+    p.pheomelanin = float(r.check_number(v[1], f + "[1]", 0, 100));
+    return p;
+}
+
+// A hair colour: "skin" (the colour the skin shows under the root), "skin_melanin" (the
+// skin's melanins), or [r, g, b] with each channel in (0, 1] (the colour a dense coat of
+// such fibres shows, hair_pigments.h).
+FurParams::Pigment colour(const JsonObjectFields &r, const json &v,
+                          const std::string &f) {
+    using Kind = FurParams::Pigment::Kind;
+    FurParams::Pigment p;
+    if (v.is_string() && v.get<std::string>() == "skin") return p;
+    if (v.is_string() && v.get<std::string>() == "skin_melanin") {
+        p.kind = Kind::skin_melanin;
+        return p;
+    }
+    if (!v.is_array() || v.size() != 3)
+        r.fail(f, "expected [r, g, b] (each in (0, 1]), \"skin\" or \"skin_melanin\"");
+    p.kind = Kind::colour;
+    p.colour = r.check_vec3(v, f, 0, 1);
+    for (int k = 0; k < 3; ++k)
+        if (!(p.colour[k] > 0))
+            r.fail(f + "[" + std::to_string(k) + "]",
+                   "must be in (0, 1]: a fibre of colour 0 would absorb everything");
+    return p;
+}
+
+// One entry of colour_by_type: a colour as above, or {"melanin": [...]} or
+// {"cycles_melanin": [...]}.
+FurParams::Pigment type_pigment(const JsonObjectFields &r, const json &v,
+                                const std::string &f) {
+    if (!v.is_object()) return colour(r, v, f);
+    JsonObjectFields e(v, f, r.file());
+    const json *m = e.take("melanin");
+    const json *c = e.take("cycles_melanin");
+    e.finish();
+    if ((m != nullptr) == (c != nullptr))
+        r.fail(f,
+               "expected {\"melanin\": [eumelanin, pheomelanin]} or "
+               "{\"cycles_melanin\": [melanin, redness]}");
+    return m ? melanin(r, *m, f + ".melanin")
+             : cycles_melanin(r, *c, f + ".cycles_melanin");
+}
+
 }  // namespace
 
 FurParams read_fur(const json &j, const std::string &field,
@@ -86,29 +154,27 @@ FurParams read_fur(const json &j, const std::string &field,
     p.clump = num(r, "clump", p.clump, 0, 1);
     p.clump_radius = num(r, "clump_radius", p.clump_radius, 0, 1e9, true);
     p.melanin_scale = num(r, "melanin_scale", p.melanin_scale, 0, 100);
-    if (const json *v = r.take("melanin")) {
-        if (!v->is_array() || v->size() != 2)
-            r.fail(r.field("melanin"), "expected [eumelanin, pheomelanin]");
-        p.own_melanin = true;
-        p.eumelanin = float(r.check_number((*v)[0], r.field("melanin") + "[0]", 0, 100));
-        p.pheomelanin =
-            float(r.check_number((*v)[1], r.field("melanin") + "[1]", 0, 100));
-    }
-    if (const json *v = r.take("cycles_melanin")) {
-        // Cycles' Principled Hair: Melanin m and Melanin Redness r give concentrations
-        // q (1 − r) and q r with q = −ln(1 − m), times its own absorption coefficients,
-        // (0.506, 0.841, 1.653) and (0.343, 0.733, 1.924): 1.207 and 1.833 times
-        // d'Eon's, which renderer/bsdf/hair_pigments uses (within 0.1 % per channel).
-        const std::string f = r.field("cycles_melanin");
-        if (p.own_melanin) r.fail(f, "give either \"melanin\" or \"cycles_melanin\"");
-        if (!v->is_array() || v->size() != 2)
-            r.fail(f, "expected [melanin, redness], as Cycles' Principled Hair has them");
-        const double m = r.check_number((*v)[0], f + "[0]", 0, 0.9999);
-        const double red = r.check_number((*v)[1], f + "[1]", 0, 1);
-        const double q = -std::log(1 - m);
-        p.own_melanin = true;
-        p.eumelanin = float(1.207 * q * (1 - red));
-        p.pheomelanin = float(1.833 * q * red);
+    // One pigment for the coat: a colour, melanins, or Cycles' melanin parameters.
+    std::string pigment_key;
+    for (const char *key : {"colour", "melanin", "cycles_melanin"})
+        if (const json *v = r.take(key)) {
+            if (!pigment_key.empty())
+                r.fail(r.field(key), "give one of \"" + r.spelled("colour") +
+                                         "\", \"melanin\" and \"cycles_melanin\" (\"" +
+                                         pigment_key + "\" is given too)");
+            pigment_key = r.spelled(key);
+            const std::string f = r.field(key);
+            p.pigment = key == std::string("colour")    ? colour(r, *v, f)
+                        : key == std::string("melanin") ? melanin(r, *v, f)
+                                                        : cycles_melanin(r, *v, f);
+        }
+    if (const json *v = r.take("colour_by_type")) {
+        const std::string f = r.field("colour_by_type");
+        if (!v->is_array() || v->empty() || v->size() > 16)
+            r.fail(f, "expected an array of 1 to 16 hair colours (one per cell type)");
+        for (size_t i = 0; i < v->size(); ++i)
+            p.pigment_by_type.push_back(
+                type_pigment(r, (*v)[i], f + "[" + std::to_string(i) + "]"));
     }
     p.melanin_jitter = num(r, "melanin_jitter", p.melanin_jitter, 0, 1);
     p.beta_m = num(r, "beta_m", p.beta_m, 0, 1, true);

@@ -1,5 +1,5 @@
 // renderer/fur: roots are area-uniform, counts follow density × area (per cell type),
-// strands are identical at any thread count, each strand's pigment is the skin's at its
+// strands are identical at any thread count, each strand's colour is the skin's at its
 // root, and strand shapes honour length, comb angle, radii and the skin.
 #include "renderer/fur/fur_grow.h"
 
@@ -84,7 +84,9 @@ TEST(FurGrow, CountFollowsDensityTimesAreaPerCellType) {
     // Odd triangles are cell type 1 at a quarter of the density of type 0.
     p.density_by_type = {1.0f, 0.25f};
     const PigmentLookup typed = [](const SurfacePoint &s, Vec3f, Vec3f) {
-        return RootPigment{0, 0, int(s.triangle % 2)};
+        RootPigment r;
+        r.cell_type = int(s.triangle % 2);
+        return r;
     };
     const Strands thinned = grow_fur(p, strip.mesh(), typed);
     double a0 = 0, a1 = 0;
@@ -107,56 +109,137 @@ TEST(FurGrow, SameStrandsAtOneAndTwoThreads) {
     p.clump_radius = 0.2f;
     p.melanin_jitter = 0.3f;
     const PigmentLookup lookup = [](const SurfacePoint &s, Vec3f q, Vec3f) {
-        return RootPigment{q.x * 0.1f, s.b1, int(s.triangle % 2)};
+        RootPigment r;
+        r.colour = {0.1f + 0.01f * q.x, s.b1 + 0.05f, 0.5f};
+        r.cell_type = int(s.triangle % 2);
+        return r;
     };
     Strands one, two;
     tbb::task_arena(1).execute([&] { one = grow_fur(p, strip.mesh(), lookup); });
     tbb::task_arena(2).execute([&] { two = grow_fur(p, strip.mesh(), lookup); });
     ASSERT_GT(one.size(), 10000u);
     EXPECT_EQ(one.points, two.points);
-    EXPECT_EQ(one.melanin, two.melanin);
+    EXPECT_EQ(one.sigma_a, two.sigma_a);
     // Another seed gives other strands.
     p.seed = 2;
     const Strands other = grow_fur(p, strip.mesh(), lookup);
     EXPECT_NE(other.points, one.points);
 }
 
-TEST(FurGrow, MelaninIsTheSkinsAtTheRoot) {
+// d'Eon et al. 2011's absorption per unit concentration (written here from the paper's
+// RGB values, not taken from renderer/bsdf).
+Rgb melanin_sigma_a(float eu, float pheo) {
+    return {eu * 0.419f + pheo * 0.187f, eu * 0.697f + pheo * 0.4f,
+            eu * 1.37f + pheo * 1.05f};
+}
+
+// Chiang et al. 2016 §4.2, written from the paper: σ_a = (ln c / D(β_n))².
+Rgb colour_sigma_a(Rgb c, double bn) {
+    const double d = 5.969 - 0.215 * bn + 2.532 * bn * bn - 10.73 * std::pow(bn, 3) +
+                     5.574 * std::pow(bn, 4) + 0.245 * std::pow(bn, 5);
+    auto one = [&](float x) { return float(std::pow(std::log(double(x)) / d, 2)); };
+    return {one(c.x), one(c.y), one(c.z)};
+}
+
+void expect_near(Rgb a, Rgb b, float rel) {
+    for (int k = 0; k < 3; ++k)
+        ASSERT_NEAR(a[k], b[k], rel * std::max(std::abs(b[k]), 1e-6f)) << k;
+}
+
+TEST(FurGrow, ByDefaultAStrandHasTheColourTheSkinShowsAtItsRoot) {
+    const Strip strip;
+    FurParams p;
+    p.density = 500;
+    p.melanin_jitter = 0;
+    p.beta_n = 0.35f;
+    const PigmentLookup lookup = [](const SurfacePoint &s, Vec3f, Vec3f) {
+        RootPigment r;
+        r.colour = {0.9f * s.b1 + 0.05f, 0.3f, 0.02f + 0.01f * float(s.triangle)};
+        r.eumelanin = 5;  // ignored: the colour decides
+        r.cell_type = int(s.triangle % 3);
+        return r;
+    };
+    const Strands s = grow_fur(p, strip.mesh(), lookup);
+    ASSERT_GT(s.size(), 1000u);
+    for (size_t i = 0; i < s.size(); ++i)
+        expect_near(s.sigma_a[i], colour_sigma_a(lookup(s.roots[i], {}, {}).colour, 0.35),
+                    1e-4f);
+
+    // Per type: type 0 a colour, type 1 melanins; type 2 (not listed) the coat's, here
+    // the skin's melanins.
+    using Kind = FurParams::Pigment::Kind;
+    p.pigment.kind = Kind::skin_melanin;
+    p.pigment_by_type.resize(2);
+    p.pigment_by_type[0].kind = Kind::colour;
+    p.pigment_by_type[0].colour = {0.8f, 0.7f, 0.5f};
+    p.pigment_by_type[1].kind = Kind::melanin;
+    p.pigment_by_type[1].eumelanin = 0.5f;
+    p.pigment_by_type[1].pheomelanin = 2;
+    const Strands t = grow_fur(p, strip.mesh(), lookup);
+    size_t seen[3] = {0, 0, 0};
+    for (size_t i = 0; i < t.size(); ++i) {
+        const int type = int(t.roots[i].triangle % 3);
+        ++seen[type];
+        expect_near(t.sigma_a[i],
+                    type == 0   ? colour_sigma_a({0.8f, 0.7f, 0.5f}, 0.35)
+                    : type == 1 ? melanin_sigma_a(0.5f, 2)
+                                : melanin_sigma_a(5, 0),
+                    1e-5f);
+    }
+    for (size_t n : seen) EXPECT_GT(n, 100u);
+
+    // A black skin gives the darkest fibre the inversion reaches, not an infinite σ_a.
+    p.pigment = {};
+    p.pigment_by_type.clear();
+    const Strands black =
+        grow_fur(p, strip.mesh(), [](const SurfacePoint &, Vec3f, Vec3f) {
+            RootPigment r;
+            r.colour = {0, -1, std::nanf("")};
+            return r;
+        });
+    for (const Rgb &a : black.sigma_a)
+        expect_near(a, colour_sigma_a({1e-3f, 1e-3f, 1e-3f}, 0.35), 1e-4f);
+}
+
+TEST(FurGrow, SkinMelaninIsScaledAndJittered) {
     const Strip strip;
     FurParams p;
     p.density = 500;
     p.melanin_jitter = 0;
     p.melanin_scale = 2;
+    p.pigment.kind = FurParams::Pigment::Kind::skin_melanin;
     const PigmentLookup lookup = [](const SurfacePoint &s, Vec3f, Vec3f) {
-        return RootPigment{1.0f + float(s.triangle) + s.b1, s.b2, -1};
+        RootPigment r;
+        r.eumelanin = 1.0f + float(s.triangle) + s.b1;
+        r.pheomelanin = s.b2;
+        return r;
     };
     const Strands s = grow_fur(p, strip.mesh(), lookup);
     ASSERT_GT(s.size(), 1000u);
     for (size_t i = 0; i < s.size(); ++i) {
         const RootPigment r = lookup(s.roots[i], {}, {});
-        ASSERT_FLOAT_EQ(s.melanin[2 * i], 2 * r.eumelanin);
-        ASSERT_FLOAT_EQ(s.melanin[2 * i + 1], 2 * r.pheomelanin);
+        expect_near(s.sigma_a[i], melanin_sigma_a(2 * r.eumelanin, 2 * r.pheomelanin),
+                    1e-5f);
     }
     // Jitter: within ±j of the skin's value, and not all at it.
     p.melanin_jitter = 0.2f;
     const Strands j = grow_fur(p, strip.mesh(), lookup);
     size_t moved = 0;
     for (size_t i = 0; i < j.size(); ++i) {
-        const float skin = 2 * lookup(j.roots[i], {}, {}).eumelanin;
-        EXPECT_LE(std::abs(j.melanin[2 * i] - skin), 0.2f * skin * 1.0001f);
-        moved += std::abs(j.melanin[2 * i] - skin) > 0.01f * skin;
+        const RootPigment r = lookup(j.roots[i], {}, {});
+        const float skin = melanin_sigma_a(2 * r.eumelanin, 2 * r.pheomelanin).x;
+        EXPECT_LE(std::abs(j.sigma_a[i].x - skin), 0.2f * skin * 1.0001f);
+        moved += std::abs(j.sigma_a[i].x - skin) > 0.01f * skin;
     }
     EXPECT_GT(moved, j.size() / 2);
     // The block's own melanin replaces the skin's, still scaled.
     p.melanin_jitter = 0;
-    p.own_melanin = true;
-    p.eumelanin = 0.1f;
-    p.pheomelanin = 1.6f;
+    p.pigment.kind = FurParams::Pigment::Kind::melanin;
+    p.pigment.eumelanin = 0.1f;
+    p.pigment.pheomelanin = 1.6f;
     const Strands own = grow_fur(p, strip.mesh(), lookup);
-    for (size_t i = 0; i < own.size(); ++i) {
-        ASSERT_FLOAT_EQ(own.melanin[2 * i], 0.2f);
-        ASSERT_FLOAT_EQ(own.melanin[2 * i + 1], 3.2f);
-    }
+    for (size_t i = 0; i < own.size(); ++i)
+        expect_near(own.sigma_a[i], melanin_sigma_a(0.2f, 3.2f), 1e-5f);
 }
 
 TEST(FurGrow, StrandsStartAtTheRootWithTheCombAngleLengthAndRadii) {

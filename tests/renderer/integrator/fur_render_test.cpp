@@ -3,7 +3,9 @@
 // a non-absorbing coat in a white furnace returns the environment's radiance.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
+#include <set>
 
 #include "renderer/geometry/embree_ray.h"
 #include "tests/renderer/render_helpers.h"
@@ -141,40 +143,76 @@ TEST(FurRender, UnsetDefaultsScaleWithTheObjectsSize) {
     EXPECT_NEAR(double(given.strands), 10 * 4 * 3.14159 * 100 * 0.98, 400);
 }
 
-TEST(FurRender, EachStrandTakesTheMosaicsMelaninAtItsRoot) {
-    TempDir tmp;
+// The coat of `colour` ("skin" or "skin_melanin") on two-type cells on an icosphere.
+renderer::Scene furry_two_type_scene(TempDir &tmp, const std::string &colour,
+                                     const renderer::PluginRegistry &plugins) {
     const std::string mesh = "procedural:icosphere:3";
     const std::string cells = simulate_two_type_cells(tmp, mesh, 400);
     const std::string scene =
         R"({"camera": {}, "objects": [{"mesh": ")" + mesh + R"(", "cells": ")" + cells +
         R"(", "material": {"shader": "clonal_mosaic", "params": {"antialias": 0}},
-        "fur": {"density": 800, "melanin_jitter": 0, "segments": 4}}]})";
-    const renderer::SceneDesc desc = renderer::parse_scene(scene, tmp.file("scene.json"));
+        "fur": {"density": 800, "melanin_jitter": 0, "segments": 4, "colour": ")" +
+        colour + R"("}}]})";
+    return renderer::Scene(renderer::parse_scene(scene, tmp.file("scene.json")), plugins);
+}
+
+// The skin's own answer at a strand's root.
+PelageShade skin_at_root(const renderer::Material &m, const renderer::SurfacePoint &r) {
+    PelageHit hit{};
+    hit.primitive_id = r.triangle;
+    hit.b1 = r.b1;
+    hit.b2 = r.b2;
+    hit.depth = 1;
+    PelageShade sh = pelage_default_shade();
+    m.plugin->shade(m.instance, &hit, &sh);
+    return sh;
+}
+
+TEST(FurRender, EachStrandTakesTheColourTheMosaicShowsAtItsRoot) {
+    TempDir tmp;
     const renderer::PluginRegistry plugins;
-    const renderer::Scene s(desc, plugins);
+    const renderer::Scene s = furry_two_type_scene(tmp, "skin", plugins);
     ASSERT_NE(s.fur(), nullptr);
-    const renderer::FurLayer &layer = s.fur()->layers().at(0);
-    const renderer::Strands &strands = layer.strands;
+    const renderer::Strands &strands = s.fur()->layers().at(0).strands;
     ASSERT_GT(strands.size(), 1000u);
-    const renderer::Material &m = s.materials()[0];
+    // Chiang et al. 2016 §4.2 at the default β_n = 0.3, written from the paper.
+    const double bn = 0.3, d = 5.969 - 0.215 * bn + 2.532 * bn * bn -
+                               10.73 * std::pow(bn, 3) + 5.574 * std::pow(bn, 4) +
+                               0.245 * std::pow(bn, 5);
+    std::set<std::array<float, 3>> distinct;
+    for (size_t i = 0; i < strands.size(); ++i) {
+        const PelageShade sh = skin_at_root(s.materials()[0], strands.roots[i]);
+        for (int k = 0; k < 3; ++k) {
+            const double want = std::pow(std::log(double(sh.albedo[k])) / d, 2);
+            ASSERT_NEAR(strands.sigma_a[i][k], want, 1e-4 * want + 1e-7) << i << " " << k;
+        }
+        distinct.insert(
+            {strands.sigma_a[i].x, strands.sigma_a[i].y, strands.sigma_a[i].z});
+    }
+    EXPECT_EQ(distinct.size(), 2u);  // one colour per type (no jitter)
+}
+
+TEST(FurRender, SkinMelaninTakesTheMosaicsMelaninAtTheRoot) {
+    TempDir tmp;
+    const renderer::PluginRegistry plugins;
+    const renderer::Scene s = furry_two_type_scene(tmp, "skin_melanin", plugins);
+    ASSERT_NE(s.fur(), nullptr);
+    const renderer::Strands &strands = s.fur()->layers().at(0).strands;
+    ASSERT_GT(strands.size(), 1000u);
     size_t dark = 0, light = 0;
     for (size_t i = 0; i < strands.size(); ++i) {
-        const float eu = strands.melanin[2 * i], pheo = strands.melanin[2 * i + 1];
         // The two types of simulate_two_type_cells: F (eumelanin 0.8), B (pheomelanin
-        // 0.5).
-        const bool is_f = eu == 0.8f && pheo == 0.0f, is_b = eu == 0.0f && pheo == 0.5f;
-        ASSERT_TRUE(is_f || is_b) << i << ": " << eu << " " << pheo;
+        // 0.5), through d'Eon et al.'s absorption (0.419, 0.697, 1.37) and (0.187, 0.4,
+        // 1.05).
+        const Rgb a = strands.sigma_a[i];
+        const bool is_f =
+            std::abs(a.x - 0.8f * 0.419f) < 1e-6f && std::abs(a.z - 0.8f * 1.37f) < 1e-6f;
+        const bool is_b =
+            std::abs(a.x - 0.5f * 0.187f) < 1e-6f && std::abs(a.z - 0.5f * 1.05f) < 1e-6f;
+        ASSERT_TRUE(is_f || is_b) << i << ": " << a.x << " " << a.y << " " << a.z;
         (is_f ? dark : light) += 1;
-        // And it is the skin's own answer at the root.
-        PelageHit hit{};
-        hit.primitive_id = strands.roots[i].triangle;
-        hit.b1 = strands.roots[i].b1;
-        hit.b2 = strands.roots[i].b2;
-        hit.depth = 1;
-        PelageShade sh{};
-        m.plugin->shade(m.instance, &hit, &sh);
-        ASSERT_EQ(sh.eumelanin, eu);
-        ASSERT_EQ(sh.pheomelanin, pheo);
+        const PelageShade sh = skin_at_root(s.materials()[0], strands.roots[i]);
+        ASSERT_EQ(is_f, sh.eumelanin == 0.8f && sh.pheomelanin == 0.0f);
     }
     EXPECT_GT(dark, strands.size() / 20);
     EXPECT_GT(light, strands.size() / 20);

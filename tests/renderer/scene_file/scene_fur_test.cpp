@@ -52,9 +52,10 @@ TEST(SceneFur, EveryKeyReachesTheParameters) {
     EXPECT_FLOAT_EQ(p.clump_radius, 0.05f);
     EXPECT_FLOAT_EQ(p.melanin_scale, 2);
     EXPECT_FLOAT_EQ(p.melanin_jitter, 0.25f);
-    EXPECT_TRUE(p.own_melanin);
-    EXPECT_FLOAT_EQ(p.eumelanin, 0.25f);
-    EXPECT_FLOAT_EQ(p.pheomelanin, 1.5f);
+    using Kind = renderer::FurParams::Pigment::Kind;
+    EXPECT_EQ(p.pigment.kind, Kind::melanin);
+    EXPECT_FLOAT_EQ(p.pigment.eumelanin, 0.25f);
+    EXPECT_FLOAT_EQ(p.pigment.pheomelanin, 1.5f);
     EXPECT_FLOAT_EQ(p.beta_m, 0.4f);
     EXPECT_FLOAT_EQ(p.beta_n, 0.5f);
     EXPECT_FLOAT_EQ(p.alpha_deg, -3);
@@ -63,14 +64,33 @@ TEST(SceneFur, EveryKeyReachesTheParameters) {
     const renderer::FurParams d = *with_fur("{}").objects[1].fur;
     EXPECT_EQ(d.density, renderer::FurParams{}.density);
     EXPECT_EQ(d.curve, renderer::FurParams::Curve::round);
-    EXPECT_FALSE(d.own_melanin);
+    EXPECT_EQ(d.pigment.kind, Kind::skin);  // the colour the skin shows
+    EXPECT_TRUE(d.pigment_by_type.empty());
     // Cycles' melanin 0.8, redness 1: q = ln 5, all pheomelanin, 1.833 q (Cycles'
     // coefficient 0.343 over d'Eon's 0.187 on red).
     const renderer::FurParams c =
         *with_fur(R"({"cycles_melanin": [0.8, 1]})").objects[1].fur;
-    EXPECT_TRUE(c.own_melanin);
-    EXPECT_FLOAT_EQ(c.eumelanin, 0);
-    EXPECT_NEAR(c.pheomelanin, 0.343 / 0.187 * std::log(5.0), 0.005);
+    EXPECT_EQ(c.pigment.kind, Kind::melanin);
+    EXPECT_FLOAT_EQ(c.pigment.eumelanin, 0);
+    EXPECT_NEAR(c.pigment.pheomelanin, 0.343 / 0.187 * std::log(5.0), 0.005);
+    // A colour for the coat, and per type: a colour, melanins, Cycles' melanins, the
+    // skin's colour, the skin's melanins (either spelling of colour).
+    const renderer::FurParams h = *with_fur(R"({"color": [0.9, 0.8, 0.6],
+        "colour_by_type": [[0.2, 0.1, 0.05], {"melanin": [1, 2]},
+                           {"cycles_melanin": [0.8, 1]}, "skin", "skin_melanin"]})")
+                                       .objects[1]
+                                       .fur;
+    EXPECT_EQ(h.pigment.kind, Kind::colour);
+    EXPECT_EQ(h.pigment.colour, (Rgb{0.9f, 0.8f, 0.6f}));
+    ASSERT_EQ(h.pigment_by_type.size(), 5u);
+    EXPECT_EQ(h.pigment_by_type[0].kind, Kind::colour);
+    EXPECT_EQ(h.pigment_by_type[0].colour, (Rgb{0.2f, 0.1f, 0.05f}));
+    EXPECT_EQ(h.pigment_by_type[1].kind, Kind::melanin);
+    EXPECT_FLOAT_EQ(h.pigment_by_type[1].pheomelanin, 2);
+    EXPECT_EQ(h.pigment_by_type[2].kind, Kind::melanin);
+    EXPECT_NEAR(h.pigment_by_type[2].pheomelanin, c.pigment.pheomelanin, 1e-6);
+    EXPECT_EQ(h.pigment_by_type[3].kind, Kind::skin);
+    EXPECT_EQ(h.pigment_by_type[4].kind, Kind::skin_melanin);
     EXPECT_EQ(with_fur(R"({"comb": "normal"})").objects[1].fur->comb,
               renderer::FurParams::Comb::normal);
 }
@@ -96,6 +116,19 @@ TEST(SceneFur, BadValuesNameTheirJsonPath) {
         {R"({"cycles_melanin": [1, 0]})", "objects[1].fur.cycles_melanin[0]"},
         {R"({"melanin": [0, 1], "cycles_melanin": [0.5, 0]})",
          "objects[1].fur.cycles_melanin"},
+        {R"({"colour": [0.5, 0.5, 0.5], "melanin": [0, 1]})", "objects[1].fur.melanin"},
+        {R"({"colour": [0.5, 0, 0.5]})", "objects[1].fur.colour[1]"},
+        {R"({"color": [0.5, 0.5, 1.5]})", "objects[1].fur.color"},
+        {R"({"colour": "fur"})", "objects[1].fur.colour"},
+        {R"({"colour_by_type": []})", "objects[1].fur.colour_by_type"},
+        {R"({"colour_by_type": [[0.5, 0.5, 0.5], "x"]})",
+         "objects[1].fur.colour_by_type[1]"},
+        {R"({"colour_by_type": [{"melanin": [1, 1], "cycles_melanin": [0.5, 0]}]})",
+         "objects[1].fur.colour_by_type[0]"},
+        {R"({"colour_by_type": [{"melanin": [1, -1]}]})",
+         "objects[1].fur.colour_by_type[0].melanin[1]"},
+        {R"({"colour_by_type": [{"eumelanin": 1}]})",
+         "objects[1].fur.colour_by_type[0].eumelanin"},
     };
     for (const auto &[fur, field] : cases) {
         try {
