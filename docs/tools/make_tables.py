@@ -293,6 +293,30 @@ def t_fur():
             f"{r0['segments']} segments per strand.\n")
 
 
+def t_fur_colour():
+    d = data("fur_colour")
+    rgb = lambda c: "(" + ", ".join(f"{x:.3f}" for x in c) + ")"
+    rows = [[f"`{p['preset']}`", t["type"], rgb(t["bare"]), rgb(t["fur"]),
+             f"{t['luminance_ratio']:.2f}", f"{t['rg_ratio']:.2f}", f"{t['bg_ratio']:.2f}",
+             f"{num(t['bare_pixels'])} / {num(t['fur_pixels'])}"]
+            for p in d["presets"] for t in p["types"]]
+    return (table(["preset", "type", "bare (linear RGB)", "furry", "luminance ratio",
+                   "R/G ratio", "B/G ratio", "pixels bare / furry"], rows, "llllrrrr") +
+            f"\n`pelage bench fur-colour` on `{d['mesh']}`, {d['res']}, {d['spp']} spp, "
+            f"seed {d['seed']}: `pelage look` bare and `--fur`, each type's mean over the "
+            f"pixels its Cryptomatte covers fully. Targets: luminance ratio in [0.75, 1.33], "
+            f"R/G and B/G within 15 % of 1.\n")
+
+
+def t_fur_slab():
+    d = data("fur_colour")
+    rgb = lambda c: "(" + ", ".join(f"{x:.3f}" for x in c) + ")"
+    rows = [[rgb(r["requested"]), rgb(r["measured"]),
+             ", ".join(f"{100 * e:+.1f} %" for e in r["relative_error"])] for r in d["slab"]]
+    return (table(["requested colour", "slab's albedo", "error per channel"], rows, "lll") +
+            f"\nβ_n = {d['beta_n']}, {d['slab_spp']} spp over 24 × 24 pixels per slab.\n")
+
+
 def t_noise():
     rows = []
     for name in ["bench_noise", "bench_noise_fur"]:
@@ -454,7 +478,8 @@ TABLES = {
     "machine": t_machine, "crps": t_crps, "sim": t_sim, "sim-density": t_sim_density, "sim-neighbours": t_sim_neighbours, "default-job": t_default_job,
     "lookup": t_lookup, "lookup-lanes": t_lookup_lanes,
     "lookup-density": t_lookup_density, "render": t_render,
-    "compare": t_compare, "hair": t_hair, "fur": t_fur, "noise": t_noise, "presets": t_presets,
+    "compare": t_compare, "hair": t_hair, "fur": t_fur, "fur-colour": t_fur_colour,
+    "fur-slab": t_fur_slab, "noise": t_noise, "presets": t_presets,
     "crps-errors": t_crps_errors, "lookup-quality": t_lookup_quality,
     "hair-furnace": t_hair_furnace, "gallery": t_gallery, "looks": t_looks,
     "control-measures": t_control_measures, "growth-pipelines": t_growth_pipelines,

@@ -55,6 +55,8 @@ run bench_render  "$pelage" bench render --res 1280x720 --spp 4 --repeat 3 -q \
 run bench_hair    "$pelage" bench hair --configs 16 -q --stats-json "$out/bench_hair.json"
 run bench_fur     "$pelage" bench fur --strands 20000 100000 --res 320x240 --spp 4 --threads 1 \
                       -q --stats-json "$out/bench_fur.json"
+run fur_colour    "$pelage" bench fur-colour --res 320x180 --spp 32 --slab-spp 128 -q \
+                      --stats-json "$out/fur_colour.json"
 # Noise against a converged reference, cached in build/noise_refs (keyed by the binary
 # and the inputs): the first run after a build renders the references (a few minutes).
 run sim_walter_cheetah "$pelage" sim --mesh scenes/meshes/cow.off --preset walter-cheetah \

@@ -7,9 +7,13 @@
 //    Reflectance Model", Computer Graphics Forum 30(4):1181–1187,
 //    doi:10.1111/j.1467-8659.2011.01976.x (RGB values as used by pbrt-v3/v4 and Cycles).
 //    Concentrations are dimensionless (0 = no pigment; about 8 is black hair).
-//  * Colour: Chiang, Bitterli, Tappan, Burley 2016 (doi:10.1111/cgf.12830) §4.2 fit a
-//    polynomial in β_n so that a fibre with that σ_a, in a coat of many fibres, looks
-//    like the target colour after multiple scattering.
+//  * Colour: the σ_a whose fibres, in a thick coat, show the colour after multiple
+//    scattering: the albedo of a semi-infinite slab of such fibres under uniform white
+//    light. Chiang, Bitterli, Tappan, Burley 2016 (doi:10.1111/cgf.12830) §4.2 fit a
+//    closed form, ln c = −D(β_n)·sqrt(σ_a), to their renders; pelage's own slab (its
+//    BSDF, its fur) reflects up to 2.8× less than that form asks for dark colours, so
+//    sigma_a_from_colour inverts a table of pelage's slab measured the same way
+//    (renderer/bsdf/fit_hair_colour.py, hair_colour_table.h).
 //
 // σ_a is per fibre radius: the BSDF's transmittance uses the chord 2·cos γ_t of a
 // unit-radius cylinder. All functions are pure and thread-safe; bad input throws
@@ -27,8 +31,14 @@ inline constexpr Rgb pheomelanin_sigma_a{0.187f, 0.4f, 1.05f};
 // σ_a = eumelanin·eumelanin_sigma_a + pheomelanin·pheomelanin_sigma_a; both ≥ 0.
 Rgb sigma_a_from_melanin(float eumelanin, float pheomelanin);
 
-// Chiang et al. 2016 §4.2: σ_a whose multiply scattered look is `colour` (each channel in
-// (0, 1]; 1 gives σ_a = 0) for azimuthal roughness beta_n ∈ (0, 1].
+// σ_a whose thick slab of fibres reflects `colour` (each channel in (0, 1]; 1 gives
+// σ_a = 0) for azimuthal roughness beta_n ∈ (0, 1]: the measured table, linear in β_n
+// and in sqrt(σ_a) between its entries, extended linearly past its darkest entry.
 Rgb sigma_a_from_colour(Rgb colour, float beta_n);
+
+// Chiang et al. 2016 §4.2's closed form of the same inverse (what pbrt and Cycles use):
+// σ_a = (ln c / (5.969 − 0.215 β_n + 2.532 β_n² − 10.73 β_n³ + 5.574 β_n⁴ + 0.245
+// β_n⁵))².
+Rgb sigma_a_from_colour_chiang(Rgb colour, float beta_n);
 
 }  // namespace pelage::renderer

@@ -25,7 +25,7 @@ struct LookOptions {
                       view = "Filmic";
     uint64_t seed = 1;
     int spp = 64;
-    bool fur = false;
+    bool fur = false, cryptomatte = false;
     ThreadOption threads;
     QuietOption quiet;
     StatsJsonOption stats_json;
@@ -120,6 +120,7 @@ int run(const LookOptions &o) {
     RenderCliOptions ro;
     ro.scene = scene_path.string();
     ro.quiet = o.quiet;
+    ro.cryptomatte = o.cryptomatte;
     ro.threads = o.threads;
     ro.stats_json = o.stats_json;
     return run_render(ro);
@@ -154,6 +155,9 @@ Runner add_look_command(CLI::App &app) {
     sub->add_option("--view", o->view, "OpenColorIO view of the preview")
         ->capture_default_str();
     sub->add_flag("--fur", o->fur, "Grow fur on the animal, scaled to its size");
+    sub->add_flag("--cryptomatte", o->cryptomatte,
+                  "Write every Cryptomatte layer the materials offer (the animal, its "
+                  "cell types, cells and clones)");
     o->stats_json.add_to(*sub, "the render's timing and ray counts");
     o->quiet.add_to(*sub);
     o->threads.add_to(*sub);

@@ -39,12 +39,14 @@ struct FurParams {
     // Where a strand's absorption σ_a comes from (renderer/bsdf/hair_pigments.h).
     struct Pigment {
         enum class Kind {
-            skin,          // the colour the skin shows under the root, inverted (§4.2)
+            skin,          // the colour the skin shows under the root, inverted
             skin_melanin,  // the skin's eumelanin and pheomelanin at the root
-            colour,        // `colour`, inverted with Chiang et al. 2016 §4.2
-            melanin        // `eumelanin`, `pheomelanin`
+            colour,        // `colour`, inverted (hair_pigments.h)
+            melanin,       // `eumelanin`, `pheomelanin`
+            absorption     // `sigma_a` as given
         } kind = Kind::skin;
-        Rgb colour{1, 1, 1};  // each channel in (0, 1]
+        Rgb colour{1, 1, 1};   // each channel in (0, 1]
+        Rgb sigma_a{0, 0, 0};  // per fibre radius, each channel >= 0
         float eumelanin = 0, pheomelanin = 0;
     };
     Pigment pigment;                       // the whole coat

@@ -59,6 +59,14 @@ FurParams::Pigment melanin(const JsonObjectFields &r, const json &v,
     return p;
 }
 
+FurParams::Pigment absorption(const JsonObjectFields &r, const json &v,
+                              const std::string &f) {
+    FurParams::Pigment p;
+    p.kind = FurParams::Pigment::Kind::absorption;
+    p.sigma_a = r.check_vec3(v, f, 0, 1000);
+    return p;
+}
+
 // A hair colour: "skin" (the colour the skin shows under the root), "skin_melanin" (the
 // skin's melanins), or [r, g, b] with each channel in (0, 1] (the colour a dense coat of
 // such fibres shows, hair_pigments.h).
@@ -82,8 +90,8 @@ FurParams::Pigment colour(const JsonObjectFields &r, const json &v,
     return p;
 }
 
-// One entry of colour_by_type: a colour as above, or {"melanin": [...]} or
-// {"cycles_melanin": [...]}.
+// One entry of colour_by_type: a colour as above, or {"melanin": [...]},
+// {"cycles_melanin": [...]} or {"sigma_a": [...]}.
 FurParams::Pigment type_pigment(const JsonObjectFields &r, const json &v,
                                 const std::string &f) {
     if (!v.is_object()) return colour(r, v, f);
@@ -154,19 +162,23 @@ FurParams read_fur(const json &j, const std::string &field,
     p.clump = num(r, "clump", p.clump, 0, 1);
     p.clump_radius = num(r, "clump_radius", p.clump_radius, 0, 1e9, true);
     p.melanin_scale = num(r, "melanin_scale", p.melanin_scale, 0, 100);
-    // One pigment for the coat: a colour, melanins, or Cycles' melanin parameters.
+    // One pigment for the coat: a colour, melanins, Cycles' melanin parameters, or the
+    // absorption itself.
     std::string pigment_key;
-    for (const char *key : {"colour", "melanin", "cycles_melanin"})
+    for (const char *key : {"colour", "melanin", "cycles_melanin", "sigma_a"})
         if (const json *v = r.take(key)) {
             if (!pigment_key.empty())
                 r.fail(r.field(key), "give one of \"" + r.spelled("colour") +
-                                         "\", \"melanin\" and \"cycles_melanin\" (\"" +
+                                         "\", \"melanin\", \"cycles_melanin\" and "
+                                         "\"sigma_a\" (\"" +
                                          pigment_key + "\" is given too)");
             pigment_key = r.spelled(key);
             const std::string f = r.field(key);
-            p.pigment = key == std::string("colour")    ? colour(r, *v, f)
-                        : key == std::string("melanin") ? melanin(r, *v, f)
-                                                        : cycles_melanin(r, *v, f);
+            const std::string k = key;
+            p.pigment = k == "colour"    ? colour(r, *v, f)
+                        : k == "melanin" ? melanin(r, *v, f)
+                        : k == "sigma_a" ? absorption(r, *v, f)
+                                         : cycles_melanin(r, *v, f);
         }
     if (const json *v = r.take("colour_by_type")) {
         const std::string f = r.field("colour_by_type");

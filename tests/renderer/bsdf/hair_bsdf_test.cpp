@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "renderer/bsdf/hair_colour_table.h"
 #include "renderer/bsdf/hair_furnace.h"
 #include "renderer/bsdf/hair_pigments.h"
 
@@ -402,6 +403,28 @@ TEST(HairPigments, ColourRoundTripIsMonotone) {
         HairBsdf(HairParams::from_colour({0.6f, 0.3f, 0.1f}, 0.3f, 0.3f), 0.0f).albedo();
     EXPECT_GT(a.x, a.y);
     EXPECT_GT(a.y, a.z);
+}
+
+TEST(HairPigments, TheInverseHitsTheMeasuredTableAtItsEntries) {
+    // A colour whose slab the table lists gives that entry's σ_a exactly, at a β_n row
+    // and between two rows (blended linearly).
+    for (size_t i = 0; i < std::size(hair_colour_beta_n); ++i)
+        for (size_t k = 0; k < std::size(hair_colour_root_sigma); ++k) {
+            const float c = std::exp(-hair_colour_optical[i][k]);
+            const float want = sqr(hair_colour_root_sigma[k]);
+            EXPECT_NEAR(sigma_a_from_colour({c, c, c}, hair_colour_beta_n[i]).x, want,
+                        2e-3f * want)
+                << i << " " << k;
+        }
+    const float mid = 0.5f * (hair_colour_beta_n[2] + hair_colour_beta_n[3]);
+    const float f = 0.5f * (hair_colour_optical[2][6] + hair_colour_optical[3][6]);
+    EXPECT_NEAR(sigma_a_from_colour({std::exp(-f), 0.5f, 0.5f}, mid).x,
+                sqr(hair_colour_root_sigma[6]), 1e-3f);
+    // Chiang et al. 2016 §4.2's closed form, from the paper.
+    const double d = 5.969 - 0.215 * 0.3 + 2.532 * 0.09 - 10.73 * 0.027 + 5.574 * 0.0081 +
+                     0.245 * 0.00243;
+    EXPECT_NEAR(sigma_a_from_colour_chiang({0.5f, 0.5f, 0.5f}, 0.3f).x,
+                std::pow(std::log(0.5) / d, 2), 1e-6);
 }
 
 // --- Validation ---
