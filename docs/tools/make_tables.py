@@ -314,7 +314,7 @@ def t_fur_slab():
     rows = [[rgb(r["requested"]), rgb(r["measured"]),
              ", ".join(f"{100 * e:+.1f} %" for e in r["relative_error"])] for r in d["slab"]]
     return (table(["requested colour", "slab's albedo", "error per channel"], rows, "lll") +
-            f"\nβ_n = {d['beta_n']}, {d['slab_spp']} spp over 24 × 24 pixels per slab.\n")
+            f"\nβ_n = {d['beta_n']:.2g}, {d['slab_spp']} spp over 24 × 24 pixels per slab.\n")
 
 
 def t_noise():
