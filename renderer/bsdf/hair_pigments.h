@@ -11,7 +11,7 @@
 //    scattering: the albedo of a semi-infinite slab of such fibres under uniform white
 //    light. Chiang, Bitterli, Tappan, Burley 2016 (doi:10.1111/cgf.12830) §4.2 fit a
 //    closed form, ln c = −D(β_n)·sqrt(σ_a), to their renders; pelage's own slab (its
-//    BSDF, its fur) reflects up to 2.8× less than that form asks for dark colours, so
+//    BSDF, its fur) reflects up to 3× less than that form asks for dark colours, so
 //    sigma_a_from_colour inverts a table of pelage's slab measured the same way
 //    (renderer/bsdf/fit_hair_colour.py, hair_colour_table.h).
 //
