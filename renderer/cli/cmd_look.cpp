@@ -77,7 +77,10 @@ int run(const LookOptions &o) {
     int width = 0, height = 0;
     parse_resolution(o.res, 65536, &width, &height);
     const Vec3f up = parse_up(o.up);
-    sim::load_preset(o.preset, data_path("scenes/presets"));  // a bad one fails here
+    // A bad preset fails here; one with an anisotropy field combs the fur along it.
+    const bool preset_field =
+        sim::load_preset(o.preset, data_path("scenes/presets"))
+            .params.anisotropy_field.kind != sim::FieldSpec::Kind::none;
     const sim::TriangleMesh mesh = sim::load_mesh(o.mesh);
     std::vector<Vec3f> points;
     points.reserve(mesh.positions.size());
@@ -103,6 +106,7 @@ int run(const LookOptions &o) {
     setup.spp = o.spp;
     setup.view = o.view;
     setup.fur = o.fur;
+    setup.comb_field = preset_field;
 
     const fs::path scene_path = dir / (stem + ".json");
     const std::string scene_text = format_scene_json(look_scene(setup));

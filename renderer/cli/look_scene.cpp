@@ -42,6 +42,8 @@ json ground_object(const LookSetup &s) {
 // Fur at the scale of the body: the coat of scenes/fur_cow_giraffe.json (the cow's
 // bounding radius is 0.608) with every length scaled by the object's bounding radius,
 // so the strand count stays near 300 000 whatever the mesh's units.
+// Hair lies along the preset's anisotropy field when it has one (a zebra's along its
+// stripes' field), else towards the ground and a little along the body.
 json fur_block(const LookSetup &s) {
     const double k = s.framing.radius / 0.608;
     const Vec3f comb = -s.up + s.framing.long_axis * 0.3f;
@@ -52,7 +54,7 @@ json fur_block(const LookSetup &s) {
             {"root_radius", round6(0.0004 * k)},
             {"tip_radius", round6(0.0001 * k)},
             {"segments", 6},
-            {"comb", vec(comb)},
+            {"comb", s.comb_field ? json("field") : vec(comb)},
             {"comb_angle", 20},
             {"comb_jitter", 12},
             {"gravity", 0.2},

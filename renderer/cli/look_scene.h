@@ -21,6 +21,7 @@ struct LookSetup {
     int width = 960, height = 540, spp = 64;
     std::string view = "Filmic";
     bool fur = false;
+    bool comb_field = false;  // the preset has an anisotropy field: comb along it
 };
 
 // The scene, its keys in the order a person reads them (camera, film, lights, objects).

@@ -11,7 +11,8 @@ namespace {
 constexpr float clump_pi = 3.14159265358979323846f;
 }
 
-ClumpGuides::ClumpGuides(const FurParams &params, const RootSampler &roots)
+ClumpGuides::ClumpGuides(const FurParams &params, const SkinMesh &mesh,
+                         const RootSampler &roots)
     : m_params(params) {
     if (params.clump <= 0) return;
     const double r = params.clump_radius;
@@ -24,11 +25,13 @@ ClumpGuides::ClumpGuides(const FurParams &params, const RootSampler &roots)
     m_lines.resize(n * size_t(S + 1));
     for (uint64_t i = 0; i < n; ++i) {
         Vec3f p, nrm;
-        roots.point_normal(roots.sample(seed, i), &p, &nrm);
+        const SurfacePoint root = roots.sample(seed, i);
+        roots.point_normal(root, &p, &nrm);
         const StrandRandom rnd{float(uniform(seed, Stream::guides, i, 0)),
                                float(uniform(seed, Stream::guides, i, 1)),
                                float(uniform(seed, Stream::guides, i, 2))};
-        grow_centre_line(params, p, nrm, params.length, rnd, &m_lines[i * (S + 1)]);
+        grow_centre_line(params, p, nrm, comb_at(params, mesh, root.triangle),
+                         params.length, rnd, &m_lines[i * (S + 1)]);
         m_roots[i] = p;
         m_grid[key(p)].push_back(uint32_t(i));
     }

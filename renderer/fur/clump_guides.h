@@ -16,7 +16,7 @@ namespace pelage::renderer {
 class ClumpGuides {
   public:
     // No guides (and no clumping) when params.clump == 0.
-    ClumpGuides(const FurParams &params, const RootSampler &roots);
+    ClumpGuides(const FurParams &params, const SkinMesh &mesh, const RootSampler &roots);
     size_t size() const { return m_roots.size(); }
     // Pulls line[0 .. S] (a strand rooted at line[0]) towards the nearest guide within
     // 2·radius of its root; a strand with no guide that near stays as it is.

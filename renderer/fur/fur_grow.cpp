@@ -126,7 +126,7 @@ Strands grow_fur(const FurParams &params, const SkinMesh &mesh,
     for (const uint64_t i : index) any_matte = any_matte || pigment[i].matte_written;
     if (any_matte) out.matte.resize(4 * m);
 
-    const ClumpGuides guides(params, sampler);
+    const ClumpGuides guides(params, mesh, sampler);
     // --- Grow every kept strand ---
     tbb::parallel_for(tbb::blocked_range<size_t>(0, m, 1024), [&](auto range) {
         Vec3f line[max_segments + 1];
@@ -143,8 +143,8 @@ Strands grow_fur(const FurParams &params, const SkinMesh &mesh,
             const StrandRandom rnd{float(uniform(params.seed, Stream::shape, i, 1)),
                                    float(uniform(params.seed, Stream::shape, i, 2)),
                                    float(uniform(params.seed, Stream::shape, i, 3))};
-            grow_centre_line(params, p, nrm, std::max(L, 1e-6f * params.length), rnd,
-                             line);
+            grow_centre_line(params, p, nrm, comb_at(params, mesh, root.triangle),
+                             std::max(L, 1e-6f * params.length), rnd, line);
             guides.pull(line);
 
             // --- Control points with radii (linear from root to tip) ---

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "sim/core/vec.h"
+#include "sim/field/field_spec.h"
 
 namespace pelage::renderer {
 
@@ -25,15 +26,21 @@ struct FurParams {
     float length_variation = 0.2f;      // each strand's length × U[1 − v, 1 + v]
     float root_radius = 0.0015f, tip_radius = 0.0003f;
     int segments = 8;
-    enum class Comb { world, normal } comb = Comb::world;  // normal: strands stand up
+    // world: comb_direction; normal: strands stand up; field: one direction per skin
+    // triangle from a tangent field (SkinMesh::comb_by_triangle), as a preset's
+    // anisotropy field is given: comb_field, or the object's pattern's own field when
+    // comb_pattern_field.
+    enum class Comb { world, normal, field } comb = Comb::world;
     Vec3f comb_direction{0, -1, 0};  // projected onto each root's tangent plane
-    float comb_angle_deg = 30;       // between the root direction and the surface
-    float comb_jitter_deg = 8;       // random tilt of each root direction
-    float gravity = 0;               // downward bend over the strand (0 none, ~1 strong)
-    float curl_radius = 0;           // helix radius as a fraction of the length
-    float curl_turns = 0;            // helix turns over the strand
-    float clump = 0;                 // tip pull towards the clump guide, [0, 1]
-    float clump_radius = 0.01f;      // guide spacing: one guide per π·r² of skin
+    sim::FieldSpec comb_field;
+    bool comb_pattern_field = false;
+    float comb_angle_deg = 30;   // between the root direction and the surface
+    float comb_jitter_deg = 8;   // random tilt of each root direction
+    float gravity = 0;           // downward bend over the strand (0 none, ~1 strong)
+    float curl_radius = 0;       // helix radius as a fraction of the length
+    float curl_turns = 0;        // helix turns over the strand
+    float clump = 0;             // tip pull towards the clump guide, [0, 1]
+    float clump_radius = 0.01f;  // guide spacing: one guide per π·r² of skin
 
     // --- Pigment and look ---
     // Where a strand's absorption σ_a comes from (renderer/bsdf/hair_pigments.h).

@@ -16,6 +16,9 @@ struct SkinMesh {
     const float *positions = nullptr;  // xyz per vertex
     const uint32_t *triangles = nullptr;
     const float *corner_normals = nullptr;
+    // FurParams::Comb::field: the comb direction of each triangle (xyz, world), zero
+    // where the field is undefined; null otherwise.
+    const float *comb_by_triangle = nullptr;
     uint32_t num_vertices = 0, num_triangles = 0;
 };
 

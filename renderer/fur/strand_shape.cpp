@@ -24,21 +24,20 @@ constexpr float min_lift = 0.05f;
 
 }  // namespace
 
-Vec3f comb_tangent(const FurParams &params, Vec3f n) {
+Vec3f comb_tangent(const FurParams &params, Vec3f n, Vec3f c) {
     if (params.comb == FurParams::Comb::normal) return any_perpendicular(n);
-    const Vec3f c = params.comb_direction;
     const Vec3f t = c - n * dot(c, n);
-    return dot(t, t) > 1e-8f * std::max(dot(c, c), 1e-30f) ? unit(t)
-                                                           : any_perpendicular(n);
+    return dot(c, c) > 0 && dot(t, t) > 1e-8f * dot(c, c) ? unit(t)
+                                                          : any_perpendicular(n);
 }
 
-void grow_centre_line(const FurParams &params, Vec3f p, Vec3f n, float L,
+void grow_centre_line(const FurParams &params, Vec3f p, Vec3f n, Vec3f comb, float L,
                       const StrandRandom &r, Vec3f *out) {
     const int S = params.segments;
     // --- Root direction: tilted up from the comb tangent, then jittered ---
     const float angle =
         params.comb == FurParams::Comb::normal ? 90 * deg : params.comb_angle_deg * deg;
-    const Vec3f t = comb_tangent(params, n), b = cross(n, t);
+    const Vec3f t = comb_tangent(params, n, comb), b = cross(n, t);
     Vec3f d = unit(t * std::cos(angle) + n * std::sin(angle));
     {
         const float az = 2 * pi * r.jitter_u;

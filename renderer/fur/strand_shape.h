@@ -5,6 +5,7 @@
 #include <cstdint>
 
 #include "renderer/fur/fur_params.h"
+#include "renderer/fur/root_sampling.h"
 
 namespace pelage::renderer {
 
@@ -16,13 +17,22 @@ struct StrandRandom {
     float curl_phase;
 };
 
-// Fills out[0 .. segments] for a root at p with unit skin normal n and strand length L.
-void grow_centre_line(const FurParams &params, Vec3f p, Vec3f n, float L,
+// Fills out[0 .. segments] for a root at p with unit skin normal n and strand length L;
+// `comb` is the comb direction at the root (FurParams::comb_direction, or the field's).
+void grow_centre_line(const FurParams &params, Vec3f p, Vec3f n, Vec3f comb, float L,
                       const StrandRandom &r, Vec3f *out);
+
+// The comb direction at a root on `triangle`: the field's there when the skin has one
+// per triangle, else FurParams::comb_direction.
+inline Vec3f comb_at(const FurParams &params, const SkinMesh &mesh, uint32_t triangle) {
+    if (!mesh.comb_by_triangle) return params.comb_direction;
+    const float *c = &mesh.comb_by_triangle[3 * size_t(triangle)];
+    return {c[0], c[1], c[2]};
+}
 
 // Unit vector ⊥ n along which a strand leaves its root before tilting up by the comb
 // angle: the comb direction projected onto the tangent plane (any tangent when the comb
-// is parallel to n).
-Vec3f comb_tangent(const FurParams &params, Vec3f n);
+// is parallel to n or zero).
+Vec3f comb_tangent(const FurParams &params, Vec3f n, Vec3f comb);
 
 }  // namespace pelage::renderer

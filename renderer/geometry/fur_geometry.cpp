@@ -8,6 +8,7 @@
 
 #include "renderer/bsdf/hair_bsdf.h"
 #include "renderer/core/setup_phase.h"
+#include "renderer/fur/comb_field.h"
 #include "renderer/geometry/embree_scene.h"
 #include "sim/core/input_error.h"
 
@@ -156,6 +157,32 @@ FurGeometry::FurGeometry(const SceneDesc &desc, EmbreeScene &scene,
         skin.corner_normals = wm.normals.empty() ? nullptr : wm.normals.data();
         skin.num_vertices = og.mesh->num_vertices;
         skin.num_triangles = og.mesh->num_triangles;
+
+        // Comb along a field: one direction per triangle, resolved on the rest mesh (the
+        // rendered triangles) and turned with the object like comb_direction.
+        std::vector<float> comb;
+        if (params.comb == FurParams::Comb::field) {
+            const sim::FieldSpec spec =
+                params.comb_pattern_field
+                    ? pattern_field(desc.objects[i].cells, field + ".comb")
+                    : params.comb_field;
+            sim::TriangleMesh rest;
+            const MeshData &m = *og.mesh;
+            for (uint32_t v = 0; v < m.num_vertices; ++v)
+                rest.positions.push_back({m.rest->positions[3 * v],
+                                          m.rest->positions[3 * v + 1],
+                                          m.rest->positions[3 * v + 2]});
+            for (uint32_t t = 0; t < m.num_triangles; ++t)
+                rest.triangles.push_back(
+                    {m.triangles[3 * t], m.triangles[3 * t + 1], m.triangles[3 * t + 2]});
+            comb = comb_by_triangle(spec, std::move(rest));
+            for (size_t t = 0; t < comb.size(); t += 3) {
+                const Vec3f w =
+                    desc.objects[i].transform.vector({comb[t], comb[t + 1], comb[t + 2]});
+                comb[t] = w.x, comb[t + 1] = w.y, comb[t + 2] = w.z;
+            }
+            skin.comb_by_triangle = comb.data();
+        }
 
         const PigmentLookup lookup = [&](const SurfacePoint &s, Vec3f p, Vec3f n) {
             return pigment(i, s, p, n);

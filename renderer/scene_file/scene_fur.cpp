@@ -138,6 +138,13 @@ FurParams read_fur(const json &j, const std::string &field,
     if (const json *v = r.take("comb")) {
         if (v->is_string() && v->get<std::string>() == "normal") {
             p.comb = FurParams::Comb::normal;
+        } else if (v->is_string() && v->get<std::string>() == "field") {
+            p.comb = FurParams::Comb::field;  // the pattern's own anisotropy field
+            p.comb_pattern_field = true;
+        } else if (v->is_object()) {
+            // A field as a preset's simulation.anisotropy.field gives it.
+            p.comb = FurParams::Comb::field;
+            p.comb_field = sim::parse_field_spec(*v, r.field("comb"), r.file());
         } else if (v->is_array() && v->size() == 3) {
             for (int k = 0; k < 3; ++k)
                 (k == 0   ? p.comb_direction.x
@@ -151,7 +158,9 @@ FurParams read_fur(const json &j, const std::string &field,
                 r.fail(r.field("comb"), "must not be zero");
         } else {
             r.fail(r.field("comb"),
-                   "expected [x, y, z] (a world direction) or \"normal\"");
+                   "expected [x, y, z] (a world direction), \"normal\", \"field\" (the "
+                   "pattern's anisotropy field) or a field such as {\"along\": "
+                   "\"body_axis\"}");
         }
     }
     p.comb_angle_deg = num(r, "comb_angle", p.comb_angle_deg, 0, 90);

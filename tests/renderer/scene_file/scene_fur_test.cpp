@@ -93,6 +93,15 @@ TEST(SceneFur, EveryKeyReachesTheParameters) {
     EXPECT_EQ(h.pigment_by_type[4].kind, Kind::skin_melanin);
     EXPECT_EQ(with_fur(R"({"comb": "normal"})").objects[1].fur->comb,
               renderer::FurParams::Comb::normal);
+    // A field: the pattern's own, or one given as a preset's anisotropy field.
+    const renderer::FurParams f = *with_fur(R"({"comb": "field"})").objects[1].fur;
+    EXPECT_EQ(f.comb, renderer::FurParams::Comb::field);
+    EXPECT_TRUE(f.comb_pattern_field);
+    const renderer::FurParams g =
+        *with_fur(R"({"comb": {"around": "body_axis"}})").objects[1].fur;
+    EXPECT_EQ(g.comb, renderer::FurParams::Comb::field);
+    EXPECT_FALSE(g.comb_pattern_field);
+    EXPECT_EQ(g.comb_field.kind, sim::FieldSpec::Kind::around_body_axis);
 }
 
 TEST(SceneFur, BadValuesNameTheirJsonPath) {
@@ -107,6 +116,9 @@ TEST(SceneFur, BadValuesNameTheirJsonPath) {
         {R"({"beta_n": 1.5})", "objects[1].fur.beta_n"},
         {R"({"comb": "up"})", "objects[1].fur.comb"},
         {R"({"comb": [1, "x", 0]})", "objects[1].fur.comb[1]"},
+        {R"({"comb": {"along": "tail"}})", "objects[1].fur.comb.along"},
+        {R"({"comb": {"along": "body_axis", "around": "body_axis"}})",
+         "objects[1].fur.comb"},
         {R"({"density_by_type": [0, 0]})", "objects[1].fur.density_by_type"},
         {R"({"length_by_type": [1, 0]})", "objects[1].fur.length_by_type[1]"},
         {R"({"seed": -4})", "objects[1].fur.seed"},
