@@ -92,7 +92,13 @@ nlohmann::json slab_runs(const BenchFurColourOptions &o, const std::string &self
         nlohmann::json colour = nlohmann::json::array();
         for (size_t at = 0; at <= text.size();) {
             const size_t comma = std::min(text.find(',', at), text.size());
-            colour.push_back(std::stod(text.substr(at, comma - at)));
+            const std::string number = text.substr(at, comma - at);
+            char *end = nullptr;
+            const double c = std::strtod(number.c_str(), &end);
+            if (number.empty() || *end != 0 || !(c > 0 && c <= 1))
+                throw InputError("", 0, "--slab-colours",
+                                 "\"" + text + "\": expected r,g,b, each in (0, 1]");
+            colour.push_back(c);
             at = comma + 1;
         }
         if (colour.size() != 3)

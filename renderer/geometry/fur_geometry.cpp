@@ -162,6 +162,11 @@ FurGeometry::FurGeometry(const SceneDesc &desc, EmbreeScene &scene,
         // rendered triangles) and turned with the object like comb_direction.
         std::vector<float> comb;
         if (params.comb == FurParams::Comb::field) {
+            if (params.comb_pattern_field && desc.objects[i].cells.empty())
+                throw InputError(desc.path, 0, field + ".comb",
+                                 "\"field\" combs along the pattern's anisotropy field, "
+                                 "but the object has no \"cells\" (give a field such as "
+                                 "{\"along\": \"body_axis\"} instead)");
             const sim::FieldSpec spec =
                 params.comb_pattern_field
                     ? pattern_field(desc.objects[i].cells, field + ".comb")
