@@ -6,26 +6,13 @@
 #include <filesystem>
 #include <fstream>
 
+#include "renderer/cli/common.h"
 #include "sim/core/input_error.h"
 #include "sim/mesh/mesh_load.h"
 #include "sim/mesh/mesh_write_obj.h"
 #include "sim/mesh/subdivide.h"
 
 namespace pelage::renderer::cli {
-namespace {
-
-std::string quoted(const std::string &s) {
-    std::string out = "'";
-    for (char c : s) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
-    return out + "'";
-}
-
-// This very binary, so the runs measure the code being benchmarked.
-std::string self_path() {
-    return std::filesystem::read_symlink("/proc/self/exe").string();
-}
-
-}  // namespace
 
 nlohmann::json density_runs(const DensityOptions &o) {
     namespace fs = std::filesystem;
@@ -42,8 +29,8 @@ nlohmann::json density_runs(const DensityOptions &o) {
         const std::string command = fmt::format(
             "{} sim --mesh {} --preset {} --seed {} --threads {} --stats-json {} "
             ">/dev/null",
-            quoted(self_path()), quoted(obj), quoted(o.preset), o.seed, o.threads,
-            quoted(stats));
+            shell_quoted(self_path()), shell_quoted(obj), shell_quoted(o.preset), o.seed,
+            o.threads, shell_quoted(stats));
         if (std::system(command.c_str()) != 0) {
             fs::remove_all(dir);
             throw std::runtime_error("bench sim: `" + command + "` failed");

@@ -34,12 +34,6 @@ struct BenchFurColourOptions {
     BenchOutput out;
 };
 
-std::string quoted(const std::string &s) {
-    std::string out = "'";
-    for (char c : s) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
-    return out + "'";
-}
-
 void run_or_throw(const std::string &command) {
     if (std::system((command + " >/dev/null").c_str()) != 0)
         throw std::runtime_error("bench fur-colour: `" + command + "` failed");
@@ -108,7 +102,7 @@ nlohmann::json slab_runs(const BenchFurColourOptions &o, const std::string &self
                        exr = dir / "slab" / "slab.exr";
         std::ofstream(scene) << slab_scene(colour, o.beta_n, o.slab_spp, exr.string());
         run_or_throw(fmt::format("{} render {} --cryptomatte -q --threads {}",
-                                 quoted(self), quoted(scene.string()),
+                                 shell_quoted(self), shell_quoted(scene.string()),
                                  o.threads.threads));
         const Rgb m = mean_rgb(exr.string());
         nlohmann::json error = nlohmann::json::array();
@@ -123,7 +117,7 @@ int run(const BenchFurColourOptions &o) {
     const nlohmann::json keys = nlohmann::json::parse(o.fur_keys, nullptr, false);
     if (!keys.is_object())
         throw InputError("", 0, "--fur-keys", "expected a JSON object of fur keys");
-    const std::string self = fs::read_symlink("/proc/self/exe").string();
+    const std::string self = self_path();
     const fs::path dir =
         fs::temp_directory_path() / fmt::format("pelage-bench-fur-colour-{}", ::getpid());
     nlohmann::json presets = nlohmann::json::array(), slab = nlohmann::json::array();
@@ -138,22 +132,23 @@ int run(const BenchFurColourOptions &o) {
             fs::create_directories(fur.parent_path());
             const std::string look = fmt::format(
                 "{} look {} --preset {} --seed {} --threads {} --cryptomatte -q",
-                quoted(self), quoted(o.mesh), quoted(preset), o.seed, o.threads.threads);
+                shell_quoted(self), shell_quoted(o.mesh), shell_quoted(preset), o.seed,
+                o.threads.threads);
             const std::string size = fmt::format(" --res {} --spp {}", o.res, o.spp);
-            run_or_throw(look + size + " -o " + quoted(bare.string()));
+            run_or_throw(look + size + " -o " + shell_quoted(bare.string()));
             if (keys.empty()) {
-                run_or_throw(look + size + " --fur -o " + quoted(fur.string()));
+                run_or_throw(look + size + " --fur -o " + shell_quoted(fur.string()));
             } else {
                 // The scene `look --fur` writes, its fur block amended, rendered again.
                 run_or_throw(look + " --res 16x9 --spp 1 --fur -o " +
-                             quoted(fur.string()));
+                             shell_quoted(fur.string()));
                 const fs::path scene = fur.parent_path() / "animal.json";
                 nlohmann::json j;
                 std::ifstream(scene) >> j;
                 for (const auto &[k, v] : keys.items()) j["objects"][0]["fur"][k] = v;
                 std::ofstream(scene) << j.dump(2);
                 run_or_throw(fmt::format("{} render {} --cryptomatte -q --threads {}",
-                                         quoted(self), quoted(scene.string()),
+                                         shell_quoted(self), shell_quoted(scene.string()),
                                          o.threads.threads) +
                              size);
             }

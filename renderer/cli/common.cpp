@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <filesystem>
 
 #include "renderer/core/install_layout.h"
 #include "renderer/core/progress.h"
@@ -107,6 +108,16 @@ double process_cpu_seconds() {
     getrusage(RUSAGE_SELF, &u);
     return double(u.ru_utime.tv_sec + u.ru_stime.tv_sec) +
            1e-6 * double(u.ru_utime.tv_usec + u.ru_stime.tv_usec);
+}
+
+std::string shell_quoted(const std::string &s) {
+    std::string out = "'";
+    for (char c : s) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
+    return out + "'";
+}
+
+std::string self_path() {
+    return std::filesystem::read_symlink("/proc/self/exe").string();
 }
 
 }  // namespace pelage::renderer::cli

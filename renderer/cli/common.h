@@ -103,4 +103,11 @@ class Timer {
     std::chrono::steady_clock::time_point m_start;
 };
 
+// `s` in single quotes for /bin/sh (a ' inside becomes '\''), for the child `pelage`
+// processes benchmarks start.
+std::string shell_quoted(const std::string &s);
+
+// This very binary (/proc/self/exe), so child runs measure the code being benchmarked.
+std::string self_path();
+
 }  // namespace pelage::renderer::cli
