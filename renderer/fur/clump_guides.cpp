@@ -14,7 +14,7 @@ constexpr float clump_pi = 3.14159265358979323846f;
 ClumpGuides::ClumpGuides(const FurParams &params, const SkinMesh &mesh,
                          const RootSampler &roots)
     : m_params(params) {
-    if (params.clump <= 0) return;
+    if (params.clump <= 0 && !params.vary(FurParams::Groomed::clump).varies()) return;
     const double r = params.clump_radius;
     const uint64_t seed = params.seed ^ 0x5bd1e995ull;  // guides' own root stream
     const uint64_t n = std::min<uint64_t>(
@@ -30,8 +30,9 @@ ClumpGuides::ClumpGuides(const FurParams &params, const SkinMesh &mesh,
         const StrandRandom rnd{float(uniform(seed, Stream::guides, i, 0)),
                                float(uniform(seed, Stream::guides, i, 1)),
                                float(uniform(seed, Stream::guides, i, 2))};
-        grow_centre_line(params, p, nrm, comb_at(params, mesh, root.triangle),
-                         params.length, rnd, &m_lines[i * (S + 1)]);
+        grow_centre_line(params, coat_groom(params), p, nrm,
+                         comb_at(params, mesh, root.triangle), params.length, rnd,
+                         &m_lines[i * (S + 1)]);
         m_roots[i] = p;
         m_grid[key(p)].push_back(uint32_t(i));
     }
@@ -45,8 +46,8 @@ uint64_t ClumpGuides::key(Vec3f p) const {
     return c(p.x) | c(p.y) << 21 | c(p.z) << 42;
 }
 
-void ClumpGuides::pull(Vec3f *line) const {
-    if (m_roots.empty()) return;
+void ClumpGuides::pull(Vec3f *line, float clump, float scale) const {
+    if (m_roots.empty() || clump <= 0) return;
     const Vec3f p = line[0];
     float best_d2 = m_cell * m_cell;
     int64_t best = -1;
@@ -71,8 +72,9 @@ void ClumpGuides::pull(Vec3f *line) const {
     // The strand keeps its root; its shape follows the guide's, offset to its own root.
     const Vec3f offset = p - g[0];
     for (int k = 1; k <= S; ++k) {
-        const float w = m_params.clump * float(k) / float(S);
-        const Vec3f target = g[k] + offset * (1 - float(k) / float(S));
+        const float w = clump * float(k) / float(S);
+        const Vec3f gk = scale == 1 ? g[k] : g[0] + (g[k] - g[0]) * scale;
+        const Vec3f target = gk + offset * (1 - float(k) / float(S));
         line[k] = line[k] * (1 - w) + target * w;
     }
 }

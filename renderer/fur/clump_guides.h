@@ -15,12 +15,14 @@ namespace pelage::renderer {
 
 class ClumpGuides {
   public:
-    // No guides (and no clumping) when params.clump == 0.
+    // No guides (and no clumping) when no strand clumps (params.clump == 0 everywhere).
     ClumpGuides(const FurParams &params, const SkinMesh &mesh, const RootSampler &roots);
     size_t size() const { return m_roots.size(); }
     // Pulls line[0 .. S] (a strand rooted at line[0]) towards the nearest guide within
-    // 2·radius of its root; a strand with no guide that near stays as it is.
-    void pull(Vec3f *line) const;
+    // 2·radius of its root, by `clump` at the tip; the guide's shape is scaled by
+    // `scale` (the strand's groomed length over the coat's). A strand with no guide that
+    // near stays as it is.
+    void pull(Vec3f *line, float clump, float scale) const;
 
   private:
     uint64_t key(Vec3f p) const;

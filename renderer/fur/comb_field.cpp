@@ -4,14 +4,13 @@
 
 #include "sim/cells_io/cells_file.h"
 #include "sim/core/input_error.h"
-#include "sim/crps/surface.h"
 #include "sim/mosaic/cell_types.h"
 
 namespace pelage::renderer {
 
-std::vector<float> comb_by_triangle(const sim::FieldSpec &spec, sim::TriangleMesh rest) {
-    const size_t nt = rest.triangles.size();
-    const sim::Surface surface = sim::build_surface(std::move(rest));
+std::vector<float> comb_by_triangle(const sim::FieldSpec &spec,
+                                    const sim::Surface &surface) {
+    const size_t nt = surface.mesh.triangles.size();
     const sim::TangentField field = sim::resolve_field(spec, surface.crps, 1.0);
     std::vector<float> out(3 * nt, 0.0f);
     for (size_t t = 0; t < nt && t < field.a.size(); ++t) {

@@ -9,14 +9,14 @@
 #include <string>
 #include <vector>
 
+#include "sim/crps/surface.h"
 #include "sim/field/field_spec.h"
-#include "sim/mesh/mesh.h"
 
 namespace pelage::renderer {
 
 // 3 floats per triangle of `rest`: the field's unit direction in the rest mesh's space,
 // zero where the field is undefined (a triangle perpendicular to a world direction).
-std::vector<float> comb_by_triangle(const sim::FieldSpec &spec, sim::TriangleMesh rest);
+std::vector<float> comb_by_triangle(const sim::FieldSpec &spec, const sim::Surface &rest);
 
 // The anisotropy field of the preset a .cells file records. Throws pelage::InputError
 // naming `cells_path` and `field` when the file has no preset or its preset no field.

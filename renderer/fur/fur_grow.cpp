@@ -9,15 +9,12 @@
 #include "renderer/bsdf/hair_pigments.h"
 #include "renderer/fur/clump_guides.h"
 #include "renderer/fur/fur_hash.h"
+#include "renderer/fur/strand_groom.h"
 #include "renderer/fur/strand_shape.h"
 
 namespace pelage::renderer {
 
 namespace {
-
-float by_type(const std::vector<float> &scale, int type) {
-    return type >= 0 && size_t(type) < scale.size() ? scale[size_t(type)] : 1.0f;
-}
 
 // A strand's σ_a before scale and jitter, and whether it comes from melanins (then the
 // two pigments are jittered independently, as natural hair's ratio varies).
@@ -27,7 +24,8 @@ struct StrandAbsorption {
     float eumelanin, pheomelanin;
 };
 
-StrandAbsorption absorption(const FurParams &params, const RootPigment &pg) {
+StrandAbsorption absorption(const FurParams &params, const RootPigment &pg,
+                            float beta_n) {
     using Kind = FurParams::Pigment::Kind;
     const FurParams::Pigment &pig =
         pg.cell_type >= 0 && size_t(pg.cell_type) < params.pigment_by_type.size()
@@ -43,7 +41,9 @@ StrandAbsorption absorption(const FurParams &params, const RootPigment &pg) {
             return {sigma_a_from_melanin(eu, ph), true, eu, ph};
         }
         case Kind::colour:
-            return {sigma_a_from_colour(pig.colour, params.beta_n), false, 0, 0};
+            return {sigma_a_from_colour(pig.colour, beta_n), false, 0, 0};
+        case Kind::absorption:
+            return {pig.sigma_a, false, 0, 0};
         case Kind::skin:
             break;
     }
@@ -51,7 +51,7 @@ StrandAbsorption absorption(const FurParams &params, const RootPigment &pg) {
     // the darkest fibre the fit reaches rather than infinite absorption.
     auto in_domain = [&](float x) { return std::clamp(finite(x), 1e-3f, 1.0f); };
     const Rgb c{in_domain(pg.colour.x), in_domain(pg.colour.y), in_domain(pg.colour.z)};
-    return {sigma_a_from_colour(c, params.beta_n), false, 0, 0};
+    return {sigma_a_from_colour(c, beta_n), false, 0, 0};
 }
 
 void check(bool ok, const std::string &what) {
@@ -61,11 +61,7 @@ void check(bool ok, const std::string &what) {
 }  // namespace
 
 double expected_candidates(const FurParams &params, double area) {
-    float max_scale = 1;
-    if (!params.density_by_type.empty())
-        max_scale = *std::max_element(params.density_by_type.begin(),
-                                      params.density_by_type.end());
-    return params.density * double(max_scale) * area;
+    return max_density(params) * area;
 }
 
 Strands grow_fur(const FurParams &params, const SkinMesh &mesh,
@@ -81,27 +77,32 @@ Strands grow_fur(const FurParams &params, const SkinMesh &mesh,
           "density × area asks for " + std::to_string(uint64_t(expected)) +
               " strands, more than max_strands = " + std::to_string(params.max_strands));
     const uint64_t n = candidate_count(expected, params.seed);
-    float max_scale = 1;
-    if (!params.density_by_type.empty())
-        max_scale = *std::max_element(params.density_by_type.begin(),
-                                      params.density_by_type.end());
+    const double top_density = max_density(params);
+    const size_t R = mesh.num_regions;
+    check(R == 0 || mesh.region_corners, "regions without their values on the skin");
+    for (size_t k = 0; k < size_t(FurParams::Groomed::count); ++k)
+        for (const auto &[region, value] : params.varying[k].in)
+            check(region >= 0 && size_t(region) < R, "a value names an unknown region");
+    for (const auto &[region, value] : params.colour_in)
+        check(region >= 0 && size_t(region) < R, "a colour names an unknown region");
 
     // --- Candidates: root, pigment, and whether per-type thinning keeps them ---
     std::vector<SurfacePoint> cand(n);
     std::vector<RootPigment> pigment(n);
     std::vector<uint8_t> keep(n);
     tbb::parallel_for(tbb::blocked_range<uint64_t>(0, n, 4096), [&](auto range) {
+        std::vector<float> weights(R);
         for (uint64_t i = range.begin(); i != range.end(); ++i) {
             cand[i] = sampler.sample(params.seed, i);
             Vec3f p, nrm;
             sampler.point_normal(cand[i], &p, &nrm);
             pigment[i] = lookup(cand[i], p, nrm);
-            // Thinning keeps a root with probability scale(type) / max scale: the kept
-            // roots are area-uniform within each type's region at its own density.
-            const double keep_p =
-                max_scale > 0
-                    ? by_type(params.density_by_type, pigment[i].cell_type) / max_scale
-                    : 0.0;
+            // Thinning keeps a root with probability density(root) / max density: the
+            // kept roots are area-uniform wherever the density is the same.
+            if (R) region_weights(mesh, cand[i], weights.data());
+            const double density =
+                strand_groom(params, weights.data(), pigment[i].cell_type).density;
+            const double keep_p = top_density > 0 ? density / top_density : 0.0;
             keep[i] = uniform(params.seed, Stream::thinning, i, 0) < keep_p;
         }
     });
@@ -121,6 +122,7 @@ Strands grow_fur(const FurParams &params, const SkinMesh &mesh,
     const size_t m = index.size();
     out.points.resize(m * out.points_per_strand * 4);
     out.sigma_a.resize(m);
+    if (beta_varies(params)) out.beta.resize(2 * m);
     out.roots.resize(m);
     bool any_matte = false;
     for (const uint64_t i : index) any_matte = any_matte || pigment[i].matte_written;
@@ -130,22 +132,25 @@ Strands grow_fur(const FurParams &params, const SkinMesh &mesh,
     // --- Grow every kept strand ---
     tbb::parallel_for(tbb::blocked_range<size_t>(0, m, 1024), [&](auto range) {
         Vec3f line[max_segments + 1];
+        std::vector<float> weights(R);
         for (size_t j = range.begin(); j != range.end(); ++j) {
             const uint64_t i = index[j];
             const SurfacePoint &root = cand[i];
             const RootPigment &pg = pigment[i];
+            if (R) region_weights(mesh, root, weights.data());
+            const StrandGroom g = strand_groom(params, weights.data(), pg.cell_type);
             Vec3f p, nrm;
             sampler.point_normal(root, &p, &nrm);
             const float v = params.length_variation;
             const float L =
-                params.length * by_type(params.length_by_type, pg.cell_type) *
+                g.length *
                 float(1 + v * (2 * uniform(params.seed, Stream::shape, i, 0) - 1));
             const StrandRandom rnd{float(uniform(params.seed, Stream::shape, i, 1)),
                                    float(uniform(params.seed, Stream::shape, i, 2)),
                                    float(uniform(params.seed, Stream::shape, i, 3))};
-            grow_centre_line(params, p, nrm, comb_at(params, mesh, root.triangle),
+            grow_centre_line(params, g, p, nrm, comb_at(params, mesh, root.triangle),
                              std::max(L, 1e-6f * params.length), rnd, line);
-            guides.pull(line);
+            guides.pull(line, g.clump, g.length / params.length);
 
             // --- Control points with radii (linear from root to tip) ---
             float *P = &out.points[j * out.points_per_strand * 4];
@@ -158,7 +163,7 @@ Strands grow_fur(const FurParams &params, const SkinMesh &mesh,
             };
             auto radius = [&](int k) {
                 const float s = float(k) / float(S);
-                return params.root_radius * (1 - s) + params.tip_radius * s;
+                return g.root_radius * (1 - s) + g.tip_radius * s;
             };
             if (round) put(line[0] * 2 - line[1], 2 * radius(0) - radius(1));
             for (int k = 0; k <= S; ++k) put(line[k], radius(k));
@@ -169,17 +174,27 @@ Strands grow_fur(const FurParams &params, const SkinMesh &mesh,
             // --- Absorption: from the skin at the root, scaled and jittered ---
             const float j_eu = float(2 * uniform(params.seed, Stream::pigment, i, 0) - 1);
             const float j_ph = float(2 * uniform(params.seed, Stream::pigment, i, 1) - 1);
-            const StrandAbsorption a = absorption(params, pg);
+            const StrandAbsorption a = absorption(params, pg, g.beta_n);
             const float k = params.melanin_scale, jit = params.melanin_jitter;
-            const Rgb sa =
-                a.melanin ? sigma_a_from_melanin(a.eumelanin * k * (1 + jit * j_eu),
-                                                 a.pheomelanin * k * (1 + jit * j_ph))
-                          : a.sigma_a * (k * (1 + jit * j_eu));
+            Rgb sa = a.melanin
+                         ? sigma_a_from_melanin(a.eumelanin * k * (1 + jit * j_eu),
+                                                a.pheomelanin * k * (1 + jit * j_ph))
+                         : a.sigma_a * (k * (1 + jit * j_eu));
+            // Hair colour by region: towards each region's colour, by its weight.
+            for (const auto &[region, colour] : params.colour_in) {
+                const Rgb target =
+                    sigma_a_from_colour(colour, g.beta_n) * (k * (1 + jit * j_eu));
+                sa = sa + (target - sa) * weights[size_t(region)];
+            }
             auto finite = [](float x) {
                 return std::isfinite(x) ? std::max(x, 0.0f) : 0.0f;
             };
             out.sigma_a[j] = {finite(sa.x), finite(sa.y), finite(sa.z)};
             out.roots[j] = root;
+            if (!out.beta.empty()) {
+                out.beta[2 * j] = g.beta_m;
+                out.beta[2 * j + 1] = g.beta_n;
+            }
             if (any_matte) {
                 for (int k = 0; k < 3; ++k) out.matte[4 * j + k] = pg.matte[k];
                 out.matte[4 * j + 3] = pg.matte_written;

@@ -41,6 +41,9 @@ struct Strands {
     std::vector<float> points;
     std::vector<Rgb>
         sigma_a;  // absorption per fibre radius, per strand (hair_pigments.h)
+    // β_m, β_n per strand when the groom varies them (strand_groom.h), else empty: the
+    // layer's FurParams values hold for every strand.
+    std::vector<float> beta;
     std::vector<SurfacePoint> roots;
     // The root's matte ids and their bits, 4 per strand, so a strand shows in the
     // skin's Cryptomatte layers; empty when no root had any.
@@ -55,7 +58,7 @@ struct Strands {
 Strands grow_fur(const FurParams &params, const SkinMesh &mesh,
                  const PigmentLookup &lookup);
 
-// The expected strand count before thinning: density × max(density_by_type) × area.
+// The expected strand count before thinning: the highest density anywhere × area.
 double expected_candidates(const FurParams &params, double area);
 
 }  // namespace pelage::renderer

@@ -4,9 +4,12 @@
 // transform), density in strands per world unit of area, angles in degrees.
 #pragma once
 
+#include <array>
 #include <cstdint>
+#include <utility>
 #include <vector>
 
+#include "sim/control/control_spec.h"
 #include "sim/core/vec.h"
 #include "sim/field/field_spec.h"
 
@@ -15,15 +18,12 @@ namespace pelage::renderer {
 struct FurParams {
     // --- Roots ---
     double density = 20000;  // strands per unit area
-    std::vector<float>
-        density_by_type;  // multiplier per cell type (darker → denser), {} = 1
     uint64_t seed = 1;
     uint64_t max_strands = 20'000'000;  // refuse to build more (memory guard)
 
     // --- Shape ---
     float length = 0.05f;
-    std::vector<float> length_by_type;  // multiplier per cell type, {} = 1
-    float length_variation = 0.2f;      // each strand's length × U[1 − v, 1 + v]
+    float length_variation = 0.2f;  // each strand's length × U[1 − v, 1 + v]
     float root_radius = 0.0015f, tip_radius = 0.0003f;
     int segments = 8;
     // world: comb_direction; normal: strands stand up; field: one direction per skin
@@ -62,6 +62,39 @@ struct FurParams {
     float melanin_jitter = 0.1f;  // σ_a × U[1 − j, 1 + j] (melanins: each independently)
     float beta_m = 0.25f, beta_n = 0.3f, alpha_deg = 2;  // hair BSDF (renderer/bsdf)
     enum class Curve { round, flat } curve = Curve::round;
+
+    // --- A groom: values by cell type and by body region (renderer/fur/strand_groom.h)
+    // --- Per cell type, sizes and density are factors of the coat's value (which scales
+    // with the object, scale_defaults_to()); the others replace it. Per region, the
+    // (region, value) pairs of a local value as the presets have them
+    // (sim/control/control_spec.h, LocalValue), applied in order after the type's value:
+    // each moves it to lerp(current, value, region weight).
+    enum class Groomed {
+        length,
+        density,
+        root_radius,
+        tip_radius,
+        beta_m,
+        beta_n,
+        comb_angle,
+        curl_radius,
+        curl_turns,
+        clump,
+        count
+    };
+    struct Varying {
+        std::vector<float> by_type;             // {} = the same for every type
+        std::vector<std::pair<int, float>> in;  // (region index, value)
+        bool varies() const { return !by_type.empty() || !in.empty(); }
+    };
+    std::array<Varying, size_t(Groomed::count)> varying;
+    Varying &vary(Groomed k) { return varying[size_t(k)]; }
+    const Varying &vary(Groomed k) const { return varying[size_t(k)]; }
+    // Hair colour by region: each (region, colour) moves a strand's σ_a towards that
+    // colour's, after its type's pigment.
+    std::vector<std::pair<int, Rgb>> colour_in;
+    // The fur's own "regions", named as in a preset (only regions: no masks or values).
+    sim::ControlSpec regions;
 
     // The defaults above are for an object of bounding radius 1. Lengths and radii not
     // given scale with the object's radius r and a density not given with 1 / r², so

@@ -19,6 +19,10 @@ struct SkinMesh {
     // FurParams::Comb::field: the comb direction of each triangle (xyz, world), zero
     // where the field is undefined; null otherwise.
     const float *comb_by_triangle = nullptr;
+    // The fur's regions (FurParams::regions) at every triangle corner: num_regions
+    // weights in [0, 1] per corner, 3 corners per triangle; null without regions.
+    const float *region_corners = nullptr;
+    uint32_t num_regions = 0;
     uint32_t num_vertices = 0, num_triangles = 0;
 };
 

@@ -31,12 +31,12 @@ Vec3f comb_tangent(const FurParams &params, Vec3f n, Vec3f c) {
                                                           : any_perpendicular(n);
 }
 
-void grow_centre_line(const FurParams &params, Vec3f p, Vec3f n, Vec3f comb, float L,
-                      const StrandRandom &r, Vec3f *out) {
+void grow_centre_line(const FurParams &params, const StrandGroom &groom, Vec3f p, Vec3f n,
+                      Vec3f comb, float L, const StrandRandom &r, Vec3f *out) {
     const int S = params.segments;
     // --- Root direction: tilted up from the comb tangent, then jittered ---
     const float angle =
-        params.comb == FurParams::Comb::normal ? 90 * deg : params.comb_angle_deg * deg;
+        params.comb == FurParams::Comb::normal ? 90 * deg : groom.comb_angle_deg * deg;
     const Vec3f t = comb_tangent(params, n, comb), b = cross(n, t);
     Vec3f d = unit(t * std::cos(angle) + n * std::sin(angle));
     {
@@ -52,7 +52,7 @@ void grow_centre_line(const FurParams &params, Vec3f p, Vec3f n, Vec3f comb, flo
     const float phase = 2 * pi * r.curl_phase;
     const Vec3f ca = h0 * std::cos(phase) + h1 * std::sin(phase),
                 cb = h1 * std::cos(phase) - h0 * std::sin(phase);
-    const float curl_r = params.curl_radius * L;
+    const float curl_r = groom.curl_radius * L;
     // --- March: each segment bends towards −y by gravity/S, staying off the skin ---
     const float step = L / float(S);
     Vec3f q = p;
@@ -60,7 +60,7 @@ void grow_centre_line(const FurParams &params, Vec3f p, Vec3f n, Vec3f comb, flo
     for (int k = 1; k <= S; ++k) {
         q += d * step;
         const float s = float(k) / float(S);
-        const float theta = 2 * pi * params.curl_turns * s;
+        const float theta = 2 * pi * groom.curl_turns * s;
         // The helix starts at the root (offset 0 at s = 0).
         out[k] =
             q + ca * (curl_r * (std::cos(theta) - 1)) + cb * (curl_r * std::sin(theta));

@@ -6,6 +6,7 @@
 
 #include "renderer/fur/fur_params.h"
 #include "renderer/fur/root_sampling.h"
+#include "renderer/fur/strand_groom.h"
 
 namespace pelage::renderer {
 
@@ -19,8 +20,9 @@ struct StrandRandom {
 
 // Fills out[0 .. segments] for a root at p with unit skin normal n and strand length L;
 // `comb` is the comb direction at the root (FurParams::comb_direction, or the field's).
-void grow_centre_line(const FurParams &params, Vec3f p, Vec3f n, Vec3f comb, float L,
-                      const StrandRandom &r, Vec3f *out);
+// The comb angle and curl are the strand's own (`groom`).
+void grow_centre_line(const FurParams &params, const StrandGroom &groom, Vec3f p, Vec3f n,
+                      Vec3f comb, float L, const StrandRandom &r, Vec3f *out);
 
 // The comb direction at a root on `triangle`: the field's there when the skin has one
 // per triangle, else FurParams::comb_direction.

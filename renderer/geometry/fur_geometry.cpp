@@ -9,6 +9,7 @@
 #include "renderer/bsdf/hair_bsdf.h"
 #include "renderer/core/setup_phase.h"
 #include "renderer/fur/comb_field.h"
+#include "renderer/fur/groom_regions.h"
 #include "renderer/geometry/embree_scene.h"
 #include "sim/core/input_error.h"
 
@@ -98,6 +99,21 @@ double object_radius(const WorldMesh &w) {
     return r2 > 0 ? std::sqrt(r2) : 1.0;
 }
 
+// The object's mesh as loaded (rest positions, its own space), with its UVs for texture
+// regions.
+sim::TriangleMesh rest_mesh(const MeshData &m) {
+    sim::TriangleMesh rest;
+    for (uint32_t v = 0; v < m.num_vertices; ++v)
+        rest.positions.push_back({m.rest->positions[3 * v], m.rest->positions[3 * v + 1],
+                                  m.rest->positions[3 * v + 2]});
+    for (uint32_t t = 0; t < m.num_triangles; ++t)
+        rest.triangles.push_back(
+            {m.triangles[3 * t], m.triangles[3 * t + 1], m.triangles[3 * t + 2]});
+    for (size_t k = 0; k + 1 < m.corner_uvs.size(); k += 2)
+        rest.corner_uvs.push_back({m.corner_uvs[k], m.corner_uvs[k + 1]});
+    return rest;
+}
+
 }  // namespace
 
 void FurLayer::centre(unsigned prim, float u, Vec3f *c, Vec3f *tangent,
@@ -158,8 +174,16 @@ FurGeometry::FurGeometry(const SceneDesc &desc, EmbreeScene &scene,
         skin.num_vertices = og.mesh->num_vertices;
         skin.num_triangles = og.mesh->num_triangles;
 
-        // Comb along a field: one direction per triangle, resolved on the rest mesh (the
-        // rendered triangles) and turned with the object like comb_direction.
+        // The rest surface (the rendered triangles before any transform), for what is
+        // resolved on the skin as a preset's would be: a comb field, the groom's regions.
+        std::optional<sim::Surface> rest;
+        auto rest_surface = [&]() -> const sim::Surface & {
+            if (!rest) rest = sim::build_surface(rest_mesh(*og.mesh));
+            return *rest;
+        };
+
+        // Comb along a field: one direction per triangle, turned with the object like
+        // comb_direction.
         std::vector<float> comb;
         if (params.comb == FurParams::Comb::field) {
             if (params.comb_pattern_field && desc.objects[i].cells.empty())
@@ -171,22 +195,20 @@ FurGeometry::FurGeometry(const SceneDesc &desc, EmbreeScene &scene,
                 params.comb_pattern_field
                     ? pattern_field(desc.objects[i].cells, field + ".comb")
                     : params.comb_field;
-            sim::TriangleMesh rest;
-            const MeshData &m = *og.mesh;
-            for (uint32_t v = 0; v < m.num_vertices; ++v)
-                rest.positions.push_back({m.rest->positions[3 * v],
-                                          m.rest->positions[3 * v + 1],
-                                          m.rest->positions[3 * v + 2]});
-            for (uint32_t t = 0; t < m.num_triangles; ++t)
-                rest.triangles.push_back(
-                    {m.triangles[3 * t], m.triangles[3 * t + 1], m.triangles[3 * t + 2]});
-            comb = comb_by_triangle(spec, std::move(rest));
+            comb = comb_by_triangle(spec, rest_surface());
             for (size_t t = 0; t < comb.size(); t += 3) {
                 const Vec3f w =
                     desc.objects[i].transform.vector({comb[t], comb[t + 1], comb[t + 2]});
                 comb[t] = w.x, comb[t + 1] = w.y, comb[t + 2] = w.z;
             }
             skin.comb_by_triangle = comb.data();
+        }
+        // The groom's regions: weights at every triangle corner.
+        std::vector<float> regions;
+        if (!params.regions.empty()) {
+            regions = region_corners(params.regions, rest_surface(), desc.path, field);
+            skin.region_corners = regions.data();
+            skin.num_regions = uint32_t(params.regions.region_names.size());
         }
 
         const PigmentLookup lookup = [&](const SurfacePoint &s, Vec3f p, Vec3f n) {

@@ -45,6 +45,15 @@ struct FurLayer {
     float beta_m = 0.25f, beta_n = 0.3f, alpha = 0;  // alpha in radians
     Strands strands;
 
+    // Strand s's longitudinal and azimuthal roughness: its own when the groom varies
+    // them (Strands::beta), else the layer's.
+    float beta_m_of(uint32_t s) const {
+        return strands.beta.empty() ? beta_m : strands.beta[2 * size_t(s)];
+    }
+    float beta_n_of(uint32_t s) const {
+        return strands.beta.empty() ? beta_n : strands.beta[2 * size_t(s) + 1];
+    }
+
     // Centre-line point and unit tangent (root to tip: the hair BSDF's +x, which the
     // cuticle tilt depends on) of segment `prim` at curve parameter u.
     void centre(unsigned prim, float u, Vec3f *c, Vec3f *tangent, float *radius) const;

@@ -64,8 +64,8 @@ PathIntegrator::StrandVertex PathIntegrator::strand_vertex(const FurLayer &layer
 
     HairParams hp;
     hp.sigma_a = layer.strands.sigma_a[size_t(strand)];
-    hp.beta_m = layer.beta_m;
-    hp.beta_n = layer.beta_n;
+    hp.beta_m = layer.beta_m_of(strand);
+    hp.beta_n = layer.beta_n_of(strand);
     hp.alpha = layer.alpha;
     return {layer, strand, p, wo, rh.ray.tfar, frame, HairBsdf(hp, h)};
 }

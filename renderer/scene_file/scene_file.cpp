@@ -17,7 +17,8 @@ namespace pelage::renderer {
 namespace {
 
 namespace fs = std::filesystem;
-using json = nlohmann::json;
+using json =
+    nlohmann::ordered_json;  // document order: local values apply their regions in it
 using sim::json_type_name;
 
 // One object of the scene file (sim/core/json_fields.h), with paths resolved against the
@@ -198,7 +199,7 @@ MaterialDesc read_material(Reader r) {
         if (!p->is_object())
             r.fail(r.field("params"),
                    std::string("expected an object, got ") + json_type_name(*p));
-        m.params = *p;
+        m.params = nlohmann::json(*p);
     }
     m.bsdf = r.choice<MaterialDesc::Bsdf>("bsdf", m.bsdf,
                                           {{"lambert", MaterialDesc::Bsdf::lambert},

@@ -3,17 +3,21 @@
 #include <algorithm>
 #include <cmath>
 
+#include "sim/control/control_parse.h"
+#include "sim/core/input_error.h"
 #include "sim/core/json_fields.h"
 
 namespace pelage::renderer {
 
 namespace {
 
-using json = nlohmann::json;
+using json =
+    nlohmann::ordered_json;  // document order: local values apply their regions in it
 using sim::JsonObjectFields;
 
-// A list of per-cell-type multipliers, each in (0, 1000] (or [0, 1000] when zero_ok).
-std::vector<float> per_type(JsonObjectFields &r, const std::string &key, bool zero_ok) {
+// A list of per-cell-type values, each in [lo, hi] ((lo, hi] when open_lo).
+std::vector<float> per_type(JsonObjectFields &r, const std::string &key, double lo,
+                            double hi, bool open_lo) {
     const json *v = r.take(key);
     if (!v) return {};
     if (!v->is_array() || v->empty() || v->size() > 16)
@@ -21,8 +25,35 @@ std::vector<float> per_type(JsonObjectFields &r, const std::string &key, bool ze
     std::vector<float> out;
     for (size_t i = 0; i < v->size(); ++i)
         out.push_back(float(r.check_number(
-            (*v)[i], r.field(key) + "[" + std::to_string(i) + "]", 0, 1000, !zero_ok)));
+            (*v)[i], r.field(key) + "[" + std::to_string(i) + "]", lo, hi, open_lo)));
     return out;
+}
+
+// A key of the groom (FurParams::Groomed): a number in its range, or a local value
+// {"default": number, "in": {region: number, ...}} over the fur's regions, as presets
+// give them (sim/control); and KEY_by_type, per cell type a factor in (0, 1000] for
+// sizes and density ([0, 1000] for density: no hair on a type) or a value in the key's
+// range otherwise. Returns the coat's value (`def` when absent).
+double groomed(JsonObjectFields &r, FurParams *p, FurParams::Groomed k,
+               const std::string &key, double def, sim::ValueRange range) {
+    using G = FurParams::Groomed;
+    const bool factor =
+        k == G::length || k == G::density || k == G::root_radius || k == G::tip_radius;
+    FurParams::Varying &v = p->vary(k);
+    v.by_type = factor ? per_type(r, key + "_by_type", 0, 1000, k != G::density)
+                       : per_type(r, key + "_by_type", range.lo, range.hi, range.lo_open);
+    const json *j = r.take(key);
+    if (!j) return def;
+    if (!sim::is_local_value(*j))
+        return r.check_number(*j, r.field(key), range.lo, range.hi, range.lo_open);
+    if (p->regions.empty())
+        r.fail(r.field(key),
+               "a value by region needs the fur's \"regions\" (named as in a preset: "
+               "{\"face\": {\"near\": ...}, ...})");
+    const sim::LocalValue local =
+        sim::parse_local_value(*j, r.field(key), r.file(), p->regions, range);
+    for (const auto &[region, value] : local.in) v.in.push_back({region, float(value)});
+    return local.value;
 }
 
 // An optional number in [lo, hi] ((lo, hi] when open_lo), as the float FurParams holds.
@@ -98,13 +129,39 @@ FurParams::Pigment type_pigment(const JsonObjectFields &r, const json &v,
     JsonObjectFields e(v, f, r.file());
     const json *m = e.take("melanin");
     const json *c = e.take("cycles_melanin");
+    const json *a = e.take("sigma_a");
     e.finish();
-    if ((m != nullptr) == (c != nullptr))
+    if ((m != nullptr) + (c != nullptr) + (a != nullptr) != 1)
         r.fail(f,
-               "expected {\"melanin\": [eumelanin, pheomelanin]} or "
-               "{\"cycles_melanin\": [melanin, redness]}");
-    return m ? melanin(r, *m, f + ".melanin")
-             : cycles_melanin(r, *c, f + ".cycles_melanin");
+               "expected {\"melanin\": [eumelanin, pheomelanin]}, "
+               "{\"cycles_melanin\": [melanin, redness]} or {\"sigma_a\": [r, g, b]}");
+    return m   ? melanin(r, *m, f + ".melanin")
+           : c ? cycles_melanin(r, *c, f + ".cycles_melanin")
+               : absorption(r, *a, f + ".sigma_a");
+}
+
+// "colour": {"default": colour, "in": {region: [r, g, b], ...}}: the coat's colour
+// (any form `colour` takes) and, per region, the colour the hair turns to there.
+FurParams::Pigment colour_by_region(const JsonObjectFields &r, const json &v,
+                                    const std::string &f, FurParams *p) {
+    if (p->regions.empty()) r.fail(f, "a colour by region needs the fur's \"regions\"");
+    JsonObjectFields e(v, f, r.file());
+    const json &def = e.require("default");
+    const json &in = e.require("in");
+    e.finish();
+    const FurParams::Pigment base = colour(r, def, f + ".default");
+    if (!in.is_object() || in.empty())
+        r.fail(f + ".in", "expected an object {region: [r, g, b], ...}");
+    for (const auto &[name, c] : in.items()) {
+        const std::string fc = f + ".in." + name;
+        const int region = p->regions.find_region(name);
+        if (region < 0) r.fail(fc, "unknown region '" + name + "'");
+        const FurParams::Pigment pc = colour(r, c, fc);
+        if (pc.kind != FurParams::Pigment::Kind::colour)
+            r.fail(fc, "expected [r, g, b] (each in (0, 1])");
+        p->colour_in.push_back({region, pc.colour});
+    }
+    return base;
 }
 
 }  // namespace
@@ -121,19 +178,27 @@ FurParams read_fur(const json &j, const std::string &field,
           {"tip_radius", F::given_tip_radius},
           {"clump_radius", F::given_clump_radius}})
         if (j.is_object() && j.contains(key)) p.given |= bit;
-    if (const json *v = r.take("density"))
-        p.density = r.check_number(*v, r.field("density"), 0, 1e12);
-    p.density_by_type = per_type(r, "density_by_type", true);
-    if (!p.density_by_type.empty() &&
-        *std::max_element(p.density_by_type.begin(), p.density_by_type.end()) <= 0)
+    // Regions first: the values below may name them.
+    if (const json *v = r.take("regions")) {
+        try {
+            sim::parse_regions(*v, r.file(), &p.regions);
+        } catch (const InputError &e) {
+            throw e.under(r.path_prefix());
+        }
+    }
+    using G = FurParams::Groomed;
+    p.density = groomed(r, &p, G::density, "density", p.density, {0, 1e12});
+    const std::vector<float> &dt = p.vary(G::density).by_type;
+    if (!dt.empty() && *std::max_element(dt.begin(), dt.end()) <= 0)
         r.fail(r.field("density_by_type"), "every multiplier is 0: no strand could grow");
     p.seed = r.unsigned_integer("seed", p.seed, 0, ~0ull);
     p.max_strands = r.unsigned_integer("max_strands", p.max_strands, 1, 50'000'000);
-    p.length = num(r, "length", p.length, 0, 1e9, true);
-    p.length_by_type = per_type(r, "length_by_type", false);
+    p.length = float(groomed(r, &p, G::length, "length", p.length, {0, 1e9, true}));
     p.length_variation = num(r, "length_variation", p.length_variation, 0, 0.99);
-    p.root_radius = num(r, "root_radius", p.root_radius, 0, 1e9, true);
-    p.tip_radius = num(r, "tip_radius", p.tip_radius, 0, 1e9, true);
+    p.root_radius = float(
+        groomed(r, &p, G::root_radius, "root_radius", p.root_radius, {0, 1e9, true}));
+    p.tip_radius =
+        float(groomed(r, &p, G::tip_radius, "tip_radius", p.tip_radius, {0, 1e9, true}));
     p.segments = int(r.unsigned_integer("segments", uint64_t(p.segments), 1, 64));
     if (const json *v = r.take("comb")) {
         if (v->is_string() && v->get<std::string>() == "normal") {
@@ -163,12 +228,15 @@ FurParams read_fur(const json &j, const std::string &field,
                    "\"body_axis\"}");
         }
     }
-    p.comb_angle_deg = num(r, "comb_angle", p.comb_angle_deg, 0, 90);
+    p.comb_angle_deg =
+        float(groomed(r, &p, G::comb_angle, "comb_angle", p.comb_angle_deg, {0, 90}));
     p.comb_jitter_deg = num(r, "comb_jitter", p.comb_jitter_deg, 0, 60);
     p.gravity = num(r, "gravity", p.gravity, 0, 10);
-    p.curl_radius = num(r, "curl_radius", p.curl_radius, 0, 1);
-    p.curl_turns = num(r, "curl_turns", p.curl_turns, 0, 100);
-    p.clump = num(r, "clump", p.clump, 0, 1);
+    p.curl_radius =
+        float(groomed(r, &p, G::curl_radius, "curl_radius", p.curl_radius, {0, 1}));
+    p.curl_turns =
+        float(groomed(r, &p, G::curl_turns, "curl_turns", p.curl_turns, {0, 100}));
+    p.clump = float(groomed(r, &p, G::clump, "clump", p.clump, {0, 1}));
     p.clump_radius = num(r, "clump_radius", p.clump_radius, 0, 1e9, true);
     p.melanin_scale = num(r, "melanin_scale", p.melanin_scale, 0, 100);
     // One pigment for the coat: a colour, melanins, Cycles' melanin parameters, or the
@@ -184,6 +252,10 @@ FurParams read_fur(const json &j, const std::string &field,
             pigment_key = r.spelled(key);
             const std::string f = r.field(key);
             const std::string k = key;
+            if (k == "colour" && sim::is_local_value(*v)) {
+                p.pigment = colour_by_region(r, *v, f, &p);
+                continue;
+            }
             p.pigment = k == "colour"    ? colour(r, *v, f)
                         : k == "melanin" ? melanin(r, *v, f)
                         : k == "sigma_a" ? absorption(r, *v, f)
@@ -198,8 +270,8 @@ FurParams read_fur(const json &j, const std::string &field,
                 type_pigment(r, (*v)[i], f + "[" + std::to_string(i) + "]"));
     }
     p.melanin_jitter = num(r, "melanin_jitter", p.melanin_jitter, 0, 1);
-    p.beta_m = num(r, "beta_m", p.beta_m, 0, 1, true);
-    p.beta_n = num(r, "beta_n", p.beta_n, 0, 1, true);
+    p.beta_m = float(groomed(r, &p, G::beta_m, "beta_m", p.beta_m, {0, 1, true}));
+    p.beta_n = float(groomed(r, &p, G::beta_n, "beta_n", p.beta_n, {0, 1, true}));
     p.alpha_deg = num(r, "alpha", p.alpha_deg, -44, 44);
     if (const json *v = r.take("curve")) {
         const std::string s = v->is_string() ? v->get<std::string>() : "";

@@ -11,7 +11,7 @@
 namespace pelage::renderer {
 
 // `field` is the block's JSON path ("objects[0].fur"), `scene_path` the file.
-FurParams read_fur(const nlohmann::json &j, const std::string &field,
+FurParams read_fur(const nlohmann::ordered_json &j, const std::string &field,
                    const std::string &scene_path);
 
 }  // namespace pelage::renderer

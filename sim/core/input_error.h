@@ -16,11 +16,20 @@ class InputError : public std::runtime_error {
         : std::runtime_error(format(file, line, field, message)),
           m_file(std::move(file)),
           m_line(line),
-          m_field(std::move(field)) {}
+          m_field(std::move(field)),
+          m_message(std::move(message)) {}
 
     const std::string &file() const { return m_file; }
     std::size_t line() const { return m_line; }
     const std::string &field() const { return m_field; }
+    const std::string &message() const { return m_message; }
+
+    // The same error with its field inside `prefix`: a block a reader parses on its own
+    // ("regions.head") where it sits in a larger file ("objects[0].fur.regions.head").
+    InputError under(const std::string &prefix) const {
+        return InputError(m_file, m_line,
+                          m_field.empty() ? prefix : prefix + "." + m_field, m_message);
+    }
 
   private:
     static std::string format(const std::string &file, std::size_t line,
@@ -42,6 +51,7 @@ class InputError : public std::runtime_error {
     std::string m_file;
     std::size_t m_line;
     std::string m_field;
+    std::string m_message;
 };
 
 }  // namespace pelage

@@ -17,7 +17,7 @@ std::string JsonObjectFields::spelled(const std::string &key) const {
     return spelling_in(m_j, key, file(), join(m_path, key));
 }
 
-const nlohmann::json *JsonObjectFields::take(const std::string &key) {
+const JsonObjectFields::json *JsonObjectFields::take(const std::string &key) {
     m_taken.insert(key);
     if (const std::string other = other_colour_spelling(key); !other.empty())
         m_taken.insert(other);
@@ -25,7 +25,7 @@ const nlohmann::json *JsonObjectFields::take(const std::string &key) {
     return it == m_j.end() ? nullptr : &*it;
 }
 
-const nlohmann::json &JsonObjectFields::require(const std::string &key) {
+const JsonObjectFields::json &JsonObjectFields::require(const std::string &key) {
     const json *v = take(key);
     if (!v) fail(field(key), "missing required field");
     return *v;

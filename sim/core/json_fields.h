@@ -165,7 +165,9 @@ class JsonFields {
 // "film.width: expected an integer, got a string").
 class JsonObjectFields : public JsonFields {
   public:
-    using json = nlohmann::json;
+    // Document order, so errors name the first bad key as written and order-dependent
+    // values (local values' regions) apply in it.
+    using json = nlohmann::ordered_json;
 
     // `path` is the object's JSON path ("" at the top level), `file` the input file.
     JsonObjectFields(const json &j, std::string path, std::string file);

@@ -84,7 +84,7 @@ TEST(FurGrow, CountFollowsDensityTimesAreaPerCellType) {
     EXPECT_NEAR(double(all.size()), p.density * strip.area(), 1.0);
 
     // Odd triangles are cell type 1 at a quarter of the density of type 0.
-    p.density_by_type = {1.0f, 0.25f};
+    p.vary(FurParams::Groomed::density).by_type = {1.0f, 0.25f};
     const PigmentLookup typed = [](const SurfacePoint &s, Vec3f, Vec3f) {
         RootPigment r;
         r.cell_type = int(s.triangle % 2);
@@ -164,7 +164,7 @@ TEST(FurGrow, ByDefaultAStrandHasTheColourTheSkinShowsAtItsRoot) {
                     colour_sigma_a(lookup(s.roots[i], {}, {}).colour, 0.35f), 1e-4f);
 
     // Per type: type 0 a colour, type 1 melanins; type 2 (not listed) the coat's, here
-    // the skin's melanins.
+    // the skin's melanins; then type 2 the absorption itself.
     using Kind = FurParams::Pigment::Kind;
     p.pigment.kind = Kind::skin_melanin;
     p.pigment_by_type.resize(2);
@@ -173,18 +173,26 @@ TEST(FurGrow, ByDefaultAStrandHasTheColourTheSkinShowsAtItsRoot) {
     p.pigment_by_type[1].kind = Kind::melanin;
     p.pigment_by_type[1].eumelanin = 0.5f;
     p.pigment_by_type[1].pheomelanin = 2;
-    const Strands t = grow_fur(p, strip.mesh(), lookup);
-    size_t seen[3] = {0, 0, 0};
-    for (size_t i = 0; i < t.size(); ++i) {
-        const int type = int(t.roots[i].triangle % 3);
-        ++seen[type];
-        expect_near(t.sigma_a[i],
-                    type == 0   ? colour_sigma_a({0.8f, 0.7f, 0.5f}, 0.35f)
-                    : type == 1 ? melanin_sigma_a(0.5f, 2)
-                                : melanin_sigma_a(5, 0),
-                    1e-5f);
+    for (const bool absorption : {false, true}) {
+        if (absorption) {
+            p.pigment_by_type.resize(3);
+            p.pigment_by_type[2].kind = Kind::absorption;
+            p.pigment_by_type[2].sigma_a = {0.25f, 1.5f, 4};
+        }
+        const Strands t = grow_fur(p, strip.mesh(), lookup);
+        size_t seen[3] = {0, 0, 0};
+        for (size_t i = 0; i < t.size(); ++i) {
+            const int type = int(t.roots[i].triangle % 3);
+            ++seen[type];
+            expect_near(t.sigma_a[i],
+                        type == 0    ? colour_sigma_a({0.8f, 0.7f, 0.5f}, 0.35f)
+                        : type == 1  ? melanin_sigma_a(0.5f, 2)
+                        : absorption ? Rgb{0.25f, 1.5f, 4}
+                                     : melanin_sigma_a(5, 0),
+                        1e-5f);
+        }
+        for (size_t n : seen) EXPECT_GT(n, 100u);
     }
-    for (size_t n : seen) EXPECT_GT(n, 100u);
 
     // A black skin gives the darkest fibre the inversion reaches, not an infinite σ_a.
     p.pigment = {};

@@ -32,11 +32,12 @@ TEST(SceneFur, EveryKeyReachesTheParameters) {
     ASSERT_TRUE(s.objects[1].fur.has_value());
     const renderer::FurParams &p = *s.objects[1].fur;
     EXPECT_EQ(p.density, 1234);
-    EXPECT_EQ(p.density_by_type, (std::vector<float>{1.5f, 0.5f}));
+    EXPECT_EQ(p.vary(FurParams::Groomed::density).by_type,
+              (std::vector<float>{1.5f, 0.5f}));
     EXPECT_EQ(p.seed, 9u);
     EXPECT_EQ(p.max_strands, 777777u);
     EXPECT_FLOAT_EQ(p.length, 0.2f);
-    EXPECT_EQ(p.length_by_type, (std::vector<float>{1, 2}));
+    EXPECT_EQ(p.vary(FurParams::Groomed::length).by_type, (std::vector<float>{1, 2}));
     EXPECT_FLOAT_EQ(p.length_variation, 0.4f);
     EXPECT_FLOAT_EQ(p.root_radius, 0.01f);
     EXPECT_FLOAT_EQ(p.tip_radius, 0.002f);
@@ -141,6 +142,30 @@ TEST(SceneFur, BadValuesNameTheirJsonPath) {
          "objects[1].fur.colour_by_type[0].melanin[1]"},
         {R"({"colour_by_type": [{"eumelanin": 1}]})",
          "objects[1].fur.colour_by_type[0].eumelanin"},
+        {R"({"colour_by_type": [{"sigma_a": [1, 1, -1]}]})",
+         "objects[1].fur.colour_by_type[0].sigma_a"},
+        // The groom: values by type and by region
+        {R"({"beta_m_by_type": [0.3, 0]})", "objects[1].fur.beta_m_by_type[1]"},
+        {R"({"comb_angle_by_type": [95]})", "objects[1].fur.comb_angle_by_type[0]"},
+        {R"({"root_radius_by_type": [0]})", "objects[1].fur.root_radius_by_type[0]"},
+        {R"({"length": {"default": 0.1, "in": {"face": 0.05}}})",
+         "objects[1].fur.length"},
+        {R"({"regions": {"face": {"near": {"points": [[0, 0, 0]], "within": 0.1}}},
+            "length": {"default": 0.1, "in": {"tail": 0.05}}})",
+         "objects[1].fur.length.in.tail"},
+        {R"({"regions": {"low": {"height": {"axis": [0, 1, 0], "below": 0.3}}},
+            "clump": {"default": 0.1, "in": {"low": 2}}})",
+         "objects[1].fur.clump.in.low"},
+        {R"({"regions": {"low": {"height": {"axis": [0, 1, 0], "below": 0.3}}},
+            "length": {"default": 0.1}})",
+         "objects[1].fur.length.in"},
+        {R"({"regions": {"low": {"hieght": {}}}})", "objects[1].fur.regions.low.hieght"},
+        {R"({"regions": {"low": {"any": ["high"]}}})", "objects[1].fur.regions.low.any"},
+        {R"({"regions": {"low": {"height": {"axis": [0, 1, 0], "below": 0.3}}},
+            "colour": {"default": "skin", "in": {"low": "skin"}}})",
+         "objects[1].fur.colour.in.low"},
+        {R"({"colour": {"default": "skin", "in": {"low": [1, 1, 1]}}})",
+         "objects[1].fur.colour"},
     };
     for (const auto &[fur, field] : cases) {
         try {
@@ -151,6 +176,68 @@ TEST(SceneFur, BadValuesNameTheirJsonPath) {
                 << fur << ": " << e.what();
         }
     }
+}
+
+// Local values apply their regions in the order the file lists them, as a preset's do.
+TEST(SceneFur, AGroomByTypeAndRegionReachesFurParamsInDocumentOrder) {
+    using G = renderer::FurParams::Groomed;
+    const renderer::FurParams p = *with_fur(R"({
+        "regions": {"zz": {"height": {"axis": [0, 1, 0], "below": 0.3}},
+                    "aa": {"not": "zz"}},
+        "length": {"default": 0.2, "in": {"zz": 0.1, "aa": 0.4}},
+        "length_by_type": [1, 2], "beta_n_by_type": [0.2, 0.5],
+        "colour": {"default": [0.5, 0.4, 0.3], "in": {"aa": [0.9, 0.9, 0.8]}}})")
+                                       .objects[1]
+                                       .fur;
+    ASSERT_EQ(p.regions.region_names, (std::vector<std::string>{"zz", "aa"}));
+    EXPECT_FLOAT_EQ(p.length, 0.2f);
+    const auto &in = p.vary(G::length).in;
+    ASSERT_EQ(in.size(), 2u);
+    EXPECT_EQ(in[0], (std::pair<int, float>{0, 0.1f}));
+    EXPECT_EQ(in[1], (std::pair<int, float>{1, 0.4f}));
+    EXPECT_EQ(p.vary(G::length).by_type, (std::vector<float>{1, 2}));
+    EXPECT_EQ(p.vary(G::beta_n).by_type, (std::vector<float>{0.2f, 0.5f}));
+    EXPECT_FALSE(p.vary(G::density).varies());
+    EXPECT_EQ(p.pigment.kind, renderer::FurParams::Pigment::Kind::colour);
+    ASSERT_EQ(p.colour_in.size(), 1u);
+    EXPECT_EQ(p.colour_in[0].first, 1);
+}
+
+// The regions are resolved on the object's surface as a preset's are: below half the
+// sphere's height the hair is short, above it long (blending over the triangles that
+// straddle the line, within an edge of it: icosphere:3 edges are about 0.2 long).
+TEST(SceneFur, RegionsAreResolvedOnTheObjectsSurface) {
+    const SceneDesc desc = parse_scene(
+        R"({"camera": {}, "objects": [{"mesh": "procedural:icosphere:3",
+            "transform": {"translate": [0, 5, 0]},
+            "fur": {"density": 3000, "length_variation": 0, "curve": "flat",
+                    "regions": {"low": {"height": {"axis": [0, 1, 0], "below": 0.5}}},
+                    "length": {"default": 0.3, "in": {"low": 0.1}}}}]})",
+        "fur.json");
+    const PluginRegistry plugins;
+    const Scene scene(desc, plugins);
+    ASSERT_TRUE(scene.fur());
+    const Strands &s = scene.fur()->layers().at(0).strands;
+    size_t low = 0, high = 0;
+    for (size_t i = 0; i < s.size(); ++i) {
+        const float *P = &s.points[i * s.points_per_strand * 4];
+        const float *T = P + 4 * s.segments;
+        // Straight (no gravity, no curl): the length is root to tip.
+        const float L =
+            std::sqrt((T[0] - P[0]) * (T[0] - P[0]) + (T[1] - P[1]) * (T[1] - P[1]) +
+                      (T[2] - P[2]) * (T[2] - P[2]));
+        const float y = P[1] - 5;  // the translation moves the sphere, not its regions
+        if (y < -0.25f) {
+            EXPECT_NEAR(L, 0.1f, 1e-4f) << y;
+            ++low;
+        }
+        if (y > 0.25f) {
+            EXPECT_NEAR(L, 0.3f, 1e-4f) << y;
+            ++high;
+        }
+    }
+    EXPECT_GT(low, 1000u);
+    EXPECT_GT(high, 1000u);
 }
 
 // HairBsdf only DCHECKs its parameters at each strand hit, so the scene build validates
