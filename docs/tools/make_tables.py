@@ -308,6 +308,23 @@ def t_fur_colour():
             f"R/G and B/G within 15 % of 1.\n")
 
 
+def t_fur_comb():
+    d = data("fur_comb")
+    rows = [[name, num(d[key]["samples"]), f"{d[key]['median_deg']:.2f}°",
+             f"{d[key]['p95_deg']:.2f}°", f"{d[key]['p99_deg']:.1f}°", target]
+            for name, key, target in [
+                ("strand to the field at its root", "strand_to_field", "median ≤ 5°"),
+                ("strand to its nearest roots' strands", "strand_to_neighbours",
+                 "p95 ≤ 10°"),
+                ("the field to its own at those roots", "field_to_neighbours", "")]]
+    keys = ", ".join(f"`{k}` {v}" for k, v in d["fur_keys"].items())
+    return (table(["angle, in each root's tangent plane", "pairs", "median", "p95", "p99",
+                   "target"], rows, "lrrrrl") +
+            f"\n`pelage bench fur-comb` on `{d['mesh']}`, preset `{d['preset']}`'s field, "
+            f"{num(d['strands'])} strands, fur keys {keys} (those of `pelage look --fur` "
+            f"with a field), comb smoothing {d['comb_smoothing']}.\n")
+
+
 def t_fur_slab():
     d = data("fur_colour")
     rgb = lambda c: "(" + ", ".join(f"{x:.3f}" for x in c) + ")"
@@ -479,6 +496,7 @@ TABLES = {
     "lookup": t_lookup, "lookup-lanes": t_lookup_lanes,
     "lookup-density": t_lookup_density, "render": t_render,
     "compare": t_compare, "hair": t_hair, "fur": t_fur, "fur-colour": t_fur_colour,
+    "fur-comb": t_fur_comb,
     "fur-slab": t_fur_slab, "noise": t_noise, "presets": t_presets,
     "crps-errors": t_crps_errors, "lookup-quality": t_lookup_quality,
     "hair-furnace": t_hair_furnace, "gallery": t_gallery, "looks": t_looks,

@@ -30,9 +30,8 @@ ClumpGuides::ClumpGuides(const FurParams &params, const SkinMesh &mesh,
         const StrandRandom rnd{float(uniform(seed, Stream::guides, i, 0)),
                                float(uniform(seed, Stream::guides, i, 1)),
                                float(uniform(seed, Stream::guides, i, 2))};
-        grow_centre_line(params, coat_groom(params), p, nrm,
-                         comb_at(params, mesh, root.triangle), params.length, rnd,
-                         &m_lines[i * (S + 1)]);
+        grow_centre_line(params, coat_groom(params), p, nrm, comb_at(params, mesh, root),
+                         params.length, rnd, &m_lines[i * (S + 1)]);
         m_roots[i] = p;
         m_grid[key(p)].push_back(uint32_t(i));
     }

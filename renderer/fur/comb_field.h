@@ -9,14 +9,23 @@
 #include <string>
 #include <vector>
 
+#include "renderer/core/math.h"
 #include "sim/crps/surface.h"
 #include "sim/field/field_spec.h"
 
 namespace pelage::renderer {
 
-// 3 floats per triangle of `rest`: the field's unit direction in the rest mesh's space,
-// zero where the field is undefined (a triangle perpendicular to a world direction).
-std::vector<float> comb_by_triangle(const sim::FieldSpec &spec, const sim::Surface &rest);
+// 9 floats per triangle of `rest` (3 per corner): the field's unit direction in the rest
+// mesh's space at each corner, the area-weighted mean of the triangles around its
+// vertex, so the comb is continuous across edges; zero where the field is undefined (a
+// triangle perpendicular to a world direction) or cancels (a whorl).
+// A field is an axis (the cells' anisotropy has no sense), hair has
+// one: where the field lies within 60° of the line of `towards` (FurParams::comb_towards)
+// it points along it, and elsewhere it keeps the sense of its neighbours. `smoothing`
+// passes average each vertex's direction with its neighbours'
+// (FurParams::comb_smoothing).
+std::vector<float> comb_by_corner(const sim::FieldSpec &spec, const sim::Surface &rest,
+                                  Vec3f towards, int smoothing);
 
 // The anisotropy field of the preset a .cells file records. Throws pelage::InputError
 // naming `cells_path` and `field` when the file has no preset or its preset no field.

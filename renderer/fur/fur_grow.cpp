@@ -148,7 +148,7 @@ Strands grow_fur(const FurParams &params, const SkinMesh &mesh,
             const StrandRandom rnd{float(uniform(params.seed, Stream::shape, i, 1)),
                                    float(uniform(params.seed, Stream::shape, i, 2)),
                                    float(uniform(params.seed, Stream::shape, i, 3))};
-            grow_centre_line(params, g, p, nrm, comb_at(params, mesh, root.triangle),
+            grow_centre_line(params, g, p, nrm, comb_at(params, mesh, root),
                              std::max(L, 1e-6f * params.length), rnd, line);
             guides.pull(line, g.clump, g.length / params.length);
 

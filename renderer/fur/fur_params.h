@@ -27,12 +27,14 @@ struct FurParams {
     float root_radius = 0.0015f, tip_radius = 0.0003f;
     int segments = 8;
     // world: comb_direction; normal: strands stand up; field: one direction per skin
-    // triangle from a tangent field (SkinMesh::comb_by_triangle), as a preset's
+    // triangle from a tangent field (SkinMesh::comb_by_corner), as a preset's
     // anisotropy field is given: comb_field, or the object's pattern's own field when
     // comb_pattern_field.
     enum class Comb { world, normal, field } comb = Comb::world;
     Vec3f comb_direction{0, -1, 0};  // projected onto each root's tangent plane
     sim::FieldSpec comb_field;
+    Vec3f comb_towards{0, -1, 0};  // a field's sense: its axis turned towards this
+    int comb_smoothing = 0;        // passes of neighbour averaging of a field comb
     bool comb_pattern_field = false;
     float comb_angle_deg = 30;   // between the root direction and the surface
     float comb_jitter_deg = 8;   // random tilt of each root direction

@@ -16,9 +16,9 @@ struct SkinMesh {
     const float *positions = nullptr;  // xyz per vertex
     const uint32_t *triangles = nullptr;
     const float *corner_normals = nullptr;
-    // FurParams::Comb::field: the comb direction of each triangle (xyz, world), zero
-    // where the field is undefined; null otherwise.
-    const float *comb_by_triangle = nullptr;
+    // FurParams::Comb::field: the comb direction at each triangle corner (xyz, world; 9
+    // floats per triangle), zero where the field is undefined; null otherwise.
+    const float *comb_by_corner = nullptr;
     // The fur's regions (FurParams::regions) at every triangle corner: num_regions
     // weights in [0, 1] per corner, 3 corners per triangle; null without regions.
     const float *region_corners = nullptr;

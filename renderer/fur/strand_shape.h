@@ -24,12 +24,15 @@ struct StrandRandom {
 void grow_centre_line(const FurParams &params, const StrandGroom &groom, Vec3f p, Vec3f n,
                       Vec3f comb, float L, const StrandRandom &r, Vec3f *out);
 
-// The comb direction at a root on `triangle`: the field's there when the skin has one
-// per triangle, else FurParams::comb_direction.
-inline Vec3f comb_at(const FurParams &params, const SkinMesh &mesh, uint32_t triangle) {
-    if (!mesh.comb_by_triangle) return params.comb_direction;
-    const float *c = &mesh.comb_by_triangle[3 * size_t(triangle)];
-    return {c[0], c[1], c[2]};
+// The comb direction at `root`: the field's there (its corners' blend) when the skin has
+// one, else FurParams::comb_direction.
+inline Vec3f comb_at(const FurParams &params, const SkinMesh &mesh,
+                     const SurfacePoint &root) {
+    if (!mesh.comb_by_corner) return params.comb_direction;
+    const float *c = &mesh.comb_by_corner[9 * size_t(root.triangle)];
+    const float b1 = root.b1, b2 = root.b2, b0 = 1 - b1 - b2;
+    return Vec3f{c[0], c[1], c[2]} * b0 + Vec3f{c[3], c[4], c[5]} * b1 +
+           Vec3f{c[6], c[7], c[8]} * b2;
 }
 
 // Unit vector ⊥ n along which a strand leaves its root before tilting up by the comb

@@ -182,8 +182,8 @@ FurGeometry::FurGeometry(const SceneDesc &desc, EmbreeScene &scene,
             return *rest;
         };
 
-        // Comb along a field: one direction per triangle, turned with the object like
-        // comb_direction.
+        // Comb along a field: a direction per triangle corner, turned with the object
+        // like comb_direction.
         std::vector<float> comb;
         if (params.comb == FurParams::Comb::field) {
             if (params.comb_pattern_field && desc.objects[i].cells.empty())
@@ -195,13 +195,14 @@ FurGeometry::FurGeometry(const SceneDesc &desc, EmbreeScene &scene,
                 params.comb_pattern_field
                     ? pattern_field(desc.objects[i].cells, field + ".comb")
                     : params.comb_field;
-            comb = comb_by_triangle(spec, rest_surface());
+            comb = comb_by_corner(spec, rest_surface(), desc.objects[i].fur->comb_towards,
+                                  params.comb_smoothing);
             for (size_t t = 0; t < comb.size(); t += 3) {
                 const Vec3f w =
                     desc.objects[i].transform.vector({comb[t], comb[t + 1], comb[t + 2]});
                 comb[t] = w.x, comb[t + 1] = w.y, comb[t + 2] = w.z;
             }
-            skin.comb_by_triangle = comb.data();
+            skin.comb_by_corner = comb.data();
         }
         // The groom's regions: weights at every triangle corner.
         std::vector<float> regions;

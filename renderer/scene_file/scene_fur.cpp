@@ -228,6 +228,13 @@ FurParams read_fur(const json &j, const std::string &field,
                    "\"body_axis\"}");
         }
     }
+    if (r.has("comb_towards")) {
+        p.comb_towards = r.vec3("comb_towards", p.comb_towards, -1e6, 1e6);
+        if (dot(p.comb_towards, p.comb_towards) <= 0)
+            r.fail(r.field("comb_towards"), "must not be zero");
+    }
+    p.comb_smoothing =
+        int(r.unsigned_integer("comb_smoothing", uint64_t(p.comb_smoothing), 0, 1000));
     p.comb_angle_deg =
         float(groomed(r, &p, G::comb_angle, "comb_angle", p.comb_angle_deg, {0, 90}));
     p.comb_jitter_deg = num(r, "comb_jitter", p.comb_jitter_deg, 0, 60);

@@ -325,7 +325,27 @@ TEST(FurComb, StrandsFollowTheBodyAxisAlongAndAround) {
             // (up to 3.75° apart on 48 sides), which tilts the 10° lift a little.
             ASSERT_LT(around ? 90 - a : a, 1.0) << (around ? "around " : "along ") << i;
         }
+        // The sense: along the body axis the hair points down (comb_towards' default);
+        // around it, where `towards` says nothing, every strand turns the same way.
+        int sense[2] = {0, 0};
+        for (size_t i = 0; i < strands.size(); ++i) {
+            const float *P = &strands.points[4 * i * strands.points_per_strand];
+            const Vec3f d = Vec3f{P[8], P[9], P[10]} - Vec3f{P[4], P[5], P[6]};
+            const float s_i =
+                around ? dot(d, cross(Vec3f{0, 1, 0}, radial(strands, i))) : -d.y;
+            ++sense[s_i > 0];
+        }
+        EXPECT_EQ(around ? std::min(sense[0], sense[1]) : sense[0], 0)
+            << (around ? "around" : "along") << ": " << sense[0] << " / " << sense[1];
     }
+    // comb_towards turns an axis field: up instead of down.
+    const renderer::Scene up =
+        c.scene(R"({"along": "body_axis"}, "comb_towards": [0, 1, 0])", "", plugins);
+    const renderer::Strands &su = up.fur()->layers().at(0).strands;
+    for (size_t i = 0; i < su.size(); ++i)
+        ASSERT_GT(su.points[4 * i * su.points_per_strand + 9],
+                  su.points[4 * i * su.points_per_strand + 5])
+            << i;
 }
 
 TEST(FurComb, FieldFollowsThePatternsAnisotropyField) {
