@@ -4,7 +4,7 @@
 # and the sample meshes (./quickstart.sh run). A few minutes on two cores.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-pelage=build/bin/pelage
+pelage=${PELAGE:-build/bin/pelage}
 if [ ! -x "$pelage" ] || [ ! -f scenes/meshes/cow.off ]; then
     echo "make_images.sh: run ./quickstart.sh run first (build and sample meshes)" >&2
     exit 2
@@ -31,6 +31,18 @@ $pelage render scenes/fur_cow_giraffe.json -q -o "$tmp/fur_cow.exr" \
     --preview images/fur_cow_giraffe.png
 $pelage render scenes/cow_giraffe.json --res 480x270 --spp 16 -q -o "$tmp/bare_cow.exr" \
     --preview images/fur_cow_giraffe_bare.png
+# A close-up of the furry giraffe's head, and six frames of its turntable.
+$pelage render scenes/fur_cow_head.json -q -o "$tmp/fur_head.exr" \
+    --preview images/fur_cow_head.png
+$pelage render scenes/fur_cow_turntable.json --frames 0-20 --step 4 -q \
+    -o "$tmp/turntable.####.exr"
+frames=()
+for f in 0000 0004 0008 0012 0016 0020; do
+    oiiotool "$tmp/turntable.$f.exr" --ch R,G,B --colorconvert linear sRGB \
+        -o "$tmp/turntable.$f.png"
+    frames+=("$tmp/turntable.$f.png")
+done
+oiiotool "${frames[@]}" --mosaic:pad=4 3x2 -o images/fur_cow_turntable.png
 # Cryptomatte: the beauty, the matte of the spot type, and the mattes of the clones whose
 # founder ids start with 1, pulled out of the EXR by `pelage matte`.
 $pelage render scenes/cow_giraffe.json --res 480x270 --spp 32 --cryptomatte -q \
@@ -120,12 +132,14 @@ print(json.dumps({
     "cow_growing": runs}, indent=2, sort_keys=True))
 PY
 
-# The gallery (fonts-dejavu-core labels it): every preset on the sphere and on the cow, labelled, and the look of each
+# The gallery (fonts-dejavu-core labels it): every preset on the sphere and on the cow,
+# bare and with fur (the coat of scenes/fur_cow_giraffe.json, combed along the preset's
+# anisotropy field when it has one, as `pelage look --fur` does), labelled, and the look of each
 # measured by `pelage stats --mesh` (docs/data/gallery.json, shown in
 # docs/guide/presets.md). Presets scaled to the body (initial_spacing) start from about
 # 100 founders on the sphere, whose area against its length is 3.4 times a cow's.
 font=/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf
-tiles_sphere=() tiles_cow=()
+tiles_sphere=() tiles_cow=() tiles_fur=()
 echo '{' >"$tmp/gallery.json"
 first=1
 for preset in scenes/presets/*.json; do
@@ -150,6 +164,21 @@ print(round(100/ip) if "initial_spacing" in s and ip > 0 else 0)' "$preset")
         [ $kind = sphere ] && tiles_sphere+=("$tmp/tile_${kind}_$name.png")
         [ $kind = cow ] && tiles_cow+=("$tmp/tile_${kind}_$name.png")
     done
+    python3 - "$preset" <<'PY' >scenes/gallery_cow_fur.json
+import json, sys
+preset = json.load(open(sys.argv[1]))
+scene = json.load(open("scenes/gallery_cow.json"))
+fur = json.load(open("scenes/fur_cow_giraffe.json"))["objects"][0]["fur"]
+if preset.get("simulation", {}).get("anisotropy", {}).get("field"):
+    fur.update({"comb": "field", "comb_towards": fur["comb"], "comb_jitter": 4})
+scene["objects"][0]["fur"] = fur
+print(json.dumps(scene, indent=1))
+PY
+    $pelage render scenes/gallery_cow_fur.json -q -o "$tmp/g.exr" --preview "$tmp/g.png"
+    oiiotool --create 240x202 3 \
+        --text:x=6:y=196:size=14:color=1,1,1:font=$font "$name" -o "$tmp/label.png"
+    oiiotool "$tmp/g.png" --ch R,G,B "$tmp/label.png" --paste +0+0 -o "$tmp/tile_fur_$name.png"
+    tiles_fur+=("$tmp/tile_fur_$name.png")
     [ $first = 1 ] || echo ',' >>"$tmp/gallery.json"
     first=0
     printf '"%s": {"sphere": %s, "cow": %s, "sphere_initial_cells": %s}' "$name" \
@@ -160,6 +189,7 @@ echo '}' >>"$tmp/gallery.json"
 rows=$(( (${#tiles_sphere[@]} + 3) / 4 ))
 oiiotool "${tiles_sphere[@]}" --mosaic:pad=4 4x$rows -o images/gallery_sphere.png
 oiiotool "${tiles_cow[@]}" --mosaic:pad=4 4x$rows -o images/gallery_cow.png
+oiiotool "${tiles_fur[@]}" --mosaic:pad=4 4x$rows -o images/gallery_cow_fur.png
 python3 - "$tmp/gallery.json" >docs/data/gallery.json <<'PY'
 import json, os, sys
 keep = ["cells", "cells_by_type", "spot_fraction", "spot_fraction_by_area", "spot_count",
@@ -175,5 +205,5 @@ for name, g in d.items():
                  "cow": {k: g["cow"][k] for k in keep}}
 print(json.dumps({"gallery": out, "seed": 1}, indent=2, sort_keys=True))
 PY
-rm -f scenes/gallery_sphere.cells scenes/gallery_cow.cells
+rm -f scenes/gallery_sphere.cells scenes/gallery_cow.cells scenes/gallery_cow_fur.json
 echo "make_images.sh: images/*.png regenerated"

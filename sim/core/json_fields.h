@@ -171,6 +171,9 @@ class JsonObjectFields : public JsonFields {
 
     // `path` is the object's JSON path ("" at the top level), `file` the input file.
     JsonObjectFields(const json &j, std::string path, std::string file);
+    // The reader keeps a reference: no temporaries (a nlohmann::json converted to
+    // ordered_json would be one).
+    JsonObjectFields(json &&, std::string, std::string) = delete;
 
     // The JSON path of one of this object's keys, spelled as in the file.
     std::string field(const std::string &key) const { return join(m_path, spelled(key)); }
