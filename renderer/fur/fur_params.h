@@ -64,6 +64,11 @@ struct FurParams {
     float melanin_jitter = 0.1f;  // σ_a × U[1 − j, 1 + j] (melanins: each independently)
     float beta_m = 0.25f, beta_n = 0.3f, alpha_deg = 2;  // hair BSDF (renderer/bsdf)
     enum class Curve { round, flat } curve = Curve::round;
+    // Strands narrower than this many pixels, seen from the scene's camera, are widened
+    // to it with their opacity scaled to keep their coverage (renderer/geometry/
+    // fur_geometry.h); 0 (the default: the converged image is still a few per cent off,
+    // docs/guide/fur.md) turns it off.
+    float min_pixel_width = 0;
 
     // --- A groom: values by cell type and by body region (renderer/fur/strand_groom.h)
     // --- Per cell type, sizes and density are factors of the coat's value (which scales

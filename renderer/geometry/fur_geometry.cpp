@@ -11,6 +11,7 @@
 #include "renderer/fur/comb_field.h"
 #include "renderer/fur/groom_regions.h"
 #include "renderer/geometry/embree_scene.h"
+#include "sim/core/hash.h"
 #include "sim/core/input_error.h"
 
 namespace pelage::renderer {
@@ -32,22 +33,90 @@ bool leaves_tube(const RTCFilterFunctionNArguments *args, unsigned i) {
            0;
 }
 
-// Rejects hits on the strand the ray left (its id is that strand's global index + 1)
-// and, on round curves, hits on the inside of any tube (fur_geometry.h).
+// A number in [0, 1) from 64 bits.
+float unit_hash(uint64_t x) { return float(mix64(x) >> 40) * 0x1p-24f; }
+
+// Whether ray i, which hit widened segment `prim` at u, passes within the fibre's own
+// radius of its centre line, ahead of its origin: the fibre itself, for the rays that
+// widening is not for (shadows, bounces). Those start inside other strands' widened
+// tubes all the time, where any opacity rule would over- or under-occlude.
+bool crosses_fibre(const FurLayer &layer, const RTCFilterFunctionNArguments *args,
+                   unsigned i, unsigned prim, float u, float alpha) {
+    const unsigned N = args->N;
+    Vec3f c, x;
+    float radius;
+    layer.centre(prim, u, &c, &x, &radius);
+    const float own = alpha * radius;
+    const Vec3f o{RTCRayN_org_x(args->ray, N, i), RTCRayN_org_y(args->ray, N, i),
+                  RTCRayN_org_z(args->ray, N, i)};
+    const Vec3f d{RTCRayN_dir_x(args->ray, N, i), RTCRayN_dir_y(args->ray, N, i),
+                  RTCRayN_dir_z(args->ray, N, i)};
+    // Closest points of the ray o + t d and the centre line c + s x (|x| = 1).
+    const Vec3f w = o - c;
+    const float a = dot(d, d), b = dot(d, x), dw = dot(d, w), xw = dot(x, w);
+    const float den = a - b * b;
+    if (!(den > 1e-12f * a)) {  // parallel: the distance of the origin from the line
+        const Vec3f e = w - x * xw;
+        return dot(e, e) <= own * own;
+    }
+    const float t = (b * xw - dw) / den;
+    if (t < 0) return false;
+    const Vec3f e = w + d * t - x * (b * t + xw);
+    return dot(e, e) <= own * own;
+}
+
+// Rejects hits on the strand the ray left (fur_ray_id()), on round curves hits on the
+// inside of any tube, and on widened strands the hits their opacity drops
+// (fur_geometry.h).
 void skip_own_strand(const RTCFilterFunctionNArguments *args) {
     const FurLayer &layer = *static_cast<const FurLayer *>(args->geometryUserPtr);
     for (unsigned i = 0; i < args->N; ++i) {
         if (args->valid[i] != -1) continue;
-        if (layer.round && leaves_tube(args, i)) {
+        const unsigned id = RTCRayN_id(args->ray, args->N, i);
+        const unsigned prim = RTCHitN_primID(args->hit, args->N, i);
+        const unsigned strand =
+            layer.strand_offset + prim / unsigned(layer.strands.segments);
+        if ((id & fur_skip_mask) == strand + 1) {
             args->valid[i] = 0;
             continue;
         }
-        const unsigned id = RTCRayN_id(args->ray, args->N, i);
-        if (id == 0) continue;
-        const unsigned prim = RTCHitN_primID(args->hit, args->N, i);
-        if (layer.strand_offset + prim / unsigned(layer.strands.segments) + 1 == id)
+        const float u = RTCHitN_u(args->hit, args->N, i);
+        const float alpha = layer.opacity(prim, u);
+        if (layer.round && alpha >= 1 && leaves_tube(args, i)) {
             args->valid[i] = 0;
+            continue;
+        }
+        if (alpha >= 1) continue;
+        if (id >> 31) {
+            // A camera ray: the widened strand, kept with probability alpha.
+            const float xi = (float((id >> fur_skip_bits) & 31u) + 0.5f) / 32;
+            float r = xi + unit_hash(0x9e3779b97f4a7c15ull * (uint64_t(strand) + 1));
+            r -= std::floor(r);
+            if (r >= alpha) args->valid[i] = 0;
+        } else if (!crosses_fibre(layer, args, i, prim, u, alpha)) {
+            args->valid[i] = 0;
+        }
     }
+}
+
+// Widens every control point whose radius is under `k` × its distance from the camera
+// (k: half the minimum width's angle) to that, keeping the own radii in true_radius.
+uint64_t widen(FurLayer &layer, Vec3f camera, float k) {
+    std::vector<float> &P = layer.strands.points;
+    const size_t n = P.size() / 4;
+    uint64_t count = 0;
+    for (size_t j = 0; j < n; ++j) {
+        const Vec3f e = Vec3f{P[4 * j], P[4 * j + 1], P[4 * j + 2]} - camera;
+        count += P[4 * j + 3] < k * length(e);
+    }
+    if (count == 0) return 0;
+    layer.true_radius.resize(n);
+    for (size_t j = 0; j < n; ++j) {
+        const Vec3f e = Vec3f{P[4 * j], P[4 * j + 1], P[4 * j + 2]} - camera;
+        layer.true_radius[j] = P[4 * j + 3];
+        P[4 * j + 3] = std::max(P[4 * j + 3], k * length(e));
+    }
+    return count;
 }
 
 // The object's world-space triangles and shading normals, for growing fur on them.
@@ -139,6 +208,26 @@ void FurLayer::centre(unsigned prim, float u, Vec3f *c, Vec3f *tangent,
     }
     const float len = length(*tangent);
     *tangent = len > 0 ? *tangent / len : Vec3f{1, 0, 0};
+}
+
+float FurLayer::opacity(unsigned prim, float u) const {
+    if (true_radius.empty()) return 1;
+    const unsigned S = unsigned(strands.segments);
+    const size_t first = size_t(prim / S) * strands.points_per_strand + prim % S;
+    const float *P = &strands.points[4 * first];
+    const float *R = &true_radius[first];
+    float own, wide;
+    if (!round) {
+        own = R[0] * (1 - u) + R[1] * u;
+        wide = P[3] * (1 - u) + P[7] * u;
+    } else {
+        const float v = 1 - u;
+        const float b[4] = {v * v * v / 6, (3 * u * u * u - 6 * u * u + 4) / 6,
+                            (-3 * u * u * u + 3 * u * u + 3 * u + 1) / 6, u * u * u / 6};
+        own = R[0] * b[0] + R[1] * b[1] + R[2] * b[2] + R[3] * b[3];
+        wide = P[3] * b[0] + P[7] * b[1] + P[11] * b[2] + P[15] * b[3];
+    }
+    return wide > 0 ? std::min(1.0f, std::max(own, 0.0f) / wide) : 1.0f;
 }
 
 size_t FurGeometry::num_strands() const {
@@ -237,11 +326,22 @@ FurGeometry::FurGeometry(const SceneDesc &desc, EmbreeScene &scene,
             throw InputError(desc.path, 0, field, e.what());
         }
         m_grow_seconds += seconds_since(t0);
-        if (offset + layer.strands.size() >= 0xffffffffull)
-            throw InputError(desc.path, 0, field, "more than 2^32 strands in the scene");
+        if (offset + layer.strands.size() >= fur_skip_mask)
+            throw InputError(desc.path, 0, field,
+                             "more than " + std::to_string(fur_skip_mask - 1) +
+                                 " strands in the scene");
         layer.strand_offset = uint32_t(offset);
         offset += layer.strands.size();
         if (layer.strands.size() == 0) continue;
+        // Sub-pixel strands widened for the scene's camera: a pixel spans
+        // 2 tan(fov / 2) / height radians.
+        if (params.min_pixel_width > 0) {
+            const CameraDesc &cam = desc.camera;
+            const float pixel = 2 * std::tan(cam.fov_deg * float(pi) / 360) /
+                                float(std::max(desc.film.height, 1));
+            m_widened_points +=
+                widen(layer, cam.position, 0.5f * params.min_pixel_width * pixel);
+        }
         m_layers.push_back(std::move(layer));
     }
 

@@ -18,10 +18,26 @@
 // BSDF (a whole fibre, entered from outside) means nothing: bounces were scattered there
 // again and shadow rays blocked, which darkened dense fur (Cycles culls these hits on
 // its round curves too). Flat ribbons have no inside.
+//
+// Strands thinner on screen than `min_pixel_width` pixels (FurParams) are widened to it,
+// and their opacity scaled by own radius / widened radius, so each strand covers on
+// average what it covered before (Arnold's min_pixel_width, Cycles' former minimum
+// width; Cook, Halstead, Planck & Ryu 2007, "Stochastic simplification of aggregate
+// detail", widen what they thin for the same reason). The widening is geometry, built
+// for the camera the scene is built for (pixel angle × distance); the opacity is
+// stochastic in the filter function, for camera rays: a hit is kept when a stratified
+// number ξ of the pixel's sampler (in the ray's id), rotated by a hash of the strand
+// (Cranley–Patterson), falls below it, so a sub-pixel strand covers close to its share
+// of the pixel's samples instead of a binomial draw of them. Shadow and bounce rays,
+// which the widening is not for and which start inside other strands' widened tubes
+// all the time, keep a hit only where they pass within the fibre's own radius of its
+// centre line: for them the coat is the unwidened one. A path leaves a widened strand
+// from its fibre, not from the widened surface.
 #pragma once
 
 #include <embree3/rtcore.h>
 
+#include <algorithm>
 #include <functional>
 #include <memory>
 #include <vector>
@@ -32,6 +48,16 @@
 #include "renderer/scene_file/scene_file.h"
 
 namespace pelage::renderer {
+
+// A ray's Embree id: the global index + 1 of the strand it leaves in bits 0–25 (0: none),
+// and for a camera ray a stratified number ξ in [0, 1) quantised to 32 levels in bits
+// 26–30, with bit 31 saying that it is there.
+inline constexpr unsigned fur_skip_bits = 26;
+inline constexpr unsigned fur_skip_mask = (1u << fur_skip_bits) - 1;
+inline unsigned fur_ray_id(unsigned skip, float xi) {
+    const unsigned q = std::min(31u, unsigned(std::max(xi, 0.0f) * 32));
+    return skip | q << fur_skip_bits | 1u << 31;
+}
 
 // A root's pigment on object `object`: the skin's material evaluated at that point.
 using ObjectPigmentLookup =
@@ -57,6 +83,13 @@ struct FurLayer {
     // Centre-line point and unit tangent (root to tip: the hair BSDF's +x, which the
     // cuticle tilt depends on) of segment `prim` at curve parameter u.
     void centre(unsigned prim, float u, Vec3f *c, Vec3f *tangent, float *radius) const;
+
+    // Widened strands (min_pixel_width): every control point's own radius, parallel to
+    // the radii in strands.points (which Embree intersects); empty when none was.
+    std::vector<float> true_radius;
+    // The share of a hit at parameter u of segment `prim` that is fibre: own radius over
+    // widened radius there (1 where the strand is not widened).
+    float opacity(unsigned prim, float u) const;
 };
 
 class FurGeometry {
@@ -77,6 +110,9 @@ class FurGeometry {
     }
     const std::vector<FurLayer> &layers() const { return m_layers; }
     size_t num_strands() const;
+    // Whether any strand was widened: camera rays then carry a stratified ξ.
+    bool widened() const { return m_widened_points > 0; }
+    uint64_t widened_points() const { return m_widened_points; }
     double grow_seconds() const { return m_grow_seconds; }      // strands (renderer/fur)
     double embree_seconds() const { return m_embree_seconds; }  // curves + BVH commit
 
@@ -84,6 +120,7 @@ class FurGeometry {
     std::vector<FurLayer> m_layers;
     std::vector<int> m_layer_of_geom;
     double m_grow_seconds = 0, m_embree_seconds = 0;
+    uint64_t m_widened_points = 0;
 };
 
 }  // namespace pelage::renderer

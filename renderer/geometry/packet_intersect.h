@@ -25,8 +25,11 @@ class PacketIntersector {
     int width() const { return m_width; }
 
     // Intersects rays (o[i], d[i]), i < n <= max_rays, over [0, inf), as one coherent
-    // batch. out[i] receives ray i and its hit (geomID = RTC_INVALID_GEOMETRY_ID: none).
-    void intersect(const Vec3f *o, const Vec3f *d, int n, RTCRayHit *out) const;
+    // batch, each with Embree id ids[i] (0 when ids is null; fur_geometry.h's
+    // fur_ray_id()). out[i] receives ray i and its hit (geomID = RTC_INVALID_GEOMETRY_ID:
+    // none).
+    void intersect(const Vec3f *o, const Vec3f *d, int n, RTCRayHit *out,
+                   const unsigned *ids = nullptr) const;
 
   private:
     RTCScene m_scene;

@@ -76,7 +76,11 @@ void PathIntegrator::render_tile(Film &film, Sampler &sampler, int x0, int y0, i
     Sampler lane[K];
     CameraRay cam[K];
     Vec3f org[K], dir[K];
+    unsigned ids[K];
     RTCRayHit first[K];
+    // Widened fur: each camera ray brings a stratified number for its opacity
+    // (fur_geometry.h), one more dimension of its sampler.
+    const bool fur_xi = m_scene.fur() && m_scene.fur()->widened();
     // Row by row, sample by sample, K neighbouring pixels at a time: their camera rays
     // form one coherent packet. Each pixel still receives its samples in sample order.
     // The rows run back and forth (boustrophedon), so consecutive camera hits stay
@@ -119,8 +123,9 @@ void PathIntegrator::render_tile(Film &film, Sampler &sampler, int x0, int y0, i
                                       : m_camera.generate(px, py, lu, lv);
                     org[i] = cam[i].o;
                     dir[i] = cam[i].d;
+                    ids[i] = fur_xi ? fur_ray_id(0, sp.get_1d()) : 0;
                 }
-                m_packets.intersect(org, dir, n, first);
+                m_packets.intersect(org, dir, n, first, ids);
                 stats.camera_rays += uint64_t(n);
                 for (int i = 0; i < n; ++i) instr.ray(org[i], dir[i], inf, camera_ray);
                 // --- The paths, one pixel at a time ---

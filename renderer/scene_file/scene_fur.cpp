@@ -280,6 +280,7 @@ FurParams read_fur(const json &j, const std::string &field,
     p.beta_m = float(groomed(r, &p, G::beta_m, "beta_m", p.beta_m, {0, 1, true}));
     p.beta_n = float(groomed(r, &p, G::beta_n, "beta_n", p.beta_n, {0, 1, true}));
     p.alpha_deg = num(r, "alpha", p.alpha_deg, -44, 44);
+    p.min_pixel_width = num(r, "min_pixel_width", p.min_pixel_width, 0, 16);
     if (const json *v = r.take("curve")) {
         const std::string s = v->is_string() ? v->get<std::string>() : "";
         if (s == "round")

@@ -92,6 +92,55 @@ TEST(FurRender, FlatRibbonsLookLikeRoundTubes) {
             << c;
 }
 
+// min_pixel_width widens exactly the control points whose radius is under half that
+// many pixels at their distance from the camera (pixel angle 2 tan(fov/2) / height), to
+// that radius, keeps their own radii, and their opacity is own / widened radius.
+TEST(FurRender, MinPixelWidthWidensSubPixelStrandsToIt) {
+    const std::string thin =
+        R"({"density": 3000, "length": 0.15, "root_radius": 0.003, "tip_radius": 0.001,
+            "seed": 3, "min_pixel_width": )";
+    const renderer::PluginRegistry plugins;
+    auto build = [&](const char *width) {
+        return renderer::Scene(
+            renderer::parse_scene(fur_scene(grey_skin, thin + width + "}", 32, 1, "[]"),
+                                  "fur.json"),
+            plugins);
+    };
+    const renderer::Scene off = build("0"), wide = build("2");
+    EXPECT_FALSE(off.fur()->widened());
+    ASSERT_TRUE(wide.fur()->widened());
+    const renderer::FurLayer &a = off.fur()->layers().at(0),
+                             &b = wide.fur()->layers().at(0);
+    ASSERT_EQ(a.strands.points.size(), b.strands.points.size());
+    ASSERT_EQ(b.true_radius.size(), b.strands.points.size() / 4);
+    // Camera at (0, 0, 3.2), fov 42°, 32 rows: a two-pixel-wide strand's radius per
+    // unit of distance.
+    const float k = 2 * std::tan(21 * 3.14159265f / 180) / 32;
+    size_t widened = 0;
+    for (size_t j = 0; j < b.true_radius.size(); ++j) {
+        const float *P = &b.strands.points[4 * j];
+        const Vec3f e = Vec3f{P[0], P[1], P[2]} - Vec3f{0, 0, 3.2f};
+        const float own = a.strands.points[4 * j + 3];
+        ASSERT_EQ(b.true_radius[j], own);
+        ASSERT_NEAR(P[3], std::max(own, k * length(e)), 1e-6f * length(e));
+        widened += P[3] > own;
+    }
+    EXPECT_GT(widened, b.true_radius.size() / 2);
+    const int S = b.strands.segments;
+    for (unsigned prim = 0; prim < 50; ++prim) {
+        const size_t first =
+            size_t(prim / unsigned(S)) * b.strands.points_per_strand + prim % unsigned(S);
+        // u = 0 on a uniform B-spline: (P0 + 4 P1 + P2) / 6 of either radius.
+        auto blend = [&](auto r) {
+            return (r(first) + 4 * r(first + 1) + r(first + 2)) / 6;
+        };
+        const float own = blend([&](size_t j) { return b.true_radius[j]; });
+        const float w = blend([&](size_t j) { return b.strands.points[4 * j + 3]; });
+        EXPECT_NEAR(b.opacity(prim, 0), own / w, 1e-5f);
+        EXPECT_EQ(a.opacity(prim, 0), 1.0f);
+    }
+}
+
 // σ_a = 0 fibres (the diffuse skin has no melanin) on a white Lambertian skin, inside a
 // uniform environment of radiance 1: nothing absorbs, so every pixel converges to 1
 // (the hair BSDF conserves energy to ~1 %, renderer/bsdf/hair_bsdf_test.cpp). The same
