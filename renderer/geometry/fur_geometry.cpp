@@ -33,6 +33,15 @@ bool leaves_tube(const RTCFilterFunctionNArguments *args, unsigned i) {
            0;
 }
 
+// The uniform cubic B-spline basis at u (Embree's round curves, FurLayer::centre()).
+void bspline_basis(float u, float b[4]) {
+    const float v = 1 - u;
+    b[0] = v * v * v / 6;
+    b[1] = (3 * u * u * u - 6 * u * u + 4) / 6;
+    b[2] = (-3 * u * u * u + 3 * u * u + 3 * u + 1) / 6;
+    b[3] = u * u * u / 6;
+}
+
 // A number in [0, 1) from 64 bits.
 float unit_hash(uint64_t x) { return float(mix64(x) >> 40) * 0x1p-24f; }
 
@@ -196,10 +205,9 @@ void FurLayer::centre(unsigned prim, float u, Vec3f *c, Vec3f *tangent,
         *tangent = pt(1) - pt(0);
         *radius = P[3] * (1 - u) + P[7] * u;
     } else {
-        // Uniform cubic B-spline basis and its derivative.
+        float b[4];
+        bspline_basis(u, b);
         const float v = 1 - u;
-        const float b[4] = {v * v * v / 6, (3 * u * u * u - 6 * u * u + 4) / 6,
-                            (-3 * u * u * u + 3 * u * u + 3 * u + 1) / 6, u * u * u / 6};
         const float db[4] = {-v * v / 2, (3 * u * u - 4 * u) / 2,
                              (-3 * u * u + 2 * u + 1) / 2, u * u / 2};
         *c = pt(0) * b[0] + pt(1) * b[1] + pt(2) * b[2] + pt(3) * b[3];
@@ -221,9 +229,8 @@ float FurLayer::opacity(unsigned prim, float u) const {
         own = R[0] * (1 - u) + R[1] * u;
         wide = P[3] * (1 - u) + P[7] * u;
     } else {
-        const float v = 1 - u;
-        const float b[4] = {v * v * v / 6, (3 * u * u * u - 6 * u * u + 4) / 6,
-                            (-3 * u * u * u + 3 * u * u + 3 * u + 1) / 6, u * u * u / 6};
+        float b[4];
+        bspline_basis(u, b);
         own = R[0] * b[0] + R[1] * b[1] + R[2] * b[2] + R[3] * b[3];
         wide = P[3] * b[0] + P[7] * b[1] + P[11] * b[2] + P[15] * b[3];
     }
