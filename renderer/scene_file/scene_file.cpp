@@ -353,8 +353,41 @@ ObjectDesc read_object(Reader r, size_t index) {
     return o;
 }
 
+// How deeply arrays and objects nest in JSON text (brackets inside strings not
+// counted), without building anything.
+size_t nesting_depth(const std::string &text) {
+    size_t depth = 0, deepest = 0;
+    bool in_string = false, escaped = false;
+    for (const char ch : text) {
+        if (in_string) {
+            if (escaped)
+                escaped = false;
+            else if (ch == '\\')
+                escaped = true;
+            else if (ch == '"')
+                in_string = false;
+        } else if (ch == '"') {
+            in_string = true;
+        } else if (ch == '[' || ch == '{') {
+            deepest = std::max(deepest, ++depth);
+        } else if ((ch == ']' || ch == '}') && depth > 0) {
+            --depth;
+        }
+    }
+    return deepest;
+}
+
 // The JSON document, or an InputError with the line of a syntax error.
 json parse_json(const std::string &text, const std::string &path) {
+    // nlohmann's ordered_json copies each finished member into its object while parsing,
+    // recursively: JSON nested tens of thousands deep would overflow the stack. No scene
+    // nests beyond a handful of levels; valid JSON nested past this is refused.
+    constexpr size_t max_depth = 512;
+    if (const size_t d = nesting_depth(text); d > max_depth && json::accept(text))
+        throw InputError(path, 0, "",
+                         "nested " + std::to_string(d) +
+                             " levels deep (a scene nests at most " +
+                             std::to_string(max_depth) + ")");
     try {
         return json::parse(text);
     } catch (const json::parse_error &e) {
