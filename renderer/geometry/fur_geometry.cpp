@@ -74,6 +74,37 @@ bool crosses_fibre(const FurLayer &layer, const RTCFilterFunctionNArguments *arg
     return dot(e, e) <= own * own;
 }
 
+// Whether ray i passes a widened strand beyond its tip or before its root: the end caps
+// of a widened tube reach one widened radius past the fibre's ends, where the fibre
+// covers nothing. Tested at the ray's closest approach to the end's tangent line (the
+// hit point itself for a ray along it): in the image, the widened strand then ends
+// where the fibre does. Without it every tip adds a cap about a pixel wide to the
+// strand's coverage.
+bool beyond_ends(const FurLayer &layer, const RTCFilterFunctionNArguments *args,
+                 unsigned i, unsigned prim) {
+    const unsigned S = unsigned(layer.strands.segments);
+    const unsigned k = prim % S;
+    if (k != 0 && k + 1 != S) return false;
+    const unsigned N = args->N;
+    const Vec3f o{RTCRayN_org_x(args->ray, N, i), RTCRayN_org_y(args->ray, N, i),
+                  RTCRayN_org_z(args->ray, N, i)};
+    const Vec3f d{RTCRayN_dir_x(args->ray, N, i), RTCRayN_dir_y(args->ray, N, i),
+                  RTCRayN_dir_z(args->ray, N, i)};
+    const float t_hit = RTCRayN_tfar(args->ray, N, i);
+    // The signed distance along the end's tangent of the ray's point closest to it.
+    auto past = [&](float u) {
+        Vec3f c, x;
+        float radius;
+        layer.centre(prim, u, &c, &x, &radius);
+        const Vec3f w = o - c;
+        const float a = dot(d, d), b = dot(d, x);
+        const float den = a - b * b;
+        const float t = den > 1e-6f * a ? (b * dot(x, w) - dot(d, w)) / den : t_hit;
+        return dot(w + d * t, x);
+    };
+    return (k + 1 == S && past(1) > 0) || (k == 0 && past(0) < 0);
+}
+
 // Rejects hits on the strand the ray left (fur_ray_id()), on round curves hits on the
 // inside of any tube, and on widened strands the hits their opacity drops
 // (fur_geometry.h).
@@ -96,7 +127,9 @@ void skip_own_strand(const RTCFilterFunctionNArguments *args) {
             continue;
         }
         if (alpha >= 1) continue;
-        if (id >> 31) {
+        if (beyond_ends(layer, args, i, prim)) {
+            args->valid[i] = 0;
+        } else if (id >> 31) {
             // A camera ray: the widened strand, kept with probability alpha.
             const float xi = (float((id >> fur_skip_bits) & 31u) + 0.5f) / 32;
             float r = xi + unit_hash(0x9e3779b97f4a7c15ull * (uint64_t(strand) + 1));

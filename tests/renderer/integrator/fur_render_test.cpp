@@ -318,6 +318,63 @@ TEST(FurRender, RaysFromInsideARoundStrandPassOutOfIt) {
     EXPECT_NEAR(outside.ray.tfar, radius, 1e-3f * radius);
 }
 
+// A widened strand covers on the image what its fibre does (fur_geometry.cpp): camera
+// rays through its axis keep it for a fraction of their stratified numbers equal to its
+// opacity, and camera rays that cross its axis past the tip never keep it, though they
+// still meet the widened tube's end (each tip once added about a widened radius to the
+// strand's length: the silhouette's coverage grew 14 % at one pixel).
+TEST(FurRender, AWidenedStrandCoversItsFibreAndEndsAtItsTip) {
+    TempDir tmp;
+    const std::string scene =
+        R"({"camera": {"position": [0, 0.5, 3], "look_at": [0, 0.5, 0]},
+          "film": {"width": 64, "height": 64},
+          "objects": [{"mesh": "procedural:plane:1x1", "transform": {"scale": 0.02},
+          "fur": {"density": 600, "length": 1, "length_variation": 0, "root_radius": 0.004,
+          "tip_radius": 0.004, "segments": 4, "comb": "normal", "comb_jitter": 0,
+          "seed": 1, "min_pixel_width": 0.5}}]})";
+    const renderer::SceneDesc desc = renderer::parse_scene(scene, tmp.file("scene.json"));
+    const renderer::PluginRegistry plugins;
+    const renderer::Scene s(desc, plugins);
+    ASSERT_TRUE(s.fur() && s.fur()->widened());
+    const renderer::FurLayer &layer = s.fur()->layers().at(0);
+    const renderer::Strands &strands = layer.strands;
+    ASSERT_EQ(strands.size(), 1u);
+    // Control points: a phantom, the root, ..., the tip, a phantom. The strand stands
+    // straight up (+y) on the plane.
+    const float *mid = &strands.points[4 * size_t(1 + strands.segments / 2)];
+    const float *tip = &strands.points[4 * size_t(1 + strands.segments)];
+    const float wide = tip[3];
+    ASSERT_GT(wide, 1.5f * 0.004f);
+    // How many of 32 camera rays (one per stratum of ξ) along d that cross the strand's
+    // axis at `x` keep the strand.
+    auto kept = [&](Vec3f x, Vec3f d) {
+        int n = 0;
+        for (int q = 0; q < 32; ++q) {
+            RTCRayHit rh;
+            RTCIntersectContext ctx;
+            rtcInitIntersectContext(&ctx);
+            renderer::set_ray(rh.ray, x - d * (4 * wide), d, 10,
+                              renderer::fur_ray_id(0, (q + 0.5f) / 32));
+            rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+            rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+            rtcIntersect1(s.geometry().scene(), &ctx, &rh);
+            n += rh.hit.geomID == layer.geom_id;
+        }
+        return n;
+    };
+    const Vec3f m{mid[0], mid[1], mid[2]}, t{tip[0], tip[1], tip[2]}, up{0, 1, 0};
+    const float alpha = 0.004f / mid[3];
+    ASSERT_GT(alpha, 0.2f);
+    EXPECT_NEAR(kept(m, {1, 0, 0}) / 32.0, alpha, 1.0 / 32 + 1e-6) << "opacity " << alpha;
+    // Looking down at 45° onto the tip: a ray crossing the axis 0.3 widened radii past
+    // the tip enters the widened tube through its end; one crossing it as far before
+    // the tip crosses the fibre.
+    const Vec3f down = normalize(Vec3f{1, -1, 0});
+    EXPECT_GT(kept(t - up * (0.3f * wide), down), 0);
+    EXPECT_EQ(kept(t + up * (0.3f * wide), down), 0);
+    EXPECT_EQ(kept(t + up * (0.5f * wide), {1, 0, 0}), 0);
+}
+
 // The angle (degrees) between a strand's root direction, projected onto the skin's
 // tangent plane at the root, and `axis`, folded into [0, 90].
 double angle_to_axis(const renderer::Strands &s, size_t i, Vec3f n, Vec3f axis) {
