@@ -12,6 +12,7 @@
 
 #include <embree3/rtcore.h>
 
+#include <algorithm>
 #include <atomic>
 #include <memory>
 #include <mutex>
@@ -75,6 +76,13 @@ class EmbreeScene {
         return inst_id == RTC_INVALID_GEOMETRY_ID && geom_id < m_light_of_geometry.size()
                    ? m_light_of_geometry[geom_id]
                    : -1;
+    }
+    // The geometries attached here (meshes, instances, area lights): IDs 0 .. n − 1,
+    // before anything is added later (fur).
+    unsigned num_geometries() const {
+        return unsigned(
+            std::max({m_object_of_geometry.size(), m_object_of_instance.size(),
+                      m_light_of_geometry.size()}));
     }
     // Radius of the bounding sphere of everything in the scene (0 when empty).
     float bounding_radius() const { return m_bounding_radius; }

@@ -45,35 +45,6 @@ void bspline_basis(float u, float b[4]) {
 // A number in [0, 1) from 64 bits.
 float unit_hash(uint64_t x) { return float(mix64(x) >> 40) * 0x1p-24f; }
 
-// Whether ray i, which hit widened segment `prim` at u, passes within the fibre's own
-// radius of its centre line, ahead of its origin: the fibre itself, for the rays that
-// widening is not for (shadows, bounces). Those start inside other strands' widened
-// tubes all the time, where any opacity rule would over- or under-occlude.
-bool crosses_fibre(const FurLayer &layer, const RTCFilterFunctionNArguments *args,
-                   unsigned i, unsigned prim, float u, float alpha) {
-    const unsigned N = args->N;
-    Vec3f c, x;
-    float radius;
-    layer.centre(prim, u, &c, &x, &radius);
-    const float own = alpha * radius;
-    const Vec3f o{RTCRayN_org_x(args->ray, N, i), RTCRayN_org_y(args->ray, N, i),
-                  RTCRayN_org_z(args->ray, N, i)};
-    const Vec3f d{RTCRayN_dir_x(args->ray, N, i), RTCRayN_dir_y(args->ray, N, i),
-                  RTCRayN_dir_z(args->ray, N, i)};
-    // Closest points of the ray o + t d and the centre line c + s x (|x| = 1).
-    const Vec3f w = o - c;
-    const float a = dot(d, d), b = dot(d, x), dw = dot(d, w), xw = dot(x, w);
-    const float den = a - b * b;
-    if (!(den > 1e-12f * a)) {  // parallel: the distance of the origin from the line
-        const Vec3f e = w - x * xw;
-        return dot(e, e) <= own * own;
-    }
-    const float t = (b * xw - dw) / den;
-    if (t < 0) return false;
-    const Vec3f e = w + d * t - x * (b * t + xw);
-    return dot(e, e) <= own * own;
-}
-
 // Whether ray i passes a widened strand beyond its tip or before its root: the end caps
 // of a widened tube reach one widened radius past the fibre's ends, where the fibre
 // covers nothing. Tested at the ray's closest approach to the end's tangent line (the
@@ -105,9 +76,8 @@ bool beyond_ends(const FurLayer &layer, const RTCFilterFunctionNArguments *args,
     return (k + 1 == S && past(1) > 0) || (k == 0 && past(0) < 0);
 }
 
-// Rejects hits on the strand the ray left (fur_ray_id()), on round curves hits on the
-// inside of any tube, and on widened strands the hits their opacity drops
-// (fur_geometry.h).
+// The fibres' filter: rejects hits on the strand the ray left (fur_ray_id()) and, on
+// round curves, hits on the inside of any tube.
 void skip_own_strand(const RTCFilterFunctionNArguments *args) {
     const FurLayer &layer = *static_cast<const FurLayer *>(args->geometryUserPtr);
     for (unsigned i = 0; i < args->N; ++i) {
@@ -116,35 +86,40 @@ void skip_own_strand(const RTCFilterFunctionNArguments *args) {
         const unsigned prim = RTCHitN_primID(args->hit, args->N, i);
         const unsigned strand =
             layer.strand_offset + prim / unsigned(layer.strands.segments);
-        if ((id & fur_skip_mask) == strand + 1) {
+        if ((id & fur_skip_mask) == strand + 1 || (layer.round && leaves_tube(args, i)))
             args->valid[i] = 0;
-            continue;
-        }
-        const float u = RTCHitN_u(args->hit, args->N, i);
-        const float alpha = layer.opacity(prim, u);
-        if (layer.round && alpha >= 1 && leaves_tube(args, i)) {
+    }
+}
+
+// The widened strands' filter (camera rays, the only ones they meet): a hit is kept with
+// probability its opacity, by the ray's stratified ξ rotated by a hash of the strand, and
+// never past the fibre's ends.
+void keep_by_opacity(const RTCFilterFunctionNArguments *args) {
+    const FurLayer &layer = *static_cast<const FurLayer *>(args->geometryUserPtr);
+    for (unsigned i = 0; i < args->N; ++i) {
+        if (args->valid[i] != -1) continue;
+        const unsigned id = RTCRayN_id(args->ray, args->N, i);
+        const unsigned prim = RTCHitN_primID(args->hit, args->N, i);
+        const float alpha = layer.opacity(prim, RTCHitN_u(args->hit, args->N, i));
+        if (beyond_ends(layer, args, i, prim)) {
             args->valid[i] = 0;
             continue;
         }
         if (alpha >= 1) continue;
-        if (beyond_ends(layer, args, i, prim)) {
-            args->valid[i] = 0;
-        } else if (id >> 31) {
-            // A camera ray: the widened strand, kept with probability alpha.
-            const float xi = (float((id >> fur_skip_bits) & 31u) + 0.5f) / 32;
-            float r = xi + unit_hash(0x9e3779b97f4a7c15ull * (uint64_t(strand) + 1));
-            r -= std::floor(r);
-            if (r >= alpha) args->valid[i] = 0;
-        } else if (!crosses_fibre(layer, args, i, prim, u, alpha)) {
-            args->valid[i] = 0;
-        }
+        const unsigned strand =
+            layer.strand_offset + prim / unsigned(layer.strands.segments);
+        const float xi = (float((id >> fur_skip_bits) & 31u) + 0.5f) / 32;
+        float r = xi + unit_hash(0x9e3779b97f4a7c15ull * (uint64_t(strand) + 1));
+        r -= std::floor(r);
+        if (r >= alpha) args->valid[i] = 0;
     }
 }
 
-// Widens every control point whose radius is under `k` × its distance from the camera
-// (k: half the minimum width's angle) to that, keeping the own radii in true_radius.
+// The widened control points: every radius under `k` × its distance from the camera (k:
+// half the minimum width's angle) raised to that, into layer.wide_points; the number
+// raised (none: wide_points stays empty).
 uint64_t widen(FurLayer &layer, Vec3f camera, float k) {
-    std::vector<float> &P = layer.strands.points;
+    const std::vector<float> &P = layer.strands.points;
     const size_t n = P.size() / 4;
     uint64_t count = 0;
     for (size_t j = 0; j < n; ++j) {
@@ -152,13 +127,47 @@ uint64_t widen(FurLayer &layer, Vec3f camera, float k) {
         count += P[4 * j + 3] < k * length(e);
     }
     if (count == 0) return 0;
-    layer.true_radius.resize(n);
+    layer.wide_points = P;
     for (size_t j = 0; j < n; ++j) {
         const Vec3f e = Vec3f{P[4 * j], P[4 * j + 1], P[4 * j + 2]} - camera;
-        layer.true_radius[j] = P[4 * j + 3];
-        P[4 * j + 3] = std::max(P[4 * j + 3], k * length(e));
+        layer.wide_points[4 * j + 3] = std::max(P[4 * j + 3], k * length(e));
     }
     return count;
+}
+
+// Attaches one curve geometry of `type` over `points` (the layer's fibres, or its widened
+// strands), with `filter`, to `target`: under `id`, or the next free ID when it is
+// RTC_INVALID_GEOMETRY_ID. Returns the ID.
+unsigned attach(EmbreeScene &scene, FurLayer &layer, RTCGeometryType type,
+                const std::vector<float> &points, RTCFilterFunctionN filter,
+                RTCScene target, unsigned id) {
+    const Strands &s = layer.strands;
+    RTCGeometry g = rtcNewGeometry(scene.device(), type);
+    const size_t num_points = s.size() * s.points_per_strand;
+    rtcSetSharedGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT4,
+                               points.data(), 0, 4 * sizeof(float), num_points);
+    const size_t num_segments = s.size() * size_t(s.segments);
+    auto *index = static_cast<uint32_t *>(rtcSetNewGeometryBuffer(
+        g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT, sizeof(uint32_t), num_segments));
+    if (!index) {
+        rtcReleaseGeometry(g);
+        scene.check();
+        throw std::runtime_error("Embree could not allocate the fur's index buffer");
+    }
+    for (size_t strand = 0; strand < s.size(); ++strand)
+        for (int k = 0; k < s.segments; ++k)
+            index[strand * size_t(s.segments) + size_t(k)] =
+                uint32_t(strand * s.points_per_strand + size_t(k));
+    rtcSetGeometryUserData(g, &layer);
+    rtcSetGeometryIntersectFilterFunction(g, filter);
+    rtcSetGeometryOccludedFilterFunction(g, filter);
+    rtcCommitGeometry(g);
+    if (id == RTC_INVALID_GEOMETRY_ID)
+        id = rtcAttachGeometry(target, g);
+    else
+        rtcAttachGeometryByID(target, g, id);
+    rtcReleaseGeometry(g);
+    return id;
 }
 
 // The object's world-space triangles and shading normals, for growing fur on them.
@@ -252,20 +261,20 @@ void FurLayer::centre(unsigned prim, float u, Vec3f *c, Vec3f *tangent,
 }
 
 float FurLayer::opacity(unsigned prim, float u) const {
-    if (true_radius.empty()) return 1;
+    if (wide_points.empty()) return 1;
     const unsigned S = unsigned(strands.segments);
     const size_t first = size_t(prim / S) * strands.points_per_strand + prim % S;
     const float *P = &strands.points[4 * first];
-    const float *R = &true_radius[first];
+    const float *W = &wide_points[4 * first];
     float own, wide;
     if (!round) {
-        own = R[0] * (1 - u) + R[1] * u;
-        wide = P[3] * (1 - u) + P[7] * u;
+        own = P[3] * (1 - u) + P[7] * u;
+        wide = W[3] * (1 - u) + W[7] * u;
     } else {
         float b[4];
         bspline_basis(u, b);
-        own = R[0] * b[0] + R[1] * b[1] + R[2] * b[2] + R[3] * b[3];
-        wide = P[3] * b[0] + P[7] * b[1] + P[11] * b[2] + P[15] * b[3];
+        own = P[3] * b[0] + P[7] * b[1] + P[11] * b[2] + P[15] * b[3];
+        wide = W[3] * b[0] + W[7] * b[1] + W[11] * b[2] + W[15] * b[3];
     }
     return wide > 0 ? std::min(1.0f, std::max(own, 0.0f) / wide) : 1.0f;
 }
@@ -282,6 +291,7 @@ FurGeometry::FurGeometry(const SceneDesc &desc, EmbreeScene &scene,
     for (const ObjectDesc &o : desc.objects) count += o.fur.has_value();
     m_layers.reserve(count);  // layers never move: Embree holds pointers into them
     uint64_t offset = 0;
+    const unsigned scene_geometries = scene.num_geometries();
     std::optional<SetupPhase> phase(std::in_place, "growing fur");
     for (size_t i = 0; i < desc.objects.size(); ++i) {
         if (!desc.objects[i].fur) continue;
@@ -392,31 +402,11 @@ FurGeometry::FurGeometry(const SceneDesc &desc, EmbreeScene &scene,
     for (size_t li = 0; li < m_layers.size(); ++li) {
         FurLayer &layer = m_layers[li];
         const Strands &s = layer.strands;
-        RTCGeometry g = rtcNewGeometry(scene.device(),
-                                       layer.round ? RTC_GEOMETRY_TYPE_ROUND_BSPLINE_CURVE
-                                                   : RTC_GEOMETRY_TYPE_FLAT_LINEAR_CURVE);
-        const size_t num_points = s.size() * s.points_per_strand;
-        rtcSetSharedGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT4,
-                                   s.points.data(), 0, 4 * sizeof(float), num_points);
-        const size_t num_segments = s.size() * size_t(s.segments);
-        auto *index = static_cast<uint32_t *>(
-            rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT,
-                                    sizeof(uint32_t), num_segments));
-        if (!index) {
-            rtcReleaseGeometry(g);
-            scene.check();
-            throw std::runtime_error("Embree could not allocate the fur's index buffer");
-        }
-        for (size_t strand = 0; strand < s.size(); ++strand)
-            for (int k = 0; k < s.segments; ++k)
-                index[strand * size_t(s.segments) + size_t(k)] =
-                    uint32_t(strand * s.points_per_strand + size_t(k));
-        rtcSetGeometryUserData(g, &layer);
-        rtcSetGeometryIntersectFilterFunction(g, skip_own_strand);
-        rtcSetGeometryOccludedFilterFunction(g, skip_own_strand);
-        rtcCommitGeometry(g);
-        layer.geom_id = rtcAttachGeometry(scene.scene(), g);
-        rtcReleaseGeometry(g);
+        layer.geom_id =
+            attach(scene, layer,
+                   layer.round ? RTC_GEOMETRY_TYPE_ROUND_BSPLINE_CURVE
+                               : RTC_GEOMETRY_TYPE_FLAT_LINEAR_CURVE,
+                   s.points, skip_own_strand, scene.scene(), RTC_INVALID_GEOMETRY_ID);
         if (m_layer_of_geom.size() <= layer.geom_id)
             m_layer_of_geom.resize(layer.geom_id + 1, -1);
         m_layer_of_geom[layer.geom_id] = int(li);
@@ -428,7 +418,38 @@ FurGeometry::FurGeometry(const SceneDesc &desc, EmbreeScene &scene,
         rtcCommitScene(scene.scene());
         scene.check();
     }
+    if (m_widened_points > 0) {
+        // The camera scene: the same geometries under the same IDs, each widened layer's
+        // fibres replaced by its widened strands (ribbons facing the ray).
+        RTCScene camera = rtcNewScene(scene.device());
+        try {
+            rtcSetSceneBuildQuality(camera, RTC_BUILD_QUALITY_MEDIUM);
+            for (unsigned id = 0; id < scene_geometries; ++id)
+                rtcAttachGeometryByID(camera, rtcGetGeometry(scene.scene(), id), id);
+            for (FurLayer &layer : m_layers) {
+                if (!layer.widened())
+                    rtcAttachGeometryByID(camera,
+                                          rtcGetGeometry(scene.scene(), layer.geom_id),
+                                          layer.geom_id);
+                else
+                    attach(scene, layer,
+                           layer.round ? RTC_GEOMETRY_TYPE_FLAT_BSPLINE_CURVE
+                                       : RTC_GEOMETRY_TYPE_FLAT_LINEAR_CURVE,
+                           layer.wide_points, keep_by_opacity, camera, layer.geom_id);
+            }
+            rtcCommitScene(camera);
+            scene.check();
+        } catch (...) {
+            rtcReleaseScene(camera);
+            throw;
+        }
+        m_camera_scene = camera;
+    }
     m_embree_seconds = seconds_since(t1);
+}
+
+FurGeometry::~FurGeometry() {
+    if (m_camera_scene) rtcReleaseScene(m_camera_scene);
 }
 
 }  // namespace pelage::renderer

@@ -28,11 +28,12 @@
 // stochastic in the filter function, for camera rays: a hit is kept when a stratified
 // number ξ of the pixel's sampler (in the ray's id), rotated by a hash of the strand
 // (Cranley–Patterson), falls below it, so a sub-pixel strand covers close to its share
-// of the pixel's samples instead of a binomial draw of them. Shadow and bounce rays,
-// which the widening is not for and which start inside other strands' widened tubes
-// all the time, keep a hit only where they pass within the fibre's own radius of its
-// centre line: for them the coat is the unwidened one. A path leaves a widened strand
-// from its fibre, not from the widened surface.
+// of the pixel's samples instead of a binomial draw of them. The widened strands are
+// ribbons facing the ray (a camera ray meets one where it passes the centre line, so the
+// nearest kept strand is the one whose fibre is nearest) in a scene of their own, the
+// camera scene, with everything else in the scene; shadow and bounce rays, which the
+// widening is not for, see the fibres themselves, as without widening, and pay nothing
+// for it. A path leaves a widened strand from its fibre, not from the widened surface.
 #pragma once
 
 #include <embree3/rtcore.h>
@@ -65,6 +66,7 @@ using ObjectPigmentLookup =
 
 struct FurLayer {
     uint32_t object = 0;  // the scene object the fur grows on
+    // The fibres in the scene; the widened strands, when there are, in the camera scene.
     unsigned geom_id = RTC_INVALID_GEOMETRY_ID;
     uint32_t strand_offset = 0;  // global index of this layer's first strand
     bool round = true;
@@ -84,9 +86,10 @@ struct FurLayer {
     // cuticle tilt depends on) of segment `prim` at curve parameter u.
     void centre(unsigned prim, float u, Vec3f *c, Vec3f *tangent, float *radius) const;
 
-    // Widened strands (min_pixel_width): every control point's own radius, parallel to
-    // the radii in strands.points (which Embree intersects); empty when none was.
-    std::vector<float> true_radius;
+    // Widened strands (min_pixel_width): strands.points with every radius widened
+    // (what the camera's geometry intersects); empty when none was.
+    std::vector<float> wide_points;
+    bool widened() const { return !wide_points.empty(); }
     // The share of a hit at parameter u of segment `prim` that is fibre: own radius over
     // widened radius there (1 where the strand is not widened).
     float opacity(unsigned prim, float u) const;
@@ -99,6 +102,7 @@ class FurGeometry {
     // be grown (e.g. more strands than max_strands).
     FurGeometry(const SceneDesc &desc, EmbreeScene &scene,
                 const ObjectPigmentLookup &pigment);
+    ~FurGeometry();
     FurGeometry(const FurGeometry &) = delete;
     FurGeometry &operator=(const FurGeometry &) = delete;
 
@@ -110,8 +114,11 @@ class FurGeometry {
     }
     const std::vector<FurLayer> &layers() const { return m_layers; }
     size_t num_strands() const;
-    // Whether any strand was widened: camera rays then carry a stratified ξ.
-    bool widened() const { return m_widened_points > 0; }
+    // Whether any strand was widened: camera rays then carry a stratified ξ and trace
+    // camera_scene(): the scene's meshes and lights (same geometry IDs), each layer's
+    // widened strands under its fibres' ID, the fibres of the others.
+    bool widened() const { return m_camera_scene != nullptr; }
+    RTCScene camera_scene() const { return m_camera_scene; }
     uint64_t widened_points() const { return m_widened_points; }
     double grow_seconds() const { return m_grow_seconds; }      // strands (renderer/fur)
     double embree_seconds() const { return m_embree_seconds; }  // curves + BVH commit
@@ -119,6 +126,7 @@ class FurGeometry {
   private:
     std::vector<FurLayer> m_layers;
     std::vector<int> m_layer_of_geom;
+    RTCScene m_camera_scene = nullptr;
     double m_grow_seconds = 0, m_embree_seconds = 0;
     uint64_t m_widened_points = 0;
 };

@@ -30,7 +30,8 @@ struct StrandLdVertex {
 // The hit's fibre frame, its offset h across the fibre and the strand's BSDF.
 PathIntegrator::StrandVertex PathIntegrator::strand_vertex(const FurLayer &layer,
                                                            const RTCRayHit &rh,
-                                                           const PathState &path) const {
+                                                           const PathState &path,
+                                                           bool camera_hit) const {
     const Vec3f wo = -path.d;
     Vec3f p = path.o + path.d * rh.ray.tfar;
     const unsigned prim = rh.hit.primID;
@@ -45,14 +46,13 @@ PathIntegrator::StrandVertex PathIntegrator::strand_vertex(const FurLayer &layer
     Vec3f wo_perp = wo - x * dot(wo, x);
     if (length(wo_perp) <= 0) wo_perp = Frame::from_z(x).s;
     wo_perp = normalize(wo_perp);
-    // A widened strand (fur_geometry.h) is hit on its widened surface, the fibre lies
-    // inside: the hit is rebuilt on the fibre from the ray's closest approach to the
-    // centre line, as a ribbon's is. Its offset across is a fraction of the widened
-    // radius for camera rays (which keep the widened strand with probability
-    // own / widened radius), of the own radius for the others (which only keep hits
-    // within it); the path goes on from the fibre, not from the widened surface.
-    const float own = layer.opacity(prim, rh.hit.u);
-    if (own < 1) {
+    // A camera ray that keeps a widened strand (fur_geometry.h) hits its widened
+    // surface, the fibre lies inside: the hit is rebuilt on the fibre from the ray's
+    // closest approach to the centre line, as a ribbon's is, its offset across taken as a
+    // fraction of the widened radius (the camera keeps the widened strand with
+    // probability own / widened radius), and the path goes on from the fibre.
+    if (camera_hit && layer.widened()) {
+        const float wide = radius / std::max(layer.opacity(prim, rh.hit.u), 1e-6f);
         const Vec3f w = path.o - c;
         const float b = dot(path.d, x);
         const float den = 1 - b * b;  // path.d is a unit vector
@@ -60,11 +60,10 @@ PathIntegrator::StrandVertex PathIntegrator::strand_vertex(const FurLayer &layer
         const Vec3f q = w + path.d * t;  // the closest point, relative to c
         c = c + x * dot(x, q);
         Vec3f e = q - x * dot(x, q);
-        const float across = (rh.ray.id >> 31 ? 1.0f : own) * radius;
-        const float s = std::min(length(e) / std::max(across, 1e-30f), 1.0f);
+        const float s = std::min(length(e) / std::max(wide, 1e-30f), 1.0f);
         e = length(e) > 0 ? e * (s / length(e)) : e;
         n = e + wo_perp * std::sqrt(std::max(0.0f, 1 - s * s));
-        p = c + normalize(n) * (own * radius);
+        p = c + normalize(n) * radius;
     } else if (layer.round) {
         n = Vec3f{rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z};
         n = n - x * dot(n, x);

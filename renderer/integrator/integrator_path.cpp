@@ -56,7 +56,9 @@ PathIntegrator::PathIntegrator(const Scene &scene, const Camera &camera,
       m_camera(camera),
       m_filter(filter),
       m_rtc(scene.geometry().scene()),
-      m_packets(scene.geometry().device(), scene.geometry().scene()),
+      m_packets(scene.geometry().device(), scene.fur() && scene.fur()->widened()
+                                               ? scene.fur()->camera_scene()
+                                               : scene.geometry().scene()),
       m_width(width),
       m_height(height),
       m_max_depth(scene.desc().integrator.max_depth),
@@ -185,7 +187,7 @@ Rgb PathIntegrator::radiance(const CameraRay &cam, const RTCRayHit &first,
         bool scattered;
         if (const FurLayer *layer =
                 m_scene.fur() ? m_scene.fur()->layer_of(rh.hit.geomID) : nullptr) {
-            const StrandVertex v = strand_vertex(*layer, rh, path);
+            const StrandVertex v = strand_vertex(*layer, rh, path, depth == 0);
             if (depth == 0) set_first_hit(v, cam, fs, aovs);
             scattered =
                 depth < m_max_depth && scatter_at_strand(v, sampler, path, stats, instr);
@@ -222,8 +224,7 @@ template <typename Instr>
     RTCIntersectContext ctx;
     rtcInitIntersectContext(&ctx);
     ctx.flags = RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT;
-    set_ray(rh.ray, path.o, path.d, inf);
-    rh.ray.id = std::exchange(path.fur_skip, 0u);
+    set_ray(rh.ray, path.o, path.d, inf, std::exchange(path.fur_skip, 0u));
     rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
     rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
     rtcIntersect1(m_rtc, &ctx, &rh);

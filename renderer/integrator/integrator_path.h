@@ -71,8 +71,9 @@ class PathIntegrator {
     bool scatter(const Bsdf &bsdf, const SurfaceVertex &sv, const VertexSamples &u,
                  PathState &path, RenderStats &stats, const Instr &instr) const;
     // The same steps at a fur strand (integrator_fur.cpp).
+    // camera_hit: rh is the camera ray's, traced in the camera scene (FurGeometry).
     StrandVertex strand_vertex(const FurLayer &layer, const RTCRayHit &rh,
-                               const PathState &path) const;
+                               const PathState &path, bool camera_hit) const;
     void set_first_hit(const StrandVertex &v, const CameraRay &cam, FilmSample &fs,
                        FilmPointAovs *aovs) const;
     template <typename Instr>

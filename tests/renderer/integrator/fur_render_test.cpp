@@ -111,21 +111,24 @@ TEST(FurRender, MinPixelWidthWidensSubPixelStrandsToIt) {
     ASSERT_TRUE(wide.fur()->widened());
     const renderer::FurLayer &a = off.fur()->layers().at(0),
                              &b = wide.fur()->layers().at(0);
-    ASSERT_EQ(a.strands.points.size(), b.strands.points.size());
-    ASSERT_EQ(b.true_radius.size(), b.strands.points.size() / 4);
+    ASSERT_EQ(a.strands.points, b.strands.points);  // the fibres stay as they grew
+    ASSERT_EQ(b.wide_points.size(), b.strands.points.size());
+    EXPECT_TRUE(a.wide_points.empty());
+    EXPECT_EQ(off.fur()->camera_scene(), nullptr);
+    EXPECT_NE(wide.fur()->camera_scene(), nullptr);
     // Camera at (0, 0, 3.2), fov 42°, 32 rows: a two-pixel-wide strand's radius per
     // unit of distance.
     const float k = 2 * std::tan(21 * 3.14159265f / 180) / 32;
     size_t widened = 0;
-    for (size_t j = 0; j < b.true_radius.size(); ++j) {
-        const float *P = &b.strands.points[4 * j];
+    for (size_t j = 0; j < b.wide_points.size() / 4; ++j) {
+        const float *P = &b.wide_points[4 * j];
         const Vec3f e = Vec3f{P[0], P[1], P[2]} - Vec3f{0, 0, 3.2f};
-        const float own = a.strands.points[4 * j + 3];
-        ASSERT_EQ(b.true_radius[j], own);
+        const float own = b.strands.points[4 * j + 3];
+        ASSERT_EQ(P[0], b.strands.points[4 * j]);
         ASSERT_NEAR(P[3], std::max(own, k * length(e)), 1e-6f * length(e));
         widened += P[3] > own;
     }
-    EXPECT_GT(widened, b.true_radius.size() / 2);
+    EXPECT_GT(widened, b.wide_points.size() / 8);
     const int S = b.strands.segments;
     for (unsigned prim = 0; prim < 50; ++prim) {
         const size_t first =
@@ -134,8 +137,8 @@ TEST(FurRender, MinPixelWidthWidensSubPixelStrandsToIt) {
         auto blend = [&](auto r) {
             return (r(first) + 4 * r(first + 1) + r(first + 2)) / 6;
         };
-        const float own = blend([&](size_t j) { return b.true_radius[j]; });
-        const float w = blend([&](size_t j) { return b.strands.points[4 * j + 3]; });
+        const float own = blend([&](size_t j) { return b.strands.points[4 * j + 3]; });
+        const float w = blend([&](size_t j) { return b.wide_points[4 * j + 3]; });
         EXPECT_NEAR(b.opacity(prim, 0), own / w, 1e-5f);
         EXPECT_EQ(a.opacity(prim, 0), 1.0f);
     }
@@ -341,38 +344,57 @@ TEST(FurRender, AWidenedStrandCoversItsFibreAndEndsAtItsTip) {
     ASSERT_EQ(strands.size(), 1u);
     // Control points: a phantom, the root, ..., the tip, a phantom. The strand stands
     // straight up (+y) on the plane.
-    const float *mid = &strands.points[4 * size_t(1 + strands.segments / 2)];
-    const float *tip = &strands.points[4 * size_t(1 + strands.segments)];
-    const float wide = tip[3];
+    const size_t mid = 1 + size_t(strands.segments / 2),
+                 tip = 1 + size_t(strands.segments);
+    const Vec3f m{strands.points[4 * mid], strands.points[4 * mid + 1],
+                  strands.points[4 * mid + 2]};
+    const Vec3f t{strands.points[4 * tip], strands.points[4 * tip + 1],
+                  strands.points[4 * tip + 2]};
+    const float wide = layer.wide_points[4 * tip + 3];
     ASSERT_GT(wide, 1.5f * 0.004f);
-    // How many of 32 camera rays (one per stratum of ξ) along d that cross the strand's
-    // axis at `x` keep the strand.
+    // The geometry a ray along d with this id, crossing the strand's axis at x, hits:
+    // camera rays (fur_ray_id) in the camera scene, the others in the scene.
+    auto hit = [&](Vec3f x, Vec3f d, unsigned id) {
+        RTCRayHit rh;
+        RTCIntersectContext ctx;
+        rtcInitIntersectContext(&ctx);
+        renderer::set_ray(rh.ray, x - d * (4 * wide), d, 10, id);
+        rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+        rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+        rtcIntersect1(id >> 31 ? s.fur()->camera_scene() : s.geometry().scene(), &ctx,
+                      &rh);
+        return rh.hit.geomID;
+    };
+    // How many of 32 camera rays (one per stratum of ξ) keep the widened strand.
     auto kept = [&](Vec3f x, Vec3f d) {
         int n = 0;
-        for (int q = 0; q < 32; ++q) {
-            RTCRayHit rh;
-            RTCIntersectContext ctx;
-            rtcInitIntersectContext(&ctx);
-            renderer::set_ray(rh.ray, x - d * (4 * wide), d, 10,
-                              renderer::fur_ray_id(0, (q + 0.5f) / 32));
-            rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-            rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-            rtcIntersect1(s.geometry().scene(), &ctx, &rh);
-            n += rh.hit.geomID == layer.geom_id;
-        }
+        for (int q = 0; q < 32; ++q)
+            n += hit(x, d, renderer::fur_ray_id(0, (q + 0.5f) / 32)) == layer.geom_id;
         return n;
     };
-    const Vec3f m{mid[0], mid[1], mid[2]}, t{tip[0], tip[1], tip[2]}, up{0, 1, 0};
-    const float alpha = 0.004f / mid[3];
+    const Vec3f up{0, 1, 0}, across{1, 0, 0}, beside{0, 0, 1};
+    const float alpha = 0.004f / layer.wide_points[4 * mid + 3];
     ASSERT_GT(alpha, 0.2f);
-    EXPECT_NEAR(kept(m, {1, 0, 0}) / 32.0, alpha, 1.0 / 32 + 1e-6) << "opacity " << alpha;
+    EXPECT_NEAR(kept(m, across) / 32.0, alpha, 1.0 / 32 + 1e-6) << "opacity " << alpha;
     // Looking down at 45° onto the tip: a ray crossing the axis 0.3 widened radii past
     // the tip enters the widened tube through its end; one crossing it as far before
     // the tip crosses the fibre.
     const Vec3f down = normalize(Vec3f{1, -1, 0});
     EXPECT_GT(kept(t - up * (0.3f * wide), down), 0);
     EXPECT_EQ(kept(t + up * (0.3f * wide), down), 0);
-    EXPECT_EQ(kept(t + up * (0.5f * wide), {1, 0, 0}), 0);
+    EXPECT_EQ(kept(t + up * (0.5f * wide), across), 0);
+    // Every other ray sees the fibre alone: it passes half a widened radius beside the
+    // axis, hits the fibre through it.
+    EXPECT_EQ(hit(m + beside * (0.5f * wide), across, 0), RTC_INVALID_GEOMETRY_ID);
+    EXPECT_EQ(hit(m, across, 0), layer.geom_id);
+    // The camera scene holds the skin too: straight down onto the plane's corner
+    // farthest from the root (at least 0.011 from it, more than the widened radius).
+    Vec3f corner{0.008f, 0, 0.008f};
+    if (m.x > 0) corner.x = -corner.x;
+    if (m.z > 0) corner.z = -corner.z;
+    const unsigned skin = hit(corner, {0, -1, 0}, renderer::fur_ray_id(0, 0.5f));
+    EXPECT_NE(skin, RTC_INVALID_GEOMETRY_ID);
+    EXPECT_NE(skin, layer.geom_id);
 }
 
 // The angle (degrees) between a strand's root direction, projected onto the skin's
