@@ -66,8 +66,8 @@ struct FurParams {
     enum class Curve { round, flat } curve = Curve::round;
     // Strands narrower than this many pixels, seen from the scene's camera, are widened
     // to it with their opacity scaled to keep their coverage (renderer/geometry/
-    // fur_geometry.h); 0 (the default: the converged image is still a few per cent off,
-    // docs/guide/fur.md) turns it off.
+    // fur_geometry.h); 0 (the default: short dense fur widened many times comes out too
+    // dark, docs/guide/fur.md) turns it off.
     float min_pixel_width = 0;
 
     // --- A groom: values by cell type and by body region (renderer/fur/strand_groom.h)
