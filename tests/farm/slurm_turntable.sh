@@ -175,7 +175,29 @@ start_slurm() {
     echo "cluster up: $(sinfo -h -o '%P %a %D %T %N')"
 }
 
-gone() { ! kill -0 "$1" 2>/dev/null; }
+# An exited process its parent has not reaped yet (a zombie, state Z) is gone too: a
+# cancelled task's shell may die before its pelage, which is then reparented to PID 1,
+# and a container's PID 1 need not reap it.
+gone() {
+    local stat
+    kill -0 "$1" 2>/dev/null || return 0
+    read -r stat 2>/dev/null <"/proc/$1/stat" || return 0
+    stat=${stat##*) } # the fields after "pid (comm) "
+    [ "${stat%% *}" = Z ]
+}
+
+stopped_or_gone() { [[ "$(state_of "$1")" == [TZ] || "$(state_of "$1")" == gone ]]; }
+
+# A process's state letter (R, S, T, Z, ...), or "gone".
+state_of() {
+    local stat
+    read -r stat 2>/dev/null <"/proc/$1/stat" || {
+        echo gone
+        return 0
+    }
+    stat=${stat##*) }
+    echo "${stat%% *}"
+}
 
 # stop PID: TERM, then KILL after 10 s.
 stop() {
@@ -296,8 +318,12 @@ stage_turntable() {
         [ -n "$pid" ] || continue
         sleep 0.5 # past loading the scene (about 0.3 s), into the frame's samples
         scontrol suspend "${job}_$k" || continue # it has just finished
+        # Cancelled only once SIGSTOP has reached it: a cancel that overtakes the
+        # suspension left pelage stopped for good (state T, 1 run in 4 here).
+        wait_for 10 stopped_or_gone "$pid" || fail "scontrol suspend did not stop pelage"
         scancel "${job}_$k"
-        wait_for 30 gone "$pid" || fail "scancel left pelage running"
+        wait_for 30 gone "$pid" ||
+            fail "scancel left pelage running (pid $pid, state $(state_of "$pid"))"
         [ -f "$(frame "$OUT" $k)" ] && continue # finished before the signal came
         killed=$k
         break
