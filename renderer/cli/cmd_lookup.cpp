@@ -3,7 +3,9 @@
 // MosaicPattern and search). Faces are triangles of the mesh as pelage loads it: the one
 // the cells were grown on, or another of its shape (shader/clonal_mosaic/
 // surface_transfer.h). --stats-json keys: cells, mesh, points, queries, found,
-// mean_distance, max_distance, seconds_load, seconds_lookup.
+// mean_distance, max_distance, seconds_load, seconds_lookup, and the closest-cell index's
+// build: index.{seconds, bytes, rounds, radius_in_spacings, windows, windows_settled,
+// window_bytes}.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -85,15 +87,26 @@ int run(const LookupOptions &o) {
         sum += c.f1;
         max = std::max(max, double(c.f1));
     }
-    o.stats_json.write({{"cells", o.cells},
-                        {"mesh", o.mesh},
-                        {"points", o.points},
-                        {"queries", queries.size()},
-                        {"found", found},
-                        {"mean_distance", found ? sum / double(found) : 0.0},
-                        {"max_distance", max},
-                        {"seconds_load", seconds_load},
-                        {"seconds_lookup", lookup.seconds()}});
+    const shader::mosaic::ClosestCellStats &ix = pattern.index().stats();
+    o.stats_json.write(
+        {{"cells", o.cells},
+         {"mesh", o.mesh},
+         {"points", o.points},
+         {"queries", queries.size()},
+         {"found", found},
+         {"mean_distance", found ? sum / double(found) : 0.0},
+         {"max_distance", max},
+         {"seconds_load", seconds_load},
+         {"seconds_lookup", lookup.seconds()},
+         {"index",
+          {{"seconds", ix.build_seconds},
+           {"bytes", ix.bytes},
+           {"rounds", ix.geodesic_rounds},
+           {"radius_in_spacings",
+            ix.geodesic_radius / std::max(pattern.index().spacing(), 1e-300)},
+           {"windows", ix.geodesic_windows},
+           {"windows_settled", ix.geodesic_work},
+           {"window_bytes", ix.geodesic_bytes}}}});
     return 0;
 }
 

@@ -124,7 +124,8 @@ struct ClosestCellStats {
     double geodesic_radius = 0;
     int geodesic_rounds = 0;
     size_t geodesic_windows = 0, geodesic_bytes = 0;
-    size_t bent_entries = 0;  // list entries of paths bent round a pseudo-source
+    size_t geodesic_work = 0;  // windows settled over all rounds, kept or not
+    size_t bent_entries = 0;   // list entries of paths bent round a pseudo-source
 };
 
 class ClosestCellIndex {
@@ -211,6 +212,8 @@ class ClosestCellIndex {
     float distance_to_cell(sim::TriId t, Vec2f q, uint32_t cell) const;
 
     const ClosestCellStats &stats() const { return m_stats; }
+    // The mean cell spacing, sqrt(area / cells): the unit of the reach.
+    double spacing() const { return m_spacing; }
     const CellTable &cells() const { return *m_cells; }
 
     // A list entry whose cell's distance over the region is not one straight line

@@ -4,10 +4,13 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <atomic>
+#include <bit>
 #include <chrono>
 #include <cmath>
 #include <numeric>
 #include <stdexcept>
+#include <unordered_map>
 
 #include "shader/mosaic/closest_cell.h"
 #include "shader/mosaic/subdivision.h"
@@ -18,6 +21,7 @@ namespace {
 
 constexpr double inf = std::numeric_limits<double>::infinity();
 constexpr float inf_f = std::numeric_limits<float>::infinity();
+constexpr uint32_t invalid_component = 0xffffffffu;
 
 // A cell as a triangle's list sees it: its position in the triangle's frame.
 struct Mapped {
@@ -116,6 +120,19 @@ bool representative(const sim::SourcedWindow *begin, const sim::SourcedWindow *e
     const double len = length(away);
     sim::Vec2d p =
         win.source + (len > 0 ? away * (win.sigma / len) : sim::Vec2d{win.sigma, 0});
+    // Gauss–Newton steps, each halved until it lowers the sum of squares: with samples
+    // along a line (a region's corner that few of the cell's wedges reach) the plain
+    // step can run off along the line, to a position metres from a centimetre-sized
+    // region whose reach then spans the surface.
+    auto misfit = [&](sim::Vec2d x) {
+        double sum = 0;
+        for (int i = 0; i < m; ++i) {
+            const double r = length(q[i] - x) - d[i];
+            sum += r * r;
+        }
+        return sum;
+    };
+    double cost = misfit(p);
     for (int iteration = 0; iteration < 8; ++iteration) {
         // Normal equations of min Σ (|q_i − p| − d_i)² for the step.
         double a11 = 0, a12 = 0, a22 = 0, g1 = 0, g2 = 0;
@@ -133,8 +150,15 @@ bool representative(const sim::SourcedWindow *begin, const sim::SourcedWindow *e
         }
         const double det = a11 * a22 - a12 * a12;
         if (!(std::abs(det) > 1e-12 * (a11 + a22) * (a11 + a22))) break;
-        const sim::Vec2d step{-(a22 * g1 - a12 * g2) / det, -(a11 * g2 - a12 * g1) / det};
+        sim::Vec2d step{-(a22 * g1 - a12 * g2) / det, -(a11 * g2 - a12 * g1) / det};
+        double next = misfit(p + step);
+        for (int halving = 0; halving < 40 && !(next <= cost); ++halving) {
+            step = step * 0.5;
+            next = misfit(p + step);
+        }
+        if (!(next <= cost)) break;
         p += step;
+        cost = next;
         if (length(step) <= 1e-12 * (len + win.sigma)) break;
     }
     // Moved away from the region until no sample's fitted distance falls short of the
@@ -171,6 +195,132 @@ bool representative(const sim::SourcedWindow *begin, const sim::SourcedWindow *e
     return true;
 }
 
+// The surface's connected components (through the edges paths cross): no path leaves
+// one, so no reach on a triangle exceeds its component's size.
+struct Components {
+    std::vector<uint32_t> of;  // per triangle
+    // Per component: the sum of its triangles' diameters (a shortest path crosses each
+    // face at most once, so it is never longer) and its cells.
+    std::vector<double> size;
+    std::vector<uint32_t> cells;
+    // Per component, its cells' indices (ascending).
+    std::vector<uint32_t> cell_row, cell_list;
+};
+
+Components components(const sim::GeodesicMesh &mesh, const CellTable &cells) {
+    const sim::Crps &crps = mesh.crps();
+    const size_t nt = crps.num_triangles();
+    Components c;
+    c.of.assign(nt, invalid_component);
+    std::vector<sim::TriId> stack;
+    for (sim::TriId seed = 0; seed < nt; ++seed) {
+        if (c.of[seed] != invalid_component) continue;
+        const uint32_t id = static_cast<uint32_t>(c.size.size());
+        c.size.push_back(0);
+        c.cells.push_back(0);
+        c.of[seed] = id;
+        stack.assign(1, seed);
+        while (!stack.empty()) {
+            const sim::TriId t = stack.back();
+            stack.pop_back();
+            c.size[id] += 2 * crps.frame(t).bound_radius;
+            c.cells[id] += cells.row[t + 1] - cells.row[t];
+            for (int k = 0; k < 3; ++k) {
+                const sim::TriId u = mesh.link(t, k).across;
+                if (u != sim::invalid_id && c.of[u] == invalid_component) {
+                    c.of[u] = id;
+                    stack.push_back(u);
+                }
+            }
+        }
+    }
+    c.cell_row.assign(c.size.size() + 1, 0);
+    for (size_t i = 0; i < c.size.size(); ++i)
+        c.cell_row[i + 1] = c.cell_row[i] + c.cells[i];
+    c.cell_list.resize(cells.size());
+    std::vector<uint32_t> fill(c.cell_row.begin(), c.cell_row.end() - 1);
+    for (sim::TriId t = 0; t < nt; ++t)
+        for (uint32_t k = cells.row[t]; k < cells.row[t + 1]; ++k)
+            c.cell_list[fill[c.of[t]]++] = k;
+    return c;
+}
+
+// The radius each source must propagate to for the pending triangles' windows to be
+// complete within their radii: the largest radius of a pending triangle of its component
+// whose bounding sphere it lies within that radius of (3D distance never exceeds the
+// geodesic one). 0 for the others: they do not propagate. Sources are found through a
+// grid of cells `cell` wide, or by scanning the component when that visits fewer.
+void reaching_sources(const sim::Crps &crps, const Components &comps,
+                      std::span<const sim::SurfacePoint> sources,
+                      std::span<const uint8_t> pending, std::span<const double> radius,
+                      double cell, std::vector<double> &source_radius) {
+    const size_t nt = crps.num_triangles();
+    std::vector<sim::Vec3d> at(sources.size());
+    tbb::parallel_for(size_t(0), sources.size(), [&](size_t i) {
+        at[i] = crps.to_3d(sources[i].tri, sources[i].p);
+    });
+    auto key = [cell](sim::Vec3d p) {
+        return std::array<int64_t, 3>{int64_t(std::floor(p.x / cell)),
+                                      int64_t(std::floor(p.y / cell)),
+                                      int64_t(std::floor(p.z / cell))};
+    };
+    auto pack = [](const std::array<int64_t, 3> &k) {
+        return (uint64_t(k[0] & 0x1fffff) << 42) | (uint64_t(k[1] & 0x1fffff) << 21) |
+               uint64_t(k[2] & 0x1fffff);
+    };
+    // Sources sorted by grid cell; each occupied cell's range.
+    std::vector<std::pair<uint64_t, uint32_t>> by_cell(sources.size());
+    for (size_t i = 0; i < sources.size(); ++i)
+        by_cell[i] = {pack(key(at[i])), static_cast<uint32_t>(i)};
+    std::sort(by_cell.begin(), by_cell.end());
+    std::unordered_map<uint64_t, std::pair<uint32_t, uint32_t>> range;
+    for (size_t i = 0; i < by_cell.size();) {
+        size_t j = i;
+        while (j < by_cell.size() && by_cell[j].first == by_cell[i].first) ++j;
+        range[by_cell[i].first] = {uint32_t(i), uint32_t(j)};
+        i = j;
+    }
+    // Non-negative doubles order as their bits: an atomic maximum without a lock.
+    std::vector<std::atomic<uint64_t>> best(sources.size());
+    for (auto &b : best) b.store(0, std::memory_order_relaxed);
+    auto raise = [&](uint32_t i, double r) {
+        const uint64_t bits = std::bit_cast<uint64_t>(r);
+        uint64_t cur = best[i].load(std::memory_order_relaxed);
+        while (cur < bits && !best[i].compare_exchange_weak(cur, bits)) {
+        }
+    };
+    tbb::parallel_for(size_t(0), nt, [&](size_t t) {
+        if (!pending[t]) return;
+        const uint32_t comp = comps.of[t];
+        const sim::Vec3d c = crps.to_3d(static_cast<sim::TriId>(t), {0, 0});
+        const double r = radius[t], reach = r + crps.frame(t).bound_radius;
+        auto consider = [&](uint32_t i) {
+            if (comps.of[sources[i].tri] == comp && length(at[i] - c) <= reach)
+                raise(i, r);
+        };
+        const auto lo = key(c - sim::Vec3d{reach, reach, reach});
+        const auto hi = key(c + sim::Vec3d{reach, reach, reach});
+        const double boxes = double(hi[0] - lo[0] + 1) * double(hi[1] - lo[1] + 1) *
+                             double(hi[2] - lo[2] + 1);
+        if (boxes >= comps.cells[comp]) {
+            for (uint32_t k = comps.cell_row[comp]; k < comps.cell_row[comp + 1]; ++k)
+                consider(comps.cell_list[k]);
+            return;
+        }
+        for (int64_t x = lo[0]; x <= hi[0]; ++x)
+            for (int64_t y = lo[1]; y <= hi[1]; ++y)
+                for (int64_t z = lo[2]; z <= hi[2]; ++z) {
+                    const auto it = range.find(pack({x, y, z}));
+                    if (it == range.end()) continue;
+                    for (uint32_t k = it->second.first; k < it->second.second; ++k)
+                        consider(by_cell[k].second);
+                }
+    });
+    source_radius.resize(sources.size());
+    for (size_t i = 0; i < sources.size(); ++i)
+        source_radius[i] = std::bit_cast<double>(best[i].load(std::memory_order_relaxed));
+}
+
 }  // namespace
 
 // Where build_triangle() finds a triangle's cells: the geodesic windows of every cell
@@ -178,7 +328,10 @@ bool representative(const sim::SourcedWindow *begin, const sim::SourcedWindow *e
 // state.
 struct ClosestCellIndex::Candidates {
     const sim::WindowsByFace *windows = nullptr;
-    double radius = 0;                 // the windows' propagation radius
+    // Per triangle: the radius within which its windows are complete (every cell that
+    // reaches it by a path of at most that length is there), and the most any reach on
+    // it can need (its component's size).
+    std::vector<double> radius, max_radius;
     std::vector<sim::TriId> cell_tri;  // each cell's triangle
     sim::UnfoldPaths paths = sim::UnfoldPaths::edges_only;
     struct Scratch {
@@ -230,7 +383,8 @@ ClosestCellIndex::ClosestCellIndex(const sim::Crps &crps, const CellTable &cells
     } else {
         // Every cell's windows within a radius; triangles whose lists need a longer
         // reach (sparse cells, fewer than three in range) are built again from longer
-        // windows of the cells near them, until the radius covers the whole surface.
+        // windows of the cells that can reach them, each triangle's radius growing on
+        // its own up to the size of its component (no path leaves a component).
         const sim::GeodesicMesh geodesic_mesh(crps);
         std::vector<sim::SurfacePoint> sources(cells.size());
         candidates.cell_tri.resize(cells.size());
@@ -239,38 +393,53 @@ ClosestCellIndex::ClosestCellIndex(const sim::Crps &crps, const CellTable &cells
                 sources[k] = {t, {cells.x[k], cells.z[k]}};
                 candidates.cell_tri[k] = t;
             }
+        const Components comps = components(geodesic_mesh, cells);
+        // Where a component holds fewer than three cells, its triangles' lists hold all
+        // of them: its whole size at once.
+        auto first_radius = [&](uint32_t comp) {
+            return comps.cells[comp] < 3 ? comps.size[comp] : m_initial_radius;
+        };
+        candidates.radius.resize(nt);
+        candidates.max_radius.resize(nt);
+        for (size_t t = 0; t < nt; ++t) {
+            candidates.max_radius[t] = comps.size[comps.of[t]];
+            candidates.radius[t] = first_radius(comps.of[t]);
+        }
         sim::WindowsByFace windows;
         candidates.windows = &windows;
         std::vector<uint8_t> pending(nt, 1);
         std::vector<double> needed(nt, 0);
-        double radius = m_initial_radius;
+        std::vector<double> source_radius(cells.size());
+        for (size_t i = 0; i < cells.size(); ++i)
+            source_radius[i] = first_radius(comps.of[sources[i].tri]);
         for (int round = 0;; ++round) {
-            windows.build(geodesic_mesh, sources, radius,
+            windows.build(geodesic_mesh, sources, source_radius,
                           round == 0 ? std::span<const uint8_t>() : pending);
-            candidates.radius = radius;
             m_stats.geodesic_windows = std::max(m_stats.geodesic_windows, windows.size());
             m_stats.geodesic_bytes = std::max(m_stats.geodesic_bytes, windows.bytes());
+            m_stats.geodesic_work += windows.settled();
             tbb::parallel_for(tbb::blocked_range<size_t>(0, nt, 16), [&](const auto &r) {
                 for (size_t t = r.begin(); t != r.end(); ++t)
                     if (pending[t])
                         needed[t] = build_triangle(crps, static_cast<sim::TriId>(t),
                                                    candidates, built[t]);
             });
-            double want = 0;
+            m_stats.geodesic_rounds = round + 1;
             size_t short_of = 0;
             for (size_t t = 0; t < nt; ++t) {
-                pending[t] = pending[t] && needed[t] > radius;
-                if (pending[t]) {
-                    ++short_of;
-                    want = std::max(want, needed[t]);
-                }
+                const double have = candidates.radius[t], most = candidates.max_radius[t];
+                pending[t] = pending[t] && needed[t] > have && have < most;
+                m_stats.geodesic_radius = std::max(m_stats.geodesic_radius, have);
+                if (!pending[t]) continue;
+                ++short_of;
+                candidates.radius[t] = std::isfinite(needed[t])
+                                           ? std::min(needed[t] * 1.0001 + 1e-12, most)
+                                           : std::min(2 * have, most);
             }
-            m_stats.geodesic_rounds = round + 1;
-            if (short_of == 0 || radius >= m_max_radius) break;
-            radius = std::isfinite(want) ? std::min(want * 1.0001 + 1e-12, m_max_radius)
-                                         : std::min(2 * radius, m_max_radius);
+            if (short_of == 0) break;
+            reaching_sources(crps, comps, sources, pending, candidates.radius,
+                             2 * m_initial_radius, source_radius);
         }
-        m_stats.geodesic_radius = radius;
     }
 
     // Fine regions scan fewer cells, coarse ones need less memory: fine while the whole
@@ -503,7 +672,9 @@ double ClosestCellIndex::build_triangle(const sim::Crps &crps, sim::TriId t,
             }
         // Positions beyond the windows' radius are missing: build again, farther
         // (unless the radius already spans the surface: then this is all there is).
-        if (needed > candidates.radius && candidates.radius < m_max_radius) return needed;
+        if (needed > candidates.radius[t] &&
+            candidates.radius[t] < candidates.max_radius[t])
+            return needed;
     } else {
         // Unfolding: grow t's unfolding until it holds, for every S, all cells within
         // R_S of S. Every cell of the unfolding carried into t's frame once (Teo's

@@ -8,36 +8,21 @@
 namespace pelage::sim {
 
 void WindowsByFace::build(const GeodesicMesh &mesh, std::span<const SurfacePoint> sources,
-                          double radius, std::span<const uint8_t> faces) {
-    const Crps &crps = mesh.crps();
-    const size_t nt = crps.num_triangles();
-    const bool filtered = !faces.empty();
-    // Which sources can reach a kept triangle: 3D centroid distance within radius plus
-    // the triangle's bounding radius.
-    std::vector<uint8_t> active(sources.size(), 1);
-    if (filtered) {
-        // A coarse grid of the kept triangles' bounding spheres.
-        std::vector<std::pair<Vec3d, double>> spheres;
-        for (TriId t = 0; t < nt; ++t)
-            if (faces[t])
-                spheres.push_back({crps.to_3d(t, {0, 0}), crps.frame(t).bound_radius});
-        tbb::parallel_for(size_t(0), sources.size(), [&](size_t i) {
-            const Vec3d p = crps.to_3d(sources[i].tri, sources[i].p);
-            bool near = false;
-            for (const auto &[c, r] : spheres)
-                if (length(p - c) <= radius + r) {
-                    near = true;
-                    break;
-                }
-            active[i] = near;
-        });
-    }
+                          double radius) {
+    const std::vector<double> radii(sources.size(), radius);
+    build(mesh, sources, radii);
+}
 
+void WindowsByFace::build(const GeodesicMesh &mesh, std::span<const SurfacePoint> sources,
+                          std::span<const double> radii, std::span<const uint8_t> faces) {
+    const size_t nt = mesh.crps().num_triangles();
+    const bool filtered = !faces.empty();
     // Per source, its windows (kept ones only); then counted and placed by triangle.
     std::vector<std::vector<GeodesicWindow>> per_source(sources.size());
     struct Scratch {
         std::unique_ptr<WindowPropagation> prop;
         std::vector<GeodesicWindow> out;
+        size_t settled = 0;
     };
     tbb::enumerable_thread_specific<Scratch> scratch;
     tbb::parallel_for(tbb::blocked_range<size_t>(0, sources.size(), 16),
@@ -45,14 +30,17 @@ void WindowsByFace::build(const GeodesicMesh &mesh, std::span<const SurfacePoint
                           Scratch &s = scratch.local();
                           if (!s.prop) s.prop = std::make_unique<WindowPropagation>(mesh);
                           for (size_t i = range.begin(); i != range.end(); ++i) {
-                              if (!active[i]) continue;
-                              s.prop->run(sources[i].tri, sources[i].p, radius, s.out);
+                              if (!(radii[i] > 0)) continue;
+                              s.prop->run(sources[i].tri, sources[i].p, radii[i], s.out);
+                              s.settled += s.out.size();
                               auto &mine = per_source[i];
                               for (const GeodesicWindow &w : s.out)
                                   if (!filtered || faces[w.face]) mine.push_back(w);
                               mine.shrink_to_fit();
                           }
                       });
+    m_settled = 0;
+    for (const Scratch &s : scratch) m_settled += s.settled;
     m_row.assign(nt + 1, 0);
     for (const auto &ws : per_source)
         for (const GeodesicWindow &w : ws) ++m_row[w.face + 1];

@@ -20,16 +20,20 @@ struct SourcedWindow {
 
 class WindowsByFace {
   public:
-    // Windows of every source within `radius`. When `faces` is non-empty, only windows
-    // on triangles t with faces[t] != 0 are kept, and only sources within `radius` in 3D
-    // of such a triangle propagate (3D distance never exceeds the geodesic one).
+    // Windows of every source within `radius`.
     void build(const GeodesicMesh &mesh, std::span<const SurfacePoint> sources,
-               double radius, std::span<const uint8_t> faces = {});
+               double radius);
+    // Windows of source i within radii[i] (none when radii[i] <= 0). When `faces` is
+    // non-empty, only windows on triangles t with faces[t] != 0 are kept.
+    void build(const GeodesicMesh &mesh, std::span<const SurfacePoint> sources,
+               std::span<const double> radii, std::span<const uint8_t> faces = {});
 
     std::span<const SourcedWindow> of(TriId t) const {
         return {m_windows.data() + m_row[t], m_row[t + 1] - m_row[t]};
     }
     size_t size() const { return m_windows.size(); }
+    // Windows settled by the last build's propagations, kept or not: its work.
+    size_t settled() const { return m_settled; }
     size_t bytes() const {
         return m_windows.size() * sizeof(SourcedWindow) + m_row.size() * sizeof(uint32_t);
     }
@@ -47,6 +51,7 @@ class WindowsByFace {
   private:
     std::vector<uint32_t> m_row;
     std::vector<SourcedWindow> m_windows;
+    size_t m_settled = 0;
 };
 
 }  // namespace pelage::sim

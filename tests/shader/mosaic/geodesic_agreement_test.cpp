@@ -14,6 +14,7 @@
 #include "sim/crps/surface.h"
 #include "sim/crps/surface_sampling.h"
 #include "sim/geodesic/window_propagation.h"
+#include "sim/mesh/procedural_mesh.h"
 #include "tests/oracle/exact_geodesic_oracle.h"
 #include "tests/test_paths.h"
 
@@ -154,6 +155,98 @@ TEST(GeodesicAgreementPresets, SimulatedPatternsOnTheSampleAnimals) {
         std::printf("%s on %s: same cell %.4f, same colour %.4f\n", preset, mesh,
                     same / n, same_colour / n);
     }
+}
+
+// A shipped preset on the sample cow, with the seed whose index once grew past 22 GB:
+// a least-squares position of a path bent round a vertex ran off metres from its
+// centimetre-sized region, and the reach it implied sent every cell's windows across the
+// whole cow. The reach stays within a few cell spacings.
+TEST(GeodesicAgreementPresets, TheIndexReachesAFewCellSpacingsOnAShippedPreset) {
+    test::TempDir tmp;
+    const std::string cells_path = tmp.file("tippelskirchi.cells");
+    ASSERT_EQ(
+        test::run_pelage("sim --mesh " + test::sample_mesh("cow.off") +
+                         " --preset giraffe-tippelskirchi --seed 2 -q -o " + cells_path),
+        0);
+    const MosaicPattern pattern(cells_path, test::sample_mesh("cow.off"));
+    const ClosestCellStats &stats = pattern.index().stats();
+    EXPECT_LE(stats.geodesic_radius, 10 * pattern.index().spacing());
+    EXPECT_LT(double(stats.geodesic_work) / double(pattern.cells().size()), 1000)
+        << "windows settled per cell";
+}
+
+// A surface of separate parts, as real files are (an animal, its eyes, props): a body
+// with many cells, an eye with two, a horn with none, each a fraction of a cell spacing
+// from the body in space. No path leaves a part, so each part's points find the
+// geodesically nearest of that part's cells, as the oracle says, and the horn's find
+// none; and the parts without three cells do not send the body's cells across the
+// whole surface looking for more.
+TEST(GeodesicAgreementParts, EachPartFindsItsOwnNearestCell) {
+    sim::TriangleMesh mesh;
+    auto add = [&mesh](const sim::TriangleMesh &part, sim::Vec3d offset) {
+        const auto base = static_cast<sim::VertId>(mesh.positions.size());
+        for (const sim::Vec3d &p : part.positions) mesh.positions.push_back(p + offset);
+        for (const auto &t : part.triangles)
+            mesh.triangles.push_back({t[0] + base, t[1] + base, t[2] + base});
+    };
+    add(sim::make_icosphere(3, 1.0), {0, 0, 0});
+    add(sim::make_icosphere(2, 0.1), {1.11, 0, 0});  // the eye
+    add(sim::make_icosphere(2, 0.1), {0, 1.11, 0});  // the horn
+    const sim::Surface s = sim::build_surface(mesh);
+    enum Part { body, eye, horn };
+    auto part_of = [&s](sim::TriId t) {
+        const sim::Vec3d c = s.crps.to_3d(t, {0, 0});
+        return length(c) < 1.005 ? body : (c.x > 0.5 ? eye : horn);
+    };
+    std::vector<CellOnSurface> placed;
+    for (const auto &q : sim::sample_surface_uniform(s.crps, 3000, 3))
+        if (part_of(q.tri) == body)
+            placed.push_back({q.tri, q.p.x, q.p.y, uint32_t(placed.size()), 0});
+    const size_t on_body = placed.size();
+    for (const auto &q : sim::sample_surface_uniform(s.crps, 20000, 4))
+        if (part_of(q.tri) == eye && placed.size() < on_body + 2)
+            placed.push_back({q.tri, q.p.x, q.p.y, uint32_t(placed.size()), 1});
+    ASSERT_EQ(placed.size(), on_body + 2);
+    const CellTable cells = make_cell_table(s.crps.num_triangles(), placed);
+    const ClosestCellIndex index(s.crps, cells);
+
+    std::vector<test::SurfaceLocation> sources;
+    for (sim::TriId t = 0; t < cells.num_triangles(); ++t)
+        for (uint32_t k = cells.row[t]; k < cells.row[t + 1]; ++k)
+            sources.push_back(location(s.crps, t, {cells.x[k], cells.z[k]}));
+    const test::ExactGeodesicOracle oracle(s.mesh);
+    // Every point that falls on the small parts, and the first 3 000 on the body.
+    std::vector<sim::SurfacePointSample> queries;
+    size_t body_queries = 0;
+    for (const auto &q : sim::sample_surface_uniform(s.crps, 40000, 5))
+        if (part_of(q.tri) != body || body_queries++ < 3000) queries.push_back(q);
+    std::vector<test::SurfaceLocation> at;
+    for (const auto &q : queries) at.push_back(location(s.crps, q.tri, q.p));
+    const auto exact = oracle.nearest(sources, at);
+    size_t asked[3] = {0, 0, 0}, same[3] = {0, 0, 0};
+    for (size_t i = 0; i < queries.size(); ++i) {
+        const auto &q = queries[i];
+        const Part part = part_of(q.tri);
+        const ClosestCell c =
+            index.find_nearest(q.tri, Vec2f{float(q.p.x), float(q.p.y)});
+        ++asked[part];
+        if (part == horn)
+            same[part] += c.index == ClosestCell::none;
+        else
+            same[part] += c.index == exact[i].source;
+    }
+    ASSERT_GT(asked[eye], 200u);
+    ASSERT_GT(asked[horn], 200u);
+    EXPECT_GE(same[body], 0.995 * asked[body]);
+    EXPECT_GE(same[eye], 0.99 * asked[eye]);
+    EXPECT_EQ(same[horn], asked[horn]);
+    // Every cell's windows over the whole body would settle over 10^4 windows per cell;
+    // its own neighbourhood takes a few hundred.
+    const double work = double(index.stats().geodesic_work) / double(cells.size());
+    EXPECT_LT(work, 1000) << "windows settled per cell";
+    std::printf(
+        "body %zu/%zu, eye %zu/%zu, horn %zu/%zu; %.0f windows settled per cell\n",
+        same[body], asked[body], same[eye], asked[eye], same[horn], asked[horn], work);
 }
 
 INSTANTIATE_TEST_SUITE_P(SampleMeshes, GeodesicAgreement,
