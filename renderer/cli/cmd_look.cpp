@@ -3,10 +3,13 @@
 // file next to the output and renders it, so the user continues from that scene.
 #include <fmt/core.h>
 
+#include <cmath>
+#include <cstdio>
 #include <filesystem>
 
 #include "renderer/camera/auto_frame.h"
 #include "renderer/cli/common.h"
+#include "renderer/cli/look_objects.h"
 #include "renderer/cli/look_scene.h"
 #include "renderer/cli/render_plan.h"
 #include "sim/core/atomic_file.h"
@@ -81,11 +84,24 @@ int run(const LookOptions &o) {
     const bool preset_field =
         sim::load_preset(o.preset, data_path("scenes/presets"))
             .params.anisotropy_field.kind != sim::FieldSpec::Kind::none;
-    const sim::TriangleMesh mesh = sim::load_mesh(o.mesh);
+    // A file of several objects: the pattern goes on the animal, the rest as they come.
+    LookObjects objects;
+    if (!procedural && spec.object.empty()) {
+        const double up_d[3] = {up.x, up.y, up.z};
+        objects = choose_look_objects(spec.path, up_d);
+    }
+    const std::string grown_on =
+        objects.animal.empty() ? o.mesh : spec.path + "#" + objects.animal;
+    const sim::TriangleMesh mesh = sim::load_mesh(grown_on);
+    // The triangles' corners: an object's mesh may keep every vertex of its file.
+    std::vector<char> used(mesh.positions.size(), 0);
+    for (const auto &t : mesh.triangles)
+        for (sim::VertId v : t) used[v] = 1;
     std::vector<Vec3f> points;
-    points.reserve(mesh.positions.size());
-    for (const sim::Vec3d &p : mesh.positions)
-        points.push_back({float(p.x), float(p.y), float(p.z)});
+    for (size_t v = 0; v < mesh.positions.size(); ++v)
+        if (used[v])
+            points.push_back({float(mesh.positions[v].x), float(mesh.positions[v].y),
+                              float(mesh.positions[v].z)});
 
     FramingRequest framing;
     framing.up = up;
@@ -94,11 +110,42 @@ int run(const LookOptions &o) {
     setup.framing = frame_points(points, framing);
     setup.up = up;
     const std::string stem = output.stem().string();
-    setup.mesh = mesh_reference(o.mesh, dir);
+    setup.mesh = mesh_reference(grown_on, dir);
+    if (!objects.animal.empty()) {
+        setup.object_name = objects.animal;
+        // The file's own floor, when one lies at the animal's feet, stands for the
+        // ground (two coincident planes would flicker).
+        const float radius = setup.framing.radius;
+        for (const LookObject &p : objects.others) {
+            setup.props.push_back({p.name, mesh_reference(spec.path + "#" + p.name, dir),
+                                   p.materials, p.missing_texture.empty()});
+            if (!p.missing_texture.empty())
+                std::fprintf(
+                    stderr, "pelage look: %s#%s: no image %s; its colours only\n",
+                    spec.path.c_str(), p.name.c_str(), p.missing_texture.c_str());
+            if (p.flat && p.flat_facing_up &&
+                std::abs(p.flat_height - setup.framing.ground) <= 0.05 * radius)
+                setup.ground = false;
+        }
+        std::string rest;
+        for (const LookObject &p : objects.others)
+            rest += (rest.empty() ? "\"" : ", \"") + p.name + "\"";
+        std::fprintf(stderr,
+                     "pelage look: %s holds %zu objects; growing the pattern on \"%s\" "
+                     "(the largest that is not flat), the others (%s) in the file's "
+                     "materials; select another with %s#NAME\n",
+                     spec.path.c_str(), objects.others.size() + 1, objects.animal.c_str(),
+                     rest.c_str(), spec.path.c_str());
+        if (objects.left_out > 0)
+            std::fprintf(stderr,
+                         "pelage look: %s: %zu triangles belong to no object a name "
+                         "selects on its own and are left out\n",
+                         spec.path.c_str(), objects.left_out);
+    }
     setup.cells = stem + ".cells";
     setup.output = output.filename().string();
     setup.preview = stem + "_preview.png";
-    if (!procedural) setup.object_name = animal;
+    if (!procedural && objects.animal.empty()) setup.object_name = animal;
     setup.preset = o.preset;
     setup.seed = o.seed;
     setup.width = width;

@@ -87,6 +87,16 @@ json look_scene(const LookSetup &s) {
                      {"roughness", 0.45},
                      {"ior", 1.5}}}};
     if (s.fur) animal["fur"] = fur_block(s);
+    json objects = json::array({animal});
+    for (const LookSetup::Prop &p : s.props) {
+        json material = {{"shader", "diffuse"}, {"params", {{"albedo", 0.5}}}};
+        if (p.materials) {
+            material = {{"shader", "mesh_material"}};
+            if (!p.textures) material["params"] = {{"textures", 0}};
+        }
+        objects.push_back({{"name", p.name}, {"mesh", p.mesh}, {"material", material}});
+    }
+    if (s.ground) objects.push_back(ground_object(s));
     return {
         {"camera",
          {{"type", "pinhole"},
@@ -109,7 +119,7 @@ json look_scene(const LookSetup &s) {
            {"angle", 0.53},
            {"colour", {1.0, 0.93, 0.82}},
            {"intensity", 4.0}}}},
-        {"objects", {animal, ground_object(s)}},
+        {"objects", objects},
         {"integrator", {{"max_depth", 6}, {"rr_depth", 3}}}};
 }
 

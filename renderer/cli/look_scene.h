@@ -5,6 +5,7 @@
 
 #include <nlohmann/json.hpp>
 #include <string>
+#include <vector>
 
 #include "renderer/camera/auto_frame.h"
 
@@ -22,6 +23,15 @@ struct LookSetup {
     std::string view = "Filmic";
     bool fur = false;
     bool comb_field = false;  // the preset has an anisotropy field: comb along it
+    // The file's other objects, as they come (look_objects.h): the mesh reference, and
+    // whether the file gives them materials (else a neutral grey).
+    struct Prop {
+        std::string name, mesh;
+        bool materials = false;
+        bool textures = true;  // false: colours only (an image is missing)
+    };
+    std::vector<Prop> props;
+    bool ground = true;  // false: the file has a floor of its own under the animal
 };
 
 // The scene, its keys in the order a person reads them (camera, film, lights, objects).

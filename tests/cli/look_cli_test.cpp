@@ -7,8 +7,11 @@
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <nlohmann/json.hpp>
+#include <sstream>
 
+#include "sim/mesh/mesh_load.h"
 #include "tests/test_paths.h"
 
 namespace pelage::test {
@@ -102,6 +105,59 @@ TEST(LookCli, FurStrandCountDoesNotDependOnTheUnits) {
         EXPECT_GT(n, 5e4);
         EXPECT_LT(n, 2e6);
     }
+}
+
+// A file as they come: an animal, a floor larger than it and an eye of its own. The
+// pattern grows on the animal (the largest object that is not flat), named on stderr;
+// the others render as they are, the file's floor under the animal standing for the
+// ground; the camera frames the animal.
+TEST(LookCli, AFileOfSeveralObjectsGrowsThePatternOnTheAnimal) {
+    TempDir tmp;
+    const sim::TriangleMesh body = sim::load_mesh("procedural:icosphere:2");
+    const sim::TriangleMesh eye = sim::load_mesh("procedural:icosphere:1");
+    double lowest = 0;
+    for (const sim::Vec3d &p : body.positions) lowest = std::min(lowest, p.y);
+    std::ostringstream obj;
+    obj.precision(17);
+    for (const sim::Vec3d &p : body.positions)
+        obj << "v " << p.x << " " << p.y << " " << p.z << "\n";
+    for (const sim::Vec3d &p : eye.positions)
+        obj << "v " << 0.1 * p.x + 1.05 << " " << 0.1 * p.y + 0.3 << " " << 0.1 * p.z
+            << "\n";
+    obj << "v -3 " << lowest << " -3\nv 3 " << lowest << " -3\nv 3 " << lowest
+        << " 3\nv -3 " << lowest << " 3\n";
+    const size_t nb = body.num_vertices(), ne = eye.num_vertices();
+    obj << "o floor\nf " << nb + ne + 1 << " " << nb + ne + 4 << " " << nb + ne + 3 << " "
+        << nb + ne + 2 << "\n";
+    obj << "o body\n";
+    for (const auto &t : body.triangles)
+        obj << "f " << t[0] + 1 << " " << t[1] + 1 << " " << t[2] + 1 << "\n";
+    obj << "o eye\n";
+    for (const auto &t : eye.triangles)
+        obj << "f " << t[0] + nb + 1 << " " << t[1] + nb + 1 << " " << t[2] + nb + 1
+            << "\n";
+    const std::string file = tmp.write("animal.obj", obj.str());
+    const std::string out = tmp.file("animal.exr");
+    std::string stdout_text, err;
+    ASSERT_EQ(run_pelage("look " + file + " --preset " + two_type_preset(tmp, 400) +
+                             " --res 96x54 --spp 2 -o " + out,
+                         &stdout_text, &err),
+              0)
+        << err;
+    EXPECT_NE(err.find("growing the pattern on \"body\""), std::string::npos) << err;
+    std::ifstream in(tmp.file("animal.json"));
+    const nlohmann::json scene = nlohmann::json::parse(in);
+    std::map<std::string, std::string> shader_of;
+    for (const auto &o : scene["objects"]) {
+        const std::string mesh = o["mesh"];
+        shader_of[mesh.substr(mesh.find('#') + 1)] = o["material"]["shader"];
+    }
+    EXPECT_EQ(scene["objects"][0]["mesh"], "animal.obj#body");
+    EXPECT_EQ(shader_of["body"], "clonal_mosaic");
+    EXPECT_EQ(shader_of["floor"], "diffuse");
+    EXPECT_EQ(shader_of["eye"], "diffuse");
+    EXPECT_EQ(shader_of.size(), 3u) << "the file's floor stands for the ground";
+    expect_framed(out, "the body");
 }
 
 TEST(LookCli, BadInputWritesNothing) {
