@@ -111,6 +111,7 @@ int run_sim(const SimOptions &o) {
             {"triangles", grown.triangles},
             {"input_triangles", cell_scale.input_triangles},
             {"simplified", cell_scale.simplified},
+            {"refine_levels", cell_scale.refine_levels},
             {"area", ps.area},
             {"body_length", body_length},
             {"initial_cells", st.initial_cells},

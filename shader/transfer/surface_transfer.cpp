@@ -109,6 +109,20 @@ class TriangleGrid {
     std::unordered_map<uint64_t, std::vector<sim::TriId>> m_cells;
 };
 
+std::vector<char> used_vertices(const sim::TriangleMesh &m) {
+    std::vector<char> used(m.num_vertices(), 0);
+    for (const auto &t : m.triangles)
+        for (sim::VertId v : t) used[v] = 1;
+    return used;
+}
+
+sim::Bounds3 used_bounds(const sim::TriangleMesh &m, const std::vector<char> &used) {
+    sim::TriangleMesh corners;
+    for (size_t v = 0; v < m.num_vertices(); ++v)
+        if (used[v]) corners.positions.push_back(m.positions[v]);
+    return corners.bounds();
+}
+
 }  // namespace
 
 SurfaceTransfer::SurfaceTransfer(const sim::Surface &simulation,
@@ -116,7 +130,11 @@ SurfaceTransfer::SurfaceTransfer(const sim::Surface &simulation,
                                  const std::string &cells_path,
                                  const std::string &render_path) {
     const sim::TriangleMesh &sm = simulation.mesh;
-    const sim::Bounds3 sb = sm.bounds(), rb = render.bounds();
+    // Only the vertices triangles use: the mesh of one object of an OBJ keeps every
+    // vertex of the file.
+    const std::vector<char> r_used = used_vertices(render);
+    const sim::Bounds3 sb = used_bounds(sm, used_vertices(sm)),
+                       rb = used_bounds(render, r_used);
     const double s_diag = sb.diagonal(), r_diag = rb.diagonal();
     const Vec3d s_centre = (sb.lo + sb.hi) * 0.5, r_centre = (rb.lo + rb.hi) * 0.5;
     double scale = 1;
@@ -133,7 +151,8 @@ SurfaceTransfer::SurfaceTransfer(const sim::Surface &simulation,
     const TriangleGrid grid(sm);
     std::vector<TriangleGrid::Hit> at_vertex(render.num_vertices());
     tbb::parallel_for(size_t(0), render.num_vertices(), [&](size_t v) {
-        at_vertex[v] = grid.closest(place(render.positions[v]));
+        at_vertex[v] =
+            r_used[v] ? grid.closest(place(render.positions[v])) : TriangleGrid::Hit{};
     });
     for (const auto &h : at_vertex)
         if (std::isfinite(h.distance))
@@ -145,7 +164,9 @@ SurfaceTransfer::SurfaceTransfer(const sim::Surface &simulation,
                              " % of its size away from it (at most 2 % is taken for the "
                              "same shape)");
 
+    m_crps = &simulation.crps;
     m_tris.resize(render.num_triangles());
+    m_placed.resize(render.num_triangles());
     tbb::parallel_for(size_t(0), render.num_triangles(), [&](size_t t) {
         const auto &tri = render.triangles[t];
         const Vec3d corner[3] = {at_vertex[tri[0]].p, at_vertex[tri[1]].p,
@@ -160,6 +181,7 @@ SurfaceTransfer::SurfaceTransfer(const sim::Surface &simulation,
                                     at_vertex[tri[0]].tri, at_vertex[tri[1]].tri,
                                     at_vertex[tri[2]].tri};
         RenderTriangle &out = m_tris[t];
+        for (int k = 0; k < 3; ++k) m_placed[t][k] = place(render.positions[tri[k]]);
         for (sim::TriId c : candidates) {
             if (c == sim::invalid_id) continue;
             bool seen = false;
@@ -194,6 +216,30 @@ SurfaceTransfer::Target SurfaceTransfer::map(uint32_t t, float b1, float b2) con
         // Candidates come nearest first (the centroid's closest triangle): the first
         // that holds the point wins, so a fold of the surface behind it never does.
         if (inside >= 0) break;
+    }
+    if (best_inside < -1e-4f && best.tri != sim::invalid_id) {
+        // Outside every candidate: walk across the edge the point lies beyond, towards
+        // the most negative coordinate's opposite edge, in each triangle's plane.
+        const auto &c = m_placed[t];
+        const sim::Vec3d p = c[0] * double(b0) + c[1] * double(b1) + c[2] * double(b2);
+        const sim::Topology &topo = m_crps->topology();
+        sim::TriId at = best.tri, previous = sim::invalid_id;
+        for (int step = 0; step < 256; ++step) {
+            const sim::Vec3d b = m_crps->to_barycentric(at, m_crps->to_2d(at, p));
+            const double coord[3] = {b.x, b.y, b.z};
+            const int worst = int(std::min_element(coord, coord + 3) - coord);
+            const float inside = float(coord[worst]);
+            if (inside > best_inside) {
+                best_inside = inside;
+                best = {at, float(b.y), float(b.z)};
+            }
+            if (coord[worst] >= -1e-6) break;
+            // Corner `worst` is opposite edge (worst + 1) % 3.
+            const sim::TriId next = topo.across(at, (worst + 1) % 3);
+            if (next == sim::invalid_id || next == previous) break;  // a boundary, a fold
+            previous = at;
+            at = next;
+        }
     }
     // Onto the triangle: a point of a render triangle that straddles simulation
     // triangles may fall a little outside all of them.

@@ -10,8 +10,11 @@
 // centroid finds its closest point on the simulation surface (a uniform grid of its
 // triangles). A render triangle keeps the simulation triangles of its centroid and
 // corners, each with the corners' barycentric coordinates in that triangle's plane, and
-// a hit takes the first that holds it (the centroid's first), else the one it falls
-// most inside of: a render triangle may straddle a few simulation triangles. Where
+// a hit takes the first that holds it (the centroid's first). A render triangle may
+// span many simulation triangles (a low-poly animal simulated on a refined copy,
+// sim/remesh/cell_scale_surface.h): a hit that none of them holds walks from the one it
+// falls most inside of across the edge it lies beyond, in that triangle's plane, until a
+// triangle holds it (point location by walking). Where
 // sheets of the surface touch or cross, the closest triangle facing like the render
 // triangle wins. A render mesh whose vertices lie farther than 2 % of the size
 // from the simulation surface is another shape: refused, naming both files.
@@ -29,6 +32,7 @@ namespace pelage::shader::transfer {
 
 class SurfaceTransfer {
   public:
+    // `simulation` must outlive the transfer (its CRPS is walked on).
     SurfaceTransfer(const sim::Surface &simulation, const sim::TriangleMesh &render,
                     const std::string &cells_path, const std::string &render_path);
 
@@ -57,6 +61,9 @@ class SurfaceTransfer {
         uint32_t n = 0;
     };
     std::vector<RenderTriangle> m_tris;
+    // Each render triangle's corners placed on the simulation surface's size, for walks.
+    std::vector<std::array<sim::Vec3d, 3>> m_placed;
+    const sim::Crps *m_crps = nullptr;
     float m_scale = 1;
     double m_max_deviation = 0;
     bool m_similarity = false;

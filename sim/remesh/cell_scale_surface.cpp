@@ -5,6 +5,7 @@
 #include <cstdio>
 
 #include "sim/core/input_error.h"
+#include "sim/mesh/subdivide.h"
 #include "sim/remesh/simplify.h"
 
 namespace pelage::sim {
@@ -26,11 +27,33 @@ CellScaleReport plan_cell_scale(const TriangleMesh &mesh,
         rep.edge_length = rep.cell_spacing;
         rep.max_deviation =
             std::min(max_deviation_fraction * rep.bbox_diagonal, 0.1 * rep.cell_spacing);
+    } else if (e > 0 && mesh.num_triangles() > 0) {
+        double per_triangle = request.expected_cells / double(mesh.num_triangles());
+        rep.input_cells_per_triangle = per_triangle;
+        while (per_triangle > max_cells_per_triangle && rep.refine_levels < 8) {
+            ++rep.refine_levels;
+            per_triangle /= 4;
+        }
+        if (rep.refine_levels > 0) {
+            const double split = std::ldexp(1.0, rep.refine_levels);  // edges / split
+            rep.output_triangles = mesh.num_triangles() * size_t(split * split);
+            const double er = e / split;
+            rep.neighbourhood_entries = double(rep.output_triangles) * 3.141592653589793 *
+                                        (R + er) * (R + er) /
+                                        (0.4330127018922193 * er * er);
+        }
     }
     return rep;
 }
 
-TriangleMesh simplify_to_cell_scale(const TriangleMesh &mesh, CellScaleReport *plan) {
+TriangleMesh remesh_to_cell_scale(const TriangleMesh &mesh, CellScaleReport *plan) {
+    if (plan->refine_levels > 0) {
+        TriangleMesh out = mesh;
+        for (int level = 0; level < plan->refine_levels; ++level)
+            out = subdivide(out, Subdivision::midpoint);
+        plan->output_triangles = out.num_triangles();
+        return out;
+    }
     if (!plan->simplified) return mesh;
     TriangleMesh out = simplify(mesh, {plan->edge_length, plan->max_deviation});
     plan->output_triangles = out.num_triangles();
@@ -38,7 +61,8 @@ TriangleMesh simplify_to_cell_scale(const TriangleMesh &mesh, CellScaleReport *p
 }
 
 double neighbourhood_bytes(const CellScaleReport &plan) {
-    // A simplified surface holds about max_neighbourhood_entries; the input its estimate.
+    // A simplified surface holds about max_neighbourhood_entries; the input or a refined
+    // copy its estimate.
     const double entries =
         plan.simplified ? std::min(plan.neighbourhood_entries, max_neighbourhood_entries)
                         : plan.neighbourhood_entries;

@@ -1,6 +1,5 @@
-// The surface a simulation runs on: the input mesh when its triangles are not smaller
-// than the cells or when it is light enough, else a copy simplified to the cells' scale
-// (simplify.h).
+// The surface a simulation runs on: the input mesh when its triangles are at the cells'
+// scale or it is light enough, else a copy simplified (simplify.h) or refined to it.
 //
 // The relaxation's neighbourhoods are built per triangle and reach R ≈ w_r·s (s the
 // cell spacing, largest at the start), so their size grows as triangles × (R/e)² for
@@ -12,6 +11,13 @@
 // allows), and no collapse may move a vertex farther than max_deviation_fraction of the
 // bounding-box diagonal nor a tenth of s from the input, so the pattern transfers back
 // to the input (shader/transfer/surface_transfer.h) well inside its 2 % tolerance.
+//
+// A mesh much coarser than the cells (a low-poly animal: the heffalump's elephant holds
+// 900 cells per triangle, the spider's abdomen 3 500) is refined instead: the relaxation
+// and division steps meet every cell of a triangle's unfolded neighbourhood, so their
+// cost per cell grows with the cells per triangle. Each triangle is split in four at its
+// edge midpoints (sim/mesh/subdivide.h) until at most max_cells_per_triangle cells are
+// expected on one: the same surface exactly, so the transfer back is exact too.
 #pragma once
 
 #include <cstddef>
@@ -30,24 +36,29 @@ struct CellScaleRequest {
 struct CellScaleReport {
     bool simplified = false;  // planned, or done
     size_t input_triangles = 0, output_triangles = 0;
-    double cell_spacing = 0;           // s = sqrt(A / expected final cells)
-    double input_mean_edge = 0;        // of the input
-    double neighbourhood_entries = 0;  // estimated for the input
-    double edge_length = 0;            // collapse threshold (0 when not simplified)
-    double max_deviation = 0;          // bound on the distance from the input
-    double bbox_diagonal = 0;          // of the input
+    double cell_spacing = 0;              // s = sqrt(A / expected final cells)
+    double input_mean_edge = 0;           // of the input
+    double neighbourhood_entries = 0;     // estimated for the input
+    double edge_length = 0;               // collapse threshold (0 when not simplified)
+    double max_deviation = 0;             // bound on the distance from the input
+    double bbox_diagonal = 0;             // of the input
+    int refine_levels = 0;                // midpoint splits (0 when not refined)
+    double input_cells_per_triangle = 0;  // expected at the end, on the input
+
+    bool remeshed() const { return simplified || refine_levels > 0; }
 };
 
 inline constexpr double max_deviation_fraction = 0.002;
 inline constexpr double max_neighbourhood_entries = 5e5;
+inline constexpr double max_cells_per_triangle = 128;
 
-// Whether the mesh is to be simplified, and how (output_triangles is the input's until
-// simplify_to_cell_scale has run): a cheap look at the mesh, so a caller can release
-// what it built on a dense input before simplifying.
+// Whether the mesh is to be simplified or refined, and how (output_triangles is the
+// input's until remesh_to_cell_scale has run when simplifying): a cheap look at the
+// mesh, so a caller can release what it built on a dense input before simplifying.
 CellScaleReport plan_cell_scale(const TriangleMesh &mesh,
                                 const CellScaleRequest &request);
-// The mesh to simulate on: the input simplified as planned, or unchanged.
-TriangleMesh simplify_to_cell_scale(const TriangleMesh &mesh, CellScaleReport *plan);
+// The mesh to simulate on: the input simplified or refined as planned, or unchanged.
+TriangleMesh remesh_to_cell_scale(const TriangleMesh &mesh, CellScaleReport *plan);
 
 // About what the relaxation's neighbourhoods of the planned surface take at the initial
 // radius, in bytes (the unfolded triangles the plan estimates, at about 64 bytes each

@@ -79,6 +79,15 @@ GrownCells grow_cells(const GrowRequest &r) {
             g.cell_scale.output_triangles, g.cell_scale.input_triangles,
             g.cell_scale.edge_length, g.cell_scale.max_deviation,
             g.cell_scale.cell_spacing, r.mesh));
+    if (g.cell_scale.refine_levels > 0 && r.note)
+        r.note(fmt::format(
+            "simulating on the input's {} triangles split {} times at their edge "
+            "midpoints ({} triangles, the same surface; about {:.0f} cells per input "
+            "triangle would make every step meet as many); the .cells file renders on "
+            "{} through closest points, or use --surface input",
+            g.cell_scale.input_triangles, g.cell_scale.refine_levels,
+            g.cell_scale.output_triangles, g.cell_scale.input_cells_per_triangle,
+            r.mesh));
 
     // A growing run (the preset's "growth") simulates on the surface's shape at each
     // age and writes the cells on the rest shape, where they keep their barycentric
@@ -86,7 +95,7 @@ GrownCells grow_cells(const GrowRequest &r) {
     std::unique_ptr<sim::GrowingSurface> growing;
     if (g.preset.growth) {
         const SetupStep step(r.phase, "resolving the growth keys on the surface");
-        const bool reload = g.cell_scale.simplified && g.preset.growth->has_mesh_keys();
+        const bool reload = g.cell_scale.remeshed() && g.preset.growth->has_mesh_keys();
         const sim::TriangleMesh rest =
             reload ? sim::load_mesh(r.mesh) : sim::TriangleMesh();
         const sim::GrowthSpec &spec = *g.preset.growth;
@@ -146,6 +155,8 @@ GrownCells grow_cells(const GrowRequest &r) {
     nlohmann::json surface_json = {{"input_triangles", g.cell_scale.input_triangles},
                                    {"triangles", g.triangles},
                                    {"simplified", g.cell_scale.simplified}};
+    if (g.cell_scale.refine_levels > 0)
+        surface_json["refine_levels"] = g.cell_scale.refine_levels;
     if (g.cell_scale.simplified) {
         surface_json["edge_length"] = g.cell_scale.edge_length;
         surface_json["max_deviation"] = g.cell_scale.max_deviation;

@@ -31,7 +31,11 @@ SimulationSurface::SimulationSurface(
         sim::Neighbourhoods::slack * preset.control.w_r.max() *
         std::sqrt(area / double(std::max<uint64_t>(m_initial, 1)));
     m_report = sim::plan_cell_scale(input.mesh, request);
-    if (!simplify) m_report.simplified = false;
+    if (!simplify) {
+        m_report.simplified = false;
+        m_report.refine_levels = 0;
+        m_report.output_triangles = m_report.input_triangles;
+    }
     // Refused up front rather than run out of memory: three quarters of the machine's
     // memory, or of the address space the process may use when that is limited.
     double available = double(sysconf(_SC_PHYS_PAGES)) * double(sysconf(_SC_PAGE_SIZE));
@@ -40,13 +44,12 @@ SimulationSurface::SimulationSurface(
         available = std::min(available, double(limit.rlim_cur));
     if (available > 0)
         sim::check_neighbourhood_memory(m_report, 0.75 * available, mesh_path);
-    if (!m_report.simplified) return;
-    // The input's CRPS and topology go before the simplification's own structures come.
+    if (!m_report.remeshed()) return;
+    // The input's CRPS and topology go before the remeshing's own structures come.
     const SetupStep step(phase, "remeshing to the cells' scale");
     sim::TriangleMesh mesh = std::move(m_input->mesh);
     m_input.reset();
-    m_simplified.emplace(
-        sim::build_surface(sim::simplify_to_cell_scale(mesh, &m_report)));
+    m_simplified.emplace(sim::build_surface(sim::remesh_to_cell_scale(mesh, &m_report)));
     if (preset.control.needs_mesh_data()) m_input_mesh = std::move(mesh);
 }
 

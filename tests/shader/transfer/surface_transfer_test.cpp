@@ -12,6 +12,7 @@
 #include "shader/mosaic/pattern.h"
 #include "sim/core/input_error.h"
 #include "sim/crps/surface_sampling.h"
+#include "sim/mesh/mesh_load.h"
 #include "sim/mesh/mesh_write_obj.h"
 #include "sim/mesh/subdivide.h"
 #include "tests/test_paths.h"
@@ -82,6 +83,33 @@ TEST(SurfaceTransfer, TheSameSurfaceSplitAtItsMidpointsShowsTheSamePattern) {
         });
     EXPECT_GE(a, 0.999);
     std::printf("midpoint-subdivided cow: %.4f of points show the cow's colour\n", a);
+}
+
+// The other way round: a pattern grown on a refined copy of a low-poly mesh
+// (sim/remesh/cell_scale_surface.h) rendered on the mesh itself. Each render triangle
+// spans 64 simulation triangles; every point of it is carried to the same 3D point.
+TEST(SurfaceTransfer, ACoarseMeshFindsItsRefinedCopyUnderEveryPoint) {
+    const sim::TriangleMesh coarse = sim::load_mesh("procedural:icosphere:1");
+    sim::TriangleMesh fine = coarse;
+    for (int level = 0; level < 3; ++level)
+        fine = sim::subdivide(fine, sim::Subdivision::midpoint);
+    const sim::Surface simulation = sim::build_surface(fine);
+    const sim::Surface render = sim::build_surface(coarse);
+    const SurfaceTransfer transfer(simulation, render.mesh, "fine.cells", "coarse");
+    size_t off = 0;
+    double worst = 0;
+    const auto points = sim::sample_surface_uniform(render.crps, 20000, 5);
+    for (const auto &s : points) {
+        const sim::Vec3d b = render.crps.to_barycentric(s.tri, s.p);
+        const auto at = transfer.map(s.tri, float(b.y), float(b.z));
+        const sim::Vec3d there = simulation.crps.to_3d(
+            at.tri, simulation.crps.barycentric_to_2d(
+                        at.tri, {1.0 - at.b1 - at.b2, double(at.b1), double(at.b2)}));
+        const double d = length(there - render.crps.to_3d(s.tri, s.p));
+        worst = std::max(worst, d);
+        off += d > 1e-5;  // the sphere's diameter is 2
+    }
+    EXPECT_EQ(off, 0u) << "worst distance " << worst;
 }
 
 TEST(SurfaceTransfer, TheLoopSubdividedCowShowsThePatternAtItsClosestPoints) {

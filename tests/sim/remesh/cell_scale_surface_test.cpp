@@ -75,7 +75,7 @@ TEST(CellScaleSurface, LeavesALightMeshAlone) {
     const double area = sphere.surface_area(), edge = mean_edge_length(sphere);
     CellScaleReport report =
         plan_cell_scale(sphere, {area, 150, 1.15 * 2 * std::sqrt(area / 150)});
-    const TriangleMesh out = simplify_to_cell_scale(sphere, &report);
+    const TriangleMesh out = remesh_to_cell_scale(sphere, &report);
     EXPECT_GT(report.cell_spacing, edge);
     EXPECT_LT(report.neighbourhood_entries, max_neighbourhood_entries);
     EXPECT_FALSE(report.simplified);
@@ -89,10 +89,29 @@ TEST(CellScaleSurface, LeavesAMeshAtTheCellsScaleAlone) {
     const double cells = area / (0.9 * edge * 0.9 * edge);
     // Even with neighbourhoods as wide as on the dense cow below.
     CellScaleReport report = plan_cell_scale(cow, {area, cells, 0.05});
-    const TriangleMesh out = simplify_to_cell_scale(cow, &report);
+    const TriangleMesh out = remesh_to_cell_scale(cow, &report);
     EXPECT_FALSE(report.simplified);
     EXPECT_EQ(out.positions, cow.positions);
     EXPECT_EQ(out.triangles, cow.triangles);
+}
+
+TEST(CellScaleSurface, ALowPolyAnimalIsRefinedToTheCellsScale) {
+    // 80 triangles for 277 000 cells (the spider's abdomen in assimp's test models holds
+    // 3 500 per triangle): split at the edge midpoints until at most 128 per triangle.
+    const TriangleMesh coarse = load_mesh("procedural:icosphere:1");
+    const double area = coarse.surface_area();
+    CellScaleReport report =
+        plan_cell_scale(coarse, {area, 277000, 1.15 * 2 * std::sqrt(area / 24000)});
+    EXPECT_FALSE(report.simplified);
+    EXPECT_EQ(report.refine_levels, 3);  // 3 462 -> 866 -> 216 -> 54 per triangle
+    const TriangleMesh out = remesh_to_cell_scale(coarse, &report);
+    EXPECT_EQ(out.num_triangles(), 80u * 64u);
+    EXPECT_EQ(report.output_triangles, out.num_triangles());
+    const double per_triangle = 277000.0 / double(out.num_triangles());
+    EXPECT_LE(per_triangle, max_cells_per_triangle);
+    EXPECT_GT(per_triangle, max_cells_per_triangle / 4);
+    // The same surface: the same area, and every new vertex on the input's triangles.
+    EXPECT_NEAR(out.surface_area(), area, 1e-12 * area);
 }
 
 TEST(CellScaleSurface, ADenseCowStaysOnTheCowWithAboutTwoTrianglesPerCell) {
@@ -103,7 +122,7 @@ TEST(CellScaleSurface, ADenseCowStaysOnTheCowWithAboutTwoTrianglesPerCell) {
     const double area = dense.surface_area(), cells = 8474;
     const double radius = 1.15 * 3.3 * std::sqrt(area / 5000);
     CellScaleReport report = plan_cell_scale(dense, {area, cells, radius});
-    const TriangleMesh out = simplify_to_cell_scale(dense, &report);
+    const TriangleMesh out = remesh_to_cell_scale(dense, &report);
     ASSERT_TRUE(report.simplified);
     EXPECT_EQ(report.input_triangles, dense.num_triangles());
     EXPECT_EQ(report.output_triangles, out.num_triangles());
