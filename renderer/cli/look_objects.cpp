@@ -40,7 +40,6 @@ Candidate measure(const std::string &path, const std::string &name, const double
     Candidate c;
     c.object.name = name;
     const sim::TriangleMesh m = sim::read_mesh(path, nullptr, name);
-    c.object.triangles = m.num_triangles();
     c.object.materials = !m.materials.empty();
     for (const sim::MeshMaterial &mm : m.materials)
         if (!mm.diffuse_texture.empty() && !std::filesystem::exists(mm.diffuse_texture))
@@ -144,10 +143,7 @@ LookObjects choose_look_objects(const std::string &path, const double up[3],
         std::vector<uint64_t> common;
         std::set_intersection(k.begin(), k.end(), taken.begin(), taken.end(),
                               std::back_inserter(common));
-        if (!common.empty()) {
-            out.skipped.push_back(candidates[i].object.name);
-            continue;
-        }
+        if (!common.empty()) continue;
         out.others.push_back(candidates[i].object);
         std::vector<uint64_t> merged;
         std::merge(taken.begin(), taken.end(), k.begin(), k.end(),

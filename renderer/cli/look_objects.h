@@ -13,7 +13,6 @@ namespace pelage::renderer::cli {
 
 struct LookObject {
     std::string name;  // selects it: "PATH#name" (sim/mesh/mesh_objects.h)
-    size_t triangles = 0;
     double area = 0;
     bool flat = false;            // every triangle in one plane (within 1 %)
     double flat_height = 0;       // a flat object's plane: dot(point, up)
@@ -26,14 +25,13 @@ struct LookObjects {
     // Empty when the file is one object (or every name selects all of it): grow on the
     // whole file.
     std::string animal;
-    std::vector<LookObject> others;    // disjoint from the animal and from each other
-    std::vector<std::string> skipped;  // names that overlap the ones chosen
+    std::vector<LookObject> others;  // disjoint from the animal and from each other
     size_t left_out = 0;  // triangles no object's name selects on its own (not rendered)
 };
 
 // Loads `path` and each object it names (at most `max_names`, in file order; names that
-// select the whole file or overlap an object already taken are parents, skipped), and
-// chooses the animal. `up` gives the flat objects' heights.
+// select the whole file are skipped, and so are names overlapping an object already
+// taken), and chooses the animal. `up` gives the flat objects' heights.
 LookObjects choose_look_objects(const std::string &path, const double up[3],
                                 size_t max_names = 64);
 
