@@ -112,6 +112,8 @@ int run_sim(const SimOptions &o) {
             {"input_triangles", cell_scale.input_triangles},
             {"simplified", cell_scale.simplified},
             {"refine_levels", cell_scale.refine_levels},
+            {"coarsened", cell_scale.coarsening},
+            {"neighbourhood_entries_estimate", cell_scale.neighbourhood_entries},
             {"area", ps.area},
             {"body_length", body_length},
             {"initial_cells", st.initial_cells},

@@ -21,10 +21,33 @@ CellScaleReport plan_cell_scale(const TriangleMesh &mesh,
     if (e > 0)
         rep.neighbourhood_entries = double(mesh.num_triangles()) * 3.141592653589793 *
                                     (R + e) * (R + e) / (0.4330127018922193 * e * e);
-    rep.simplified = e > 0 && e < rep.cell_spacing &&
-                     rep.neighbourhood_entries > max_neighbourhood_entries;
+    const double s = rep.cell_spacing;
+    rep.coarsening = e >= s && rep.neighbourhood_entries > coarsen_entries;
+    rep.simplified =
+        e > 0 && ((e < s && rep.neighbourhood_entries > max_neighbourhood_entries) ||
+                  rep.coarsening);
     if (rep.simplified) {
-        rep.edge_length = rep.cell_spacing;
+        rep.edge_length = s;
+        if (rep.coarsening) {
+            // The estimate's edge at which it is max_neighbourhood_entries (it falls
+            // as the edge grows), by bisection; at most max_cells_per_triangle cells on
+            // a triangle of that edge.
+            const double longest =
+                std::sqrt(max_cells_per_triangle / 0.4330127018922193) * s;
+            auto entries = [&](double edge) {
+                const double triangles =
+                    request.area / (0.4330127018922193 * edge * edge);
+                return triangles * 3.141592653589793 * (R + edge) * (R + edge) /
+                       (0.4330127018922193 * edge * edge);
+            };
+            double lo = e, hi = std::max(e, longest);
+            for (int i = 0; i < 60; ++i) {
+                const double mid = 0.5 * (lo + hi);
+                (entries(mid) > max_neighbourhood_entries ? lo : hi) = mid;
+            }
+            rep.edge_length = hi;
+            rep.min_edge_length = e;
+        }
         rep.max_deviation =
             std::min(max_deviation_fraction * rep.bbox_diagonal, 0.1 * rep.cell_spacing);
     } else if (e > 0 && mesh.num_triangles() > 0) {
@@ -55,9 +78,25 @@ TriangleMesh remesh_to_cell_scale(const TriangleMesh &mesh, CellScaleReport *pla
         return out;
     }
     if (!plan->simplified) return mesh;
-    TriangleMesh out = simplify(mesh, {plan->edge_length, plan->max_deviation});
-    plan->output_triangles = out.num_triangles();
-    return out;
+    const double area = mesh.surface_area();
+    for (double edge = plan->edge_length;;
+         edge = std::max(0.5 * edge, plan->min_edge_length)) {
+        TriangleMesh out = simplify(mesh, {edge, plan->max_deviation});
+        plan->edge_length = edge;
+        plan->output_triangles = out.num_triangles();
+        if (!plan->coarsening) return out;
+        plan->max_input_distance = max_vertex_distance(mesh, out);
+        const bool close = plan->max_input_distance <=
+                               max_input_distance_fraction * plan->bbox_diagonal &&
+                           std::abs(out.surface_area() / area - 1) <= max_area_change;
+        if (close) return out;
+        if (edge <= plan->min_edge_length) break;
+    }
+    // No coarser copy stays on the input: the input as it is.
+    plan->simplified = plan->coarsening = false;
+    plan->edge_length = plan->min_edge_length = 0;
+    plan->output_triangles = plan->input_triangles;
+    return mesh;
 }
 
 double neighbourhood_bytes(const CellScaleReport &plan) {

@@ -1,5 +1,6 @@
 #include "sim/remesh/simplify.h"
 
+#include <CGAL/Polygon_mesh_processing/distance.h>
 #include <CGAL/Polygon_mesh_processing/orient_polygon_soup.h>
 #include <CGAL/Polygon_mesh_processing/polygon_soup_to_polygon_mesh.h>
 #include <CGAL/Simple_cartesian.h>
@@ -13,6 +14,7 @@
 
 #include <array>
 #include <cmath>
+#include <limits>
 #include <vector>
 
 namespace pelage::sim {
@@ -24,17 +26,7 @@ using CgalMesh = CGAL::Surface_mesh<Point>;
 namespace SMS = CGAL::Surface_mesh_simplification;
 namespace PMP = CGAL::Polygon_mesh_processing;
 
-}  // namespace
-
-double mean_edge_length(const TriangleMesh &mesh) {
-    double sum = 0;
-    for (TriId t = 0; t < mesh.num_triangles(); ++t)
-        for (int c = 0; c < 3; ++c)
-            sum += length(mesh.vertex(t, (c + 1) % 3) - mesh.vertex(t, c));
-    return mesh.num_triangles() > 0 ? sum / (3.0 * double(mesh.num_triangles())) : 0.0;
-}
-
-TriangleMesh simplify(const TriangleMesh &mesh, const SimplifyOptions &options) {
+CgalMesh to_cgal(const TriangleMesh &mesh) {
     std::vector<Point> points;
     points.reserve(mesh.num_vertices());
     for (const Vec3d &p : mesh.positions) points.emplace_back(p.x, p.y, p.z);
@@ -47,6 +39,35 @@ TriangleMesh simplify(const TriangleMesh &mesh, const SimplifyOptions &options) 
     PMP::orient_polygon_soup(points, faces);
     CgalMesh cm;
     PMP::polygon_soup_to_polygon_mesh(points, faces, cm);
+    return cm;
+}
+
+}  // namespace
+
+double max_vertex_distance(const TriangleMesh &from, const TriangleMesh &to) {
+    if (to.num_triangles() == 0) return std::numeric_limits<double>::infinity();
+    std::vector<char> used(from.num_vertices(), 0);
+    for (const auto &t : from.triangles)
+        for (VertId v : t) used[v] = 1;
+    std::vector<Point> points;
+    for (size_t v = 0; v < from.num_vertices(); ++v)
+        if (used[v])
+            points.emplace_back(from.positions[v].x, from.positions[v].y,
+                                from.positions[v].z);
+    if (points.empty()) return 0;
+    return PMP::max_distance_to_triangle_mesh<CGAL::Sequential_tag>(points, to_cgal(to));
+}
+
+double mean_edge_length(const TriangleMesh &mesh) {
+    double sum = 0;
+    for (TriId t = 0; t < mesh.num_triangles(); ++t)
+        for (int c = 0; c < 3; ++c)
+            sum += length(mesh.vertex(t, (c + 1) % 3) - mesh.vertex(t, c));
+    return mesh.num_triangles() > 0 ? sum / (3.0 * double(mesh.num_triangles())) : 0.0;
+}
+
+TriangleMesh simplify(const TriangleMesh &mesh, const SimplifyOptions &options) {
+    CgalMesh cm = to_cgal(mesh);
 
     SMS::Edge_length_stop_predicate<double> stop(options.edge_length);
     SMS::Bounded_normal_change_filter<> filter;

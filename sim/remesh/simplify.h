@@ -29,6 +29,12 @@ struct SimplifyOptions {
 // unchanged when no edge is shorter than edge_length.
 TriangleMesh simplify(const TriangleMesh &mesh, const SimplifyOptions &options);
 
+// The largest distance from a vertex of `from` that a triangle uses to the surface of
+// `to` (CGAL's AABB tree): the side of the two-sided (Hausdorff) distance that
+// simplify()'s bound on its own vertices does not cover, where a thin part collapsed to a
+// stub leaves the input's vertices behind.
+double max_vertex_distance(const TriangleMesh &from, const TriangleMesh &to);
+
 // The mean edge length of a mesh (each triangle's three edges; shared edges twice).
 double mean_edge_length(const TriangleMesh &mesh);
 

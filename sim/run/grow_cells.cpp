@@ -70,7 +70,20 @@ GrownCells grow_cells(const GrowRequest &r) {
     const sim::Surface &surface = chosen.surface();
     g.cell_scale = chosen.report();
     g.triangles = surface.mesh.num_triangles();
-    if (g.cell_scale.simplified && r.note)
+    if (g.cell_scale.coarsening && r.note)
+        r.note(fmt::format(
+            "simulating on {} of the input's {} triangles (edges under {:.3g} collapsed: "
+            "its neighbourhoods would unfold about {:.2g} triangles; vertices kept "
+            "within "
+            "{:.3g} of the input, the input within {:.3g} of the copy, final cell "
+            "spacing "
+            "about {:.3g}); the .cells file renders on {} through closest points, or use "
+            "--surface input",
+            g.cell_scale.output_triangles, g.cell_scale.input_triangles,
+            g.cell_scale.edge_length, g.cell_scale.neighbourhood_entries,
+            g.cell_scale.max_deviation, g.cell_scale.max_input_distance,
+            g.cell_scale.cell_spacing, r.mesh));
+    else if (g.cell_scale.simplified && r.note)
         r.note(fmt::format(
             "simulating on {} of the input's {} triangles (edges under {:.3g} collapsed, "
             "surface kept within {:.3g} of the input, final cell spacing about {:.3g}); "
@@ -160,6 +173,8 @@ GrownCells grow_cells(const GrowRequest &r) {
     if (g.cell_scale.simplified) {
         surface_json["edge_length"] = g.cell_scale.edge_length;
         surface_json["max_deviation"] = g.cell_scale.max_deviation;
+        if (g.cell_scale.coarsening)
+            surface_json["max_input_distance"] = g.cell_scale.max_input_distance;
     }
     g.params["simulation_surface"] = surface_json;
     sim::Cells on_rest;

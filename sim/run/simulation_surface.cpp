@@ -50,6 +50,9 @@ SimulationSurface::SimulationSurface(
     sim::TriangleMesh mesh = std::move(m_input->mesh);
     m_input.reset();
     m_simplified.emplace(sim::build_surface(sim::remesh_to_cell_scale(mesh, &m_report)));
+    // A coarsening that kept no copy leaves the input, with the input's neighbourhoods.
+    if (!m_report.remeshed() && available > 0)
+        sim::check_neighbourhood_memory(m_report, 0.75 * available, mesh_path);
     if (preset.control.needs_mesh_data()) m_input_mesh = std::move(mesh);
 }
 

@@ -154,19 +154,32 @@ TEST(CellScaleSurface, ADenseCowStaysOnTheCowWithAboutTwoTrianglesPerCell) {
 }
 
 TEST(CellScaleSurface, NeighbourhoodsThatWouldNotFitAreRefusedSayingWhatToChange) {
-    // bunny00 with giraffe-reticulata's start: 19 883 cells, w_r 4.5, triangles far
-    // larger than the final cells, so nothing is simplified.
+    // bunny00 with giraffe-reticulata's start: 19 883 cells, w_r 4.5, triangles larger
+    // than the final cells (so not simplified to them) but 35 M unfolded triangles: the
+    // plan coarsens it, and with --surface input (or a coarsening that keeps no copy)
+    // the input's neighbourhoods are what the memory check weighs.
     const TriangleMesh bunny = load_mesh(test::sample_mesh("bunny00.off"));
     const double area = bunny.surface_area();
-    const CellScaleReport plan =
-        plan_cell_scale(bunny, {area, 226662, 1.15 * 4.5 * std::sqrt(area / 19883)});
-    EXPECT_FALSE(plan.simplified);
+    const double R = 1.15 * 4.5 * std::sqrt(area / 19883);
+    CellScaleReport plan = plan_cell_scale(bunny, {area, 226662, R});
+    ASSERT_TRUE(plan.coarsening);
+    EXPECT_TRUE(plan.simplified);
     // By the estimate's own formula, checked by hand: triangles × π(R + e)² / (√3/4·e²).
-    const double e = plan.input_mean_edge, R = 1.15 * 4.5 * std::sqrt(area / 19883);
+    const double e = plan.input_mean_edge;
+    EXPECT_GT(e, plan.cell_spacing);
     EXPECT_NEAR(plan.neighbourhood_entries,
                 double(bunny.num_triangles()) * M_PI * (R + e) * (R + e) /
                     (std::sqrt(3.0) / 4 * e * e),
                 1e-6 * plan.neighbourhood_entries);
+    // The planned edge brings the same estimate, on the area tiled by triangles of that
+    // edge, down to max_neighbourhood_entries.
+    const double L = plan.edge_length, a = std::sqrt(3.0) / 4 * L * L;
+    EXPECT_GT(L, e);
+    EXPECT_NEAR(area / a * M_PI * (R + L) * (R + L) / a, max_neighbourhood_entries,
+                1e-6 * max_neighbourhood_entries);
+    EXPECT_NO_THROW(check_neighbourhood_memory(plan, 1e9, "bunny00.off"));
+
+    plan.simplified = plan.coarsening = false;
     EXPECT_GT(neighbourhood_bytes(plan), 1e9);
     EXPECT_NO_THROW(check_neighbourhood_memory(plan, 16e9, "bunny00.off"));
     try {
@@ -179,6 +192,38 @@ TEST(CellScaleSurface, NeighbourhoodsThatWouldNotFitAreRefusedSayingWhatToChange
         EXPECT_NE(what.find("more cells"), std::string::npos) << what;
         EXPECT_NE(what.find("GB"), std::string::npos) << what;
     }
+}
+
+TEST(CellScaleSurface, AFineAnimalIsCoarsenedAndTheInputStaysOnTheCopy) {
+    // The camel (19 536 triangles) with giraffe-reticulata's start (11 690 -> 115 357
+    // cells, w_r 4.5): 5 cells per triangle, 4.9 M unfolded triangles estimated.
+    const TriangleMesh camel = load_mesh(test::sample_mesh("camel.off"));
+    const double area = camel.surface_area();
+    CellScaleReport plan =
+        plan_cell_scale(camel, {area, 115357, 1.15 * 4.5 * std::sqrt(area / 11690)});
+    ASSERT_TRUE(plan.coarsening);
+    const TriangleMesh out = remesh_to_cell_scale(camel, &plan);
+    ASSERT_TRUE(plan.simplified);
+    EXPECT_EQ(plan.output_triangles, out.num_triangles());
+    EXPECT_LT(out.num_triangles() * 2, camel.num_triangles());
+    // Checked by brute force, not through CGAL's tree: every vertex of the copy lies
+    // within the bound of the camel, and area-uniform points of the camel (not only its
+    // vertices, which the coarsening checked) lie within the two-sided bound of the copy.
+    const double diagonal = camel.bounds().diagonal();
+    double worst_vertex = 0;
+    for (const Vec3d &p : out.positions)
+        worst_vertex = std::max(worst_vertex, distance_to_mesh(p, camel));
+    EXPECT_LE(worst_vertex, plan.max_deviation * (1 + 1e-9));
+    const Surface camel_surface = build_surface(camel);
+    double worst_point = 0;
+    for (const SurfacePointSample &s :
+         sample_surface_uniform(camel_surface.crps, 2000, 3))
+        worst_point = std::max(
+            worst_point, distance_to_mesh(camel_surface.crps.to_3d(s.tri, s.p), out));
+    EXPECT_LE(worst_point, max_input_distance_fraction * diagonal) << "of " << diagonal;
+    EXPECT_LE(plan.max_input_distance, max_input_distance_fraction * diagonal);
+    EXPECT_EQ(euler_and_open_edges(out), euler_and_open_edges(camel));
+    EXPECT_NEAR(out.surface_area() / area, 1.0, max_area_change);
 }
 
 }  // namespace
