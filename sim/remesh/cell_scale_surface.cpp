@@ -27,27 +27,23 @@ CellScaleReport plan_cell_scale(const TriangleMesh &mesh,
         e > 0 && ((e < s && rep.neighbourhood_entries > max_neighbourhood_entries) ||
                   rep.coarsening);
     if (rep.simplified) {
-        rep.edge_length = s;
-        if (rep.coarsening) {
-            // The estimate's edge at which it is max_neighbourhood_entries (it falls
-            // as the edge grows), by bisection; at most max_cells_per_triangle cells on
-            // a triangle of that edge.
-            const double longest =
-                std::sqrt(max_cells_per_triangle / 0.4330127018922193) * s;
-            auto entries = [&](double edge) {
-                const double triangles =
-                    request.area / (0.4330127018922193 * edge * edge);
-                return triangles * 3.141592653589793 * (R + edge) * (R + edge) /
-                       (0.4330127018922193 * edge * edge);
-            };
-            double lo = e, hi = std::max(e, longest);
-            for (int i = 0; i < 60; ++i) {
-                const double mid = 0.5 * (lo + hi);
-                (entries(mid) > max_neighbourhood_entries ? lo : hi) = mid;
-            }
-            rep.edge_length = hi;
-            rep.min_edge_length = e;
+        // The edge at which the estimate is max_neighbourhood_entries (it falls as the
+        // edge grows), by bisection, at least s and at most max_cells_per_triangle cells
+        // on a triangle of that edge: s alone (about two triangles per cell) left a
+        // neighbourhood of ~1 800 triangles per triangle at giraffe-reticulata's start.
+        const double longest = std::sqrt(max_cells_per_triangle / 0.4330127018922193) * s;
+        auto entries = [&](double edge) {
+            const double triangles = request.area / (0.4330127018922193 * edge * edge);
+            return triangles * 3.141592653589793 * (R + edge) * (R + edge) /
+                   (0.4330127018922193 * edge * edge);
+        };
+        double lo = std::min(e, s), hi = std::max({e, s, longest});
+        for (int i = 0; i < 60; ++i) {
+            const double mid = 0.5 * (lo + hi);
+            (entries(mid) > max_neighbourhood_entries ? lo : hi) = mid;
         }
+        rep.edge_length = std::max(hi, s);
+        rep.min_edge_length = rep.coarsening ? e : s;
         rep.max_deviation =
             std::min(max_deviation_fraction * rep.bbox_diagonal, 0.1 * rep.cell_spacing);
     } else if (e > 0 && mesh.num_triangles() > 0) {
@@ -84,12 +80,13 @@ TriangleMesh remesh_to_cell_scale(const TriangleMesh &mesh, CellScaleReport *pla
         TriangleMesh out = simplify(mesh, {edge, plan->max_deviation});
         plan->edge_length = edge;
         plan->output_triangles = out.num_triangles();
-        if (!plan->coarsening) return out;
         plan->max_input_distance = max_vertex_distance(mesh, out);
         const bool close = plan->max_input_distance <=
                                max_input_distance_fraction * plan->bbox_diagonal &&
                            std::abs(out.surface_area() / area - 1) <= max_area_change;
         if (close) return out;
+        // At the cells' own scale a finer input keeps its copy, as it always has.
+        if (edge <= plan->min_edge_length && !plan->coarsening) return out;
         if (edge <= plan->min_edge_length) break;
     }
     // No coarser copy stays on the input: the input as it is.

@@ -12,17 +12,18 @@
 // bounding-box diagonal nor a tenth of s from the input, so the pattern transfers back
 // to the input (shader/transfer/surface_transfer.h) well inside its 2 % tolerance.
 //
-// A mesh whose triangles are already larger than s can still hold far more unfolded
-// triangles than the cells need (camel: 5 cells per triangle, 4.9 M estimated entries,
-// 47 of its 55 s growing spent building neighbourhoods; bunny00: 35 M). Above
-// coarsen_entries it is coarsened: edges shorter than the length at which the estimate
-// comes down to max_neighbourhood_entries are collapsed (at most max_cells_per_triangle
-// cells per triangle). Collapsing long edges can fold a thin part (a tail, a horn) into
-// a stub whose vertices still lie on the input, so the result is kept only when every
-// vertex of the input lies within max_input_distance_fraction of the diagonal from it
-// and the area changed by at most max_area_change; otherwise the length is halved, down
-// to the input's mean edge, and the input is used as it is if none passes. (A surface
-// simplified to s itself is kept as before.)
+// The collapse threshold is the edge at which the estimate comes down to
+// max_neighbourhood_entries, at least s (at most max_cells_per_triangle cells per
+// triangle): at giraffe-reticulata's start R is about 15 s, and a copy at s itself kept
+// ~1 800 unfolded triangles per triangle (the cow split 4 times: > 9 GB). A mesh whose
+// triangles are already larger than s is coarsened the same way when its estimate is
+// over coarsen_entries (camel: 5 cells per triangle, 4.9 M entries, 47 of its 55 s
+// growing spent building neighbourhoods; bunny00: 35 M). Collapsing long edges can fold
+// a thin part (a tail, a horn) into a stub whose vertices still lie on the input, so a
+// copy is kept only when every vertex of the input lies within
+// max_input_distance_fraction of the diagonal from it and the area changed by at most
+// max_area_change; otherwise the threshold is halved, down to s (whose copy is kept, as
+// it always was) or, when coarsening, to the input's mean edge (then the input is used).
 //
 // A mesh much coarser than the cells (a low-poly animal: the heffalump's elephant holds
 // 900 cells per triangle, the spider's abdomen 3 500) is refined instead: the relaxation
@@ -52,7 +53,7 @@ struct CellScaleReport {
     double input_mean_edge = 0;           // of the input
     double neighbourhood_entries = 0;     // estimated for the input
     double edge_length = 0;               // collapse threshold (0 when not simplified)
-    double min_edge_length = 0;           // lowest threshold tried when coarsening
+    double min_edge_length = 0;           // lowest threshold tried
     bool coarsening = false;              // triangles larger than s (checked, may fail)
     double max_input_distance = 0;        // measured: input vertices to the result
     double max_deviation = 0;             // bound on the distance from the input
