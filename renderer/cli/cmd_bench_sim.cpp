@@ -3,7 +3,8 @@
 // BB 0.5, FB 1.0) for 1000, 5000 and 10000 initial cells in both relaxation modes, plus a
 // large case (1 000 000 final cells on bunny00), density runs (bench_sim_density.h) and
 // the relaxation's neighbours against exact geodesics (bench_sim_neighbours.h). Prints
-// one JSON object; the keys `runs`, `large`, `density` and `neighbours` are a contract.
+// one JSON object; the keys `runs`, `large`, `density`, `mclone` and `neighbours` are a
+// contract.
 // Speed is reported here, never asserted in tests.
 
 #include <filesystem>
@@ -12,6 +13,7 @@
 
 #include "renderer/cli/bench.h"
 #include "renderer/cli/bench_sim_density.h"
+#include "renderer/cli/bench_sim_mclone.h"
 #include "renderer/cli/bench_sim_neighbours.h"
 #include "sim/cells_io/cells_file.h"
 #include "sim/core/input_error.h"
@@ -30,6 +32,8 @@ struct BenchSimOptions {
     bool skip_large = false;
     std::string density_mesh, density_preset = "teo-leopard";
     int density_levels = 2;
+    std::string mclone_mesh;
+    bool skip_mclone = false;
     std::vector<std::string> neighbour_meshes;
     size_t neighbour_queries = 200;
     uint64_t seed = 1;
@@ -180,6 +184,16 @@ int run(const BenchSimOptions &o) {
         out.update(density_runs(
             {mesh, o.density_preset, o.density_levels, o.seed, o.threads.threads}));
     }
+    // --- Walter's MClone configuration on the cow, CPU seconds ---
+    if (!o.skip_mclone) {
+        const std::string mesh =
+            o.mclone_mesh.empty() ? data_path("scenes/meshes/cow.off") : o.mclone_mesh;
+        if (!std::filesystem::exists(mesh))
+            throw InputError(mesh, 0, "",
+                             "sample mesh missing: run scenes/fetch_meshes.sh (or pass "
+                             "--mclone-mesh)");
+        out.update(mclone_runs({mesh, o.seed, o.repeat}));
+    }
     // --- The relaxation's neighbours against exact geodesics ---
     if (o.neighbour_queries > 0) {
         NeighbourOptions n;
@@ -227,6 +241,10 @@ Runner add_bench_sim(CLI::App &bench) {
                     "Midpoint subdivisions of the finest density run (-1: none)")
         ->check(CLI::Range(-1, 4))
         ->capture_default_str();
+    sub->add_option("--mclone-mesh", o->mclone_mesh,
+                    "Mesh of the MClone-configuration runs (default cow.off)");
+    sub->add_flag("--skip-mclone", o->skip_mclone,
+                  "No MClone-configuration runs (Walter's cheetah on the cow)");
     sub->add_option("--neighbour-meshes", o->neighbour_meshes,
                     "Meshes of the neighbour runs (default cow, bull, triceratops)");
     sub->add_option("--neighbour-queries", o->neighbour_queries,
