@@ -143,20 +143,47 @@ def t_sim():
     return out
 
 
+def t_sim_mclone():
+    d = data("bench_sim")["mclone"]
+    rows = [[r["relax"], num(r["final_cells"]), num(r["cell_steps"]),
+             f"{r['cpu_seconds']:.2f}", num(r["ns_per_cell_step"]), f"{r['speedup']:.1f}×"]
+            for r in d["runs"]]
+    return (table(["relaxation", "final cells", "cell-steps", "CPU s", "ns / cell-step",
+                   "MClone CPU s / pelage CPU s"], rows) +
+            f"\nWalter's cheetah-like configuration (thesis Fig. 3.10 with Queiroz's w_d: "
+            f"ρ 18, w_r 2, {num(d['initial_cells'])} initial cells, 15 days, division times "
+            "8/60, α_FF 0.8, α_BB 0.5, w_d 0.067, w_a 0, P(F) 0.15, Poisson) on "
+            f"{mesh_name(d['mesh'])}, the whole `pelage sim` run from loading the mesh, "
+            f"fastest of the repeats; MClone takes {d['mclone_cpu_seconds']} CPU s with "
+            "global relaxation on the same machine (`mclone`).\n")
+
+
 def t_sim_density():
     d = data("bench_sim")
-    rows = [[str(r["subdivisions"]), num(r["triangles"]), num(r["simulation_triangles"]),
-             num(r["final_cells"]), num(r["seconds"]), num(r["ns_per_cell_step"]),
-             num(r["peak_rss_mb"]), f"{r['peak_rss_kb_per_cell']:.1f}"]
-            for r in d["density"]]
-    return (table(["midpoint splits", "triangles", "simulated on", "final cells", "seconds",
-                   "ns / cell-step", "peak MB", "peak KB / cell"], rows) +
+    runs = d["density"] + ([d["density_coarse"]] if "density_coarse" in d else [])
+    rows = [[str(r["subdivisions"]) if r["subdivisions"] >= 0 else "low-poly copy",
+             num(r["triangles"]), num(r["simulation_triangles"]),
+             num(r["final_cells"]), f"{r['cells_per_triangle']:.1f}", num(r["seconds"]),
+             num(r["ns_per_cell_step"]), num(r["peak_rss_mb"]),
+             f"{r['peak_rss_kb_per_cell']:.1f}"]
+            for r in runs]
+    coarse = ""
+    if "density_coarse" in d:
+        coarse = (" The low-poly copy is the mesh collapsed to about 110 of the input run's "
+                  "final cells per triangle (more than 128 are split at the edge "
+                  "midpoints): ns per cell-step over the input's "
+                  f"**{d['density_coarse_ns_per_cell_step_ratio']:.2f}×** "
+                  "(`density_coarse_ns_per_cell_step_ratio`).")
+    return (table(["midpoint splits", "triangles", "simulated on", "final cells",
+                   "cells / simulated triangle", "seconds", "ns / cell-step", "peak MB",
+                   "peak KB / cell"], rows) +
             f"\n`{d['density_preset']}` on {mesh_name(d['density_mesh'])}, the same surface "
             "split at its edge midpoints, each run a separate `pelage sim` process "
             f"({d['threads']} thread). Finest over coarsest: ns per cell-step "
             f"**{d['density_ns_per_cell_step_ratio']:.2f}×** "
             f"(`density_ns_per_cell_step_ratio`), peak memory per cell "
-            f"**{d['density_peak_rss_ratio']:.2f}×** (`density_peak_rss_ratio`).\n")
+            f"**{d['density_peak_rss_ratio']:.2f}×** (`density_peak_rss_ratio`)." + coarse +
+            "\n")
 
 
 def t_sim_neighbours():
@@ -492,7 +519,7 @@ def t_growth_pipelines():
 
 
 TABLES = {
-    "machine": t_machine, "crps": t_crps, "sim": t_sim, "sim-density": t_sim_density, "sim-neighbours": t_sim_neighbours, "default-job": t_default_job,
+    "machine": t_machine, "crps": t_crps, "sim": t_sim, "sim-density": t_sim_density, "sim-mclone": t_sim_mclone, "sim-neighbours": t_sim_neighbours, "default-job": t_default_job,
     "lookup": t_lookup, "lookup-lanes": t_lookup_lanes,
     "lookup-density": t_lookup_density, "render": t_render,
     "compare": t_compare, "hair": t_hair, "fur": t_fur, "fur-colour": t_fur_colour,
