@@ -114,22 +114,27 @@ TEST(CryptomatteCli, TypeMattesPartitionTheObjectAndAgreeWithTheShaderLayer) {
 
 // With fur over the skin, each strand carries its root's type: the type mattes still
 // partition the object's (the camera sees mostly hair), so "the spots" selects the
-// spots' hair too.
-TEST(CryptomatteCli, FurStrandsAreInTheirRootsTypeMatte) {
+// spots' hair too, and the object's matte is the image's alpha. Also with the strands
+// (0.14 px wide here) widened to a pixel and kept by their opacity (min_pixel_width):
+// a widened hit that is kept is a hit of its strand in every layer.
+class FurMattes : public ::testing::TestWithParam<double> {};
+
+TEST_P(FurMattes, StrandsAreInTheirRootsTypeMatteAndTheObjectsIsAlpha) {
     TempDir tmp;
     const std::string mesh = "procedural:icosphere:3";
     const std::string cells = simulate_two_type_cells(tmp, mesh, 300);
-    const std::string scene = tmp.write("s.json", R"({
+    const std::string scene =
+        tmp.write("s.json", R"({
       "camera": {"position": [0, 0, 3.2], "look_at": [0, 0, 0], "fov": 42},
       "film": {"width": 40, "height": 40, "spp": 16, "cryptomatte": ["object", "type"]},
       "lights": [{"type": "environment", "color": 1}],
-      "objects": [{"name": "ball", "mesh": ")" + mesh +
-                                                      R"(", "cells": ")" + cells +
-                                                      R"(",
+      "objects": [{"name": "ball", "mesh": ")" +
+                                mesh + R"(", "cells": ")" + cells +
+                                R"(",
                    "material": {"shader": "clonal_mosaic"},
                    "fur": {"density": 3000, "length": 0.15, "root_radius": 0.004,
-                           "tip_radius": 0.001, "seed": 3}}]
-    })");
+                           "tip_radius": 0.001, "seed": 3, "min_pixel_width": )" +
+                                std::to_string(GetParam()) + "}}]}");
     const std::string exr = tmp.file("o.exr");
     ASSERT_EQ(run_pelage("render " + scene + " -q -o " + exr), 0);
     for (const char *name : {"ball", "F", "B"})
@@ -141,15 +146,22 @@ TEST(CryptomatteCli, FurStrandsAreInTheirRootsTypeMatte) {
     const auto ball = read_channel(tmp.file("ball.exr"), "A");
     const auto f = read_channel(tmp.file("F.exr"), "A");
     const auto b = read_channel(tmp.file("B.exr"), "A");
-    double covered = 0, typed = 0;
+    const auto alpha = read_channel(exr, "A");
+    ASSERT_EQ(alpha.size(), ball.size());
+    double covered = 0, typed = 0, partial = 0;
     for (size_t i = 0; i < ball.size(); ++i) {
         EXPECT_NEAR(f[i] + b[i], ball[i], 1e-5) << i;
+        EXPECT_NEAR(ball[i], alpha[i], 1e-5) << i;
         covered += ball[i];
         typed += f[i];
+        partial += ball[i] > 0.01 && ball[i] < 0.99;
     }
     EXPECT_GT(covered, 200);  // the ball and its hair fill much of the frame
     EXPECT_GT(typed, 10);     // and some of it is the spots'
+    EXPECT_GT(partial, 20);   // the hair beyond the outline covers pixels in part
 }
+
+INSTANTIATE_TEST_SUITE_P(CryptomatteCli, FurMattes, ::testing::Values(0.0, 1.0));
 
 }  // namespace
 }  // namespace pelage::test
