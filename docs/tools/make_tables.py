@@ -380,6 +380,33 @@ def t_noise():
             f"seeds.\n")
 
 
+def t_fur_glitter():
+    f = data("bench_noise_fur_far")
+    w = data("bench_noise_fur_far_widened")
+    ref = f["reference_mean_rgb"]
+    rows = []
+    for label, d in [("fibres", f), ("widened to 1 px", w)]:
+        for r in d["by_spp"]:
+            rows.append([label, r["spp"], num(r["cpu_seconds"]), f"{r['rmse']:.4f}",
+                         f"{r['time_mse']:.2e}",
+                         ", ".join(signed_pct(m / c - 1) for m, c in zip(r["mean_rgb"], ref))])
+    equal = [r for r in f["by_spp"] if r["spp"] == 64]
+    note = ""
+    if equal:
+        w16 = next(r for r in w["by_spp"] if r["spp"] == 16)
+        note = (f" At about equal time the fibres at 64 spp ({num(equal[0]['cpu_seconds'])} CPU s) "
+                f"have {w16['rmse'] / equal[0]['rmse']:.2f} times less error than the "
+                f"widened strands at 16 ({num(w16['cpu_seconds'])} CPU s).")
+    return (table(["strands", "spp", "CPU s", "RMSE", "CPU s × MSE",
+                   "mean R, G, B against the reference"], rows, "lrrrrl") +
+            f"\n`pelage bench noise` on `{os.path.basename(f['scene'])}` and "
+            f"`{os.path.basename(w['scene'])}`, {f['width']}×{f['height']}, "
+            f"{f['object_pixels']} object pixels, means over 2 seeds; both measured against "
+            f"the fibres' {f['reference']['spp']}-spp reference (mean "
+            f"{f['reference_mean']:.3f}). Targets: 3 times less noise at equal time, "
+            f"converged mean within 2 %.{note}\n")
+
+
 # --- validation.md --------------------------------------------------------------------
 
 def t_presets():
@@ -523,7 +550,7 @@ TABLES = {
     "lookup": t_lookup, "lookup-lanes": t_lookup_lanes,
     "lookup-density": t_lookup_density, "render": t_render,
     "compare": t_compare, "hair": t_hair, "fur": t_fur, "fur-colour": t_fur_colour,
-    "fur-comb": t_fur_comb,
+    "fur-comb": t_fur_comb, "fur-glitter": t_fur_glitter,
     "fur-slab": t_fur_slab, "noise": t_noise, "presets": t_presets,
     "crps-errors": t_crps_errors, "lookup-quality": t_lookup_quality,
     "hair-furnace": t_hair_furnace, "gallery": t_gallery, "looks": t_looks,

@@ -68,6 +68,16 @@ run bench_noise   "$pelage" bench noise scenes/bench_cow_sun_sky.json --spp 16 6
 run bench_noise_fur "$pelage" bench noise scenes/bench_cow_sun_sky_fur.json --spp 16 64 \
                       --seeds 2 --reference-spp 1024 --cache build/noise_refs \
                       -q --stats-json "$out/bench_noise_fur.json"
+# The same coat from four times as far (strands 0.05 px wide): the fibres against their
+# reference, then widened to a pixel (min_pixel_width 1) against the same reference.
+run bench_noise_fur_far "$pelage" bench noise scenes/bench_cow_far_fur.json --res "" \
+                      --spp 16 64 --seeds 2 --reference-spp 1024 --cache build/noise_refs \
+                      -q --stats-json "$out/bench_noise_fur_far.json"
+far_ref=$(python3 -c 'import json, sys; print(json.load(open(sys.argv[1]))["reference"]["file"])' \
+              "$out/bench_noise_fur_far.json")
+run bench_noise_fur_far_widened "$pelage" bench noise scenes/bench_cow_far_fur_widened.json \
+                      --res "" --spp 16 64 --seeds 2 --reference "$far_ref" \
+                      -q --stats-json "$out/bench_noise_fur_far_widened.json"
 run sim_cheetah   "$pelage" sim --mesh procedural:sphere:20x20 --preset teo-cheetah --seed 1 \
                       --threads 1 -o scenes/sphere_cheetah.cells
 run compare       "$pelage" compare scenes/sphere_cheetah.json --res 500x500 --spp 2 \

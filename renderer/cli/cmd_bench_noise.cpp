@@ -16,8 +16,10 @@
 // Prints one JSON object: {scene, width, height, reference: {spp, seed, seconds,
 // cached, file}, object_pixels, reference_mean, runs: [{spp, seed, seconds,
 // cpu_seconds, mse, rmse, relative_rmse, time_mse, fireflies, median_max}], by_spp:
-// [{spp, seconds, cpu_seconds, mse, rmse, time_mse, fireflies}] (means over the seeds)}
-// (an output contract).
+// [{spp, seconds, cpu_seconds, mse, rmse, time_mse, fireflies, mean_rgb}] (means over the
+// seeds), reference_mean_rgb} (an output contract). mean_rgb against reference_mean_rgb
+// (the same pixels) is a converged run's bias against another build's or setting's
+// --reference.
 
 #include <cstdlib>
 #include <cstring>
@@ -168,16 +170,19 @@ int run(const BenchNoiseOptions &o) {
     nlohmann::json runs = nlohmann::json::array(), by_spp = nlohmann::json::array();
     size_t object_pixels = 0;
     double reference_mean = 0;
+    nlohmann::json reference_mean_rgb;
+    auto rgb = [](const double *c) { return nlohmann::json{c[0], c[1], c[2]}; };
     for (int spp : o.spp) {
         desc.film.spp = spp;
         scene = std::make_unique<Scene>(desc, plugins);
-        double sum[5] = {0, 0, 0, 0, 0};  // seconds, cpu, mse, rmse, fireflies
+        double sum[8] = {};  // seconds, cpu, mse, rmse, fireflies, mean R, G, B
         for (int s = 1; s <= o.seeds; ++s) {
             const TimedRender r = timed_render(*scene, uint64_t(s));
             const NoiseMetrics m = measure_noise(r.pixels, reference, desc.film.width,
                                                  desc.film.height, stride);
             object_pixels = m.pixels;
             reference_mean = m.reference_mean;
+            reference_mean_rgb = rgb(m.reference_mean_rgb);
             runs.push_back({{"spp", spp},
                             {"seed", s},
                             {"seconds", r.seconds},
@@ -187,10 +192,12 @@ int run(const BenchNoiseOptions &o) {
                             {"relative_rmse", m.rmse / std::max(m.reference_mean, 1e-30)},
                             {"time_mse", r.cpu_seconds * m.mse},
                             {"fireflies", m.fireflies},
-                            {"median_max", m.median_max}});
-            const double v[5] = {r.seconds, r.cpu_seconds, m.mse, m.rmse,
-                                 double(m.fireflies)};
-            for (int k = 0; k < 5; ++k) sum[k] += v[k] / o.seeds;
+                            {"median_max", m.median_max},
+                            {"mean_rgb", rgb(m.mean_rgb)}});
+            const double v[8] = {r.seconds,     r.cpu_seconds,       m.mse,
+                                 m.rmse,        double(m.fireflies), m.mean_rgb[0],
+                                 m.mean_rgb[1], m.mean_rgb[2]};
+            for (int k = 0; k < 8; ++k) sum[k] += v[k] / o.seeds;
         }
         by_spp.push_back({{"spp", spp},
                           {"seconds", sum[0]},
@@ -198,7 +205,8 @@ int run(const BenchNoiseOptions &o) {
                           {"mse", sum[2]},
                           {"rmse", sum[3]},
                           {"time_mse", sum[1] * sum[2]},
-                          {"fireflies", sum[4]}});
+                          {"fireflies", sum[4]},
+                          {"mean_rgb", rgb(sum + 5)}});
     }
     const nlohmann::json j = {{"scene", o.scene},
                               {"width", desc.film.width},
@@ -212,6 +220,7 @@ int run(const BenchNoiseOptions &o) {
                                 {"file", ref_file}}},
                               {"object_pixels", object_pixels},
                               {"reference_mean", reference_mean},
+                              {"reference_mean_rgb", reference_mean_rgb},
                               {"runs", runs},
                               {"by_spp", by_spp}};
     o.out.emit(j);

@@ -33,7 +33,7 @@ NoiseMetrics measure_noise(const std::vector<float> &image,
         throw std::invalid_argument("measure_noise: image and reference sizes differ");
     NoiseMetrics m;
     auto on_object = [&](size_t i) { return reference[i * stride + 3] >= 0.5f; };
-    double sum = 0, sum_ref = 0;
+    double sum = 0, sum_ref = 0, sum_rgb[3] = {0, 0, 0}, sum_ref_rgb[3] = {0, 0, 0};
     for (size_t i = 0; i < n; ++i) {
         if (!on_object(i)) continue;
         ++m.pixels;
@@ -41,6 +41,8 @@ NoiseMetrics measure_noise(const std::vector<float> &image,
             const double d = double(image[i * stride + c]) - reference[i * stride + c];
             sum += d * d;
             sum_ref += reference[i * stride + c];
+            sum_rgb[c] += image[i * stride + c];
+            sum_ref_rgb[c] += reference[i * stride + c];
             m.reference_max = std::max(m.reference_max, reference[i * stride + c]);
         }
     }
@@ -48,6 +50,10 @@ NoiseMetrics measure_noise(const std::vector<float> &image,
     m.mse = sum / double(3 * m.pixels);
     m.rmse = std::sqrt(m.mse);
     m.reference_mean = sum_ref / double(3 * m.pixels);
+    for (int c = 0; c < 3; ++c) {
+        m.mean_rgb[c] = sum_rgb[c] / double(m.pixels);
+        m.reference_mean_rgb[c] = sum_ref_rgb[c] / double(m.pixels);
+    }
     std::vector<float> brightest(n, 0.0f);
     for (int c = 0; c < 3; ++c) {
         const std::vector<float> med = median3x3(image, width, height, stride, c);

@@ -19,10 +19,13 @@ namespace pelage::renderer {
 struct NoiseMetrics {
     double mse = 0, rmse = 0;
     double reference_mean = 0;  // of the objects' R, G, B: rmse / it is a relative error
-    size_t pixels = 0;          // object pixels measured
-    size_t fireflies = 0;       // object pixels above the reference's maximum
-    float reference_max = 0;    // brightest channel value of the reference's objects
-    float median_max = 0;       // ... and of the image after the 3×3 median
+    // The image's and the reference's mean per channel over the same pixels: their ratio
+    // is the image's bias when both are converged (e.g. a prefilter against none).
+    double mean_rgb[3] = {0, 0, 0}, reference_mean_rgb[3] = {0, 0, 0};
+    size_t pixels = 0;        // object pixels measured
+    size_t fireflies = 0;     // object pixels above the reference's maximum
+    float reference_max = 0;  // brightest channel value of the reference's objects
+    float median_max = 0;     // ... and of the image after the 3×3 median
 };
 
 // `image` and `reference`: width × height pixels of `stride` interleaved floats each,

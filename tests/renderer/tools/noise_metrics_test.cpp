@@ -31,6 +31,11 @@ TEST(NoiseMetrics, MseCountsObjectPixelsAndChannelsOnly) {
     EXPECT_NEAR(m.rmse, std::sqrt(0.09 / (3.0 * 36)), 1e-7);
     EXPECT_FLOAT_EQ(m.reference_max, 0.5f);
     EXPECT_NEAR(m.reference_mean, 0.5, 1e-7);
+    // The image's red is 0.3 brighter on one of 36 object pixels; the background's 100
+    // does not count.
+    EXPECT_NEAR(m.mean_rgb[0], 0.5 + 0.3 / 36, 1e-7);
+    EXPECT_NEAR(m.mean_rgb[1], 0.5, 1e-7);
+    EXPECT_NEAR(m.reference_mean_rgb[0], 0.5, 1e-7);
 }
 
 TEST(NoiseMetrics, AnIsolatedSpikeIsNoFireflyAClusterIs) {
