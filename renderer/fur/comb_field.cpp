@@ -139,6 +139,38 @@ std::vector<float> comb_by_corner(const sim::FieldSpec &spec, const sim::Surface
     return out;
 }
 
+void carry_to_pose(std::vector<float> &by_corner, const std::vector<uint32_t> &triangles,
+                   const double *rest, const float *posed) {
+    const size_t nt = triangles.size() / 3;
+    for (size_t t = 0; t < nt && 9 * t + 8 < by_corner.size(); ++t) {
+        const uint32_t *v = &triangles[3 * t];
+        auto r = [&](int c) {
+            const double *p = rest + 3 * size_t(v[c]);
+            return sim::Vec3d{p[0], p[1], p[2]};
+        };
+        auto q = [&](int c) {
+            const float *p = posed + 3 * size_t(v[c]);
+            return sim::Vec3d{p[0], p[1], p[2]};
+        };
+        const sim::Vec3d e1 = r(1) - r(0), e2 = r(2) - r(0);
+        const sim::Vec3d f1 = q(1) - q(0), f2 = q(2) - q(0);
+        // d = a e1 + b e2 in the least-squares sense: the part of d in the plane.
+        const double g11 = dot(e1, e1), g12 = dot(e1, e2), g22 = dot(e2, e2);
+        const double det = g11 * g22 - g12 * g12;
+        for (int c = 0; c < 3; ++c) {
+            float *d = &by_corner[9 * t + 3 * size_t(c)];
+            const sim::Vec3d x{d[0], d[1], d[2]};
+            sim::Vec3d y{0, 0, 0};
+            if (det > 1e-12 * g11 * g22 && length(x) > 0) {
+                const double u = dot(e1, x), w = dot(e2, x);
+                y = f1 * ((g22 * u - g12 * w) / det) + f2 * ((g11 * w - g12 * u) / det);
+            }
+            const double l = length(y);
+            for (int k = 0; k < 3; ++k) d[k] = l > 0 ? float(y[k] / l) : 0.0f;
+        }
+    }
+}
+
 sim::FieldSpec pattern_field(const std::string &cells_path, const std::string &field) {
     const sim::CellsData data = sim::read_cells_file(cells_path);
     const nlohmann::json params = nlohmann::json::parse(data.params_json, nullptr, false);

@@ -27,6 +27,15 @@ namespace pelage::renderer {
 std::vector<float> comb_by_corner(const sim::FieldSpec &spec, const sim::Surface &rest,
                                   Vec3f towards, int smoothing);
 
+// Carries `by_corner` (as comb_by_corner returns it, on the rest mesh) to a deformed pose
+// of the same triangles: each corner's direction, in its triangle's plane, is written in
+// the triangle's rest edges and rebuilt from its posed edges (the deformation gradient
+// on the triangle), so the hair keeps its lie over the skin as the body bends, and a
+// triangle's directions turn with it. `rest` has 3 doubles per vertex, `posed` 3 floats;
+// directions stay unit length, zero ones and those of degenerate triangles zero.
+void carry_to_pose(std::vector<float> &by_corner, const std::vector<uint32_t> &triangles,
+                   const double *rest, const float *posed);
+
 // The anisotropy field of the preset a .cells file records. Throws pelage::InputError
 // naming `cells_path` and `field` when the file has no preset or its preset no field.
 sim::FieldSpec pattern_field(const std::string &cells_path, const std::string &field);

@@ -336,6 +336,14 @@ FurGeometry::FurGeometry(const SceneDesc &desc, EmbreeScene &scene,
                     : params.comb_field;
             comb = comb_by_corner(spec, rest_surface(), desc.objects[i].fur->comb_towards,
                                   params.comb_smoothing);
+            // A deformed pose (deform, growth): the comb goes with the skin.
+            const MeshData &m = *og.mesh;
+            bool posed = false;
+            for (size_t k = 0; k < 3 * size_t(m.num_vertices) && !posed; ++k)
+                posed = m.object_positions[k] != float(m.rest->positions[k]);
+            if (posed)
+                carry_to_pose(comb, m.triangles, m.rest->positions.data(),
+                              m.object_positions.data());
             for (size_t t = 0; t < comb.size(); t += 3) {
                 const Vec3f w =
                     desc.objects[i].transform.vector({comb[t], comb[t + 1], comb[t + 2]});

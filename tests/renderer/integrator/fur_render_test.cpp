@@ -476,6 +476,36 @@ TEST(FurComb, StrandsFollowTheBodyAxisAlongAndAround) {
             << i;
 }
 
+// A comb resolved on the rest mesh goes with the skin into a deformed pose: the cylinder
+// posed lying along x (each vertex turned 90° about z, a deformation as far as the
+// renderer knows), combed along its rest body axis y: the hair lies along x, the posed
+// axis, within the same degree as at rest, and points the way the rest's -y went
+// (+x). Without carrying, the rest directions in the posed tangent planes run around
+// the body.
+TEST(FurComb, AFieldCombGoesWithTheSkinIntoADeformedPose) {
+    CombCylinder c;
+    sim::TriangleMesh pose = sim::make_cylinder(48, 12, 0.2, 2.0);
+    for (sim::Vec3d &p : pose.positions) p = sim::Vec3d{-p.y, p.x, p.z};
+    const std::string pose_file = c.tmp.file("pose.obj");
+    sim::write_obj(pose_file, pose, {});
+    const renderer::PluginRegistry plugins;
+    const std::string text = R"({"camera": {}, "objects": [{"mesh": ")" + c.mesh +
+                             R"(", "deform": ")" + pose_file +
+                             R"(", "material": {"shader": "diffuse"},
+        "fur": {"density": 400, "segments": 4, "comb_jitter": 0, "gravity": 0,
+        "comb_angle": 10, "length": 0.05, "comb": {"along": "body_axis"}}}]})";
+    const renderer::Scene s(renderer::parse_scene(text, c.tmp.file("posed.json")),
+                            plugins);
+    const renderer::Strands &strands = s.fur()->layers().at(0).strands;
+    ASSERT_GT(strands.size(), 500u);
+    for (size_t i = 0; i < strands.size(); ++i) {
+        const float *P = &strands.points[4 * i * strands.points_per_strand + 4];
+        const Vec3f n = normalize(Vec3f{0, P[1], P[2]});  // radial about the x axis
+        ASSERT_LT(angle_to_axis(strands, i, n, {1, 0, 0}), 1.0) << i;
+        ASSERT_GT(P[4] - P[0], 0) << i;  // rest -y turned to +x
+    }
+}
+
 TEST(FurComb, FieldFollowsThePatternsAnisotropyField) {
     CombCylinder c;
     const renderer::PluginRegistry plugins;
