@@ -11,7 +11,7 @@ straight strands along the interpolated normal, the same root and tip radii, β_
 denoising (docs/tools/cycles_scene.py builds Cycles' side).
 
 Each renderer is measured against its own converged reference over the pixels both
-references cover (alpha >= 1/2):
+references cover fully (alpha >= 0.999):
   * brightness: the references' mean per channel, pelage / Cycles;
   * cost: render CPU seconds (a run's process CPU minus that of a 1-spp run, so loading
     and BVH builds do not count) × relative MSE (MSE / the reference's mean squared),
@@ -41,7 +41,8 @@ import numpy as np
 import OpenImageIO as oiio
 
 REPO = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-SCENE = os.path.join(REPO, "scenes", "bench_cow_sun_sky_fur.json")
+SCENE = os.path.abspath(os.environ.get("CYCLES_FUR_SCENE") or
+                        os.path.join(REPO, "scenes", "bench_cow_sun_sky_fur.json"))
 SKIN = [0.5, 0.35, 0.2]          # the constant skin colour (linear)
 REFERENCE_SEED = 999983          # no measured run uses it
 
@@ -67,7 +68,7 @@ def read_rgba(path):
     return a
 
 
-def matched(bench, with_fur, width, height):
+def matched(bench, with_fur, width, height, skin=SKIN):
     """The pelage scene and the Cycles configuration of one case."""
     scene = copy.deepcopy(bench)
     obj = scene["objects"][0]
@@ -75,7 +76,7 @@ def matched(bench, with_fur, width, height):
     obj["mesh"] = mesh
     obj.pop("cells", None)
     obj.pop("pattern", None)
-    obj["material"] = {"shader": "diffuse", "params": {"albedo": SKIN}}
+    obj["material"] = {"shader": "diffuse", "params": {"albedo": skin}}
     fur = obj.pop("fur")
     hair = None
     if with_fur:
@@ -101,7 +102,7 @@ def matched(bench, with_fur, width, height):
               "environment": {"colour": env["colour"], "intensity": env["intensity"]},
               "sun": {"direction": sun["direction"], "angle": sun["angle"],
                       "colour": sun["colour"], "intensity": sun["intensity"]},
-              "skin_colour": SKIN, "fur": hair,
+              "skin_colour": skin, "fur": hair,
               "max_depth": scene["integrator"]["max_depth"]}
     return scene, cycles
 
@@ -140,7 +141,9 @@ def measure(case, scene, cfg, r, args):
               file=sys.stderr)
         render(c, args.reference_spp, REFERENCE_SEED, out)
         refs[name] = read_rgba(out)
-    mask = (refs["pelage"][..., 3] >= 0.5) & (refs["cycles"][..., 3] >= 0.5)
+    # Pixels the object covers fully in both: pelage keeps the background's radiance in
+    # a partly covered pixel, Cycles' transparent film does not.
+    mask = (refs["pelage"][..., 3] >= 0.999) & (refs["cycles"][..., 3] >= 0.999)
     means = {k: refs[k][..., :3][mask].mean(axis=0) for k in refs}
     result = {"object_pixels": int(mask.sum()),
               "reference_mean_rgb": {k: means[k].tolist() for k in means},
@@ -187,6 +190,8 @@ def main():
     ap.add_argument("--cases", nargs="+", default=["fur", "bare"], choices=["fur", "bare"])
     ap.add_argument("--out", default=os.path.join(REPO, "docs", "data", "cycles_fur.json"))
     ap.add_argument("--keep", help="keep the images in this directory")
+    ap.add_argument("--skin", type=float, nargs=3, default=SKIN,
+                    help="the skin's constant colour (linear RGB)")
     args = ap.parse_args()
     width, height = (int(x) for x in args.res.split("x"))
     with open(SCENE, encoding="utf-8") as f:
@@ -200,9 +205,10 @@ def main():
     r = Renderers(args, work)
     out = {"scene": os.path.relpath(SCENE, REPO), "blender": version,
            "width": width, "height": height, "reference_spp": args.reference_spp,
-           "seeds": args.seeds, "threads": args.threads, "skin_colour": SKIN, "cases": {}}
+           "seeds": args.seeds, "threads": args.threads, "skin_colour": args.skin,
+           "cases": {}}
     for case in args.cases:
-        scene, cfg = matched(bench, case == "fur", width, height)
+        scene, cfg = matched(bench, case == "fur", width, height, args.skin)
         out["cases"][case] = measure(case, scene, cfg, r, args)
         if case == "fur":
             out["fur"] = cfg["fur"]

@@ -172,7 +172,9 @@ def main():
     cy.caustics_reflective = True
     cy.caustics_refractive = True
     cy.light_sampling_threshold = 0
-    depth = cfg["max_depth"]
+    # pelage's max_depth counts scattering events (1: direct light only), Cycles'
+    # bounces count the events after the first (0: direct light only).
+    depth = cfg["max_depth"] - 1
     cy.max_bounces = depth
     cy.diffuse_bounces = depth
     cy.glossy_bounces = depth
