@@ -407,6 +407,35 @@ def t_fur_glitter():
             f"converged mean within 2 %.{note}\n")
 
 
+def t_cycles_fur():
+    d = data("cycles_fur")
+    rows = []
+    for case in ["bare", "fur"]:
+        c = d["cases"].get(case)
+        if not c:
+            continue
+        for r in c["by_spp"]:
+            p, y = r["pelage"], r["cycles"]
+            rows.append([case, r["spp"], f"{num(p['render_cpu_seconds'])} / {num(y['render_cpu_seconds'])}",
+                         f"{p['relative_mse']:.2e} / {y['relative_mse']:.2e}",
+                         f"{r['cost_ratio']:.2f}", f"{num(p['outliers'])} / {num(y['outliers'])}"])
+    bright = [[case, ", ".join(f"{x:.3f}" for x in d["cases"][case]["brightness_rgb"]),
+               num(d["cases"][case]["object_pixels"])]
+              for case in ["bare", "fur"] if case in d["cases"]]
+    return (table(["scene", "spp", "render CPU s, pelage / Cycles", "relative MSE, pelage / Cycles",
+                   "CPU s × relative MSE, pelage / Cycles", "outlier pixels, pelage / Cycles"],
+                  rows, "lrrrrr") + "\n" +
+            table(["scene", "brightness R, G, B: pelage / Cycles (references)", "pixels"],
+                  bright, "llr") +
+            f"\n`docs/tools/cycles_fur.py`: `{d['scene']}` with a constant skin "
+            f"({', '.join(f'{x:g}' for x in d['skin_colour'])}) and the hair's absorption as "
+            f"sigma_a, in pelage and in {d['blender']}'s Cycles (CPU, {d['threads']} threads), "
+            f"{d['width']}×{d['height']}, each against its own {d['reference_spp']}-spp "
+            f"reference over the pixels both cover fully, means over {d['seeds']} seeds. "
+            f"Render CPU s: a run's process CPU minus that of a 1-spp run. Outliers: pixels "
+            f"off by more than 5 times the reference's mean.\n")
+
+
 # --- validation.md --------------------------------------------------------------------
 
 def t_presets():
@@ -551,7 +580,7 @@ TABLES = {
     "lookup-density": t_lookup_density, "render": t_render,
     "compare": t_compare, "hair": t_hair, "fur": t_fur, "fur-colour": t_fur_colour,
     "fur-comb": t_fur_comb, "fur-glitter": t_fur_glitter,
-    "fur-slab": t_fur_slab, "noise": t_noise, "presets": t_presets,
+    "fur-slab": t_fur_slab, "noise": t_noise, "cycles-fur": t_cycles_fur, "presets": t_presets,
     "crps-errors": t_crps_errors, "lookup-quality": t_lookup_quality,
     "hair-furnace": t_hair_furnace, "gallery": t_gallery, "looks": t_looks,
     "control-measures": t_control_measures, "growth-pipelines": t_growth_pipelines,
