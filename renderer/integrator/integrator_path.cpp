@@ -446,15 +446,18 @@ bool PathIntegrator::scatter(const Bsdf &bsdf, const SurfaceVertex &sv,
 
 // After a vertex scattered: widens the ray cone for a non-specular bounce (ray_cone.h),
 // then decides whether the path goes on. Not when its throughput is black; from rr_depth
-// on, Russian roulette (pbrt-v4 §2.2.4) continues with probability min(0.95, max(β)) and
-// divides β by it, so the estimate stays unbiased.
+// on, Russian roulette (pbrt-v4 §2.2.4) continues with probability min(0.95, √max(β))
+// and divides β by it, so the estimate stays unbiased. The square root (Cycles' choice)
+// keeps more of the paths whose throughput a first diffuse or hair bounce has halved:
+// with max(β) itself, RR from the first bounce cost the bare benchmark cow 1.5 times
+// its MSE at equal samples and the furry one 1.4 times, for 0-30 % less time.
 [[gnu::always_inline]] inline bool PathIntegrator::continue_path(int depth,
                                                                  Sampler &sampler,
                                                                  PathState &path) const {
     if (is_black(path.beta)) return false;
     if (!path.prev_specular) path.spread += bounce_spread(path.prev_pdf, m_spp);
     if (depth + 1 < m_rr_depth) return true;
-    const float p_continue = std::min(0.95f, max_component(path.beta));
+    const float p_continue = std::min(0.95f, std::sqrt(max_component(path.beta)));
     if (sampler.get_1d() >= p_continue) return false;
     path.beta = path.beta / p_continue;
     return true;
