@@ -8,7 +8,8 @@ given as sigma_a, so nothing depends on either renderer's pigment or shader mapp
 Both renderers get random roots (area-uniform, neither jittered nor stratified),
 straight strands along the interpolated normal, the same root and tip radii, β_m, β_n,
 α and η, and no clamping, Filter Glossy, light threshold, adaptive sampling or
-denoising (docs/tools/cycles_scene.py builds Cycles' side).
+denoising (docs/tools/cycles_scene.py builds Cycles' side). Russian roulette, an
+efficiency setting, is each renderer's default.
 
 Each renderer is measured against its own converged reference over the pixels both
 references cover fully (alpha >= 0.999):
@@ -93,6 +94,10 @@ def matched(bench, with_fur, width, height, skin=SKIN):
         fur.update({"sigma_a": sigma_a, "beta_m": hair["beta_m"], "beta_n": hair["beta_n"],
                     "alpha": hair["alpha_deg"], "melanin_jitter": 0})
         obj["fur"] = fur
+    # Russian roulette is each renderer's own (an efficiency setting, unbiased in both):
+    # pelage's from its default depth, Cycles' from its first bounce with probability
+    # sqrt(max throughput) and min_light_bounces 0.
+    scene["integrator"].pop("rr_depth", None)
     scene["film"].update({"width": width, "height": height})
     scene["film"].pop("preview", None)
     env = next(l for l in scene["lights"] if l["type"] == "environment")
