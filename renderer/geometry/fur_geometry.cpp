@@ -42,6 +42,9 @@ void bspline_basis(float u, float b[4]) {
     b[3] = u * u * u / 6;
 }
 
+// From this many strands in a scene its BVH takes Embree's compact layout.
+constexpr size_t compact_strands = 1000000;
+
 // A number in [0, 1) from 64 bits.
 float unit_hash(uint64_t x) { return float(mix64(x) >> 40) * 0x1p-24f; }
 
@@ -423,6 +426,13 @@ FurGeometry::FurGeometry(const SceneDesc &desc, EmbreeScene &scene,
         // Embree's high-quality (spatial split) build costs seconds per 100 k strands
         // for curves; the medium build is several times faster and traces about as fast.
         rtcSetSceneBuildQuality(scene.scene(), RTC_BUILD_QUALITY_MEDIUM);
+        // A groom of millions of strands is bound by memory: Embree's compact layout
+        // (curve primitives by index, not copied) halves the peak (1 M strands of
+        // `pelage bench fur`: 1 240 -> 671 MB, build 13 % faster) for 10 % fewer rays
+        // per second, so it is taken from compact_strands strands on.
+        if (num_strands() >= compact_strands)
+            rtcSetSceneFlags(scene.scene(),
+                             rtcGetSceneFlags(scene.scene()) | RTC_SCENE_FLAG_COMPACT);
         rtcCommitScene(scene.scene());
         scene.check();
     }
