@@ -427,9 +427,9 @@ FurGeometry::FurGeometry(const SceneDesc &desc, EmbreeScene &scene,
         // for curves; the medium build is several times faster and traces about as fast.
         rtcSetSceneBuildQuality(scene.scene(), RTC_BUILD_QUALITY_MEDIUM);
         // A groom of millions of strands is bound by memory: Embree's compact layout
-        // (curve primitives by index, not copied) halves the peak (1 M strands of
-        // `pelage bench fur`: 1 240 -> 671 MB, build 13 % faster) for 10 % fewer rays
-        // per second, so it is taken from compact_strands strands on.
+        // (curve primitives by index, not copied) about halves the peak for slightly
+        // fewer rays per second (docs/performance.md, "Fur"), so it is taken from
+        // compact_strands strands on.
         if (num_strands() >= compact_strands)
             rtcSetSceneFlags(scene.scene(),
                              rtcGetSceneFlags(scene.scene()) | RTC_SCENE_FLAG_COMPACT);

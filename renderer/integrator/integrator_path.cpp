@@ -448,9 +448,9 @@ bool PathIntegrator::scatter(const Bsdf &bsdf, const SurfaceVertex &sv,
 // then decides whether the path goes on. Not when its throughput is black; from rr_depth
 // on, Russian roulette (pbrt-v4 §2.2.4) continues with probability min(0.95, √max(β))
 // and divides β by it, so the estimate stays unbiased. The square root (Cycles' choice)
-// keeps more of the paths whose throughput a first diffuse or hair bounce has halved:
-// with max(β) itself, RR from the first bounce cost the bare benchmark cow 1.5 times
-// its MSE at equal samples and the furry one 1.4 times, for 0-30 % less time.
+// keeps more of the paths whose throughput a first diffuse or hair bounce has halved,
+// which still carry much of a pixel's indirect light: ending them costs more noise than
+// the time it saves (docs/performance.md, "Noise against time").
 [[gnu::always_inline]] inline bool PathIntegrator::continue_path(int depth,
                                                                  Sampler &sampler,
                                                                  PathState &path) const {
