@@ -53,7 +53,8 @@ run bench_lookup  "$pelage" bench lookup --cell-count 20000 --queries 500000 --t
 run bench_render  "$pelage" bench render --res 1280x720 --spp 4 --repeat 3 -q \
                       --stats-json "$out/bench_render.json"
 run bench_hair    "$pelage" bench hair --configs 16 -q --stats-json "$out/bench_hair.json"
-run bench_fur     "$pelage" bench fur --strands 20000 100000 --res 320x240 --spp 4 --threads 1 \
+run bench_fur     "$pelage" bench fur --strands 20000 100000 2500000 10000000 --res 320x240 \
+                      --spp 4 --threads 1 \
                       -q --stats-json "$out/bench_fur.json"
 run fur_colour    "$pelage" bench fur-colour --res 320x180 --spp 32 --slab-spp 128 -q \
                       --stats-json "$out/fur_colour.json"
