@@ -79,6 +79,7 @@ TriangleMesh clean_mesh(const TriangleMesh &in, const std::string &source_path,
         if (rep[v] == v) {
             new_index[v] = static_cast<VertId>(out.positions.size());
             out.positions.push_back(in.positions[v]);
+            st.source_vertex.push_back(v);
         }
     // A welded vertex keeps the attributes of the vertex it was welded into.
     for (const auto &[name, values] : in.vertex_attributes) {
@@ -103,6 +104,7 @@ TriangleMesh clean_mesh(const TriangleMesh &in, const std::string &source_path,
             continue;
         }
         out.triangles.push_back(tri);
+        st.source_corners.push_back(in.triangles[t]);
         out.source_face.push_back(in.source_face.empty() ? t : in.source_face[t]);
         if (!in.triangle_material.empty())
             out.triangle_material.push_back(in.triangle_material[t]);

@@ -2,6 +2,9 @@
 // zero-area triangles dropped. Both are counted so tools can report them.
 #pragma once
 
+#include <array>
+#include <vector>
+
 #include "sim/mesh/mesh.h"
 
 namespace pelage::sim {
@@ -17,6 +20,14 @@ struct MeshCleanStats {
     size_t vertices_welded = 0;     // vertices merged into another
     size_t degenerate_dropped = 0;  // zero-area triangles removed
     size_t unused_vertices = 0;     // vertices no triangle references (kept, harmless)
+    // For each output vertex, the input vertex it is (the lowest index of a welded
+    // group): what carries a pose given per input vertex, such as a skinned animation's,
+    // to the cleaned mesh.
+    std::vector<VertId> source_vertex;
+    // For each output triangle, its corners as the input numbered them (before welding):
+    // vertices that coincide at rest but move apart in a pose (seams, touching parts)
+    // keep their own motion this way.
+    std::vector<std::array<VertId, 3>> source_corners;
 };
 
 // Throws InputError(source_path, ...) when nothing is left (an empty mesh).

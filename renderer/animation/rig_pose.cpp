@@ -1,0 +1,173 @@
+// Posing a rig at a time: glTF 2.0 §3.11 (animations: linear interpolation, spherical
+// linear for rotations; before the first key the first value, after the last the last),
+// §3.7.2.2 (morph targets) and §3.7.3 (skins). In double precision throughout, so the
+// pose is as exact as the file's floats.
+#include <algorithm>
+#include <cmath>
+
+#include "renderer/animation/rig.h"
+#include "renderer/animation/rig_data.h"
+#include "sim/core/input_error.h"
+
+namespace pelage::renderer {
+namespace {
+
+using sim::Vec3d;
+
+// The keys around `t` and the blend between them: (i, i + 1, f), or (i, i, 0) at or
+// beyond the ends. Keys are in increasing time (assimp sorts them).
+template <class K>
+void bracket(const std::vector<K> &keys, double t, size_t *i0, size_t *i1, double *f) {
+    if (t <= keys.front().time || keys.size() == 1) {
+        *i0 = *i1 = 0, *f = 0;
+        return;
+    }
+    if (t >= keys.back().time) {
+        *i0 = *i1 = keys.size() - 1, *f = 0;
+        return;
+    }
+    const auto it = std::upper_bound(keys.begin(), keys.end(), t,
+                                     [](double x, const K &k) { return x < k.time; });
+    *i1 = size_t(it - keys.begin());
+    *i0 = *i1 - 1;
+    const double dt = keys[*i1].time - keys[*i0].time;
+    *f = dt > 0 ? (t - keys[*i0].time) / dt : 0.0;
+}
+
+Vec3d sample(const std::vector<RigData::Key<Vec3d>> &keys, double t, Vec3d fallback) {
+    if (keys.empty()) return fallback;
+    size_t i0, i1;
+    double f;
+    bracket(keys, t, &i0, &i1, &f);
+    return keys[i0].value * (1 - f) + keys[i1].value * f;
+}
+
+Quat normalized(Quat q) {
+    const double n = std::sqrt(q.w * q.w + q.x * q.x + q.y * q.y + q.z * q.z);
+    return n > 0 ? Quat{q.w / n, q.x / n, q.y / n, q.z / n} : Quat{};
+}
+
+// The shorter arc between two unit quaternions (q and −q are the same rotation).
+Quat slerp(Quat a, Quat b, double f) {
+    double d = a.w * b.w + a.x * b.x + a.y * b.y + a.z * b.z;
+    if (d < 0) b = {-b.w, -b.x, -b.y, -b.z}, d = -d;
+    double wa = 1 - f, wb = f;
+    if (d < 1 - 1e-12) {  // nearer, sin θ loses the digits the weights need
+        const double theta = std::acos(std::min(d, 1.0));
+        const double s = std::sin(theta);
+        wa = std::sin((1 - f) * theta) / s;
+        wb = std::sin(f * theta) / s;
+    }
+    return normalized(
+        {wa * a.w + wb * b.w, wa * a.x + wb * b.x, wa * a.y + wb * b.y, wa * a.z + wb * b.z});
+}
+
+Quat sample(const std::vector<RigData::Key<Quat>> &keys, double t, Quat fallback) {
+    if (keys.empty()) return fallback;
+    size_t i0, i1;
+    double f;
+    bracket(keys, t, &i0, &i1, &f);
+    return slerp(normalized(keys[i0].value), normalized(keys[i1].value), f);
+}
+
+Vec3d apply(const Transform &m, Vec3d v) {
+    return {m.a[0][0] * v.x + m.a[0][1] * v.y + m.a[0][2] * v.z + m.t[0],
+            m.a[1][0] * v.x + m.a[1][1] * v.y + m.a[1][2] * v.z + m.t[1],
+            m.a[2][0] * v.x + m.a[2][1] * v.y + m.a[2][2] * v.z + m.t[2]};
+}
+
+}  // namespace
+
+Transform Trs::matrix() const {
+    const Quat q = normalized(r);
+    const double xx = q.x * q.x, yy = q.y * q.y, zz = q.z * q.z;
+    const double xy = q.x * q.y, xz = q.x * q.z, yz = q.y * q.z;
+    const double wx = q.w * q.x, wy = q.w * q.y, wz = q.w * q.z;
+    const double rot[3][3] = {{1 - 2 * (yy + zz), 2 * (xy - wz), 2 * (xz + wy)},
+                              {2 * (xy + wz), 1 - 2 * (xx + zz), 2 * (yz - wx)},
+                              {2 * (xz - wy), 2 * (yz + wx), 1 - 2 * (xx + yy)}};
+    const double sc[3] = {s.x, s.y, s.z};
+    Transform m;
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) m.a[i][j] = rot[i][j] * sc[j];
+    m.t[0] = t.x, m.t[1] = t.y, m.t[2] = t.z;
+    return m;
+}
+
+std::vector<Vec3d> Rig::pose(int clip_index, double seconds) const {
+    const RigData &d = *m;
+    const RigData::Clip &clip = d.clips.at(size_t(clip_index));
+    // --- Every node's local transform at the time, then the global ones ---
+    std::vector<Transform> global(d.nodes.size());
+    for (size_t n = 0; n < d.nodes.size(); ++n) global[n] = d.nodes[n].rest;
+    for (const RigData::Channel &ch : clip.channels) {
+        const Trs &rest = d.nodes[size_t(ch.node)].rest_trs;
+        global[size_t(ch.node)] = Trs{sample(ch.position, seconds, rest.t),
+                                      sample(ch.rotation, seconds, rest.r),
+                                      sample(ch.scale, seconds, rest.s)}
+                                      .matrix();
+    }
+    for (size_t n = 0; n < d.nodes.size(); ++n)  // parents come first
+        if (d.nodes[n].parent >= 0) global[n] = global[size_t(d.nodes[n].parent)] * global[n];
+
+    std::vector<Vec3d> out;
+    out.reserve(d.num_vertices);
+    for (const RigData::Piece &p : d.pieces) {
+        // --- Morph weights: the channel on the piece's node, or the file's defaults ---
+        std::vector<double> weights = p.target_weights;
+        for (const RigData::MorphChannel &mc : clip.morphs) {
+            if (mc.node != p.node || mc.keys.empty()) continue;
+            size_t i0, i1;
+            double f;
+            bracket(mc.keys, seconds, &i0, &i1, &f);
+            std::fill(weights.begin(), weights.end(), 0.0);
+            for (const auto &[target, w] : mc.keys[i0].value)
+                if (target < weights.size()) weights[target] += (1 - f) * w;
+            for (const auto &[target, w] : mc.keys[i1].value)
+                if (target < weights.size()) weights[target] += f * w;
+        }
+        // --- Skin matrices: each joint's global transform times its IBM ---
+        std::vector<Transform> skin(p.bones.size());
+        for (size_t b = 0; b < p.bones.size(); ++b)
+            skin[b] = global[size_t(p.bones[b].node)] * p.bones[b].offset;
+        for (size_t v = 0; v < p.vertices.size(); ++v) {
+            Vec3d x = p.vertices[v];
+            for (size_t k = 0; k < p.targets.size(); ++k)
+                if (weights[k] != 0) x += (p.targets[k][v] - p.vertices[v]) * weights[k];
+            Vec3d posed{0, 0, 0};
+            if (p.bones.empty()) {
+                posed = apply(global[size_t(p.node)], x);
+            } else {
+                for (uint32_t i = p.influence_begin[v]; i < p.influence_begin[v + 1]; ++i)
+                    posed += apply(skin[p.influences[i].bone], x) * p.influences[i].weight;
+            }
+            if (!is_finite(posed))
+                throw InputError(d.path, 0, "",
+                                 "clip \"" + clip.name + "\" at " + std::to_string(seconds) +
+                                     " s: vertex " + std::to_string(out.size()) +
+                                     " has a non-finite position");
+            out.push_back(posed);
+        }
+    }
+    return out;
+}
+
+void unweld(const sim::MeshLoadReport &report, sim::TriangleMesh *mesh) {
+    const auto &corners = report.clean.source_corners;
+    PELAGE_CHECK(corners.size() == mesh->num_triangles());
+    std::vector<Vec3d> positions(report.raw_vertices, Vec3d{0, 0, 0});
+    for (size_t t = 0; t < corners.size(); ++t)
+        for (int c = 0; c < 3; ++c) positions.at(corners[t][c]) = mesh->vertex(sim::TriId(t), c);
+    mesh->positions = std::move(positions);
+    mesh->triangles = corners;
+    mesh->vertex_attributes.clear();  // per welded vertex: they do not follow
+}
+
+void pose_mesh(const Rig &rig, int clip, double seconds, sim::TriangleMesh *mesh) {
+    std::vector<Vec3d> posed = rig.pose(clip, seconds);
+    PELAGE_CHECK(posed.size() == mesh->num_vertices());
+    mesh->positions = std::move(posed);
+    mesh->corner_normals.clear();
+}
+
+}  // namespace pelage::renderer
