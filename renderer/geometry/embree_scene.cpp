@@ -1,11 +1,14 @@
 #include "renderer/geometry/embree_scene.h"
 
+#include <array>
 #include <cmath>
+#include <cstdio>
 #include <map>
 #include <optional>
 #include <stdexcept>
 #include <tuple>
 
+#include "renderer/animation/rig.h"
 #include "renderer/core/setup_phase.h"
 #include "renderer/geometry/deform.h"
 #include "sim/core/input_error.h"
@@ -19,14 +22,26 @@ namespace {
 std::shared_ptr<MeshData> load_mesh_data(const ObjectDesc &o,
                                          const std::string &scene_path, size_t index) {
     sim::TriangleMesh mesh;
+    sim::MeshLoadReport report;
     try {
-        mesh = sim::load_mesh(o.mesh);
+        mesh = sim::load_mesh(o.mesh, &report);
     } catch (const InputError &e) {
         // Keep the mesh file's own location, and say which object asked for it.
         throw InputError(
             e.file(), e.line(), e.field(),
             std::string(e.what()).substr(std::string(e.what()).find(": ") + 2) +
                 " (objects[" + std::to_string(index) + "].mesh in " + scene_path + ")");
+    }
+    // A clip poses each corner as the vertex it was read as: welding is undone first,
+    // so the rest positions below are per read vertex too.
+    std::optional<Rig> rig;
+    // Smooth normals average over the welded vertices (the surface's own), also when
+    // the corners are posed apart.
+    std::vector<std::array<sim::VertId, 3>> welded = mesh.triangles;
+    size_t num_welded = mesh.num_vertices();
+    if (o.clip) {
+        rig = Rig::read(o.mesh);
+        unweld(report, &mesh);
     }
     auto rest = std::make_shared<MeshData::Rest>();
     rest->positions.reserve(3 * mesh.num_vertices());
@@ -37,6 +52,7 @@ std::shared_ptr<MeshData> load_mesh_data(const ObjectDesc &o,
     if (!o.deform_mesh.empty() && o.deform_weight > 0)
         apply_pose(mesh, o.deform_mesh, o.deform_weight, scene_path,
                    "objects[" + std::to_string(index) + "].deform");
+    if (rig) pose_mesh(*rig, rig->clip(o.clip->name), o.clip_seconds, &mesh);
     if (o.grow) {
         // The shape at the age, vertex by vertex: the pattern, stored per (triangle,
         // barycentric point), rides on it (sim/growth/growth_shape.h).
@@ -70,16 +86,16 @@ std::shared_ptr<MeshData> load_mesh_data(const ObjectDesc &o,
             m->corner_normals[3 * i + 2] = float(n.z);
         }
     } else if (o.normals == ObjectDesc::Normals::smooth) {
-        std::vector<sim::Vec3d> vn(mesh.num_vertices());
+        std::vector<sim::Vec3d> vn(num_welded);
         for (size_t t = 0; t < mesh.num_triangles(); ++t) {
             const sim::Vec3d n =
                 mesh.face_normal_unnormalized(sim::TriId(t));  // |n| = 2 area
-            for (int c = 0; c < 3; ++c) vn[mesh.triangles[t][c]] += n;
+            for (int c = 0; c < 3; ++c) vn[welded[t][c]] += n;
         }
         m->corner_normals.resize(size_t(m->num_triangles) * 9);
         for (size_t t = 0; t < mesh.num_triangles(); ++t)
             for (int c = 0; c < 3; ++c) {
-                sim::Vec3d n = vn[mesh.triangles[t][c]];
+                sim::Vec3d n = vn[welded[t][c]];
                 const double len = sim::length(n);
                 n = len > 0 ? n / len : mesh.face_normal_unnormalized(sim::TriId(t));
                 for (int k = 0; k < 3; ++k)
@@ -170,6 +186,11 @@ EmbreeScene::EmbreeScene(const SceneDesc &scene) {
         if (o.grow)
             return Key{o.mesh, int(o.normals),
                        "grow " + o.grow->preset + " " + std::to_string(o.grow_age), 1.0f};
+        if (o.clip) {
+            char t[32];
+            std::snprintf(t, sizeof t, "%.17g", o.clip_seconds);
+            return Key{o.mesh, int(o.normals), "clip " + o.clip->name + " " + t, 1.0f};
+        }
         return o.deform_weight > 0
                    ? Key{o.mesh, int(o.normals), o.deform_mesh, o.deform_weight}
                    : Key{o.mesh, int(o.normals), std::string(), 0.0f};

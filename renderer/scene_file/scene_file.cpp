@@ -7,6 +7,7 @@
 #include <set>
 #include <sstream>
 
+#include "renderer/animation/rig.h"
 #include "renderer/scene_file/scene_fur.h"
 #include "sim/core/input_error.h"
 #include "sim/core/json_fields.h"
@@ -347,6 +348,32 @@ ObjectDesc read_object(Reader r, size_t index) {
         o.grow = d;
         o.grow_age = d.to;
     }
+    // "animation": {"clip": NAME, "fps": 24, "loop": true, "start": SECONDS}
+    if (const json *v = r.take("animation")) {
+        const std::string f = r.field("animation");
+        Reader a(*v, f, Reader::scene_of(r));
+        ObjectDesc::Clip c;
+        c.name = a.string("clip", "", true);
+        c.fps = a.number("fps", 0, 0.001, 1000);
+        c.loop = a.boolean("loop", true);
+        c.start = a.number("start", 0, -1e9, 1e9);
+        a.finish();
+        if (o.mesh.rfind("procedural:", 0) == 0)
+            r.fail(f, "a procedural mesh has no clips (give a glTF, FBX, ... file)");
+        if (!o.deform.empty() || o.grow)
+            r.fail(f, "a clip cannot be combined with \"deform\" or \"grow\"");
+        // The file's errors (no clips, a broken skin) and the clip's name, before any
+        // rendering.
+        const Rig rig = Rig::read(o.mesh);
+        const int clip = rig.clip(c.name, f + ".clip");
+        if (!rig.moves_mesh(clip))
+            a.fail(a.field("clip"), "clip \"" + c.name + "\" of " + o.mesh +
+                                        " moves nothing of this mesh (no bone, node or "
+                                        "morph weight of it is animated)");
+        c.duration = rig.duration_seconds(clip);
+        o.clip = c;
+        o.clip_seconds = clip_time(c.start, c.duration, c.loop);
+    }
     if (const json *v = r.take("fur"))
         o.fur = read_fur(*v, r.field("fur"), Reader::scene_of(r).path);
     r.finish();
@@ -666,6 +693,11 @@ SceneDesc scene_at_frame(const SceneDesc &scene, int frame) {
             const int n = scene.animation.frames;
             const double w = n > 1 ? double(frame) / double(n - 1) : 1.0;
             o.grow_age = o.grow->from + (o.grow->to - o.grow->from) * w;
+        }
+        if (o.clip) {
+            const double fps = o.clip->fps > 0 ? o.clip->fps : scene.animation.fps;
+            o.clip_seconds =
+                clip_time(o.clip->start + t0 / fps, o.clip->duration, o.clip->loop);
         }
         if (o.deform.empty()) continue;
         if (o.deform.size() > 1) {

@@ -11,6 +11,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "renderer/scene_file/scene_file.h"
 #include "sim/core/input_error.h"
 #include "sim/mesh/mesh_load.h"
 #include "tests/renderer/animation/gltf_reference.h"
@@ -261,6 +262,48 @@ TEST(Rig, NamesTheFileAndItsClipsInErrors) {
         EXPECT_NE(std::string(e.what()).find("no animation clips"), std::string::npos)
             << e.what();
     }
+}
+
+// The error a scene gives, "" when it parses.
+std::string scene_error(const std::string &text, const std::string &path) {
+    try {
+        parse_scene(text, path);
+    } catch (const InputError &e) {
+        return e.what();
+    }
+    return "";
+}
+
+TEST(SceneClip, PlaysTheNamedClipAtTheFramesTime) {
+    test::TempDir tmp;
+    tmp.write("strip.gltf", skinned_strip());
+    const std::string path = tmp.file("scene.json");
+    auto scene = [](const std::string &object_animation) {
+        return R"({"camera": {}, "animation": {"frames": 48, "fps": 24},
+                   "objects": [{"mesh": "strip.gltf", "animation": )" +
+               object_animation + "}]}";
+    };
+    const SceneDesc d = parse_scene(scene(R"({"clip": "bend", "start": 0.5})"), path);
+    ASSERT_TRUE(d.objects[0].clip);
+    EXPECT_DOUBLE_EQ(d.objects[0].clip_seconds, 0.5);  // a still shows the start
+    EXPECT_DOUBLE_EQ(scene_at_frame(d, 12).objects[0].clip_seconds, 1.0);
+    EXPECT_DOUBLE_EQ(scene_at_frame(d, 42).objects[0].clip_seconds, 0.25);  // looped
+    const SceneDesc held =
+        parse_scene(scene(R"({"clip": "bend", "loop": false, "fps": 12})"), path);
+    EXPECT_DOUBLE_EQ(scene_at_frame(held, 6).objects[0].clip_seconds, 0.5);
+    EXPECT_DOUBLE_EQ(scene_at_frame(held, 40).objects[0].clip_seconds, 2.0);
+
+    const std::string unknown = scene_error(scene(R"({"clip": "walk"})"), path);
+    EXPECT_NE(unknown.find("objects[0].animation.clip"), std::string::npos) << unknown;
+    EXPECT_NE(unknown.find("\"bend\", \"still\""), std::string::npos) << unknown;
+    EXPECT_NE(scene_error(scene(R"({"clip": "bend", "fps": 0})"), path), "");
+    EXPECT_NE(scene_error(scene(R"({"clip": "bend", "speed": 2})"), path), "");
+    const std::string procedural = scene_error(
+        R"({"camera": {}, "objects": [{"mesh": "procedural:sphere:8x8",
+            "animation": {"clip": "bend"}}]})",
+        path);
+    EXPECT_NE(procedural.find("procedural mesh has no clips"), std::string::npos)
+        << procedural;
 }
 
 TEST(Rig, ClipTimeLoopsOrHolds) {
