@@ -47,12 +47,13 @@ struct RigData {
     // One mesh placed by one node, in the walk's order (sim/mesh/assimp_walk.h).
     struct Piece {
         int node = -1;
-        std::vector<sim::Vec3d> vertices;              // mesh space
-        std::vector<std::vector<sim::Vec3d>> targets;  // morph targets, absolute positions
-        std::vector<double> target_weights;            // their weights without a channel
-        std::vector<Bone> bones;                       // empty: placed by the node
-        std::vector<uint32_t> influence_begin;         // per vertex + 1, into influences
-        std::vector<Influence> influences;             // weights normalised to sum 1
+        std::vector<sim::Vec3d> vertices;  // mesh space
+        std::vector<std::vector<sim::Vec3d>>
+            targets;                            // morph targets, absolute positions
+        std::vector<double> target_weights;     // their weights without a channel
+        std::vector<Bone> bones;                // empty: placed by the node
+        std::vector<uint32_t> influence_begin;  // per vertex + 1, into influences
+        std::vector<Influence> influences;      // weights normalised to sum 1
     };
     std::vector<Piece> pieces;
     size_t num_vertices = 0;

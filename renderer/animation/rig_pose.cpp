@@ -58,8 +58,8 @@ Quat slerp(Quat a, Quat b, double f) {
         wa = std::sin((1 - f) * theta) / s;
         wb = std::sin(f * theta) / s;
     }
-    return normalized(
-        {wa * a.w + wb * b.w, wa * a.x + wb * b.x, wa * a.y + wb * b.y, wa * a.z + wb * b.z});
+    return normalized({wa * a.w + wb * b.w, wa * a.x + wb * b.x, wa * a.y + wb * b.y,
+                       wa * a.z + wb * b.z});
 }
 
 Quat sample(const std::vector<RigData::Key<Quat>> &keys, double t, Quat fallback) {
@@ -102,13 +102,14 @@ std::vector<Vec3d> Rig::pose(int clip_index, double seconds) const {
     for (size_t n = 0; n < d.nodes.size(); ++n) global[n] = d.nodes[n].rest;
     for (const RigData::Channel &ch : clip.channels) {
         const Trs &rest = d.nodes[size_t(ch.node)].rest_trs;
-        global[size_t(ch.node)] = Trs{sample(ch.position, seconds, rest.t),
-                                      sample(ch.rotation, seconds, rest.r),
-                                      sample(ch.scale, seconds, rest.s)}
-                                      .matrix();
+        global[size_t(ch.node)] =
+            Trs{sample(ch.position, seconds, rest.t),
+                sample(ch.rotation, seconds, rest.r), sample(ch.scale, seconds, rest.s)}
+                .matrix();
     }
     for (size_t n = 0; n < d.nodes.size(); ++n)  // parents come first
-        if (d.nodes[n].parent >= 0) global[n] = global[size_t(d.nodes[n].parent)] * global[n];
+        if (d.nodes[n].parent >= 0)
+            global[n] = global[size_t(d.nodes[n].parent)] * global[n];
 
     std::vector<Vec3d> out;
     out.reserve(d.num_vertices);
@@ -139,12 +140,14 @@ std::vector<Vec3d> Rig::pose(int clip_index, double seconds) const {
                 posed = apply(global[size_t(p.node)], x);
             } else {
                 for (uint32_t i = p.influence_begin[v]; i < p.influence_begin[v + 1]; ++i)
-                    posed += apply(skin[p.influences[i].bone], x) * p.influences[i].weight;
+                    posed +=
+                        apply(skin[p.influences[i].bone], x) * p.influences[i].weight;
             }
             if (!is_finite(posed))
                 throw InputError(d.path, 0, "",
-                                 "clip \"" + clip.name + "\" at " + std::to_string(seconds) +
-                                     " s: vertex " + std::to_string(out.size()) +
+                                 "clip \"" + clip.name + "\" at " +
+                                     std::to_string(seconds) + " s: vertex " +
+                                     std::to_string(out.size()) +
                                      " has a non-finite position");
             out.push_back(posed);
         }
@@ -157,7 +160,8 @@ void unweld(const sim::MeshLoadReport &report, sim::TriangleMesh *mesh) {
     PELAGE_CHECK(corners.size() == mesh->num_triangles());
     std::vector<Vec3d> positions(report.raw_vertices, Vec3d{0, 0, 0});
     for (size_t t = 0; t < corners.size(); ++t)
-        for (int c = 0; c < 3; ++c) positions.at(corners[t][c]) = mesh->vertex(sim::TriId(t), c);
+        for (int c = 0; c < 3; ++c)
+            positions.at(corners[t][c]) = mesh->vertex(sim::TriId(t), c);
     mesh->positions = std::move(positions);
     mesh->triangles = corners;
     mesh->vertex_attributes.clear();  // per welded vertex: they do not follow

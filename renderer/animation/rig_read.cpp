@@ -18,12 +18,15 @@ namespace {
 using sim::assimp_walk::name_of;
 
 sim::Vec3d vec(const aiVector3D &v) { return {double(v.x), double(v.y), double(v.z)}; }
-Quat quat(const aiQuaternion &q) { return {double(q.w), double(q.x), double(q.y), double(q.z)}; }
+Quat quat(const aiQuaternion &q) {
+    return {double(q.w), double(q.x), double(q.y), double(q.z)};
+}
 
 std::string lower_extension(const std::string &path) {
     const auto dot = path.find_last_of('.');
     const auto slash = path.find_last_of('/');
-    if (dot == std::string::npos || (slash != std::string::npos && dot < slash)) return "";
+    if (dot == std::string::npos || (slash != std::string::npos && dot < slash))
+        return "";
     std::string e = path.substr(dot + 1);
     for (char &c : e) c = char(std::tolower(static_cast<unsigned char>(c)));
     return e;
@@ -71,8 +74,9 @@ Rig Rig::read(const std::string &mesh_ref) {
         throw InputError(path, 0, "", std::string("cannot read the file: ") + e.what());
     }
     if (!scene || !scene->mRootNode || (scene->mFlags & AI_SCENE_FLAGS_INCOMPLETE))
-        throw InputError(path, 0, "",
-                         "cannot read the file: " + std::string(importer.GetErrorString()));
+        throw InputError(
+            path, 0, "",
+            "cannot read the file: " + std::string(importer.GetErrorString()));
 
     auto d = std::make_unique<RigData>();
     d->path = path;
@@ -81,7 +85,8 @@ Rig Rig::read(const std::string &mesh_ref) {
     // Bones and channels name their nodes; the first node of a name wins (glTF
     // importers make them unique).
     std::map<std::string, int> by_name;
-    for (size_t i = 0; i < d->nodes.size(); ++i) by_name.emplace(d->nodes[i].name, int(i));
+    for (size_t i = 0; i < d->nodes.size(); ++i)
+        by_name.emplace(d->nodes[i].name, int(i));
 
     const sim::assimp_walk::SceneWalk walk(*scene, spec.object);
     if (!spec.object.empty() && !walk.matched())
@@ -98,12 +103,14 @@ Rig Rig::read(const std::string &mesh_ref) {
         RigData::Piece p;
         p.node = node_index.at(in.node);
         p.vertices.reserve(m.mNumVertices);
-        for (unsigned v = 0; v < m.mNumVertices; ++v) p.vertices.push_back(vec(m.mVertices[v]));
+        for (unsigned v = 0; v < m.mNumVertices; ++v)
+            p.vertices.push_back(vec(m.mVertices[v]));
         for (unsigned k = 0; k < m.mNumAnimMeshes; ++k) {
             const aiAnimMesh *a = m.mAnimMeshes[k];
             std::vector<sim::Vec3d> target = p.vertices;  // a target without positions
             if (a && a->mVertices && a->mNumVertices == m.mNumVertices)
-                for (unsigned v = 0; v < m.mNumVertices; ++v) target[v] = vec(a->mVertices[v]);
+                for (unsigned v = 0; v < m.mNumVertices; ++v)
+                    target[v] = vec(a->mVertices[v]);
             p.targets.push_back(std::move(target));
             p.target_weights.push_back(a ? double(a->mWeight) : 0.0);
         }
@@ -138,8 +145,8 @@ Rig Rig::read(const std::string &mesh_ref) {
                 if (!(std::abs(sum - 1) <= 0.02))
                     throw InputError(path, 0, "",
                                      label + " vertex " + std::to_string(v) +
-                                         ": its bone weights sum to " + std::to_string(sum) +
-                                         ", not 1");
+                                         ": its bone weights sum to " +
+                                         std::to_string(sum) + ", not 1");
                 for (RigData::Influence i : per_vertex[v]) {
                     i.weight /= sum;
                     p.influences.push_back(i);
@@ -177,8 +184,8 @@ Rig Rig::read(const std::string &mesh_ref) {
             const auto it = by_name.find(name_of(name));
             if (it == by_name.end())
                 throw InputError(path, 0, "",
-                                 "clip \"" + clip.name + "\" animates \"" + name_of(name) +
-                                     "\", which is no node of the file");
+                                 "clip \"" + clip.name + "\" animates \"" +
+                                     name_of(name) + "\", which is no node of the file");
             return it->second;
         };
         for (unsigned c = 0; c < anim.mNumChannels; ++c) {
@@ -186,11 +193,11 @@ Rig Rig::read(const std::string &mesh_ref) {
             RigData::Channel ch;
             ch.node = channel_node(na.mNodeName);
             for (unsigned k = 0; k < na.mNumPositionKeys; ++k)
-                ch.position.push_back(
-                    {seconds(na.mPositionKeys[k].mTime), vec(na.mPositionKeys[k].mValue)});
+                ch.position.push_back({seconds(na.mPositionKeys[k].mTime),
+                                       vec(na.mPositionKeys[k].mValue)});
             for (unsigned k = 0; k < na.mNumRotationKeys; ++k)
-                ch.rotation.push_back(
-                    {seconds(na.mRotationKeys[k].mTime), quat(na.mRotationKeys[k].mValue)});
+                ch.rotation.push_back({seconds(na.mRotationKeys[k].mTime),
+                                       quat(na.mRotationKeys[k].mValue)});
             for (unsigned k = 0; k < na.mNumScalingKeys; ++k)
                 ch.scale.push_back(
                     {seconds(na.mScalingKeys[k].mTime), vec(na.mScalingKeys[k].mValue)});
@@ -224,7 +231,9 @@ Rig::~Rig() = default;
 
 const std::string &Rig::path() const { return m->path; }
 const std::vector<std::string> &Rig::clip_names() const { return m->clip_names; }
-double Rig::duration_seconds(int clip) const { return m->clips.at(size_t(clip)).duration; }
+double Rig::duration_seconds(int clip) const {
+    return m->clips.at(size_t(clip)).duration;
+}
 size_t Rig::num_vertices() const { return m->num_vertices; }
 bool Rig::skinned() const {
     for (const RigData::Piece &p : m->pieces)
@@ -236,7 +245,8 @@ int Rig::clip(const std::string &name, const std::string &field) const {
     for (size_t i = 0; i < m->clip_names.size(); ++i)
         if (m->clip_names[i] == name) return int(i);
     std::string list;
-    for (const std::string &n : m->clip_names) list += (list.empty() ? "\"" : ", \"") + n + "\"";
+    for (const std::string &n : m->clip_names)
+        list += (list.empty() ? "\"" : ", \"") + n + "\"";
     throw InputError(m->path, 0, field,
                      "no clip named \"" + name + "\" (the file's clips: " + list + ")");
 }

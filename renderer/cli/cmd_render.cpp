@@ -39,7 +39,8 @@ constexpr int exit_interrupted = 128 + 2;
 std::unique_ptr<Scene> shared_scene_for(const SceneDesc &desc,
                                         const PluginRegistry &plugins) {
     bool rigid = desc.animation.present;
-    for (const auto &ob : desc.objects) rigid = rigid && ob.deform.empty() && !ob.grow && !ob.clip;
+    for (const auto &ob : desc.objects)
+        rigid = rigid && ob.deform.empty() && !ob.grow && !ob.clip;
     const auto &tt = desc.animation.turntable;
     if (tt && tt->target == TurntableDesc::Target::object) rigid = false;
     if (!rigid && desc.animation.present) return nullptr;

@@ -118,13 +118,14 @@ struct ObjectDesc {
     // mesh's triangles; the pose moves them.
     struct Clip {
         std::string name;
-        double fps = 0;      // frames per second of the scene's frames; 0 = animation.fps
-        bool loop = true;    // wrap past the clip's end, or hold its last pose
-        double start = 0;    // seconds into the clip at the first frame
-        double duration = 0; // the clip's length in seconds (from the file)
+        double fps = 0;    // frames per second of the scene's frames; 0 = animation.fps
+        bool loop = true;  // wrap past the clip's end, or hold its last pose
+        double start = 0;  // seconds into the clip at the first frame
+        double duration = 0;  // the clip's length in seconds (from the file)
     };
     std::optional<Clip> clip;
-    double clip_seconds = 0;  // the time posed: set by the parser (start), scene_at_frame()
+    double clip_seconds =
+        0;  // the time posed: set by the parser (start), scene_at_frame()
     std::optional<FurParams>
         fur;  // strands on this object (renderer/scene_file/scene_fur.h)
 };

@@ -9,7 +9,6 @@
 #include <assimp/scene.h>
 
 #include <assimp/Importer.hpp>
-
 #include <string>
 #include <vector>
 

@@ -64,9 +64,10 @@ Mat4 trs(const std::array<double, 3> &t, std::array<double, 4> q,
     for (double &c : q) c /= n;
     const double x = q[0], y = q[1], z = q[2], w = q[3];
     Mat4 m = identity();
-    const double r[3][3] = {{1 - 2 * (y * y + z * z), 2 * (x * y - w * z), 2 * (x * z + w * y)},
-                            {2 * (x * y + w * z), 1 - 2 * (x * x + z * z), 2 * (y * z - w * x)},
-                            {2 * (x * z - w * y), 2 * (y * z + w * x), 1 - 2 * (x * x + y * y)}};
+    const double r[3][3] = {
+        {1 - 2 * (y * y + z * z), 2 * (x * y - w * z), 2 * (x * z + w * y)},
+        {2 * (x * y + w * z), 1 - 2 * (x * x + z * z), 2 * (y * z - w * x)},
+        {2 * (x * z - w * y), 2 * (y * z + w * x), 1 - 2 * (x * x + y * y)}};
     for (int row = 0; row < 3; ++row)
         for (int c = 0; c < 3; ++c) m[c * 4 + row] = r[row][c] * s[size_t(c)];
     for (int row = 0; row < 3; ++row) m[12 + row] = t[size_t(row)];
@@ -96,8 +97,8 @@ GltfReference::GltfReference(const std::string &path) {
         while (at + 8 <= bytes.size()) {
             const uint32_t length = u32(at), type = u32(at + 4);
             const std::string data = bytes.substr(at + 8, length);
-            if (type == 0x4E4F534A) m_doc = json::parse(data);                 // "JSON"
-            if (type == 0x004E4942) m_buffers.push_back(data);                 // "BIN\0"
+            if (type == 0x4E4F534A) m_doc = json::parse(data);  // "JSON"
+            if (type == 0x004E4942) m_buffers.push_back(data);  // "BIN\0"
             at += 8 + length;
         }
     } else {
@@ -108,8 +109,8 @@ GltfReference::GltfReference(const std::string &path) {
             if (uri.rfind("data:", 0) == 0)
                 m_buffers.push_back(base64_decode(uri.substr(comma + 1)));
             else
-                m_buffers.push_back(slurp(
-                    (std::filesystem::path(path).parent_path() / uri).string()));
+                m_buffers.push_back(
+                    slurp((std::filesystem::path(path).parent_path() / uri).string()));
         }
     }
 }
@@ -122,11 +123,14 @@ std::vector<double> GltfReference::accessor(int index, int *components) const {
     const int n = sizes.at(a["type"].get<std::string>());
     *components = n;
     const int type = a["componentType"];
-    const int bytes = type == 5126 || type == 5125 ? 4 : type == 5123 || type == 5122 ? 2 : 1;
+    const int bytes = type == 5126 || type == 5125   ? 4
+                      : type == 5123 || type == 5122 ? 2
+                                                     : 1;
     const json &view = m_doc["bufferViews"][a["bufferView"].get<size_t>()];
     const std::string &buffer = m_buffers[view["buffer"].get<size_t>()];
     const size_t stride = view.value("byteStride", size_t(n * bytes));
-    const size_t base = view.value("byteOffset", size_t(0)) + a.value("byteOffset", size_t(0));
+    const size_t base =
+        view.value("byteOffset", size_t(0)) + a.value("byteOffset", size_t(0));
     const bool normalized = a.value("normalized", false);
     const size_t count = a["count"];
     std::vector<double> out;
@@ -266,7 +270,8 @@ std::vector<std::array<Vec3, 3>> GltfReference::triangles(int animation,
                 if (seconds >= in.back()) {
                     i0 = i1 = in.size() - 1;
                 } else if (seconds > in.front()) {
-                    i1 = size_t(std::upper_bound(in.begin(), in.end(), seconds) - in.begin());
+                    i1 = size_t(std::upper_bound(in.begin(), in.end(), seconds) -
+                                in.begin());
                     i0 = i1 - 1;
                     f = (seconds - in[i0]) / (in[i1] - in[i0]);
                 }
@@ -291,7 +296,8 @@ std::vector<std::array<Vec3, 3>> GltfReference::triangles(int animation,
             int c;
             const std::vector<double> pos = accessor(prim["attributes"]["POSITION"], &c);
             std::vector<Vec3> v(pos.size() / 3);
-            for (size_t i = 0; i < v.size(); ++i) v[i] = {pos[3 * i], pos[3 * i + 1], pos[3 * i + 2]};
+            for (size_t i = 0; i < v.size(); ++i)
+                v[i] = {pos[3 * i], pos[3 * i + 1], pos[3 * i + 2]};
             const json targets = prim.value("targets", json::array());
             for (size_t k = 0; k < targets.size() && k < weights.size(); ++k) {
                 const std::vector<double> d = accessor(targets[k]["POSITION"], &c);
@@ -300,8 +306,10 @@ std::vector<std::array<Vec3, 3>> GltfReference::triangles(int animation,
             }
             if (!joint.empty()) {
                 int jc, wc;
-                const std::vector<double> js = accessor(prim["attributes"]["JOINTS_0"], &jc);
-                const std::vector<double> ws = accessor(prim["attributes"]["WEIGHTS_0"], &wc);
+                const std::vector<double> js =
+                    accessor(prim["attributes"]["JOINTS_0"], &jc);
+                const std::vector<double> ws =
+                    accessor(prim["attributes"]["WEIGHTS_0"], &wc);
                 for (size_t i = 0; i < v.size(); ++i) {
                     Vec3 sum{0, 0, 0};
                     for (size_t k = 0; k < 4; ++k) {
@@ -315,7 +323,8 @@ std::vector<std::array<Vec3, 3>> GltfReference::triangles(int animation,
             }
             const std::vector<double> idx = accessor(prim["indices"], &c);
             for (size_t t = 0; t + 2 < idx.size(); t += 3)
-                out.push_back({v[size_t(idx[t])], v[size_t(idx[t + 1])], v[size_t(idx[t + 2])]});
+                out.push_back(
+                    {v[size_t(idx[t])], v[size_t(idx[t + 1])], v[size_t(idx[t + 2])]});
         }
     }
     return out;

@@ -1,14 +1,15 @@
 // The rig (renderer/animation) against the glTF reference written from the
 // specification (gltf_reference.h): a skinned, morphing strip with a rigid part made
-// here, and the Khronos fox of ../shared/assets when it is there.
+// here, and the Khronos sample fox (Fox.glb) when $PELAGE_TEST_ASSETS names a folder
+// holding it (the repository ships no third-party models).
 #include "renderer/animation/rig.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
-
 #include <nlohmann/json.hpp>
 
 #include "renderer/scene_file/scene_file.h"
@@ -24,7 +25,8 @@ using json = nlohmann::json;
 using test::GltfReference;
 
 std::string base64(const std::string &bytes) {
-    static const char *abc = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+    static const char *abc =
+        "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
     std::string out;
     size_t i = 0;
     for (; i + 2 < bytes.size(); i += 3) {
@@ -48,17 +50,20 @@ struct GltfBuilder {
     json doc = {{"asset", {{"version", "2.0"}}}};
     std::string bin;
     int add(const std::vector<float> &v, const char *type, bool minmax = false) {
-        return add_raw(std::string(reinterpret_cast<const char *>(v.data()), 4 * v.size()),
-                       5126, type, v.size() / (std::strcmp(type, "SCALAR") == 0  ? 1
-                                               : std::strcmp(type, "VEC3") == 0  ? 3
-                                               : std::strcmp(type, "VEC4") == 0  ? 4
-                                               : std::strcmp(type, "MAT4") == 0  ? 16
-                                                                                 : 2),
-                       minmax ? &v : nullptr);
+        return add_raw(
+            std::string(reinterpret_cast<const char *>(v.data()), 4 * v.size()), 5126,
+            type,
+            v.size() / (std::strcmp(type, "SCALAR") == 0 ? 1
+                        : std::strcmp(type, "VEC3") == 0 ? 3
+                        : std::strcmp(type, "VEC4") == 0 ? 4
+                        : std::strcmp(type, "MAT4") == 0 ? 16
+                                                         : 2),
+            minmax ? &v : nullptr);
     }
     int add_u16(const std::vector<uint16_t> &v, const char *type, size_t count) {
-        return add_raw(std::string(reinterpret_cast<const char *>(v.data()), 2 * v.size()),
-                       5123, type, count, nullptr);
+        return add_raw(
+            std::string(reinterpret_cast<const char *>(v.data()), 2 * v.size()), 5123,
+            type, count, nullptr);
     }
     int add_raw(const std::string &bytes, int component, const char *type, size_t count,
                 const std::vector<float> *positions) {
@@ -74,7 +79,7 @@ struct GltfBuilder {
             std::vector<float> lo(3, 1e30f), hi(3, -1e30f);
             for (size_t i = 0; i < positions->size(); ++i)
                 lo[i % 3] = std::min(lo[i % 3], (*positions)[i]),
-                hi[i % 3] = std::max(hi[i % 3], (*positions)[i]);
+                       hi[i % 3] = std::max(hi[i % 3], (*positions)[i]);
             a["min"] = lo;
             a["max"] = hi;
         }
@@ -125,12 +130,14 @@ std::string skinned_strip(double weight_scale = 1) {
     const int ep = b.add(ear_pos, "VEC3", true);
     const int ei = b.add_u16({0, 1, 2}, "SCALAR", 3);
     // Inverse bind matrices (column-major): the root at the origin, the tip at x = 2.
-    const int ibm = b.add({1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1,  //
+    const int ibm = b.add({1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0,  0, 0, 1,  //
                            1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, -2, 0, 0, 1},
                           "MAT4");
     const int times = b.add({0, 1, 2}, "SCALAR");
-    const float s80 = std::sin(80 * 3.14159265f / 180), c80 = std::cos(80 * 3.14159265f / 180);
-    const float s20 = std::sin(20 * 3.14159265f / 180), c20 = std::cos(20 * 3.14159265f / 180);
+    const float s80 = std::sin(80 * 3.14159265f / 180),
+                c80 = std::cos(80 * 3.14159265f / 180);
+    const float s20 = std::sin(20 * 3.14159265f / 180),
+                c20 = std::cos(20 * 3.14159265f / 180);
     const int tip_rot = b.add({0, 0, 0, 1, 0, 0, s80, c80, 0, 0, s20, c20}, "VEC4");
     const int root_pos = b.add({0, 0, 0, 0.5f, 0.25f, 0, 1, 0.5f, 0}, "VEC3");
     const int morph_w = b.add({0, 0.3f, 1}, "SCALAR");
@@ -143,12 +150,13 @@ std::string skinned_strip(double weight_scale = 1) {
            {{{"attributes", {{"POSITION", p}, {"JOINTS_0", j}, {"WEIGHTS_0", jw}}},
              {"indices", i},
              {"targets", {{{"POSITION", m}}}}}}}},
-         {{"name", "ear"}, {"primitives", {{{"attributes", {{"POSITION", ep}}}, {"indices", ei}}}}}});
-    b.doc["nodes"] = json::array(
-        {{{"name", "strip"}, {"mesh", 0}, {"skin", 0}},
-         {{"name", "root"}, {"children", {2}}},
-         {{"name", "tip"}, {"translation", {2, 0, 0}}, {"children", {3}}},
-         {{"name", "ear"}, {"mesh", 1}, {"translation", {0.5, 0, 0}}}});
+         {{"name", "ear"},
+          {"primitives", {{{"attributes", {{"POSITION", ep}}}, {"indices", ei}}}}}});
+    b.doc["nodes"] =
+        json::array({{{"name", "strip"}, {"mesh", 0}, {"skin", 0}},
+                     {{"name", "root"}, {"children", {2}}},
+                     {{"name", "tip"}, {"translation", {2, 0, 0}}, {"children", {3}}},
+                     {{"name", "ear"}, {"mesh", 1}, {"translation", {0.5, 0, 0}}}});
     b.doc["skins"] = json::array({{{"joints", {1, 2}}, {"inverseBindMatrices", ibm}}});
     b.doc["scenes"] = json::array({{{"nodes", {0, 1}}}});
     b.doc["scene"] = 0;
@@ -164,7 +172,8 @@ std::string skinned_strip(double weight_scale = 1) {
             {{"sampler", 2}, {"target", {{"node", 0}, {"path", "weights"}}}}}}},
          {{"name", "still"},
           {"samplers", {{{"input", one_time}, {"output", one_pos}}}},
-          {"channels", {{{"sampler", 0}, {"target", {{"node", 1}, {"path", "translation"}}}}}}}});
+          {"channels",
+           {{{"sampler", 0}, {"target", {{"node", 1}, {"path", "translation"}}}}}}}});
     return b.text();
 }
 
@@ -212,8 +221,10 @@ TEST(Rig, PosesASkinnedMorphingStripAsTheGltfSpecificationDoes) {
 }
 
 TEST(Rig, PosesTheKhronosFoxAsTheGltfSpecificationDoes) {
-    const std::string fox = test::source_path("../shared/assets/Fox.glb");
-    if (!std::filesystem::exists(fox)) GTEST_SKIP() << fox << " is not there";
+    const char *assets = std::getenv("PELAGE_TEST_ASSETS");
+    const std::string fox = std::string(assets ? assets : "") + "/Fox.glb";
+    if (!assets || !std::filesystem::exists(fox))
+        GTEST_SKIP() << "set PELAGE_TEST_ASSETS to a folder holding Fox.glb";
     const Rig rig = Rig::read(fox);
     const GltfReference ref(fox);
     ASSERT_EQ(rig.clip_names().size(), 1u);
@@ -224,7 +235,8 @@ TEST(Rig, PosesTheKhronosFoxAsTheGltfSpecificationDoes) {
     EXPECT_TRUE(rig.moves_mesh(clip));
     const double d = rig.duration_seconds(clip);
     for (double f : {0.0, 0.13, 0.37, 0.5, 0.81, 0.99})
-        EXPECT_LT(worst_error(fox, rig, clip, f * d, ref, ref_clip), 1e-5) << "t = " << f * d;
+        EXPECT_LT(worst_error(fox, rig, clip, f * d, ref, ref_clip), 1e-5)
+            << "t = " << f * d;
 }
 
 TEST(Rig, NamesTheFileAndItsClipsInErrors) {
@@ -249,7 +261,8 @@ TEST(Rig, NamesTheFileAndItsClipsInErrors) {
         FAIL() << "no error";
     } catch (const InputError &e) {
         EXPECT_EQ(e.file(), bad);
-        EXPECT_NE(std::string(e.what()).find("sum to 0.6"), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find("sum to 0.6"), std::string::npos)
+            << e.what();
     }
     // A file without clips.
     json doc = json::parse(skinned_strip());
