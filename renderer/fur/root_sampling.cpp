@@ -18,13 +18,15 @@ Vec3f vertex(const SkinMesh &m, uint32_t v) {
 
 RootSampler::RootSampler(const SkinMesh &mesh) : m_mesh(mesh) {
     m_cdf.resize(mesh.num_triangles);
+    SkinMesh areas = mesh;
+    if (mesh.rest_positions) areas.positions = mesh.rest_positions;
     double sum = 0;
     for (uint32_t t = 0; t < mesh.num_triangles; ++t) {
         const uint32_t *tri = &mesh.triangles[3 * size_t(t)];
-        const Vec3f p0 = vertex(mesh, tri[0]);
+        const Vec3f p0 = vertex(areas, tri[0]);
         sum +=
             0.5 *
-            double(length(cross(vertex(mesh, tri[1]) - p0, vertex(mesh, tri[2]) - p0)));
+            double(length(cross(vertex(areas, tri[1]) - p0, vertex(areas, tri[2]) - p0)));
         m_cdf[t] = sum;
     }
 }

@@ -14,6 +14,10 @@ namespace pelage::renderer {
 // face normals are used then.
 struct SkinMesh {
     const float *positions = nullptr;  // xyz per vertex
+    // The same vertices at rest, when the skin is posed (a clip, a deformation): roots
+    // are then drawn by the rest areas, so a strand keeps its (triangle, barycentric)
+    // place, and the number of strands, in every pose. Null: drawn on `positions`.
+    const float *rest_positions = nullptr;
     const uint32_t *triangles = nullptr;
     const float *corner_normals = nullptr;
     // FurParams::Comb::field: the comb direction at each triangle corner (xyz, world; 9

@@ -308,9 +308,28 @@ FurGeometry::FurGeometry(const SceneDesc &desc, EmbreeScene &scene,
         const std::string field = "objects[" + std::to_string(i) + "].fur";
         const ObjectGeometry &og = scene.objects()[i];
         const WorldMesh wm = world_mesh(og);
-        params.scale_defaults_to(object_radius(wm));
+        // A posed skin (a clip, a deformation) carries the coat grown on its rest
+        // shape: the same roots, counted and sized by the rest mesh in this frame's
+        // placement, whatever the pose.
+        const ObjectDesc &od = desc.objects[i];
+        const bool posed_skin = od.clip || !od.deform.empty();
+        WorldMesh rest_world;
+        if (posed_skin) {
+            const MeshData &m = *og.mesh;
+            rest_world.positions.resize(3 * size_t(m.num_vertices));
+            for (uint32_t v = 0; v < m.num_vertices; ++v) {
+                const Vec3f p = od.transform.point({float(m.rest->positions[3 * v]),
+                                                    float(m.rest->positions[3 * v + 1]),
+                                                    float(m.rest->positions[3 * v + 2])});
+                rest_world.positions[3 * v] = p.x;
+                rest_world.positions[3 * v + 1] = p.y;
+                rest_world.positions[3 * v + 2] = p.z;
+            }
+        }
+        params.scale_defaults_to(object_radius(posed_skin ? rest_world : wm));
         SkinMesh skin;
         skin.positions = wm.positions.data();
+        if (posed_skin) skin.rest_positions = rest_world.positions.data();
         skin.triangles = og.mesh->triangles.data();
         skin.corner_normals = wm.normals.empty() ? nullptr : wm.normals.data();
         skin.num_vertices = og.mesh->num_vertices;
