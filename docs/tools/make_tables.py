@@ -311,11 +311,16 @@ def t_fur():
     d = data("bench_fur")
     rows = [[num(r["strands"]), num(r["grow_seconds"]), num(r["embree_seconds"]),
              num(r["scene_cpu_seconds"]), num(r["strands_per_second"]),
-             f"{r['peak_rss_mb']:.0f} MB", millions(r["rays_per_second"]),
+             f"{r['peak_rss_mb']:.0f} MB",
+             # Per million strands, from the same run (older JSON lacks the keys).
+             f"{r['peak_rss_mb'] / (r['strands'] * 1e-6):.0f} MB",
+             f"{r['scene_cpu_seconds'] / (r['strands'] * 1e-6):.1f} s",
+             millions(r["rays_per_second"]),
              millions(r["rays_per_second_no_fur"]), f"{r['ratio']:.2f}"] for r in d["runs"]]
     r0 = d["runs"][0]
     return (table(["strands", "grow s", "Embree build s", "scene CPU s", "strands / s",
-                   "peak RSS", "rays/s, fur", "rays/s, bare", "ratio"], rows) +
+                   "peak RSS", "peak RSS / M strands", "scene CPU s / M strands",
+                   "rays/s, fur", "rays/s, bare", "ratio"], rows) +
             f"\n{r0['width']}×{r0['height']}, {r0['spp']} spp, {r0['curve']} curves, "
             f"{r0['segments']} segments per strand.\n")
 

@@ -4,8 +4,9 @@
 // renders it again without fur; it reports the strand build time, rays per second with
 // and without fur, and its own peak resident memory (getrusage ru_maxrss): one process
 // per count, so each peak is that configuration's alone. Prints one JSON object:
-// {"runs": [{strands, build_seconds, peak_rss_mb, rays_per_second,
-// rays_per_second_no_fur, ...}, ...]} (an output contract).
+// {"runs": [{strands, build_seconds, peak_rss_mb, peak_mb_per_million_strands,
+// scene_cpu_seconds_per_million_strands, rays_per_second, rays_per_second_no_fur, ...},
+// ...]} (an output contract).
 #include <sys/resource.h>
 #include <unistd.h>
 
@@ -99,7 +100,14 @@ int run_child(const BenchFurOptions &o) {
     const auto [rps_fur, sec_fur] = timed_render(furry);
     const size_t n = fur.num_strands();
     const double build = fur.grow_seconds() + fur.embree_seconds();
+    // Per million strands: what a groom of a given size costs (the process's base
+    // memory and the skin's set-up included, which dominate small counts).
+    const double millions = std::max(double(n), 1.0) * 1e-6;
+    const double peak = peak_rss_mb();
     const nlohmann::json j = {{"strands", n},
+                              {"peak_mb_per_million_strands", peak / millions},
+                              {"scene_cpu_seconds_per_million_strands",
+                               scene_cpu_seconds / millions},
                               {"segments", o.segments},
                               {"curve", o.curve},
                               {"build_seconds", build},
@@ -108,7 +116,7 @@ int run_child(const BenchFurOptions &o) {
                               {"scene_seconds", scene_seconds},
                               {"scene_cpu_seconds", scene_cpu_seconds},
                               {"strands_per_second", double(n) / std::max(build, 1e-9)},
-                              {"peak_rss_mb", peak_rss_mb()},
+                              {"peak_rss_mb", peak},
                               {"rays_per_second", rps_fur},
                               {"rays_per_second_no_fur", rps_bare},
                               {"render_seconds", sec_fur},
