@@ -104,27 +104,27 @@ int run_child(const BenchFurOptions &o) {
     // memory and the skin's set-up included, which dominate small counts).
     const double millions = std::max(double(n), 1.0) * 1e-6;
     const double peak = peak_rss_mb();
-    const nlohmann::json j = {{"strands", n},
-                              {"peak_mb_per_million_strands", peak / millions},
-                              {"scene_cpu_seconds_per_million_strands",
-                               scene_cpu_seconds / millions},
-                              {"segments", o.segments},
-                              {"curve", o.curve},
-                              {"build_seconds", build},
-                              {"grow_seconds", fur.grow_seconds()},
-                              {"embree_seconds", fur.embree_seconds()},
-                              {"scene_seconds", scene_seconds},
-                              {"scene_cpu_seconds", scene_cpu_seconds},
-                              {"strands_per_second", double(n) / std::max(build, 1e-9)},
-                              {"peak_rss_mb", peak},
-                              {"rays_per_second", rps_fur},
-                              {"rays_per_second_no_fur", rps_bare},
-                              {"render_seconds", sec_fur},
-                              {"render_seconds_no_fur", sec_bare},
-                              {"ratio", rps_fur / std::max(rps_bare, 1e-9)},
-                              {"width", width},
-                              {"height", height},
-                              {"spp", o.spp}};
+    const nlohmann::json j = {
+        {"strands", n},
+        {"peak_mb_per_million_strands", peak / millions},
+        {"scene_cpu_seconds_per_million_strands", scene_cpu_seconds / millions},
+        {"segments", o.segments},
+        {"curve", o.curve},
+        {"build_seconds", build},
+        {"grow_seconds", fur.grow_seconds()},
+        {"embree_seconds", fur.embree_seconds()},
+        {"scene_seconds", scene_seconds},
+        {"scene_cpu_seconds", scene_cpu_seconds},
+        {"strands_per_second", double(n) / std::max(build, 1e-9)},
+        {"peak_rss_mb", peak},
+        {"rays_per_second", rps_fur},
+        {"rays_per_second_no_fur", rps_bare},
+        {"render_seconds", sec_fur},
+        {"render_seconds_no_fur", sec_bare},
+        {"ratio", rps_fur / std::max(rps_bare, 1e-9)},
+        {"width", width},
+        {"height", height},
+        {"spp", o.spp}};
     std::cout << j.dump() << std::endl;
     return 0;
 }

@@ -3,12 +3,15 @@
 // file next to the output and renders it, so the user continues from that scene.
 #include <fmt/core.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
 
+#include "renderer/animation/rig.h"
 #include "renderer/camera/auto_frame.h"
 #include "renderer/cli/common.h"
+#include "renderer/cli/frame_list.h"
 #include "renderer/cli/look_objects.h"
 #include "renderer/cli/look_scene.h"
 #include "renderer/cli/render_plan.h"
@@ -29,6 +32,8 @@ struct LookOptions {
     uint64_t seed = 1;
     int spp = 64;
     bool fur = false, cryptomatte = false;
+    std::string clip, frames;
+    double fps = 24;
     ThreadOption threads;
     QuietOption quiet;
     StatsJsonOption stats_json;
@@ -92,16 +97,48 @@ int run(const LookOptions &o) {
     }
     const std::string grown_on =
         objects.animal.empty() ? o.mesh : spec.path + "#" + objects.animal;
-    const sim::TriangleMesh mesh = sim::load_mesh(grown_on);
+    sim::MeshLoadReport report;
+    sim::TriangleMesh mesh = sim::load_mesh(grown_on, &report);
     // The triangles' corners: an object's mesh may keep every vertex of its file.
-    std::vector<char> used(mesh.positions.size(), 0);
-    for (const auto &t : mesh.triangles)
-        for (sim::VertId v : t) used[v] = 1;
     std::vector<Vec3f> points;
-    for (size_t v = 0; v < mesh.positions.size(); ++v)
-        if (used[v])
-            points.push_back({float(mesh.positions[v].x), float(mesh.positions[v].y),
-                              float(mesh.positions[v].z)});
+    auto add_corners = [&](const sim::TriangleMesh &m) {
+        std::vector<char> used(m.positions.size(), 0);
+        for (const auto &t : m.triangles)
+            for (sim::VertId v : t) used[v] = 1;
+        for (size_t v = 0; v < m.positions.size(); ++v)
+            if (used[v])
+                points.push_back({float(m.positions[v].x), float(m.positions[v].y),
+                                  float(m.positions[v].z)});
+    };
+    // A clip: the frames asked for (by default the whole clip once), and the camera
+    // framed on every pose of them.
+    std::vector<int> frames;
+    float rest_radius = 0;
+    if (!o.clip.empty()) {
+        const Rig rig = Rig::read(grown_on);
+        const int clip = rig.clip(o.clip, "--clip");
+        const double duration = rig.duration_seconds(clip);
+        frames = o.frames.empty()
+                     ? std::vector<int>{}
+                     : expand_frames(parse_frame_ranges(o.frames, 1, "--frames"));
+        if (frames.empty())
+            for (int f = 0; f < std::max(1, int(std::ceil(duration * o.fps - 1e-9))); ++f)
+                frames.push_back(f);
+        add_corners(mesh);
+        FramingRequest rest_request;
+        rest_request.up = up;
+        rest_radius = frame_points(points, rest_request).radius;
+        points.clear();
+        unweld(report, &mesh);
+        for (int f : frames) {
+            pose_mesh(rig, clip, clip_time(f / o.fps, duration, true), &mesh);
+            add_corners(mesh);
+        }
+    } else {
+        if (!o.frames.empty())
+            throw InputError("", 0, "--frames", "needs --clip (the animation to play)");
+        add_corners(mesh);
+    }
 
     FramingRequest framing;
     framing.up = up;
@@ -145,6 +182,15 @@ int run(const LookOptions &o) {
     setup.cells = stem + ".cells";
     setup.output = output.filename().string();
     setup.preview = stem + "_preview.png";
+    if (!o.clip.empty()) {
+        // One image per frame: the frame number before the extension.
+        setup.output = stem + ".####.exr";
+        setup.preview = stem + "_preview.####.png";
+        setup.clip = o.clip;
+        setup.frames = frames.back() + 1;
+        setup.fps = o.fps;
+        setup.body_radius = rest_radius;
+    }
     if (!procedural && objects.animal.empty()) setup.object_name = animal;
     setup.preset = o.preset;
     setup.seed = o.seed;
@@ -174,6 +220,8 @@ int run(const LookOptions &o) {
     ro.cryptomatte = o.cryptomatte;
     ro.threads = o.threads;
     ro.stats_json = o.stats_json;
+    if (!o.clip.empty())
+        ro.frames = o.frames.empty() ? "0-" + std::to_string(frames.back()) : o.frames;
     return run_render(ro);
 }
 
@@ -206,6 +254,15 @@ Runner add_look_command(CLI::App &app) {
     sub->add_option("--view", o->view, "OpenColorIO view of the preview")
         ->capture_default_str();
     sub->add_flag("--fur", o->fur, "Grow fur on the animal, scaled to its size");
+    sub->add_option("--clip", o->clip,
+                    "Play this animation clip of the mesh file (glTF, FBX, ...): one "
+                    "image per frame, the camera framed on every pose");
+    sub->add_option("--frames", o->frames,
+                    "With --clip: the frames to render, e.g. 1-48 (default: the whole "
+                    "clip once)");
+    sub->add_option("--fps", o->fps, "With --clip: frames per second")
+        ->capture_default_str()
+        ->check(CLI::Range(0.001, 1000.0));
     sub->add_flag("--cryptomatte", o->cryptomatte,
                   "Write every Cryptomatte layer the materials offer (the animal, its "
                   "cell types, cells and clones)");

@@ -48,7 +48,7 @@ json ground_object(const LookSetup &s) {
 // one, and two 12° jitters would hide the field between neighbours); without a field
 // it lies towards the ground and a little along the body.
 json fur_block(const LookSetup &s) {
-    const double k = s.framing.radius / 0.608;
+    const double k = (s.body_radius > 0 ? s.body_radius : s.framing.radius) / 0.608;
     const Vec3f comb = -s.up + s.framing.long_axis * 0.3f;
     json fur = {{"density", round6(300000 / (k * k))},
                 {"density_by_type", {1.2, 1.0}},
@@ -86,6 +86,7 @@ json look_scene(const LookSetup &s) {
                      {"bsdf", "coated"},
                      {"roughness", 0.45},
                      {"ior", 1.5}}}};
+    if (!s.clip.empty()) animal["animation"] = {{"clip", s.clip}};
     if (s.fur) animal["fur"] = fur_block(s);
     json objects = json::array({animal});
     for (const LookSetup::Prop &p : s.props) {
@@ -97,7 +98,7 @@ json look_scene(const LookSetup &s) {
         objects.push_back({{"name", p.name}, {"mesh", p.mesh}, {"material", material}});
     }
     if (s.ground) objects.push_back(ground_object(s));
-    return {
+    json scene = {
         {"camera",
          {{"type", "pinhole"},
           {"position", vec(f.camera.position)},
@@ -121,6 +122,8 @@ json look_scene(const LookSetup &s) {
            {"intensity", 4.0}}}},
         {"objects", objects},
         {"integrator", {{"max_depth", 6}, {"rr_depth", 3}}}};
+    if (!s.clip.empty()) scene["animation"] = {{"frames", s.frames}, {"fps", s.fps}};
+    return scene;
 }
 
 namespace {

@@ -32,6 +32,13 @@ struct LookSetup {
     };
     std::vector<Prop> props;
     bool ground = true;  // false: the file has a floor of its own under the animal
+    // A clip of the mesh file played on the animal ("" = none), over `frames` frames at
+    // `fps` (the scene's animation block).
+    std::string clip;
+    float body_radius = 0;  // the rest pose's bounding radius, which sizes the fur (0:
+                            // the framing's)
+    int frames = 1;
+    double fps = 24;
 };
 
 // The scene, its keys in the order a person reads them (camera, film, lights, objects).

@@ -12,6 +12,7 @@
 #include <sstream>
 
 #include "sim/mesh/mesh_load.h"
+#include "tests/renderer/animation/skinned_strip.h"
 #include "tests/test_paths.h"
 
 namespace pelage::test {
@@ -158,6 +159,60 @@ TEST(LookCli, AFileOfSeveralObjectsGrowsThePatternOnTheAnimal) {
     EXPECT_EQ(shader_of["eye"], "diffuse");
     EXPECT_EQ(shader_of.size(), 3u) << "the file's floor stands for the ground";
     expect_framed(out, "the body");
+}
+
+// The pixels of an EXR's R, G, B channels.
+std::vector<float> rgb_pixels(const std::string &exr) {
+    auto in = OIIO::ImageInput::open(exr);
+    if (!in) return {};
+    const OIIO::ImageSpec &s = in->spec();
+    std::vector<float> px(size_t(s.width) * s.height * 3);
+    in->read_image(0, 0, 0, 3, OIIO::TypeDesc::FLOAT, px.data());
+    return px;
+}
+
+TEST(LookCli, PlaysAClipFramedOnEveryPose) {
+    // The strip's tip turns 160° between frames 0 and 24: a camera framed on the rest
+    // pose alone would lose it.
+    TempDir tmp;
+    const std::string mesh = tmp.write("strip.gltf", skinned_strip());
+    std::string err;
+    ASSERT_EQ(run_pelage("look " + mesh + " --clip bend --frames 0-24x12 --res 96x54 " +
+                             "--spp 2 -o " + tmp.file("strip.exr"),
+                         nullptr, &err),
+              0)
+        << err;
+    for (const std::string f : {"0000", "0012", "0024"}) {
+        const auto b = animal_box(tmp.file("strip." + f + ".exr"));
+        ASSERT_GE(b[0], 0) << "frame " << f << ": the strip is not in the picture";
+        for (int k = 0; k < 2; ++k) {
+            EXPECT_GT(b[k], 0.01) << "frame " << f;
+            EXPECT_LT(b[k + 2], 0.99) << "frame " << f;
+        }
+    }
+    // The scene plays the clip, and renders a frame again to the same pixels.
+    std::ifstream scene_file(tmp.file("strip.json"));
+    const nlohmann::json scene = nlohmann::json::parse(scene_file);
+    EXPECT_EQ(scene["objects"][0]["animation"]["clip"], "bend");
+    EXPECT_EQ(scene["animation"]["frames"], 25);
+    ASSERT_EQ(run_pelage("render " + tmp.file("strip.json") + " --frames 12 -q -o " +
+                             tmp.file("again.####.exr"),
+                         nullptr, &err),
+              0)
+        << err;
+    const std::vector<float> first = rgb_pixels(tmp.file("strip.0012.exr"));
+    ASSERT_FALSE(first.empty());
+    EXPECT_EQ(first, rgb_pixels(tmp.file("again.0012.exr")));
+    EXPECT_NE(first, rgb_pixels(tmp.file("strip.0000.exr")));  // it does move
+
+    // A clip the file does not have, and frames without a clip: exit 2, nothing written.
+    TempDir bad;
+    const std::string out = bad.file("x.exr");
+    EXPECT_EQ(run_pelage("look " + mesh + " --clip walk -o " + out, nullptr, &err), 2);
+    EXPECT_NE(err.find("\"bend\", \"still\""), std::string::npos) << err;
+    EXPECT_EQ(run_pelage("look " + mesh + " --frames 0-3 -o " + out, nullptr, &err), 2);
+    EXPECT_NE(err.find("--clip"), std::string::npos) << err;
+    EXPECT_TRUE(fs::is_empty(bad.path()));
 }
 
 TEST(LookCli, BadInputWritesNothing) {

@@ -1,0 +1,166 @@
+#include "tests/renderer/animation/skinned_strip.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+namespace pelage::test {
+namespace {
+
+using json = nlohmann::json;
+
+std::string base64(const std::string &bytes) {
+    static const char *abc =
+        "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+    std::string out;
+    size_t i = 0;
+    for (; i + 2 < bytes.size(); i += 3) {
+        const uint32_t v = uint32_t(uint8_t(bytes[i])) << 16 |
+                           uint32_t(uint8_t(bytes[i + 1])) << 8 | uint8_t(bytes[i + 2]);
+        for (int s = 18; s >= 0; s -= 6) out += abc[(v >> s) & 63];
+    }
+    if (i < bytes.size()) {
+        uint32_t v = uint32_t(uint8_t(bytes[i])) << 16;
+        if (i + 1 < bytes.size()) v |= uint32_t(uint8_t(bytes[i + 1])) << 8;
+        out += abc[(v >> 18) & 63];
+        out += abc[(v >> 12) & 63];
+        out += i + 1 < bytes.size() ? abc[(v >> 6) & 63] : '=';
+        out += '=';
+    }
+    return out;
+}
+
+// Builds a glTF document's one buffer: each add() is one bufferView and one accessor.
+struct GltfBuilder {
+    json doc = {{"asset", {{"version", "2.0"}}}};
+    std::string bin;
+    int add(const std::vector<float> &v, const char *type, bool minmax = false) {
+        return add_raw(
+            std::string(reinterpret_cast<const char *>(v.data()), 4 * v.size()), 5126,
+            type,
+            v.size() / (std::strcmp(type, "SCALAR") == 0 ? 1
+                        : std::strcmp(type, "VEC3") == 0 ? 3
+                        : std::strcmp(type, "VEC4") == 0 ? 4
+                        : std::strcmp(type, "MAT4") == 0 ? 16
+                                                         : 2),
+            minmax ? &v : nullptr);
+    }
+    int add_u16(const std::vector<uint16_t> &v, const char *type, size_t count) {
+        return add_raw(
+            std::string(reinterpret_cast<const char *>(v.data()), 2 * v.size()), 5123,
+            type, count, nullptr);
+    }
+    int add_raw(const std::string &bytes, int component, const char *type, size_t count,
+                const std::vector<float> *positions) {
+        while (bin.size() % 4) bin.push_back('\0');
+        doc["bufferViews"].push_back(
+            {{"buffer", 0}, {"byteOffset", bin.size()}, {"byteLength", bytes.size()}});
+        bin += bytes;
+        json a = {{"bufferView", doc["bufferViews"].size() - 1},
+                  {"componentType", component},
+                  {"count", count},
+                  {"type", type}};
+        if (positions) {
+            std::vector<float> lo(3, 1e30f), hi(3, -1e30f);
+            for (size_t i = 0; i < positions->size(); ++i)
+                lo[i % 3] = std::min(lo[i % 3], (*positions)[i]),
+                       hi[i % 3] = std::max(hi[i % 3], (*positions)[i]);
+            a["min"] = lo;
+            a["max"] = hi;
+        }
+        doc["accessors"].push_back(a);
+        return int(doc["accessors"].size() - 1);
+    }
+    std::string text() {
+        doc["buffers"] = json::array(
+            {{{"byteLength", bin.size()},
+              {"uri", "data:application/octet-stream;base64," + base64(bin)}}});
+        return doc.dump();
+    }
+};
+
+}  // namespace
+
+std::string skinned_strip(double weight_scale) {
+    GltfBuilder b;
+    std::vector<float> pos, joints_w, morph;
+    std::vector<uint16_t> idx;
+    std::vector<uint8_t> joints;
+    const int columns = 9;
+    for (int c = 0; c < columns; ++c)
+        for (int r = 0; r < 2; ++r) {
+            const float x = 4.0f * float(c) / float(columns - 1), y = 0.5f * float(r);
+            pos.insert(pos.end(), {x, y, 0});
+            const float w = std::clamp((x - 1) / 2, 0.0f, 1.0f);
+            joints.insert(joints.end(), {0, 1, 0, 0});
+            joints_w.insert(joints_w.end(), {float(weight_scale) * (1 - w),
+                                             float(weight_scale) * w, 0, 0});
+            morph.insert(morph.end(), {0, 0, x >= 3 ? 0.5f : 0.0f});
+        }
+    for (int c = 0; c + 1 < columns; ++c) {
+        const uint16_t a = uint16_t(2 * c), d = uint16_t(a + 1), e = uint16_t(a + 2),
+                       f = uint16_t(a + 3);
+        idx.insert(idx.end(), {a, e, d, d, e, f});
+    }
+    const int p = b.add(pos, "VEC3", true);
+    const int m = b.add(morph, "VEC3", true);
+    const int jw = b.add(joints_w, "VEC4");
+    const int j = b.add_raw(std::string(joints.begin(), joints.end()), 5121, "VEC4",
+                            joints.size() / 4, nullptr);
+    const int i = b.add_u16(idx, "SCALAR", idx.size());
+    const std::vector<float> ear_pos = {0, 0, 0, 0.4f, 0, 0, 0, 0.3f, 0.2f};
+    const int ep = b.add(ear_pos, "VEC3", true);
+    const int ei = b.add_u16({0, 1, 2}, "SCALAR", 3);
+    // Inverse bind matrices (column-major): the root at the origin, the tip at x = 2.
+    const int ibm = b.add({1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0,  0, 0, 1,  //
+                           1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, -2, 0, 0, 1},
+                          "MAT4");
+    const int times = b.add({0, 1, 2}, "SCALAR");
+    const float s80 = std::sin(80 * 3.14159265f / 180),
+                c80 = std::cos(80 * 3.14159265f / 180);
+    const float s20 = std::sin(20 * 3.14159265f / 180),
+                c20 = std::cos(20 * 3.14159265f / 180);
+    const int tip_rot = b.add({0, 0, 0, 1, 0, 0, s80, c80, 0, 0, s20, c20}, "VEC4");
+    const int root_pos = b.add({0, 0, 0, 0.5f, 0.25f, 0, 1, 0.5f, 0}, "VEC3");
+    const int morph_w = b.add({0, 0.3f, 1}, "SCALAR");
+    const int one_time = b.add({0}, "SCALAR");
+    const int one_pos = b.add({0, 0, 0}, "VEC3");
+    b.doc["meshes"] = json::array(
+        {{{"name", "strip"},
+          {"weights", {0.0}},
+          {"primitives",
+           {{{"attributes", {{"POSITION", p}, {"JOINTS_0", j}, {"WEIGHTS_0", jw}}},
+             {"indices", i},
+             {"targets", {{{"POSITION", m}}}}}}}},
+         {{"name", "ear"},
+          {"primitives", {{{"attributes", {{"POSITION", ep}}}, {"indices", ei}}}}}});
+    b.doc["nodes"] =
+        json::array({{{"name", "strip"}, {"mesh", 0}, {"skin", 0}},
+                     {{"name", "root"}, {"children", {2}}},
+                     {{"name", "tip"}, {"translation", {2, 0, 0}}, {"children", {3}}},
+                     {{"name", "ear"}, {"mesh", 1}, {"translation", {0.5, 0, 0}}}});
+    b.doc["skins"] = json::array({{{"joints", {1, 2}}, {"inverseBindMatrices", ibm}}});
+    b.doc["scenes"] = json::array({{{"nodes", {0, 1}}}});
+    b.doc["scene"] = 0;
+    b.doc["animations"] = json::array(
+        {{{"name", "bend"},
+          {"samplers",
+           {{{"input", times}, {"output", tip_rot}},
+            {{"input", times}, {"output", root_pos}},
+            {{"input", times}, {"output", morph_w}}}},
+          {"channels",
+           {{{"sampler", 0}, {"target", {{"node", 2}, {"path", "rotation"}}}},
+            {{"sampler", 1}, {"target", {{"node", 1}, {"path", "translation"}}}},
+            {{"sampler", 2}, {"target", {{"node", 0}, {"path", "weights"}}}}}}},
+         {{"name", "still"},
+          {"samplers", {{{"input", one_time}, {"output", one_pos}}}},
+          {"channels",
+           {{{"sampler", 0}, {"target", {{"node", 1}, {"path", "translation"}}}}}}}});
+    return b.text();
+}
+
+}  // namespace pelage::test
