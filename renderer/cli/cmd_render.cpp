@@ -134,10 +134,12 @@ FrameOutcome render_frame(const RenderCliOptions &o, const SceneDesc &desc,
     const int local = f - desc.animation.first_frame;
     const SceneDesc fd = desc.animation.present ? scene_at_frame(desc, local) : desc;
     std::unique_ptr<Scene> own;
+    double frame_setup_seconds = 0;
     if (!shared_scene) {
         const Timer setup;
         own = std::make_unique<Scene>(fd, plugins);
-        totals->setup_seconds += setup.seconds();
+        frame_setup_seconds = setup.seconds();
+        totals->setup_seconds += frame_setup_seconds;
     }
     const Scene &scene = shared_scene ? *shared_scene : *own;
 
@@ -210,8 +212,20 @@ FrameOutcome render_frame(const RenderCliOptions &o, const SceneDesc &desc,
     ++totals->rendered;
     totals->stats.add(r.stats);
     totals->seconds += r.seconds;
-    totals->frame_stats.push_back(
-        {{"frame", f}, {"seconds", r.seconds}, {"output", out_f}});
+    nlohmann::json frame_stat = {{"frame", f}, {"seconds", r.seconds}, {"output", out_f}};
+    if (own) {
+        // A frame that builds its own scene (a clip, a deformation, growth): what the
+        // pose and its fur cost, frame by frame.
+        frame_stat["setup_seconds"] = frame_setup_seconds;
+        frame_stat["pose_seconds"] = own->geometry().pose_seconds();
+        if (own->fur()) {
+            frame_stat["fur_strands"] = own->fur()->num_strands();
+            frame_stat["fur_grow_seconds"] = own->fur()->grow_seconds();
+            frame_stat["fur_embree_seconds"] = own->fur()->embree_seconds();
+        }
+        frame_stat["peak_rss_mb"] = peak_rss_mb();  // of the process so far
+    }
+    totals->frame_stats.push_back(frame_stat);
 
     const double rays_per_second =
         r.seconds > 0 ? double(r.stats.rays()) / r.seconds : 0.0;

@@ -1,6 +1,7 @@
 #include "renderer/geometry/embree_scene.h"
 
 #include <array>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <map>
@@ -20,7 +21,8 @@ namespace pelage::renderer {
 namespace {
 
 std::shared_ptr<MeshData> load_mesh_data(const ObjectDesc &o,
-                                         const std::string &scene_path, size_t index) {
+                                         const std::string &scene_path, size_t index,
+                                         double *pose_seconds) {
     sim::TriangleMesh mesh;
     sim::MeshLoadReport report;
     try {
@@ -39,6 +41,7 @@ std::shared_ptr<MeshData> load_mesh_data(const ObjectDesc &o,
     // the corners are posed apart.
     std::vector<std::array<sim::VertId, 3>> welded = mesh.triangles;
     size_t num_welded = mesh.num_vertices();
+    const auto pose_start = std::chrono::steady_clock::now();
     if (o.clip) {
         rig = Rig::read(o.mesh);
         unweld(report, &mesh);
@@ -52,7 +55,12 @@ std::shared_ptr<MeshData> load_mesh_data(const ObjectDesc &o,
     if (!o.deform_mesh.empty() && o.deform_weight > 0)
         apply_pose(mesh, o.deform_mesh, o.deform_weight, scene_path,
                    "objects[" + std::to_string(index) + "].deform");
-    if (rig) pose_mesh(*rig, rig->clip(o.clip->name), o.clip_seconds, &mesh);
+    if (rig) {
+        pose_mesh(*rig, rig->clip(o.clip->name), o.clip_seconds, &mesh);
+        *pose_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() -
+                                                       pose_start)
+                             .count();
+    }
     if (o.grow) {
         // The shape at the age, vertex by vertex: the pattern, stored per (triangle,
         // barycentric point), rides on it (sim/growth/growth_shape.h).
@@ -205,7 +213,7 @@ EmbreeScene::EmbreeScene(const SceneDesc &scene) {
         const ObjectDesc &o = scene.objects[i];
         const Key key = key_of(o);
         auto &mesh = loaded[key];
-        if (!mesh) mesh = load_mesh_data(o, scene.path, i);
+        if (!mesh) mesh = load_mesh_data(o, scene.path, i, &m_pose_seconds);
         ObjectGeometry &og = m_objects[i];
         const Affine normal_m = o.transform.normal_matrix();
         if (const float det = std::abs(o.transform.determinant3()); det > 0)

@@ -87,6 +87,9 @@ class EmbreeScene {
     // Radius of the bounding sphere of everything in the scene (0 when empty).
     float bounding_radius() const { return m_bounding_radius; }
     size_t num_triangles() const { return m_num_triangles; }
+    // The time spent posing meshes by their clips (renderer/animation): skinning,
+    // morphing and unwelding, summed over the objects.
+    double pose_seconds() const { return m_pose_seconds; }
     // Throws the first device error recorded so far, if any.
     void check() const;
 
@@ -103,6 +106,7 @@ class EmbreeScene {
     std::vector<int> m_light_of_geometry;  // -1: not a light
     float m_bounding_radius = 0;
     size_t m_num_triangles = 0;
+    double m_pose_seconds = 0;
     mutable std::mutex m_error_mutex;
     std::string m_error;
 };
