@@ -57,9 +57,9 @@ std::shared_ptr<MeshData> load_mesh_data(const ObjectDesc &o,
                    "objects[" + std::to_string(index) + "].deform");
     if (rig) {
         pose_mesh(*rig, rig->clip(o.clip->name), o.clip_seconds, &mesh);
-        *pose_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() -
-                                                       pose_start)
-                             .count();
+        *pose_seconds +=
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - pose_start)
+                .count();
     }
     if (o.grow) {
         // The shape at the age, vertex by vertex: the pattern, stored per (triangle,
