@@ -198,7 +198,8 @@ Runner add_compare_command(CLI::App &app) {
                   "and spot density");
     sub->add_flag("--deform", o->deform,
                   "Pattern drift: albedo change at fixed surface points between the rest "
-                  "mesh and the object's \"deform\" pose, per shader (no renders)");
+                  "mesh and the object's \"deform\" pose or its clip at eight times, per "
+                  "shader (no renders)");
     sub->add_option("--sheet", o->sheet, "Write a labelled contact sheet (.png/.jpg)");
     sub->add_option("--view", o->view, "OCIO view for the sheet (default: the scene's)");
     o->quiet.add_to(*sub);

@@ -335,7 +335,7 @@ DriftResult measure_pattern_drift(const SceneDesc &desc, const CompareOptions &o
     DriftResult result;
     bool found = false;
     for (size_t i : patterned_objects(desc))
-        if (!desc.objects[i].deform.empty()) {
+        if (!desc.objects[i].deform.empty() || desc.objects[i].clip) {
             result.object = i;
             found = true;
             break;
@@ -343,9 +343,24 @@ DriftResult measure_pattern_drift(const SceneDesc &desc, const CompareOptions &o
     if (!found)
         throw InputError(desc.path, 0, "objects",
                          "--deform needs a patterned object with a \"deform\" mesh (a "
-                         "second pose with the same topology)");
+                         "second pose with the same topology) or an animation clip");
     const size_t obj = result.object;
-    result.pose = desc.objects[obj].deform.back();
+    const ObjectDesc &od = desc.objects[obj];
+    // The poses measured: the last "deform" mesh, or a clip at eight times spread over
+    // its length (its first frame and seven more).
+    const int clip_poses = 8;
+    const int num_poses = od.clip ? clip_poses : 1;
+    result.pose = od.clip ? "clip \"" + od.clip->name + "\" at " +
+                                std::to_string(clip_poses) + " times"
+                          : od.deform.back();
+    auto set_pose = [&](ObjectDesc &o, int k) {
+        if (o.clip) {
+            o.clip_seconds = o.clip->duration * double(k) / double(clip_poses);
+        } else {
+            o.deform_mesh = od.deform.back();
+            o.deform_weight = 1;
+        }
+    };
     const PluginRegistry plugins;
     std::vector<PelageHit> hits = sample_hits(desc, obj, options.lookups, options.seed);
 
@@ -369,30 +384,39 @@ DriftResult measure_pattern_drift(const SceneDesc &desc, const CompareOptions &o
             if (m.shader != shader) m.params = nlohmann::json::object();
             m.shader = shader;
         }
-        d.objects[obj].deform_mesh.clear();
-        d.objects[obj].deform_weight = 0;
-        const Scene rest(d, plugins);
-        d.objects[obj].deform_mesh = result.pose;
-        d.objects[obj].deform_weight = 1;
-        const Scene pose(d, plugins);
-
-        std::vector<PelageHit> at_rest = hits, at_pose = hits;
+        SceneDesc rest_desc = d;
+        rest_desc.objects[obj].deform_mesh.clear();
+        rest_desc.objects[obj].deform_weight = 0;
+        rest_desc.objects[obj].clip.reset();
+        const Scene rest(rest_desc, plugins);
+        std::vector<PelageHit> at_rest = hits;
         place(rest, at_rest);
-        place(pose, at_pose);
-        const Material &mr = rest.materials()[obj], &mp = pose.materials()[obj];
-        DriftRun run{shader, 0, 0, hits.size()};
-        double sum = 0;
+        const Material &mr = rest.materials()[obj];
+        std::vector<PelageShade> rest_shade(hits.size());
         for (size_t i = 0; i < hits.size(); ++i) {
-            PelageShade a{}, b{};
-            mr.plugin->shade(mr.instance, &at_rest[i], &a);
-            mp.plugin->shade(mp.instance, &at_pose[i], &b);
-            double d3 = 0;
-            for (int c = 0; c < 3; ++c) d3 += std::abs(double(a.albedo[c]) - b.albedo[c]);
-            d3 /= 3;
-            sum += d3;
-            run.max = std::max(run.max, d3);
+            rest_shade[i] = PelageShade{};
+            mr.plugin->shade(mr.instance, &at_rest[i], &rest_shade[i]);
         }
-        run.mean = hits.empty() ? 0 : sum / double(hits.size());
+        DriftRun run{shader, 0, 0, hits.size() * size_t(num_poses)};
+        double sum = 0;
+        for (int k = 0; k < num_poses; ++k) {
+            set_pose(d.objects[obj], k);
+            const Scene pose(d, plugins);
+            std::vector<PelageHit> at_pose = hits;
+            place(pose, at_pose);
+            const Material &mp = pose.materials()[obj];
+            for (size_t i = 0; i < hits.size(); ++i) {
+                PelageShade b{};
+                mp.plugin->shade(mp.instance, &at_pose[i], &b);
+                double d3 = 0;
+                for (int c = 0; c < 3; ++c)
+                    d3 += std::abs(double(rest_shade[i].albedo[c]) - b.albedo[c]);
+                d3 /= 3;
+                sum += d3;
+                run.max = std::max(run.max, d3);
+            }
+        }
+        run.mean = run.points == 0 ? 0 : sum / double(run.points);
         result.runs.push_back(run);
     }
     return result;

@@ -57,8 +57,9 @@ struct CompareResult {
 // Pattern drift under deformation: for each shader, the mean (and max) over `points`
 // area-uniform surface points (triangle, barycentrics) of the rest mesh of
 // |albedo(rest) - albedo(pose)|, averaged over R, G, B. The pose is the object's last
-// "deform" mesh. A pattern attached to the surface (clonal_mosaic) has drift 0; one on
-// object-space position (worley, perlin) swims.
+// "deform" mesh, or its animation clip at eight times over the clip (the points then
+// count every pose). A pattern attached to the surface (clonal_mosaic) has drift 0; one
+// on object-space position (worley, perlin) swims.
 struct DriftRun {
     std::string shader;
     double mean = 0, max = 0;
@@ -70,7 +71,7 @@ struct DriftResult {
     std::vector<DriftRun> runs;
     nlohmann::json report() const;
 };
-// InputError when no patterned object has a "deform".
+// InputError when no patterned object has a "deform" or a clip.
 DriftResult measure_pattern_drift(const SceneDesc &desc, const CompareOptions &options);
 
 // The patterned objects are those with a "cells" file; each shader is applied to them

@@ -204,6 +204,19 @@ TEST(LookCli, PlaysAClipFramedOnEveryPose) {
     ASSERT_FALSE(first.empty());
     EXPECT_EQ(first, rgb_pixels(tmp.file("again.0012.exr")));
     EXPECT_NE(first, rgb_pixels(tmp.file("strip.0000.exr")));  // it does move
+    // The coat stays on the skin over the whole clip; a pattern in space swims.
+    ASSERT_EQ(run_pelage("compare " + tmp.file("strip.json") +
+                             " --deform --lookups 2000 --shaders clonal_mosaic,perlin "
+                             "--stats-json " +
+                             tmp.file("drift.json"),
+                         nullptr, &err),
+              0)
+        << err;
+    std::ifstream drift_file(tmp.file("drift.json"));
+    const nlohmann::json drift = nlohmann::json::parse(drift_file)["pattern_drift"];
+    EXPECT_EQ(drift["clonal_mosaic"]["max"].get<double>(), 0.0);
+    EXPECT_GT(drift["perlin"]["mean"].get<double>(), 0.01);
+    EXPECT_EQ(drift["perlin"]["points"], 2000 * 8);  // eight times over the clip
 
     // A clip the file does not have, and frames without a clip: exit 2, nothing written.
     TempDir bad;
