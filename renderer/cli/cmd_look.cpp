@@ -154,8 +154,15 @@ int run(const LookOptions &o) {
         // ground (two coincident planes would flicker).
         const float radius = setup.framing.radius;
         for (const LookObject &p : objects.others) {
+            // What the clip moves of the file's other objects (a rider, a harness,
+            // eyes) plays it too.
+            bool animated = false;
+            if (!o.clip.empty()) {
+                const Rig prop_rig = Rig::read(spec.path + "#" + p.name);
+                animated = prop_rig.moves_mesh(prop_rig.clip(o.clip, "--clip"));
+            }
             setup.props.push_back({p.name, mesh_reference(spec.path + "#" + p.name, dir),
-                                   p.materials, p.missing_texture.empty()});
+                                   p.materials, p.missing_texture.empty(), animated});
             if (!p.missing_texture.empty())
                 std::fprintf(
                     stderr, "pelage look: %s#%s: no image %s; its colours only\n",

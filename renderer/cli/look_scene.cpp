@@ -95,7 +95,9 @@ json look_scene(const LookSetup &s) {
             material = {{"shader", "mesh_material"}};
             if (!p.textures) material["params"] = {{"textures", 0}};
         }
-        objects.push_back({{"name", p.name}, {"mesh", p.mesh}, {"material", material}});
+        json prop = {{"name", p.name}, {"mesh", p.mesh}, {"material", material}};
+        if (p.animated) prop["animation"] = {{"clip", s.clip}};
+        objects.push_back(prop);
     }
     if (s.ground) objects.push_back(ground_object(s));
     json scene = {

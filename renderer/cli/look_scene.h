@@ -28,7 +28,8 @@ struct LookSetup {
     struct Prop {
         std::string name, mesh;
         bool materials = false;
-        bool textures = true;  // false: colours only (an image is missing)
+        bool textures = true;   // false: colours only (an image is missing)
+        bool animated = false;  // the animal's clip moves it too
     };
     std::vector<Prop> props;
     bool ground = true;  // false: the file has a floor of its own under the animal
