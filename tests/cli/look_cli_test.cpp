@@ -194,8 +194,9 @@ TEST(LookCli, PlaysAClipFramedOnEveryPose) {
     std::ifstream scene_file(tmp.file("strip.json"));
     const nlohmann::json scene = nlohmann::json::parse(scene_file);
     EXPECT_EQ(scene["objects"][0]["animation"]["clip"], "bend");
-    // The file's other object, a triangle on the tip joint, goes with it.
-    EXPECT_EQ(scene["objects"][1]["name"], "ear");
+    // The file's other object (the joints' subtree, which holds the triangle on the tip
+    // joint) goes with it.
+    EXPECT_EQ(scene["objects"][1]["name"], "root");
     EXPECT_EQ(scene["objects"][1]["animation"]["clip"], "bend");
     EXPECT_EQ(scene["animation"]["frames"], 25);
     ASSERT_EQ(run_pelage("render " + tmp.file("strip.json") + " --frames 12 -q -o " +
