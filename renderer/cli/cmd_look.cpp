@@ -114,13 +114,19 @@ int run(const LookOptions &o) {
     // framed on every pose of them.
     std::vector<int> frames;
     float rest_radius = 0;
+    int last_frame = 0;
     if (!o.clip.empty()) {
         const Rig rig = Rig::read(grown_on);
         const int clip = rig.clip(o.clip, "--clip");
         const double duration = rig.duration_seconds(clip);
-        frames = o.frames.empty()
-                     ? std::vector<int>{}
-                     : expand_frames(parse_frame_ranges(o.frames, 1, "--frames"));
+        if (!o.frames.empty()) {
+            const std::vector<FrameRange> ranges =
+                parse_frame_ranges(o.frames, 1, "--frames");
+            frames = expand_frames(ranges);
+            // The scene's animation reaches every range's end ("0-100x24" ends at 100,
+            // though its last frame is 96), so `render --frames` takes the same list.
+            for (const FrameRange &r : ranges) last_frame = std::max(last_frame, r.last);
+        }
         if (frames.empty())
             for (int f = 0; f < std::max(1, int(std::ceil(duration * o.fps - 1e-9))); ++f)
                 frames.push_back(f);
@@ -194,7 +200,7 @@ int run(const LookOptions &o) {
         setup.output = stem + ".####.exr";
         setup.preview = stem + "_preview.####.png";
         setup.clip = o.clip;
-        setup.frames = frames.back() + 1;
+        setup.frames = std::max(frames.back(), last_frame) + 1;
         setup.fps = o.fps;
         setup.body_radius = rest_radius;
     }
