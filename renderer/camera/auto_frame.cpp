@@ -47,7 +47,9 @@ Framing frame_points(const std::vector<Vec3f> &points, const FramingRequest &rq)
     }
     // A single point (or a speck) still gets a camera at a sensible distance.
     fr.radius = std::max(fr.radius, 1e-6f * std::max(1.0f, length(fr.center)));
-    fr.long_axis = long_horizontal_axis(points, up, fr.center);
+    const Vec3f given = rq.long_axis - up * dot(rq.long_axis, up);  // horizontal part
+    fr.long_axis = length(given) > 0 ? normalize(given)
+                                     : long_horizontal_axis(points, up, fr.center);
     fr.side_axis = normalize(cross(up, fr.long_axis));
 
     const float az = rq.azimuth_deg * deg, el = rq.elevation_deg * deg;

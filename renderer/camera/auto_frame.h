@@ -20,6 +20,9 @@ struct FramingRequest {
     // The view from the side of the body (perpendicular to its long horizontal axis)
     // turned by `azimuth` towards its +long end, raised by `elevation`.
     float azimuth_deg = 35, elevation_deg = 15;
+    // Non-zero: the body's long axis to view from (e.g. the rest pose's, so an animal's
+    // frames are seen from the side its still is), instead of the points' own.
+    Vec3f long_axis{0, 0, 0};
 };
 
 struct Framing {

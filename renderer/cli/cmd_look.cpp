@@ -115,6 +115,7 @@ int run(const LookOptions &o) {
     std::vector<int> frames;
     float rest_radius = 0;
     int last_frame = 0;
+    Vec3f rest_long_axis{0, 0, 0};
     if (!o.clip.empty()) {
         const Rig rig = Rig::read(grown_on);
         const int clip = rig.clip(o.clip, "--clip");
@@ -133,7 +134,9 @@ int run(const LookOptions &o) {
         add_corners(mesh);
         FramingRequest rest_request;
         rest_request.up = up;
-        rest_radius = frame_points(points, rest_request).radius;
+        const Framing rest_framing = frame_points(points, rest_request);
+        rest_radius = rest_framing.radius;
+        rest_long_axis = rest_framing.long_axis;
         points.clear();
         unweld(report, &mesh);
         for (int f : frames) {
@@ -149,6 +152,7 @@ int run(const LookOptions &o) {
     FramingRequest framing;
     framing.up = up;
     framing.aspect = float(width) / float(height);
+    framing.long_axis = rest_long_axis;
     LookSetup setup;
     setup.framing = frame_points(points, framing);
     setup.up = up;
