@@ -206,4 +206,19 @@ for name, g in d.items():
 print(json.dumps({"gallery": out, "seed": 1}, indent=2, sort_keys=True))
 PY
 rm -f scenes/gallery_sphere.cells scenes/gallery_cow.cells scenes/gallery_cow_fur.json
+
+# A rigged animal walking with its coat and fur: the Khronos sample fox (Fox.glb, CC-BY
+# 4.0: model by PixelMannen, rigging and animation by @tomkranis, glTF by @AsoboStudio and
+# @scurest), which the repository does not ship. PELAGE_FOX names the file; without it
+# the fox's images stay as they are. Frames 200-247 of its one clip are the walk.
+if [ -n "${PELAGE_FOX:-}" ] && [ -f "$PELAGE_FOX" ]; then
+    $pelage look "$PELAGE_FOX" --clip "Armature|Take 001|BaseLayer" --frames 200-247 \
+        --fur --res 480x270 --spp 16 -q -o "$tmp/fox.exr"
+    $pelage movie "$tmp/fox.####.exr" -q -o images/fox_walk.mp4
+    strip=()
+    for f in 0200 0206 0212 0218; do strip+=("$tmp/fox_preview.$f.png"); done
+    oiiotool "${strip[@]}" --mosaic:pad=4 4x1 --resize 1440x0 -o images/fox_walk_strip.png
+else
+    echo "make_images.sh: PELAGE_FOX is not set: images/fox_walk.* left as they are" >&2
+fi
 echo "make_images.sh: images/*.png regenerated"

@@ -13,6 +13,7 @@
 // mesh without bones, placed by its node's global transform.
 #pragma once
 
+#include <array>
 #include <memory>
 #include <string>
 #include <vector>
@@ -48,7 +49,12 @@ class Rig {
     // Every vertex at `seconds` into `clip`: the rig's numbering, object space of the
     // file. Throws InputError naming the file and the clip when a position is not
     // finite.
-    std::vector<sim::Vec3d> pose(int clip, double seconds) const;
+    // With `normal_matrices`, also each vertex's normal transform at the time: the
+    // cofactor matrix (det · A^−T, sign kept positive) of the linear part of the map its
+    // morphed rest position goes through, row-major; normals follow it, up to length.
+    std::vector<sim::Vec3d> pose(
+        int clip, double seconds,
+        std::vector<std::array<double, 9>> *normal_matrices = nullptr) const;
 
     Rig(Rig &&) noexcept;
     Rig &operator=(Rig &&) noexcept;
@@ -65,8 +71,8 @@ class Rig {
 // seam or two touching parts whose skins differ can move apart.
 void unweld(const sim::MeshLoadReport &report, sim::TriangleMesh *mesh);
 
-// An unwelded mesh of the rig's own reference posed at `seconds` into `clip`. Its file
-// normals no longer fit and are dropped.
+// An unwelded mesh of the rig's own reference posed at `seconds` into `clip`; its corner
+// normals, if any, go with the skin (morph targets' own normal changes are not read).
 void pose_mesh(const Rig &rig, int clip, double seconds, sim::TriangleMesh *mesh);
 
 // A clip's time at a scene time: `seconds` as given, wrapped into [0, duration) when

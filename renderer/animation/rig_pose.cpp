@@ -94,7 +94,8 @@ Transform Trs::matrix() const {
     return m;
 }
 
-std::vector<Vec3d> Rig::pose(int clip_index, double seconds) const {
+std::vector<Vec3d> Rig::pose(int clip_index, double seconds,
+                             std::vector<std::array<double, 9>> *normal_matrices) const {
     const RigData &d = *m;
     const RigData::Clip &clip = d.clips.at(size_t(clip_index));
     // --- Every node's local transform at the time, then the global ones ---
@@ -113,6 +114,7 @@ std::vector<Vec3d> Rig::pose(int clip_index, double seconds) const {
 
     std::vector<Vec3d> out;
     out.reserve(d.num_vertices);
+    if (normal_matrices) normal_matrices->clear();
     for (const RigData::Piece &p : d.pieces) {
         // --- Morph weights: the channel on the piece's node, or the file's defaults ---
         std::vector<double> weights = p.target_weights;
@@ -135,13 +137,38 @@ std::vector<Vec3d> Rig::pose(int clip_index, double seconds) const {
             Vec3d x = p.vertices[v];
             for (size_t k = 0; k < p.targets.size(); ++k)
                 if (weights[k] != 0) x += (p.targets[k][v] - p.vertices[v]) * weights[k];
-            Vec3d posed{0, 0, 0};
+            // The vertex's map: its node's, or its joints' blend (linear blend skinning
+            // blends the matrices, which is the same as blending the points).
+            Transform m;
             if (p.bones.empty()) {
-                posed = apply(global[size_t(p.node)], x);
+                m = global[size_t(p.node)];
             } else {
-                for (uint32_t i = p.influence_begin[v]; i < p.influence_begin[v + 1]; ++i)
-                    posed +=
-                        apply(skin[p.influences[i].bone], x) * p.influences[i].weight;
+                for (int r = 0; r < 3; ++r) {
+                    m.t[r] = 0;
+                    for (int c = 0; c < 3; ++c) m.a[r][c] = 0;
+                }
+                for (uint32_t i = p.influence_begin[v]; i < p.influence_begin[v + 1];
+                     ++i) {
+                    const Transform &s = skin[p.influences[i].bone];
+                    const double w = p.influences[i].weight;
+                    for (int r = 0; r < 3; ++r) {
+                        m.t[r] += w * s.t[r];
+                        for (int c = 0; c < 3; ++c) m.a[r][c] += w * s.a[r][c];
+                    }
+                }
+            }
+            const Vec3d posed = apply(m, x);
+            if (normal_matrices) {
+                std::array<double, 9> n;
+                const double sign = m.determinant() < 0 ? -1.0 : 1.0;
+                for (int r = 0; r < 3; ++r)
+                    for (int c = 0; c < 3; ++c) {
+                        const int r1 = (r + 1) % 3, r2 = (r + 2) % 3;
+                        const int c1 = (c + 1) % 3, c2 = (c + 2) % 3;
+                        n[size_t(3 * r + c)] = sign * (m.a[r1][c1] * m.a[r2][c2] -
+                                                       m.a[r1][c2] * m.a[r2][c1]);
+                    }
+                normal_matrices->push_back(n);
             }
             if (!is_finite(posed))
                 throw InputError(d.path, 0, "",
@@ -168,10 +195,20 @@ void unweld(const sim::MeshLoadReport &report, sim::TriangleMesh *mesh) {
 }
 
 void pose_mesh(const Rig &rig, int clip, double seconds, sim::TriangleMesh *mesh) {
-    std::vector<Vec3d> posed = rig.pose(clip, seconds);
+    std::vector<std::array<double, 9>> normal_matrices;
+    std::vector<Vec3d> posed = rig.pose(clip, seconds, &normal_matrices);
     PELAGE_CHECK(posed.size() == mesh->num_vertices());
     mesh->positions = std::move(posed);
-    mesh->corner_normals.clear();
+    for (size_t t = 0; t < mesh->num_triangles() && !mesh->corner_normals.empty(); ++t)
+        for (int c = 0; c < 3; ++c) {
+            const std::array<double, 9> &n = normal_matrices[mesh->triangles[t][c]];
+            Vec3d &cn = mesh->corner_normals[3 * t + size_t(c)];
+            const Vec3d r{n[0] * cn.x + n[1] * cn.y + n[2] * cn.z,
+                          n[3] * cn.x + n[4] * cn.y + n[5] * cn.z,
+                          n[6] * cn.x + n[7] * cn.y + n[8] * cn.z};
+            const double len = length(r);
+            if (len > 0) cn = r / len;
+        }
 }
 
 }  // namespace pelage::renderer

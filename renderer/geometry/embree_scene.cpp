@@ -20,6 +20,28 @@ namespace pelage::renderer {
 
 namespace {
 
+// Area-weighted vertex normals over the welded surface (`welded`: the triangles' welded
+// corners), one per triangle corner; a corner whose normals cancel takes its face's.
+std::vector<sim::Vec3d> smooth_corner_normals(
+    const sim::TriangleMesh &mesh, const std::vector<std::array<sim::VertId, 3>> &welded,
+    size_t num_welded) {
+    std::vector<sim::Vec3d> vn(num_welded);
+    for (size_t t = 0; t < mesh.num_triangles(); ++t) {
+        const sim::Vec3d n =
+            mesh.face_normal_unnormalized(sim::TriId(t));  // |n| = 2 area
+        for (int c = 0; c < 3; ++c) vn[welded[t][c]] += n;
+    }
+    std::vector<sim::Vec3d> out(3 * mesh.num_triangles());
+    for (size_t t = 0; t < mesh.num_triangles(); ++t)
+        for (int c = 0; c < 3; ++c) {
+            const sim::Vec3d n = vn[welded[t][c]];
+            const double len = sim::length(n);
+            out[3 * t + c] =
+                len > 0 ? n / len : mesh.face_normal_unnormalized(sim::TriId(t));
+        }
+    return out;
+}
+
 std::shared_ptr<MeshData> load_mesh_data(const ObjectDesc &o,
                                          const std::string &scene_path, size_t index,
                                          double *pose_seconds) {
@@ -45,6 +67,12 @@ std::shared_ptr<MeshData> load_mesh_data(const ObjectDesc &o,
     if (o.clip) {
         rig = Rig::read(o.mesh);
         unweld(report, &mesh);
+        // Shading normals are made on the rest surface and go with the skin (recomputed
+        // on a pose, averages across a crease that the pose folds point into the body).
+        if (o.normals == ObjectDesc::Normals::flat)
+            mesh.corner_normals.clear();
+        else if (mesh.corner_normals.empty() && o.normals == ObjectDesc::Normals::smooth)
+            mesh.corner_normals = smooth_corner_normals(mesh, welded, num_welded);
     }
     auto rest = std::make_shared<MeshData::Rest>();
     rest->positions.reserve(3 * mesh.num_vertices());
@@ -94,18 +122,12 @@ std::shared_ptr<MeshData> load_mesh_data(const ObjectDesc &o,
             m->corner_normals[3 * i + 2] = float(n.z);
         }
     } else if (o.normals == ObjectDesc::Normals::smooth) {
-        std::vector<sim::Vec3d> vn(num_welded);
-        for (size_t t = 0; t < mesh.num_triangles(); ++t) {
-            const sim::Vec3d n =
-                mesh.face_normal_unnormalized(sim::TriId(t));  // |n| = 2 area
-            for (int c = 0; c < 3; ++c) vn[welded[t][c]] += n;
-        }
+        const std::vector<sim::Vec3d> cn =
+            smooth_corner_normals(mesh, welded, num_welded);
         m->corner_normals.resize(size_t(m->num_triangles) * 9);
         for (size_t t = 0; t < mesh.num_triangles(); ++t)
             for (int c = 0; c < 3; ++c) {
-                sim::Vec3d n = vn[welded[t][c]];
-                const double len = sim::length(n);
-                n = len > 0 ? n / len : mesh.face_normal_unnormalized(sim::TriId(t));
+                const sim::Vec3d n = cn[3 * t + c];
                 for (int k = 0; k < 3; ++k)
                     m->corner_normals[9 * t + 3 * c + k] = float(n[k]);
             }
