@@ -54,7 +54,7 @@ TEST(Rig, PosesASkinnedMorphingStripAsTheGltfSpecificationDoes) {
     const Rig rig = Rig::read(path);
     const GltfReference ref(path);
     EXPECT_TRUE(rig.skinned());
-    EXPECT_EQ(rig.clip_names(), (std::vector<std::string>{"bend", "still"}));
+    EXPECT_EQ(rig.clip_names(), (std::vector<std::string>{"bend", "still", "roll"}));
     EXPECT_DOUBLE_EQ(rig.duration_seconds(rig.clip("bend")), 2.0);
     const int bend = rig.clip("bend");
     EXPECT_TRUE(rig.moves_mesh(bend));
@@ -67,6 +67,31 @@ TEST(Rig, PosesASkinnedMorphingStripAsTheGltfSpecificationDoes) {
     EXPECT_GT(worst_error(path, rig, bend, 1.0, ref, -1), 0.3);
     // A clip that moves nothing leaves the rest pose (the nodes as the file places them).
     EXPECT_LT(worst_error(path, rig, rig.clip("still"), 0.0, ref, -1), 1e-6);
+}
+
+TEST(Rig, NormalsTurnWithTheSkin) {
+    // The flat strip's normals are +z at rest; the roll turns the whole skin 90° about
+    // x, so every normal, joint-blended or not, becomes R_x(90°)·z = (0, −1, 0).
+    test::TempDir tmp;
+    const std::string path = tmp.write("strip.gltf", skinned_strip());
+    const Rig rig = Rig::read(path);
+    sim::MeshLoadReport report;
+    sim::TriangleMesh mesh = sim::load_mesh(path + "#strip", &report);
+    unweld(report, &mesh);
+    mesh.corner_normals.assign(3 * mesh.num_triangles(), sim::Vec3d{0, 0, 1});
+    const Rig strip = Rig::read(path + "#strip");
+    pose_mesh(strip, strip.clip("roll"), 1.0, &mesh);
+    for (const sim::Vec3d &n : mesh.corner_normals) {
+        EXPECT_NEAR(n.x, 0, 1e-6);
+        EXPECT_NEAR(n.y, -1, 1e-6);
+        EXPECT_NEAR(n.z, 0, 1e-6);
+    }
+    // Halfway, 45°.
+    mesh.corner_normals.assign(3 * mesh.num_triangles(), sim::Vec3d{0, 0, 1});
+    pose_mesh(strip, strip.clip("roll"), 0.5, &mesh);
+    EXPECT_NEAR(mesh.corner_normals[0].y, -std::sqrt(0.5), 1e-6);
+    EXPECT_NEAR(mesh.corner_normals[0].z, std::sqrt(0.5), 1e-6);
+    EXPECT_EQ(rig.clip_names().size(), 3u);
 }
 
 TEST(Rig, PosesTheKhronosFoxAsTheGltfSpecificationDoes) {

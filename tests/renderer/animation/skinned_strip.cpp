@@ -128,6 +128,9 @@ std::string skinned_strip(double weight_scale) {
     const int morph_w = b.add({0, 0.3f, 1}, "SCALAR");
     const int one_time = b.add({0}, "SCALAR");
     const int one_pos = b.add({0, 0, 0}, "VEC3");
+    const int roll_times = b.add({0, 1}, "SCALAR");
+    const float r45 = std::sqrt(0.5f);
+    const int roll = b.add({0, 0, 0, 1, r45, 0, 0, r45}, "VEC4");  // 0°, then 90° about x
     b.doc["meshes"] = json::array(
         {{{"name", "strip"},
           {"weights", {0.0}},
@@ -158,7 +161,11 @@ std::string skinned_strip(double weight_scale) {
          {{"name", "still"},
           {"samplers", {{{"input", one_time}, {"output", one_pos}}}},
           {"channels",
-           {{{"sampler", 0}, {"target", {{"node", 1}, {"path", "translation"}}}}}}}});
+           {{{"sampler", 0}, {"target", {{"node", 1}, {"path", "translation"}}}}}}},
+         {{"name", "roll"},
+          {"samplers", {{{"input", roll_times}, {"output", roll}}}},
+          {"channels",
+           {{{"sampler", 0}, {"target", {{"node", 1}, {"path", "rotation"}}}}}}}});
     return b.text();
 }
 
