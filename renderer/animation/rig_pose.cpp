@@ -140,7 +140,7 @@ std::vector<Vec3d> Rig::pose(int clip_index, double seconds,
             // The vertex's map: its node's, or its joints' blend (linear blend skinning
             // blends the matrices, which is the same as blending the points).
             Transform m;
-            if (p.bones.empty()) {
+            if (p.bones.empty() || p.influence_begin[v] == p.influence_begin[v + 1]) {
                 m = global[size_t(p.node)];
             } else {
                 for (int r = 0; r < 3; ++r) {

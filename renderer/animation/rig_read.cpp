@@ -1,10 +1,14 @@
 // Reading a rig: assimp imports the file exactly as read_assimp() does (same flags, same
 // walk), and everything posing needs is copied out, so the importer is gone before the
 // first frame.
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <fstream>
 #include <map>
+#include <mutex>
 #include <new>
+#include <set>
 
 #include "renderer/animation/rig.h"
 #include "renderer/animation/rig_data.h"
@@ -92,6 +96,9 @@ Rig Rig::read(const std::string &mesh_ref) {
     if (!spec.object.empty() && !walk.matched())
         sim::fail_unknown_object(path, spec.object, walk.names());
 
+    const bool gltf = ext == "gltf" || ext == "glb";
+    size_t renormalised = 0;
+    double lowest_sum = 1e300, highest_sum = -1e300;
     // --- The pieces, in read_assimp()'s order and with its filter ---
     std::map<std::string, std::vector<size_t>> pieces_of_mesh_name;
     for (const sim::assimp_walk::Instance &in : walk.instances()) {
@@ -140,17 +147,27 @@ Rig Rig::read(const std::string &mesh_ref) {
             for (unsigned v = 0; v < m.mNumVertices; ++v) {
                 double sum = 0;
                 for (const RigData::Influence &i : per_vertex[v]) sum += i.weight;
-                // glTF 2.0 §3.7.3.3: a vertex's weights sum to 1. Quantized weights miss
-                // it by a few 1/255ths; anything further is a broken skin.
-                if (!(std::abs(sum - 1) <= 0.02))
+                // glTF 2.0 §3.7.3.3: a vertex's weights sum to 1; quantized weights miss
+                // it by a few 1/255ths, anything further is a broken skin. FBX and
+                // Collada make no such promise (DCC tools normalise on import, and
+                // leave a vertex without weights on its mesh's node): so does pelage,
+                // and says how many it changed.
+                const bool off = !(std::abs(sum - 1) <= 0.02);
+                if (off && (gltf || !(sum >= 0) || !std::isfinite(sum)))
                     throw InputError(path, 0, "",
                                      label + " vertex " + std::to_string(v) +
                                          ": its bone weights sum to " +
                                          std::to_string(sum) + ", not 1");
-                for (RigData::Influence i : per_vertex[v]) {
-                    i.weight /= sum;
-                    p.influences.push_back(i);
+                if (off) {
+                    ++renormalised;
+                    lowest_sum = std::min(lowest_sum, sum);
+                    highest_sum = std::max(highest_sum, sum);
                 }
+                if (sum > 0)
+                    for (RigData::Influence i : per_vertex[v]) {
+                        i.weight /= sum;
+                        p.influences.push_back(i);
+                    }
                 p.influence_begin.push_back(uint32_t(p.influences.size()));
             }
         }
@@ -175,7 +192,6 @@ Rig Rig::read(const std::string &mesh_ref) {
         // glTF stores key times as float seconds, which assimp turns into float
         // milliseconds, moving a key by up to a microsecond; the nearest float to the
         // time in seconds is the file's own time again.
-        const bool gltf = ext == "gltf" || ext == "glb";
         auto seconds = [&](double ticks) {
             return gltf ? double(float(ticks / tps)) : ticks / tps;
         };
@@ -221,6 +237,15 @@ Rig Rig::read(const std::string &mesh_ref) {
     }
     if (d->clips.empty())
         throw InputError(path, 0, "", "the file has no animation clips");
+    // Said once per file and process: every frame reads the rig again.
+    static std::mutex noted_mutex;
+    static std::set<std::string> noted;
+    const std::lock_guard<std::mutex> lock(noted_mutex);
+    if (renormalised > 0 && noted.insert(path).second)
+        std::fprintf(stderr,
+                     "pelage: %s: the bone weights of %zu vertices summed to %.3g-%.3g; "
+                     "scaled to sum to 1 (those without any follow their mesh's node)\n",
+                     path.c_str(), renormalised, lowest_sum, highest_sum);
     return Rig(std::move(d));
 }
 
