@@ -151,9 +151,11 @@ FrameOutcome render_frame(const RenderCliOptions &o, const SceneDesc &desc,
     ro.camera = fd.camera;
     ro.instrument = o.stats_json.wanted();  // plugin_seconds
     const auto &tt = desc.animation.turntable;
-    if (tt && tt->motion_blur()) {
-        const double open = local + double(tt->shutter_open),
-                     span = double(tt->shutter_close - tt->shutter_open);
+    if (tt && tt->target == TurntableDesc::Target::camera &&
+        desc.animation.motion_blur()) {
+        const double open = local + double(desc.animation.shutter_open),
+                     span = double(desc.animation.shutter_close) -
+                            double(desc.animation.shutter_open);
         ro.camera_motion = CameraMotion{&desc, open, span};
     }
     if (plan.tile)

@@ -8,7 +8,9 @@
 
 namespace pelage::renderer {
 
-inline void set_ray(RTCRay &r, Vec3f o, Vec3f d, float tfar, unsigned id = 0) {
+// `time`: the ray's place in the shutter, [0, 1] (moving geometry: embree_scene.h).
+inline void set_ray(RTCRay &r, Vec3f o, Vec3f d, float tfar, unsigned id = 0,
+                    float time = 0) {
     r.org_x = o.x;
     r.org_y = o.y;
     r.org_z = o.z;
@@ -16,7 +18,7 @@ inline void set_ray(RTCRay &r, Vec3f o, Vec3f d, float tfar, unsigned id = 0) {
     r.dir_x = d.x;
     r.dir_y = d.y;
     r.dir_z = d.z;
-    r.time = 0;
+    r.time = time;
     r.tfar = tfar;
     r.mask = 0xffffffffu;
     r.id = id;

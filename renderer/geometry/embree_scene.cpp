@@ -42,6 +42,14 @@ std::vector<sim::Vec3d> smooth_corner_normals(
     return out;
 }
 
+// xyz floats, plus one pad float (Embree reads vertices 16 bytes at a time).
+std::vector<float> float_positions(const std::vector<sim::Vec3d> &v) {
+    std::vector<float> out(3 * v.size() + 1, 0.0f);
+    for (size_t i = 0; i < v.size(); ++i)
+        for (int k = 0; k < 3; ++k) out[3 * i + size_t(k)] = float(v[i][k]);
+    return out;
+}
+
 std::shared_ptr<MeshData> load_mesh_data(const ObjectDesc &o,
                                          const std::string &scene_path, size_t index,
                                          double *pose_seconds) {
@@ -83,8 +91,18 @@ std::shared_ptr<MeshData> load_mesh_data(const ObjectDesc &o,
     if (!o.deform_mesh.empty() && o.deform_weight > 0)
         apply_pose(mesh, o.deform_mesh, o.deform_weight, scene_path,
                    "objects[" + std::to_string(index) + "].deform");
+    // Motion blur: the later steps of the shutter, each posed from the rest.
+    std::vector<std::vector<float>> later_positions, later_normals;
     if (rig) {
-        pose_mesh(*rig, rig->clip(o.clip->name), o.clip_seconds, &mesh);
+        const int clip = rig->clip(o.clip->name);
+        for (size_t k = 1; k < o.clip_motion_seconds.size(); ++k) {
+            sim::TriangleMesh step = mesh;
+            pose_mesh(*rig, clip, o.clip_motion_seconds[k], &step);
+            later_positions.push_back(float_positions(step.positions));
+            if (!step.corner_normals.empty())
+                later_normals.push_back(float_positions(step.corner_normals));
+        }
+        pose_mesh(*rig, clip, o.clip_seconds, &mesh);
         *pose_seconds +=
             std::chrono::duration<double>(std::chrono::steady_clock::now() - pose_start)
                 .count();
@@ -101,12 +119,7 @@ std::shared_ptr<MeshData> load_mesh_data(const ObjectDesc &o,
     m->rest = std::move(rest);
     m->num_vertices = uint32_t(mesh.num_vertices());
     m->num_triangles = uint32_t(mesh.num_triangles());
-    m->object_positions.resize(size_t(m->num_vertices) * 3 + 1, 0.0f);
-    for (size_t v = 0; v < mesh.num_vertices(); ++v) {
-        m->object_positions[3 * v + 0] = float(mesh.positions[v].x);
-        m->object_positions[3 * v + 1] = float(mesh.positions[v].y);
-        m->object_positions[3 * v + 2] = float(mesh.positions[v].z);
-    }
+    m->object_positions = float_positions(mesh.positions);
     m->triangles.resize(size_t(m->num_triangles) * 3);
     for (size_t t = 0; t < mesh.num_triangles(); ++t)
         for (int c = 0; c < 3; ++c) m->triangles[3 * t + c] = mesh.triangles[t][c];
@@ -140,6 +153,9 @@ std::shared_ptr<MeshData> load_mesh_data(const ObjectDesc &o,
         }
     }
     m->positions = m->object_positions;
+    m->later_positions = std::move(later_positions);
+    // Normals from the file or smooth ones move with the skin; flat shading has none.
+    if (!m->corner_normals.empty()) m->later_normals = std::move(later_normals);
     return m;
 }
 
@@ -154,21 +170,34 @@ std::shared_ptr<MeshData> bake(const MeshData &src, const Affine &to_world,
         m->positions[3 * v + 1] = p.y;
         m->positions[3 * v + 2] = p.z;
     }
-    for (size_t i = 0; i + 2 < m->corner_normals.size(); i += 3) {
-        const Vec3f n =
-            normalize(normal_m.vector({src.corner_normals[i], src.corner_normals[i + 1],
-                                       src.corner_normals[i + 2]}));
-        m->corner_normals[i] = n.x;
-        m->corner_normals[i + 1] = n.y;
-        m->corner_normals[i + 2] = n.z;
-    }
+    auto move_points = [&](std::vector<float> &P) {
+        for (size_t i = 0; i + 2 < P.size(); i += 3) {
+            const Vec3f p = to_world.point({P[i], P[i + 1], P[i + 2]});
+            P[i] = p.x, P[i + 1] = p.y, P[i + 2] = p.z;
+        }
+    };
+    auto turn_normals = [&](std::vector<float> &N) {
+        for (size_t i = 0; i + 2 < N.size(); i += 3) {
+            const Vec3f n = normalize(normal_m.vector({N[i], N[i + 1], N[i + 2]}));
+            N[i] = n.x, N[i + 1] = n.y, N[i + 2] = n.z;
+        }
+    };
+    turn_normals(m->corner_normals);
+    for (auto &P : m->later_positions) move_points(P);
+    for (auto &N : m->later_normals) turn_normals(N);
     return m;
 }
 
 RTCGeometry make_triangle_geometry(RTCDevice device, const MeshData &m) {
     RTCGeometry g = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
-    rtcSetSharedGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
-                               m.positions.data(), 0, 3 * sizeof(float), m.num_vertices);
+    // A moving mesh: one vertex buffer per time step over the shutter (rays' time 0 at
+    // its opening, 1 at its closing).
+    rtcSetGeometryTimeStepCount(g, m.motion_steps());
+    for (unsigned k = 0; k < m.motion_steps(); ++k)
+        rtcSetSharedGeometryBuffer(
+            g, RTC_BUFFER_TYPE_VERTEX, k, RTC_FORMAT_FLOAT3,
+            k == 0 ? m.positions.data() : m.later_positions[k - 1].data(), 0,
+            3 * sizeof(float), m.num_vertices);
     rtcSetSharedGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
                                m.triangles.data(), 0, 3 * sizeof(uint32_t),
                                m.num_triangles);
@@ -218,8 +247,14 @@ EmbreeScene::EmbreeScene(const SceneDesc &scene) {
                        "grow " + o.grow->preset + " " + std::to_string(o.grow_age), 1.0f};
         if (o.clip) {
             char t[32];
-            std::snprintf(t, sizeof t, "%.17g", o.clip_seconds);
-            return Key{o.mesh, int(o.normals), "clip " + o.clip->name + " " + t, 1.0f};
+            std::string times;
+            for (const double seconds : o.clip_motion_seconds.empty()
+                                            ? std::vector<double>{o.clip_seconds}
+                                            : o.clip_motion_seconds) {
+                std::snprintf(t, sizeof t, " %.17g", seconds);
+                times += t;
+            }
+            return Key{o.mesh, int(o.normals), "clip " + o.clip->name + times, 1.0f};
         }
         return o.deform_weight > 0
                    ? Key{o.mesh, int(o.normals), o.deform_mesh, o.deform_weight}
@@ -236,6 +271,7 @@ EmbreeScene::EmbreeScene(const SceneDesc &scene) {
         const Key key = key_of(o);
         auto &mesh = loaded[key];
         if (!mesh) mesh = load_mesh_data(o, scene.path, i, &m_pose_seconds);
+        m_moves = m_moves || mesh->motion_steps() > 1;
         ObjectGeometry &og = m_objects[i];
         const Affine normal_m = o.transform.normal_matrix();
         if (const float det = std::abs(o.transform.determinant3()); det > 0)

@@ -33,6 +33,42 @@ struct MeshData {
     std::vector<float> corner_normals;    // 9 per triangle, or empty (flat shading)
     std::vector<float> corner_uvs;        // 6 per triangle, or empty
     std::vector<float> object_positions;  // untransformed copy for plugins (same layout)
+    // Motion blur (ObjectDesc::clip_motion_seconds): positions and corner normals at the
+    // shutter's later steps 1 .. n − 1, step 0 being `positions` and `corner_normals`;
+    // the surface moves linearly from step to step. Empty: the mesh does not move.
+    std::vector<std::vector<float>> later_positions, later_normals;
+    unsigned motion_steps() const { return 1 + unsigned(later_positions.size()); }
+    // Vertex v's position at shutter time `time` in [0, 1].
+    Vec3f position_at(uint32_t v, float time) const {
+        const float *P = &positions[3 * size_t(v)];
+        Vec3f p{P[0], P[1], P[2]};
+        if (later_positions.empty()) return p;
+        const MotionStep s = motion_step(time);
+        const float *A = s.i == 0 ? P : &later_positions[s.i - 1][3 * size_t(v)];
+        const float *B = &later_positions[s.i][3 * size_t(v)];
+        return Vec3f{A[0], A[1], A[2]} * (1 - s.f) + Vec3f{B[0], B[1], B[2]} * s.f;
+    }
+    // Corner c's (0 .. 3·triangles) shading normal at `time`, unnormalised.
+    Vec3f corner_normal_at(size_t c, float time) const {
+        const float *N = &corner_normals[3 * c];
+        if (later_normals.empty()) return {N[0], N[1], N[2]};
+        const MotionStep s = motion_step(time);
+        const float *A = s.i == 0 ? N : &later_normals[s.i - 1][3 * c];
+        const float *B = &later_normals[s.i][3 * c];
+        return Vec3f{A[0], A[1], A[2]} * (1 - s.f) + Vec3f{B[0], B[1], B[2]} * s.f;
+    }
+    // The segment [step i, step i + 1] holding `time`, and the fraction f into it (as
+    // Embree interpolates its time steps).
+    struct MotionStep {
+        size_t i;
+        float f;
+    };
+    MotionStep motion_step(float time) const {
+        const float segments = float(later_positions.size());
+        const float x = std::clamp(time, 0.0f, 1.0f) * segments;
+        const size_t i = std::min(size_t(x), later_positions.size() - 1);
+        return {i, x - float(i)};
+    }
     // What shader plugins need of the mesh file beyond the rendered triangles, shared by
     // baked copies: the loaded positions before deformation or growth, exact (a .cells
     // file's mesh hash is over them), and the file's materials.
@@ -90,6 +126,9 @@ class EmbreeScene {
     // The time spent posing meshes by their clips (renderer/animation): skinning,
     // morphing and unwelding, summed over the objects.
     double pose_seconds() const { return m_pose_seconds; }
+    // Whether a mesh moves during the shutter (MeshData::later_positions): rays then
+    // carry a time.
+    bool moves() const { return m_moves; }
     // Throws the first device error recorded so far, if any.
     void check() const;
 
@@ -107,6 +146,7 @@ class EmbreeScene {
     float m_bounding_radius = 0;
     size_t m_num_triangles = 0;
     double m_pose_seconds = 0;
+    bool m_moves = false;
     mutable std::mutex m_error_mutex;
     std::string m_error;
 };

@@ -69,7 +69,7 @@ bool beyond_ends(const FurLayer &layer, const RTCFilterFunctionNArguments *args,
     auto past = [&](float u) {
         Vec3f c, x;
         float radius;
-        layer.centre(prim, u, &c, &x, &radius);
+        layer.centre(prim, u, RTCRayN_time(args->ray, N, i), &c, &x, &radius);
         const Vec3f w = o - c;
         const float a = dot(d, d), b = dot(d, x);
         const float den = a - b * b;
@@ -135,20 +135,32 @@ uint64_t widen(FurLayer &layer, Vec3f camera, float k) {
         const Vec3f e = Vec3f{P[4 * j], P[4 * j + 1], P[4 * j + 2]} - camera;
         layer.wide_points[4 * j + 3] = std::max(P[4 * j + 3], k * length(e));
     }
+    // A moving layer keeps the widths the shutter's opening gave it.
+    for (const std::vector<float> &later : layer.later_points) {
+        std::vector<float> &W = layer.later_wide_points.emplace_back(later);
+        for (size_t j = 0; j < n; ++j) W[4 * j + 3] = layer.wide_points[4 * j + 3];
+    }
     return count;
 }
 
 // Attaches one curve geometry of `type` over `points` (the layer's fibres, or its widened
-// strands), with `filter`, to `target`: under `id`, or the next free ID when it is
-// RTC_INVALID_GEOMETRY_ID. Returns the ID.
+// strands) and their later motion steps `later`, with `filter`, to `target`: under `id`,
+// or the next free ID when it is RTC_INVALID_GEOMETRY_ID. Returns the ID.
 unsigned attach(EmbreeScene &scene, FurLayer &layer, RTCGeometryType type,
-                const std::vector<float> &points, RTCFilterFunctionN filter,
+                const std::vector<float> &points,
+                const std::vector<std::vector<float>> &later, RTCFilterFunctionN filter,
                 RTCScene target, unsigned id) {
     const Strands &s = layer.strands;
     RTCGeometry g = rtcNewGeometry(scene.device(), type);
     const size_t num_points = s.size() * s.points_per_strand;
+    // A moving layer: one buffer per motion step (embree_scene.h).
+    rtcSetGeometryTimeStepCount(g, unsigned(1 + later.size()));
     rtcSetSharedGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT4,
                                points.data(), 0, 4 * sizeof(float), num_points);
+    for (size_t k = 0; k < later.size(); ++k)
+        rtcSetSharedGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, unsigned(k + 1),
+                                   RTC_FORMAT_FLOAT4, later[k].data(), 0,
+                                   4 * sizeof(float), num_points);
     const size_t num_segments = s.size() * size_t(s.segments);
     auto *index = static_cast<uint32_t *>(rtcSetNewGeometryBuffer(
         g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT, sizeof(uint32_t), num_segments));
@@ -177,12 +189,14 @@ unsigned attach(EmbreeScene &scene, FurLayer &layer, RTCGeometryType type,
 struct WorldMesh {
     std::vector<float> positions, normals;
 };
-WorldMesh world_mesh(const ObjectGeometry &og) {
+// The mesh at motion step `step` (MeshData::later_positions), in world space.
+WorldMesh world_mesh(const ObjectGeometry &og, unsigned step = 0) {
     const MeshData &m = *og.mesh;
+    const std::vector<float> &P = step == 0 ? m.positions : m.later_positions[step - 1];
     WorldMesh w;
-    w.positions.assign(m.positions.begin(),
-                       m.positions.begin() + 3 * size_t(m.num_vertices));
-    w.normals = m.corner_normals;
+    w.positions.assign(P.begin(), P.begin() + 3 * size_t(m.num_vertices));
+    w.normals = step == 0 || m.later_normals.empty() ? m.corner_normals
+                                                     : m.later_normals[step - 1];
     if (og.baked) return w;
     for (uint32_t v = 0; v < m.num_vertices; ++v) {
         const Vec3f p = og.to_world.point(
@@ -239,11 +253,22 @@ sim::TriangleMesh rest_mesh(const MeshData &m) {
 
 }  // namespace
 
-void FurLayer::centre(unsigned prim, float u, Vec3f *c, Vec3f *tangent,
+void FurLayer::centre(unsigned prim, float u, float time, Vec3f *c, Vec3f *tangent,
                       float *radius) const {
     const unsigned S = unsigned(strands.segments);
     const size_t first = size_t(prim / S) * strands.points_per_strand + prim % S;
     const float *P = &strands.points[4 * first];
+    // A moving strand: its control points at `time`, as Embree interpolates them.
+    float moved[16];
+    if (!later_points.empty()) {
+        const float x = std::clamp(time, 0.0f, 1.0f) * float(later_points.size());
+        const size_t i = std::min(size_t(x), later_points.size() - 1);
+        const float f = x - float(i);
+        const float *A = i == 0 ? P : &later_points[i - 1][4 * first];
+        const float *B = &later_points[i][4 * first];
+        for (int k = 0; k < (round ? 16 : 8); ++k) moved[k] = A[k] * (1 - f) + B[k] * f;
+        P = moved;
+    }
     auto pt = [&](int k) { return Vec3f{P[4 * k], P[4 * k + 1], P[4 * k + 2]}; };
     if (!round) {
         *c = pt(0) * (1 - u) + pt(1) * u;
@@ -405,6 +430,32 @@ FurGeometry::FurGeometry(const SceneDesc &desc, EmbreeScene &scene,
         } catch (const std::invalid_argument &e) {
             throw InputError(desc.path, 0, field, e.what());
         }
+        // A moving skin: the same strands grown on each later step of the shutter (the
+        // same roots and random numbers, so strand k is the same hair at every step).
+        for (unsigned step = 1; step < og.mesh->motion_steps(); ++step) {
+            const WorldMesh ws = world_mesh(og, step);
+            SkinMesh moved = skin;
+            moved.positions = ws.positions.data();
+            moved.corner_normals = ws.normals.empty() ? nullptr : ws.normals.data();
+            std::vector<float> moved_comb;
+            if (!comb.empty()) {
+                // From the opening's world pose to this step's (comb is in world
+                // space by now).
+                moved_comb = comb;
+                const std::vector<double> opening(wm.positions.begin(),
+                                                  wm.positions.end());
+                carry_to_pose(moved_comb, og.mesh->triangles, opening.data(),
+                              ws.positions.data());
+                moved.comb_by_corner = moved_comb.data();
+            }
+            Strands later = grow_fur(params, moved, lookup);
+            if (later.points.size() != layer.strands.points.size())
+                throw std::runtime_error(
+                    field + ": the fur grew " + std::to_string(later.size()) +
+                    " strands at motion step " + std::to_string(step) + " and " +
+                    std::to_string(layer.strands.size()) + " at the shutter's opening");
+            layer.later_points.push_back(std::move(later.points));
+        }
         m_grow_seconds += seconds_since(t0);
         if (offset + layer.strands.size() >= fur_skip_mask)
             throw InputError(desc.path, 0, field,
@@ -432,11 +483,11 @@ FurGeometry::FurGeometry(const SceneDesc &desc, EmbreeScene &scene,
     for (size_t li = 0; li < m_layers.size(); ++li) {
         FurLayer &layer = m_layers[li];
         const Strands &s = layer.strands;
-        layer.geom_id =
-            attach(scene, layer,
-                   layer.round ? RTC_GEOMETRY_TYPE_ROUND_BSPLINE_CURVE
-                               : RTC_GEOMETRY_TYPE_FLAT_LINEAR_CURVE,
-                   s.points, skip_own_strand, scene.scene(), RTC_INVALID_GEOMETRY_ID);
+        layer.geom_id = attach(scene, layer,
+                               layer.round ? RTC_GEOMETRY_TYPE_ROUND_BSPLINE_CURVE
+                                           : RTC_GEOMETRY_TYPE_FLAT_LINEAR_CURVE,
+                               s.points, layer.later_points, skip_own_strand,
+                               scene.scene(), RTC_INVALID_GEOMETRY_ID);
         if (m_layer_of_geom.size() <= layer.geom_id)
             m_layer_of_geom.resize(layer.geom_id + 1, -1);
         m_layer_of_geom[layer.geom_id] = int(li);
@@ -472,7 +523,8 @@ FurGeometry::FurGeometry(const SceneDesc &desc, EmbreeScene &scene,
                     attach(scene, layer,
                            layer.round ? RTC_GEOMETRY_TYPE_FLAT_BSPLINE_CURVE
                                        : RTC_GEOMETRY_TYPE_FLAT_LINEAR_CURVE,
-                           layer.wide_points, keep_by_opacity, camera, layer.geom_id);
+                           layer.wide_points, layer.later_wide_points, keep_by_opacity,
+                           camera, layer.geom_id);
             }
             rtcCommitScene(camera);
             scene.check();

@@ -82,13 +82,20 @@ struct FurLayer {
         return strands.beta.empty() ? beta_n : strands.beta[2 * size_t(s) + 1];
     }
 
+    // A moving skin's strands at the shutter's later motion steps (the object's
+    // MeshData::later_positions), the same strands as `strands.points`; empty: still.
+    std::vector<std::vector<float>> later_points;
+
     // Centre-line point and unit tangent (root to tip: the hair BSDF's +x, which the
-    // cuticle tilt depends on) of segment `prim` at curve parameter u.
-    void centre(unsigned prim, float u, Vec3f *c, Vec3f *tangent, float *radius) const;
+    // cuticle tilt depends on) of segment `prim` at curve parameter u, at shutter time
+    // `time`.
+    void centre(unsigned prim, float u, float time, Vec3f *c, Vec3f *tangent,
+                float *radius) const;
 
     // Widened strands (min_pixel_width): strands.points with every radius widened
     // (what the camera's geometry intersects); empty when none was.
     std::vector<float> wide_points;
+    std::vector<std::vector<float>> later_wide_points;  // ... at later_points' steps
     bool widened() const { return !wide_points.empty(); }
     // The share of a hit at parameter u of segment `prim` that is fibre: own radius over
     // widened radius there (1 where the strand is not widened).

@@ -36,8 +36,8 @@ struct Packet<16> {
     }
 };
 
-void set_single(RTCRayHit &rh, Vec3f o, Vec3f d, unsigned id) {
-    set_ray(rh.ray, o, d, inf, id);
+void set_single(RTCRayHit &rh, Vec3f o, Vec3f d, unsigned id, float time) {
+    set_ray(rh.ray, o, d, inf, id, time);
     rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
     rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
 }
@@ -45,7 +45,7 @@ void set_single(RTCRayHit &rh, Vec3f o, Vec3f d, unsigned id) {
 // Rays [0, n), n <= K, as one packet; unused lanes are masked off.
 template <int K>
 void intersect_packet(RTCScene scene, const Vec3f *o, const Vec3f *d, const unsigned *ids,
-                      int n, RTCRayHit *out) {
+                      const float *times, int n, RTCRayHit *out) {
     using P = Packet<K>;
     alignas(64) typename P::Type p;
     alignas(64) int valid[K];
@@ -59,7 +59,7 @@ void intersect_packet(RTCScene scene, const Vec3f *o, const Vec3f *d, const unsi
         p.ray.dir_x[k] = d[i].x;
         p.ray.dir_y[k] = d[i].y;
         p.ray.dir_z[k] = d[i].z;
-        p.ray.time[k] = 0;
+        p.ray.time[k] = times ? times[i] : 0;
         p.ray.tfar[k] = inf;
         p.ray.mask[k] = 0xffffffffu;
         p.ray.id[k] = ids ? ids[i] : 0;
@@ -73,7 +73,7 @@ void intersect_packet(RTCScene scene, const Vec3f *o, const Vec3f *d, const unsi
     P::intersect(valid, scene, &ctx, &p);
     for (int k = 0; k < n; ++k) {
         RTCRayHit &rh = out[k];
-        set_single(rh, o[k], d[k], ids ? ids[k] : 0);
+        set_single(rh, o[k], d[k], ids ? ids[k] : 0, times ? times[k] : 0);
         rh.ray.tfar = p.ray.tfar[k];
         rh.hit.geomID = p.hit.geomID[k];
         if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) continue;
@@ -101,27 +101,27 @@ PacketIntersector::PacketIntersector(RTCDevice device, RTCScene scene)
 }
 
 void PacketIntersector::intersect(const Vec3f *o, const Vec3f *d, int n, RTCRayHit *out,
-                                  const unsigned *ids) const {
+                                  const unsigned *ids, const float *times) const {
     for (int i = 0; i < n; i += m_width) {
         const int m = std::min(m_width, n - i);
         switch (m_width) {
             case 16:
-                intersect_packet<16>(m_scene, o + i, d + i, ids ? ids + i : nullptr, m,
-                                     out + i);
+                intersect_packet<16>(m_scene, o + i, d + i, ids ? ids + i : nullptr,
+                                     times ? times + i : nullptr, m, out + i);
                 break;
             case 8:
-                intersect_packet<8>(m_scene, o + i, d + i, ids ? ids + i : nullptr, m,
-                                    out + i);
+                intersect_packet<8>(m_scene, o + i, d + i, ids ? ids + i : nullptr,
+                                    times ? times + i : nullptr, m, out + i);
                 break;
             case 4:
-                intersect_packet<4>(m_scene, o + i, d + i, ids ? ids + i : nullptr, m,
-                                    out + i);
+                intersect_packet<4>(m_scene, o + i, d + i, ids ? ids + i : nullptr,
+                                    times ? times + i : nullptr, m, out + i);
                 break;
             default: {
                 RTCIntersectContext ctx;
                 rtcInitIntersectContext(&ctx);
                 ctx.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
-                set_single(out[i], o[i], d[i], ids ? ids[i] : 0);
+                set_single(out[i], o[i], d[i], ids ? ids[i] : 0, times ? times[i] : 0);
                 rtcIntersect1(m_scene, &ctx, &out[i]);
             }
         }

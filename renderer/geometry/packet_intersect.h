@@ -26,10 +26,10 @@ class PacketIntersector {
 
     // Intersects rays (o[i], d[i]), i < n <= max_rays, over [0, inf), as one coherent
     // batch, each with Embree id ids[i] (0 when ids is null; fur_geometry.h's
-    // fur_ray_id()). out[i] receives ray i and its hit (geomID = RTC_INVALID_GEOMETRY_ID:
-    // none).
+    // fur_ray_id()) and time times[i] in the shutter (0 when times is null). out[i]
+    // receives ray i and its hit (geomID = RTC_INVALID_GEOMETRY_ID: none).
     void intersect(const Vec3f *o, const Vec3f *d, int n, RTCRayHit *out,
-                   const unsigned *ids = nullptr) const;
+                   const unsigned *ids = nullptr, const float *times = nullptr) const;
 
   private:
     RTCScene m_scene;

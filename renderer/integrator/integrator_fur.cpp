@@ -18,6 +18,7 @@ struct StrandLdVertex {
     const FibreFrame &frame;
     Vec3f wo_local, p, n;
     unsigned ray_id;
+    float time;
 
     bool accepts(Vec3f) const { return true; }
     Vec3f to_local(Vec3f w) const { return frame.to_local(w); }
@@ -39,7 +40,7 @@ PathIntegrator::StrandVertex PathIntegrator::strand_vertex(const FurLayer &layer
 
     Vec3f c, x;
     float radius;
-    layer.centre(prim, rh.hit.u, &c, &x, &radius);
+    layer.centre(prim, rh.hit.u, path.time, &c, &x, &radius);
     // The tube's outward normal: Embree's Ng for round curves; for ribbons, rebuilt from
     // the hit's offset across the centre line as if the ribbon were a tube.
     Vec3f n;
@@ -131,9 +132,10 @@ bool PathIntegrator::scatter_at_strand(const StrandVertex &v, Sampler &sampler,
     const auto [ul1, ul2] = sampler.get_2d();
     const auto [ub1, ub2] = sampler.get_2d();
 
-    sample_ld(m_scene.lights(), m_rtc,
-              StrandLdVertex{v.bsdf, v.frame, wo_local, v.p, v.frame.z, own_id}, u_light,
-              ul1, ul2, path.beta, path.L, stats, instr);
+    sample_ld(
+        m_scene.lights(), m_rtc,
+        StrandLdVertex{v.bsdf, v.frame, wo_local, v.p, v.frame.z, own_id, path.time},
+        u_light, ul1, ul2, path.beta, path.L, stats, instr);
 
     const std::optional<BsdfSample> bs = v.bsdf.sample(wo_local, u_lobe, ub1, ub2);
     if (!bs) return false;

@@ -37,6 +37,7 @@ struct SurfaceLdVertex {
     const Bsdf &bsdf;
     const Frame &frame;
     Vec3f wo_local, p, n;  // n: the geometric normal
+    float time;
     static constexpr unsigned ray_id = 0;
     mutable float bsdf_pdf = 0;
 
@@ -65,6 +66,7 @@ PathIntegrator::PathIntegrator(const Scene &scene, const Camera &camera,
       m_rr_depth(scene.desc().integrator.rr_depth),
       m_clamp_indirect(scene.desc().integrator.clamp_indirect),
       m_spp(scene.desc().film.spp),
+      m_timed(scene.moves()),
       m_mattes(int(scene.matte_layers().size())) {
     m_pixel_spread = 2 * std::tan(0.5f * scene.desc().camera.fov_deg * pi / 180) /
                      float(height) * camera_spread_scale(m_spp);
@@ -79,6 +81,7 @@ void PathIntegrator::render_tile(Film &film, Sampler &sampler, int x0, int y0, i
     CameraRay cam[K];
     Vec3f org[K], dir[K];
     unsigned ids[K];
+    float times[K];
     RTCRayHit first[K];
     // Widened fur: each camera ray brings a stratified number for its opacity
     // (fur_geometry.h), one more dimension of its sampler.
@@ -116,18 +119,20 @@ void PathIntegrator::render_tile(Film &film, Sampler &sampler, int x0, int y0, i
                     const auto [fu, fv] = sp.get_2d();
                     const float dx = m_filter.sample_1d(fu), dy = m_filter.sample_1d(fv);
                     // A pinhole draws no lens sample: one pair less per camera ray.
-                    const auto [lu, lv] = m_motion || m_camera.has_lens()
+                    const bool timed = m_motion || m_timed;
+                    const auto [lu, lv] = timed || m_camera.has_lens()
                                               ? sp.get_2d()
                                               : Sampler::Pair{0.5f, 0.5f};
                     const float px = float(xs[i]) + 0.5f + dx, py = float(y) + 0.5f + dy;
-                    cam[i] = m_motion ? m_motion->at(sp.get_1d(), m_width, m_height)
+                    times[i] = timed ? sp.get_1d() : 0.0f;
+                    cam[i] = m_motion ? m_motion->at(times[i], m_width, m_height)
                                             .generate(px, py, lu, lv)
                                       : m_camera.generate(px, py, lu, lv);
                     org[i] = cam[i].o;
                     dir[i] = cam[i].d;
                     ids[i] = fur_xi ? fur_ray_id(0, sp.get_1d()) : 0;
                 }
-                m_packets.intersect(org, dir, n, first, ids);
+                m_packets.intersect(org, dir, n, first, ids, m_timed ? times : nullptr);
                 stats.camera_rays += uint64_t(n);
                 for (int i = 0; i < n; ++i) instr.ray(org[i], dir[i], inf, camera_ray);
                 // --- The paths, one pixel at a time ---
@@ -135,7 +140,7 @@ void PathIntegrator::render_tile(Film &film, Sampler &sampler, int x0, int y0, i
                     const int i = backwards ? n - 1 - j : j, x = xs[i];
                     FilmSample fs;
                     FilmPointAovs aovs;
-                    fs.L = radiance(cam[i], first[i], lane[i], fs,
+                    fs.L = radiance(cam[i], times[i], first[i], lane[i], fs,
                                     s == 0 ? &aovs : nullptr, stats, instr);
                     ++stats.samples;
                     if (s == 0) film.set_point_aovs(x, y, aovs);
@@ -171,10 +176,11 @@ struct PathIntegrator::VertexSamples {
 // next-event estimation and BSDF sampling at a fur strand or a surface, then Russian
 // roulette.
 template <typename Instr>
-Rgb PathIntegrator::radiance(const CameraRay &cam, const RTCRayHit &first,
+Rgb PathIntegrator::radiance(const CameraRay &cam, float time, const RTCRayHit &first,
                              Sampler &sampler, FilmSample &fs, FilmPointAovs *aovs,
                              RenderStats &stats, const Instr &instr) const {
-    PathState path{.o = cam.o, .d = cam.d, .spread = m_pixel_spread};
+    PathState path{
+        .o = cam.o, .d = cam.d, .spread = m_pixel_spread, .time = m_timed ? time : 0.0f};
     // Direct light at the first hit: its light samples and what its BSDF sample reaches
     // (clamp_indirect leaves it alone).
     Rgb direct{};
@@ -224,7 +230,7 @@ template <typename Instr>
     RTCIntersectContext ctx;
     rtcInitIntersectContext(&ctx);
     ctx.flags = RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT;
-    set_ray(rh.ray, path.o, path.d, inf, std::exchange(path.fur_skip, 0u));
+    set_ray(rh.ray, path.o, path.d, inf, std::exchange(path.fur_skip, 0u), path.time);
     rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
     rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
     rtcIntersect1(m_rtc, &ctx, &rh);
@@ -295,10 +301,9 @@ PathIntegrator::surface_vertex(const RTCRayHit &rh, PathState &path) const {
     } else {
         // Embree reports Ng of instanced geometry in object space: rebuild and move it.
         const uint32_t *tri = &mesh.triangles[3 * size_t(prim)];
-        const float *P = mesh.positions.data();
-        const Vec3f p0{P[3 * tri[0]], P[3 * tri[0] + 1], P[3 * tri[0] + 2]};
-        const Vec3f p1{P[3 * tri[1]], P[3 * tri[1] + 1], P[3 * tri[1] + 2]};
-        const Vec3f p2{P[3 * tri[2]], P[3 * tri[2] + 1], P[3 * tri[2] + 2]};
+        const Vec3f p0 = mesh.position_at(tri[0], path.time);
+        const Vec3f p1 = mesh.position_at(tri[1], path.time);
+        const Vec3f p2 = mesh.position_at(tri[2], path.time);
         ng = og.normal_to_world.vector(cross(p1 - p0, p2 - p0));
     }
     const Vec3f wo = -path.d;
@@ -306,9 +311,10 @@ PathIntegrator::surface_vertex(const RTCRayHit &rh, PathState &path) const {
     ng = ng * ((dot(ng, wo) < 0 ? -1.0f : 1.0f) / length(ng));
     Vec3f ns_shade = ng;
     if (!mesh.corner_normals.empty()) {
-        const float *N = &mesh.corner_normals[9 * size_t(prim)];
-        Vec3f ns = Vec3f{N[0], N[1], N[2]} * b0 + Vec3f{N[3], N[4], N[5]} * b1 +
-                   Vec3f{N[6], N[7], N[8]} * b2;
+        const size_t c = 3 * size_t(prim);
+        Vec3f ns = mesh.corner_normal_at(c, path.time) * b0 +
+                   mesh.corner_normal_at(c + 1, path.time) * b1 +
+                   mesh.corner_normal_at(c + 2, path.time) * b2;
         if (!og.baked) ns = og.normal_to_world.vector(ns);
         const float len = length(ns);
         if (len > 0) {
@@ -428,8 +434,8 @@ bool PathIntegrator::scatter(const Bsdf &bsdf, const SurfaceVertex &sv,
     const Frame frame = Frame::from_z(sv.ns);
     const Vec3f wo_local = frame.to_local(sv.wo);
     sample_ld(m_scene.lights(), m_rtc,
-              SurfaceLdVertex<Bsdf>{bsdf, frame, wo_local, sv.p, sv.ng}, u.pick.u1,
-              u.light.u1, u.light.u2, path.beta, path.L, stats, instr);
+              SurfaceLdVertex<Bsdf>{bsdf, frame, wo_local, sv.p, sv.ng, path.time},
+              u.pick.u1, u.light.u1, u.light.u2, path.beta, path.L, stats, instr);
     const std::optional<BsdfSample> bs =
         bsdf.sample(wo_local, u.pick.u2, u.bsdf.u1, u.bsdf.u2);
     if (!bs) return false;

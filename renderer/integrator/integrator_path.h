@@ -36,7 +36,8 @@ class PathIntegrator {
 
     // Camera motion blur: each sample draws a shutter position u in [0, 1) (one sampler
     // dimension after the lens) and traces from motion->at(u). Unset: the fixed camera.
-    // `motion` outlives the integrator.
+    // Moving geometry (EmbreeScene::moves()) draws u the same way; its rays carry it as
+    // their time. `motion` outlives the integrator.
     void set_camera_motion(const CameraMotion *motion) { m_motion = motion; }
 
   private:
@@ -48,9 +49,9 @@ class PathIntegrator {
     // The path from camera ray `cam`, whose first hit (traced in a packet by
     // render_tile) is `first`.
     template <typename Instr>
-    Rgb radiance(const CameraRay &cam, const RTCRayHit &first, Sampler &sampler,
-                 FilmSample &fs, FilmPointAovs *aovs, RenderStats &stats,
-                 const Instr &instr) const;
+    Rgb radiance(const CameraRay &cam, float time, const RTCRayHit &first,
+                 Sampler &sampler, FilmSample &fs, FilmPointAovs *aovs,
+                 RenderStats &stats, const Instr &instr) const;
 
     // The steps of radiance(), in path order.
     template <typename Instr>
@@ -95,6 +96,7 @@ class PathIntegrator {
     float m_pixel_spread;    // the camera rays' cone, radians: a pixel's share per sample
                              // (ray_cone.h)
     const CameraMotion *m_motion = nullptr;
+    bool m_timed;  // the camera or geometry moves: each sample draws a shutter time
     int m_mattes;  // the film's Cryptomatte layers (Scene::matte_layers())
 };
 
@@ -107,6 +109,7 @@ struct PathIntegrator::PathState {
     float footprint = 0;     // ray cone width at the ray origin (ray_cone.h)
     float spread;            // ... and its full angle, radians
     unsigned fur_skip = 0;   // the strand the ray leaves, + 1 (fur_geometry.h)
+    float time = 0;          // in the shutter, [0, 1): every ray of the path's
 };
 
 }  // namespace pelage::renderer

@@ -21,6 +21,7 @@ constexpr float shadow_ray_shortening = 1e-4f;
 //   p, n         the point, and the normal lights are sampled about and shadow rays
 //                leave along (offset_ray_origin);
 //   ray_id       the shadow ray's id (fur_geometry.h: the strand it must skip);
+//   time         the path's time in the shutter (the shadow ray's);
 //   accepts(wi)  whether light from world direction wi can scatter here;
 //   to_local(wi) the direction in the shading frame (z: the normal |cos θ| uses);
 //   f(wi_local)  the BSDF value; then, only for a visible light that is not a delta,
@@ -46,7 +47,7 @@ void sample_one_light(const Lights &lights, RTCScene rtc, const Vertex &vertex, 
     rtcInitIntersectContext(&sctx);
     sctx.flags = RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT;
     RTCRay sr;
-    set_ray(sr, so, ls.wi, tfar, vertex.ray_id);
+    set_ray(sr, so, ls.wi, tfar, vertex.ray_id, vertex.time);
     rtcOccluded1(rtc, &sctx, &sr);
     instr.ray(so, ls.wi, tfar, shadow_ray);
     ++stats.shadow_rays;

@@ -42,6 +42,8 @@ class Scene {
     const std::vector<std::string> &shader_aov_names() const { return m_aov_names; }
     // The scene's fur (renderer/geometry/fur_geometry.h), or null when no object has any.
     const FurGeometry *fur() const { return m_fur.get(); }
+    // Whether anything moves during the shutter (its fur moves with its mesh).
+    bool moves() const { return m_geometry->moves(); }
 
     // Cryptomatte: the film's matte layers ("object", then plugin layers such as
     // "type"), at most 1 + PELAGE_SHADER_MATTE_SLOTS, as film.cryptomatte asks.

@@ -214,6 +214,17 @@ MaterialDesc read_material(Reader r) {
     return m;
 }
 
+// "shutter": [open, close] in frames, within [0, 1].
+std::pair<float, float> read_shutter(Reader &r, const json &v) {
+    const std::string f = r.field("shutter");
+    if (!v.is_array() || v.size() != 2)
+        r.fail(f, "expected [open, close] in frames, within [0, 1]");
+    const float open = float(r.check_number(v[0], f + "[0]", 0, 1));
+    const float close = float(r.check_number(v[1], f + "[1]", 0, 1));
+    if (close < open) r.fail(f + "[1]", "the shutter closes before it opens");
+    return {open, close};
+}
+
 TurntableDesc read_turntable(Reader r) {
     TurntableDesc t;
     t.axis = r.vec3("axis", t.axis);
@@ -241,17 +252,13 @@ TurntableDesc read_turntable(Reader r) {
         }
     }
     if (const json *v = r.take("shutter")) {
-        const std::string f = r.field("shutter");
-        if (!v->is_array() || v->size() != 2)
-            r.fail(f, "expected [open, close] in frames, within [0, 1]");
-        t.shutter_open = float(r.check_number((*v)[0], f + "[0]", 0, 1));
-        t.shutter_close = float(r.check_number((*v)[1], f + "[1]", 0, 1));
-        if (t.shutter_close < t.shutter_open)
-            r.fail(f + "[1]", "the shutter closes before it opens");
+        const auto [open, close] = read_shutter(r, *v);
+        t.shutter_open = open;
+        t.shutter_close = close;
         if (t.motion_blur() && t.target == TurntableDesc::Target::object)
-            r.fail(f,
-                   "motion blur is camera-only: an object turntable takes no open "
-                   "shutter (use \"target\": \"camera\")");
+            r.fail(r.field("shutter"),
+                   "an object turntable is not motion-blurred: it takes no open shutter "
+                   "(use \"target\": \"camera\")");
     }
     r.finish();
     return t;
@@ -266,6 +273,23 @@ AnimationDesc read_animation(Reader r) {
     if (const json *v = r.take("turntable"))
         a.turntable =
             read_turntable(Reader(*v, r.field("turntable"), Reader::scene_of(r)));
+    if (const json *v = r.take("shutter")) {
+        if (a.turntable && a.turntable->motion_blur())
+            r.fail(
+                r.field("shutter"),
+                "the shutter is given twice: drop turntable.shutter (animation.shutter "
+                "blurs the camera turntable too)");
+        std::tie(a.shutter_open, a.shutter_close) = read_shutter(r, *v);
+        if (a.motion_blur() && a.turntable &&
+            a.turntable->target == TurntableDesc::Target::object)
+            r.fail(r.field("shutter"),
+                   "an object turntable is not motion-blurred: it takes no open shutter "
+                   "(use \"target\": \"camera\")");
+    } else if (a.turntable) {
+        a.shutter_open = a.turntable->shutter_open;
+        a.shutter_close = a.turntable->shutter_close;
+    }
+    a.motion_steps = r.integer("motion_steps", a.motion_steps, 2, 129);
     r.finish();
     return a;
 }
@@ -678,7 +702,7 @@ CameraDesc camera_at(const SceneDesc &scene, double frame_time) {
 SceneDesc scene_at_frame(const SceneDesc &scene, int frame) {
     SceneDesc s = scene;
     const auto &tt = scene.animation.turntable;
-    const double t0 = frame + (tt ? tt->shutter_open : 0.0);
+    const double t0 = frame + double(scene.animation.shutter_open);
     s.camera = camera_at(scene, t0);
     if (tt && tt->target == TurntableDesc::Target::object) {
         const Affine m =
@@ -698,6 +722,22 @@ SceneDesc scene_at_frame(const SceneDesc &scene, int frame) {
             const double fps = o.clip->fps > 0 ? o.clip->fps : scene.animation.fps;
             o.clip_seconds =
                 clip_time(o.clip->start + t0 / fps, o.clip->duration, o.clip->loop);
+            o.clip_motion_seconds.clear();
+            if (scene.animation.motion_blur()) {
+                // The steps' times are computed from the frame, not from the previous
+                // step, so the last step of frame f is the first of frame f + 1 (with
+                // the shutter [0, 1]) to the bit.
+                const int n = scene.animation.motion_steps;
+                const double span =
+                    double(scene.animation.shutter_close) - scene.animation.shutter_open;
+                for (int k = 0; k < n; ++k) {
+                    const double t = k == n - 1
+                                         ? frame + double(scene.animation.shutter_close)
+                                         : t0 + span * k / (n - 1);
+                    o.clip_motion_seconds.push_back(clip_time(
+                        o.clip->start + t / fps, o.clip->duration, o.clip->loop));
+                }
+            }
         }
         if (o.deform.empty()) continue;
         if (o.deform.size() > 1) {

@@ -126,6 +126,10 @@ struct ObjectDesc {
     std::optional<Clip> clip;
     double clip_seconds =
         0;  // the time posed: set by the parser (start), scene_at_frame()
+    // With an open shutter (AnimationDesc::shutter), the clip's times at the shutter's
+    // motion steps, open to close, evenly spaced (clip_seconds is the first): the
+    // object moves through the shutter (Embree's time steps). Empty: sharp.
+    std::vector<double> clip_motion_seconds;
     std::optional<FurParams>
         fur;  // strands on this object (renderer/scene_file/scene_fur.h)
 };
@@ -134,8 +138,8 @@ struct ObjectDesc {
 // the camera about the axis through `center` (target camera; the scene turns the other
 // way in the image) or every object (target object) by `degrees` over the whole
 // animation: frame f at degrees·f/frames, so a 360° loop does not repeat its first frame.
-// The shutter is in frames, [open, close] ⊂ [0, 1]; an open shutter blurs the camera's
-// motion (camera target only).
+// Its shutter (an older spelling of animation.shutter) blurs the camera's motion (camera
+// target only).
 struct TurntableDesc {
     Vec3f axis{0, 1, 0}, center{0, 0, 0};
     float degrees = 360;
@@ -145,8 +149,15 @@ struct TurntableDesc {
     bool motion_blur() const { return shutter_close > shutter_open; }
 };
 
+// "shutter": [open, close] in frames, within [0, 1]: an open shutter blurs what moves
+// during it, the camera of a camera turntable and every object playing a clip, each
+// sample at a time in it. A clip's object is posed at `motion_steps` evenly spaced times
+// and moves linearly between them (Embree's multi-segment motion blur).
 struct AnimationDesc {
     bool present = false;
+    float shutter_open = 0, shutter_close = 0;
+    int motion_steps = 2;
+    bool motion_blur() const { return shutter_close > shutter_open; }
     int frames = 1;
     // The number of the first frame (1001 in VFX): frames are first_frame ..
     // first_frame + frames - 1, and motion is computed from frame - first_frame.
