@@ -1,5 +1,6 @@
 #include "renderer/geometry/embree_scene.h"
 
+#include <algorithm>
 #include <array>
 #include <chrono>
 #include <cmath>
@@ -103,6 +104,14 @@ std::shared_ptr<MeshData> load_mesh_data(const ObjectDesc &o,
                 later_normals.push_back(float_positions(step.corner_normals));
         }
         pose_mesh(*rig, clip, o.clip_seconds, &mesh);
+        // A pose that holds through the shutter (a clip past its end, a pause) is still:
+        // its rays need no time.
+        const std::vector<float> opening = float_positions(mesh.positions);
+        if (std::all_of(later_positions.begin(), later_positions.end(),
+                        [&](const std::vector<float> &p) { return p == opening; })) {
+            later_positions.clear();
+            later_normals.clear();
+        }
         *pose_seconds +=
             std::chrono::duration<double>(std::chrono::steady_clock::now() - pose_start)
                 .count();
