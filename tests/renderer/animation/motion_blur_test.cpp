@@ -8,8 +8,11 @@
 #include <cmath>
 #include <string>
 
+#include "renderer/geometry/fur_geometry.h"
 #include "renderer/scene/scene.h"
+#include "sim/core/input_error.h"
 #include "tests/renderer/animation/moving_plate.h"
+#include "tests/renderer/animation/skinned_strip.h"
 #include "tests/renderer/render_helpers.h"
 
 namespace pelage::renderer {
@@ -155,6 +158,66 @@ TEST(MotionBlur, WhatDoesNotMoveIsBitIdenticalWithAnOpenShutter) {
     };
     EXPECT_EQ(render_frame(sphere("[0, 1]"), tmp, 1).pixels,
               render_frame(sphere("[0, 0]"), tmp, 1).pixels);
+}
+
+TEST(MotionBlur, TheShuttersLastStepIsTheNextFramesFirstSkinAndFur) {
+    test::TempDir tmp;
+    tmp.write("strip.gltf", test::skinned_strip());
+    // The bending strip with fur, the shutter the whole frame: its closing pose is the
+    // next frame's opening one, mesh and strands, to the bit (the hair of a frame does
+    // not depend on which frames were rendered before it).
+    auto desc = [&](const std::string &shutter) {
+        return load_scene_file(
+            tmp.write("s" + std::to_string(shutter.size()) + ".json",
+                      R"({"camera": {"position": [2, 0, 8], "look_at": [2, 0, 0]},
+              "animation": {"frames": 48, "fps": 24, "shutter": )" +
+                          shutter + R"(, "motion_steps": 3},
+              "objects": [{"mesh": "strip.gltf", "animation": {"clip": "bend"},
+                "fur": {"density": 400, "length": 0.2, "seed": 3}}]})"));
+    };
+    const PluginRegistry plugins;
+    const Scene blurred(scene_at_frame(desc("[0, 1]"), 10), plugins);
+    const Scene next(scene_at_frame(desc("[0,0]"), 11), plugins);
+    ASSERT_TRUE(blurred.moves());
+    EXPECT_FALSE(next.moves());
+    const MeshData &a = *blurred.geometry().objects()[0].mesh;
+    const MeshData &b = *next.geometry().objects()[0].mesh;
+    ASSERT_EQ(a.later_positions.size(), 2u);
+    EXPECT_EQ(a.later_positions.back(), b.positions);
+    EXPECT_NE(a.positions, b.positions);  // it moved during the shutter
+    ASSERT_TRUE(blurred.fur() && next.fur());
+    const FurLayer &fa = blurred.fur()->layers()[0], &fb = next.fur()->layers()[0];
+    ASSERT_GT(fb.strands.size(), 20u);
+    ASSERT_EQ(fa.later_points.size(), 2u);
+    EXPECT_EQ(fa.later_points.back(), fb.strands.points);
+    EXPECT_EQ(fa.strands.sigma_a, fb.strands.sigma_a);  // the same strands
+    EXPECT_NE(fa.strands.points, fb.strands.points);
+}
+
+TEST(MotionBlur, ShutterErrorsNameTheField) {
+    auto error = [](const std::string &animation) -> std::string {
+        try {
+            parse_scene(R"({"camera": {}, "animation": )" + animation +
+                            R"(, "objects": [{"mesh": "procedural:sphere:8x4"}]})",
+                        "s.json");
+        } catch (const InputError &e) {
+            return e.what();
+        }
+        return "";
+    };
+    EXPECT_EQ(error(R"({"shutter": [0, 0.5], "motion_steps": 5})"), "");
+    EXPECT_NE(error(R"({"shutter": [0.5, 0.2]})").find("animation.shutter[1]"),
+              std::string::npos);
+    EXPECT_NE(error(R"({"motion_steps": 1})").find("animation.motion_steps"),
+              std::string::npos);
+    EXPECT_NE(error(R"({"motion_steps": 200})").find("animation.motion_steps"),
+              std::string::npos);
+    const std::string twice =
+        error(R"({"turntable": {"shutter": [0, 0.5]}, "shutter": [0, 0.5]})");
+    EXPECT_NE(twice.find("given twice"), std::string::npos) << twice;
+    const std::string object =
+        error(R"({"turntable": {"target": "object"}, "shutter": [0, 0.5]})");
+    EXPECT_NE(object.find("object turntable"), std::string::npos) << object;
 }
 
 }  // namespace
