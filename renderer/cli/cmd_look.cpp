@@ -34,6 +34,7 @@ struct LookOptions {
     bool fur = false, cryptomatte = false;
     std::string clip, frames;
     double fps = 24;
+    double shutter = 0;
     ThreadOption threads;
     QuietOption quiet;
     StatsJsonOption stats_json;
@@ -146,6 +147,8 @@ int run(const LookOptions &o) {
     } else {
         if (!o.frames.empty())
             throw InputError("", 0, "--frames", "needs --clip (the animation to play)");
+        if (o.shutter > 0)
+            throw InputError("", 0, "--shutter", "needs --clip (the animation to blur)");
         add_corners(mesh);
     }
 
@@ -206,6 +209,7 @@ int run(const LookOptions &o) {
         setup.clip = o.clip;
         setup.frames = std::max(frames.back(), last_frame) + 1;
         setup.fps = o.fps;
+        setup.shutter = o.shutter;
         setup.body_radius = rest_radius;
     }
     if (!procedural && objects.animal.empty()) setup.object_name = animal;
@@ -280,6 +284,10 @@ Runner add_look_command(CLI::App &app) {
     sub->add_option("--fps", o->fps, "With --clip: frames per second")
         ->capture_default_str()
         ->check(CLI::Range(0.001, 1000.0));
+    sub->add_option("--shutter", o->shutter,
+                    "With --clip: motion blur over this fraction of each frame, e.g. 0.5 "
+                    "(animation.shutter [0, F])")
+        ->check(CLI::Range(0.0, 1.0));
     sub->add_flag("--cryptomatte", o->cryptomatte,
                   "Write every Cryptomatte layer the materials offer (the animal, its "
                   "cell types, cells and clones)");

@@ -124,7 +124,10 @@ json look_scene(const LookSetup &s) {
            {"intensity", 4.0}}}},
         {"objects", objects},
         {"integrator", {{"max_depth", 6}, {"rr_depth", 3}}}};
-    if (!s.clip.empty()) scene["animation"] = {{"frames", s.frames}, {"fps", s.fps}};
+    if (!s.clip.empty()) {
+        scene["animation"] = {{"frames", s.frames}, {"fps", s.fps}};
+        if (s.shutter > 0) scene["animation"]["shutter"] = {0.0, s.shutter};
+    }
     return scene;
 }
 

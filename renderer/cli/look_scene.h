@@ -40,6 +40,7 @@ struct LookSetup {
                             // the framing's)
     int frames = 1;
     double fps = 24;
+    double shutter = 0;  // motion blur over [0, shutter] of each frame (0: sharp)
 };
 
 // The scene, its keys in the order a person reads them (camera, film, lights, objects).

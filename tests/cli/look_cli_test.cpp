@@ -178,7 +178,7 @@ TEST(LookCli, PlaysAClipFramedOnEveryPose) {
     const std::string mesh = tmp.write("strip.gltf", skinned_strip());
     std::string err;
     ASSERT_EQ(run_pelage("look " + mesh + " --clip bend --frames 0-24x12 --res 96x54 " +
-                             "--spp 2 -o " + tmp.file("strip.exr"),
+                             "--spp 2 --shutter 0.5 -o " + tmp.file("strip.exr"),
                          nullptr, &err),
               0)
         << err;
@@ -199,6 +199,7 @@ TEST(LookCli, PlaysAClipFramedOnEveryPose) {
     EXPECT_EQ(scene["objects"][1]["name"], "root");
     EXPECT_EQ(scene["objects"][1]["animation"]["clip"], "bend");
     EXPECT_EQ(scene["animation"]["frames"], 25);
+    EXPECT_EQ(scene["animation"]["shutter"], nlohmann::json({0.0, 0.5}));  // blurred
     ASSERT_EQ(run_pelage("render " + tmp.file("strip.json") + " --frames 12 -q -o " +
                              tmp.file("again.####.exr"),
                          nullptr, &err),
