@@ -579,6 +579,25 @@ def t_growth_pipelines():
                   "median spot", "q90", "largest"], rows, "lrrrrr")
 
 
+def t_clip_fox():
+    d = data("clip_fox")
+    rows = []
+    for r in d["runs"]:
+        f = r["frames"]
+        mean = lambda k: sum(x[k] for x in f) / len(f)
+        rows.append(["sharp" if r["shutter"] == 0 else f"[0, {r['shutter']:g}]",
+                     str(len(f)), f"{mean('setup_seconds'):.2f}",
+                     f"{1000 * mean('pose_seconds'):.1f}", f"{mean('fur_grow_seconds'):.2f}",
+                     f"{mean('fur_embree_seconds'):.2f}", f"{mean('seconds'):.2f}",
+                     num(max(x["peak_rss_mb"] for x in f)), num(f[0]["fur_strands"])])
+    r0 = d["runs"][0]
+    return (table(["shutter", "frames", "set-up s", "posing ms", "fur growth s",
+                   "fur BVH s", "render s", "peak MB", "strands"], rows, "lrrrrrrrr") +
+            f"\nMeans per frame: `pelage look {d['mesh']} --clip \"{d['clip']}\" --fur "
+            f"--frames 200-207 --res {r0['width']}x{r0['height']} --spp {r0['spp']} "
+            f"--shutter S --stats-json …` (all cores).\n")
+
+
 TABLES = {
     "machine": t_machine, "crps": t_crps, "sim": t_sim, "sim-density": t_sim_density, "sim-mclone": t_sim_mclone, "sim-neighbours": t_sim_neighbours, "default-job": t_default_job,
     "lookup": t_lookup, "lookup-lanes": t_lookup_lanes,
@@ -589,6 +608,7 @@ TABLES = {
     "crps-errors": t_crps_errors, "lookup-quality": t_lookup_quality,
     "hair-furnace": t_hair_furnace, "gallery": t_gallery, "looks": t_looks,
     "control-measures": t_control_measures, "growth-pipelines": t_growth_pipelines,
+    "clip-fox": t_clip_fox,
 }
 
 

@@ -126,6 +126,28 @@ for f in sorted(glob.glob("scenes/presets/*.json")):
 print(json.dumps({"presets": runs}, indent=2, sort_keys=True))
 PY
 
+# A walking fox, frame by frame: posing, fur and render per frame, sharp and with a
+# half-frame shutter. The Khronos sample fox is not shipped; PELAGE_FOX names the file
+# (as for images/make_images.sh), and without it clip_fox.json is left as it is.
+if [ -n "${PELAGE_FOX:-}" ] && [ -f "$PELAGE_FOX" ]; then
+    for shutter in 0 0.5; do
+        run "clip_fox_$shutter" "$pelage" look "$PELAGE_FOX" \
+            --clip "Armature|Take 001|BaseLayer" --frames 200-207 --res 480x270 --spp 16 \
+            --fur --shutter "$shutter" -o "$work/fox_$shutter.exr" -q \
+            --stats-json "$work/clip_fox_$shutter.json" 2>/dev/null
+    done
+    python3 - "$work" >"$out/clip_fox.json" <<'PY'
+import json, os, sys
+runs = []
+for shutter in ("0", "0.5"):
+    st = json.load(open(os.path.join(sys.argv[1], "clip_fox_%s.json" % shutter)))
+    runs.append({"shutter": float(shutter), "width": st["width"], "height": st["height"],
+                 "spp": st["spp"], "threads": st["threads"], "frames": st["frames"]})
+print(json.dumps({"mesh": "Fox.glb", "clip": "Armature|Take 001|BaseLayer", "runs": runs},
+                 indent=2, sort_keys=True))
+PY
+fi
+
 python3 - "$log" >"$out/run_times.json" <<'PY'
 import json, sys
 rows = [l.rstrip("\n").split("\t") for l in open(sys.argv[1])]
