@@ -210,10 +210,11 @@ rm -f scenes/gallery_sphere.cells scenes/gallery_cow.cells scenes/gallery_cow_fu
 # A rigged animal walking with its coat and fur: the Khronos sample fox (Fox.glb, CC-BY
 # 4.0: model by PixelMannen, rigging and animation by @tomkranis, glTF by @AsoboStudio and
 # @scurest), which the repository does not ship. PELAGE_FOX names the file; without it
-# the fox's images stay as they are. Frames 200-247 of its one clip are the walk.
+# the fox's images stay as they are. Frames 200-247 of its one clip are the walk, blurred
+# over half of each frame (a film camera's 180° shutter).
 if [ -n "${PELAGE_FOX:-}" ] && [ -f "$PELAGE_FOX" ]; then
     $pelage look "$PELAGE_FOX" --clip "Armature|Take 001|BaseLayer" --frames 200-247 \
-        --fur --res 480x270 --spp 16 -q -o "$tmp/fox.exr"
+        --fur --shutter 0.5 --res 480x270 --spp 16 -q -o "$tmp/fox.exr"
     $pelage movie "$tmp/fox.####.exr" -q -o images/fox_walk.mp4
     strip=()
     for f in 0200 0206 0212 0218; do strip+=("$tmp/fox_preview.$f.png"); done
