@@ -2,9 +2,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
+#include <mutex>
 #include <optional>
+#include <set>
 #include <stdexcept>
+#include <string>
 
 #include "renderer/bsdf/bsdf_coated.h"
 #include "renderer/core/setup_phase.h"
@@ -76,8 +80,13 @@ void Scene::build(const SceneDesc &desc, const PluginRegistry &plugins) {
         ps.mesh.mesh_name = o.mesh.c_str();
         ps.scene_dir = desc.dir.c_str();
         ps.object_name = o.name.c_str();
+        // A plugin's warning is printed once per process: an animation builds a Scene
+        // per frame, and the same note on every frame would bury the others.
         ps.warn = [](void *, const char *message) {
-            std::fprintf(stderr, "%s\n", message);
+            static std::mutex mutex;
+            static std::set<std::string> printed;
+            const std::lock_guard<std::mutex> lock(mutex);
+            if (printed.insert(message).second) std::fprintf(stderr, "%s\n", message);
         };
         PelageError err{};
         Material &m = m_materials[i];
