@@ -172,13 +172,6 @@ std::shared_ptr<MeshData> load_mesh_data(const ObjectDesc &o,
 std::shared_ptr<MeshData> bake(const MeshData &src, const Affine &to_world,
                                const Affine &normal_m) {
     auto m = std::make_shared<MeshData>(src);
-    for (uint32_t v = 0; v < m->num_vertices; ++v) {
-        const Vec3f p = to_world.point(
-            {src.positions[3 * v], src.positions[3 * v + 1], src.positions[3 * v + 2]});
-        m->positions[3 * v] = p.x;
-        m->positions[3 * v + 1] = p.y;
-        m->positions[3 * v + 2] = p.z;
-    }
     auto move_points = [&](std::vector<float> &P) {
         for (size_t i = 0; i + 2 < P.size(); i += 3) {
             const Vec3f p = to_world.point({P[i], P[i + 1], P[i + 2]});
@@ -191,6 +184,7 @@ std::shared_ptr<MeshData> bake(const MeshData &src, const Affine &to_world,
             N[i] = n.x, N[i + 1] = n.y, N[i + 2] = n.z;
         }
     };
+    move_points(m->positions);
     turn_normals(m->corner_normals);
     for (auto &P : m->later_positions) move_points(P);
     for (auto &N : m->later_normals) turn_normals(N);
