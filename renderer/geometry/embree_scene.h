@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "renderer/core/math.h"
+#include "renderer/core/motion_step.h"
 #include "renderer/scene_file/scene_file.h"
 #include "sim/mesh/mesh.h"
 
@@ -43,7 +44,7 @@ struct MeshData {
         const float *P = &positions[3 * size_t(v)];
         Vec3f p{P[0], P[1], P[2]};
         if (later_positions.empty()) return p;
-        const MotionStep s = motion_step(time);
+        const MotionStep s = motion_step(time, later_positions.size());
         const float *A = s.i == 0 ? P : &later_positions[s.i - 1][3 * size_t(v)];
         const float *B = &later_positions[s.i][3 * size_t(v)];
         return Vec3f{A[0], A[1], A[2]} * (1 - s.f) + Vec3f{B[0], B[1], B[2]} * s.f;
@@ -52,22 +53,10 @@ struct MeshData {
     Vec3f corner_normal_at(size_t c, float time) const {
         const float *N = &corner_normals[3 * c];
         if (later_normals.empty()) return {N[0], N[1], N[2]};
-        const MotionStep s = motion_step(time);
+        const MotionStep s = motion_step(time, later_positions.size());
         const float *A = s.i == 0 ? N : &later_normals[s.i - 1][3 * c];
         const float *B = &later_normals[s.i][3 * c];
         return Vec3f{A[0], A[1], A[2]} * (1 - s.f) + Vec3f{B[0], B[1], B[2]} * s.f;
-    }
-    // The segment [step i, step i + 1] holding `time`, and the fraction f into it (as
-    // Embree interpolates its time steps).
-    struct MotionStep {
-        size_t i;
-        float f;
-    };
-    MotionStep motion_step(float time) const {
-        const float segments = float(later_positions.size());
-        const float x = std::clamp(time, 0.0f, 1.0f) * segments;
-        const size_t i = std::min(size_t(x), later_positions.size() - 1);
-        return {i, x - float(i)};
     }
     // What shader plugins need of the mesh file beyond the rendered triangles, shared by
     // baked copies: the loaded positions before deformation or growth, exact (a .cells

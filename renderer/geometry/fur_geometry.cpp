@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "renderer/bsdf/hair_bsdf.h"
+#include "renderer/core/motion_step.h"
 #include "renderer/core/setup_phase.h"
 #include "renderer/fur/comb_field.h"
 #include "renderer/fur/groom_regions.h"
@@ -261,9 +262,7 @@ void FurLayer::centre(unsigned prim, float u, float time, Vec3f *c, Vec3f *tange
     // A moving strand: its control points at `time`, as Embree interpolates them.
     float moved[16];
     if (!later_points.empty()) {
-        const float x = std::clamp(time, 0.0f, 1.0f) * float(later_points.size());
-        const size_t i = std::min(size_t(x), later_points.size() - 1);
-        const float f = x - float(i);
+        const auto [i, f] = motion_step(time, later_points.size());
         const float *A = i == 0 ? P : &later_points[i - 1][4 * first];
         const float *B = &later_points[i][4 * first];
         for (int k = 0; k < (round ? 16 : 8); ++k) moved[k] = A[k] * (1 - f) + B[k] * f;
@@ -432,6 +431,7 @@ FurGeometry::FurGeometry(const SceneDesc &desc, EmbreeScene &scene,
         }
         // A moving skin: the same strands grown on each later step of the shutter (the
         // same roots and random numbers, so strand k is the same hair at every step).
+        const std::vector<double> opening(wm.positions.begin(), wm.positions.end());
         for (unsigned step = 1; step < og.mesh->motion_steps(); ++step) {
             const WorldMesh ws = world_mesh(og, step);
             SkinMesh moved = skin;
@@ -442,8 +442,6 @@ FurGeometry::FurGeometry(const SceneDesc &desc, EmbreeScene &scene,
                 // From the opening's world pose to this step's (comb is in world
                 // space by now).
                 moved_comb = comb;
-                const std::vector<double> opening(wm.positions.begin(),
-                                                  wm.positions.end());
                 carry_to_pose(moved_comb, og.mesh->triangles, opening.data(),
                               ws.positions.data());
                 moved.comb_by_corner = moved_comb.data();
