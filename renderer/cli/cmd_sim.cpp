@@ -113,6 +113,7 @@ int run_sim(const SimOptions &o) {
             {"simplified", cell_scale.simplified},
             {"refine_levels", cell_scale.refine_levels},
             {"coarsened", cell_scale.coarsening},
+            {"pre_collapsed_triangles", cell_scale.pre_collapsed_triangles},
             {"neighbourhood_entries_estimate", cell_scale.neighbourhood_entries},
             {"area", ps.area},
             {"body_length", body_length},

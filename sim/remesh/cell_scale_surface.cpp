@@ -3,9 +3,11 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <optional>
 
 #include "sim/core/input_error.h"
 #include "sim/mesh/subdivide.h"
+#include "sim/remesh/greedy_collapse.h"
 #include "sim/remesh/simplify.h"
 
 namespace pelage::sim {
@@ -77,7 +79,17 @@ TriangleMesh remesh_to_cell_scale(const TriangleMesh &mesh, CellScaleReport *pla
     const double area = mesh.surface_area();
     for (double edge = plan->edge_length;;
          edge = std::max(0.5 * edge, plan->min_edge_length)) {
-        TriangleMesh out = simplify(mesh, {edge, plan->max_deviation});
+        // A mesh far finer than the edge is reduced greedily first, to a fraction of it.
+        const double first = pre_collapse_fraction * edge;
+        std::optional<TriangleMesh> reduced;
+        if (!plan->coarsening && 2 * plan->input_mean_edge < first)
+            reduced = greedy_collapse(
+                mesh, {first, pre_collapse_distance * max_input_distance_fraction *
+                                  plan->bbox_diagonal});
+        plan->pre_collapsed_triangles = reduced ? reduced->num_triangles() : 0;
+        TriangleMesh out = reduced
+                               ? simplify(*reduced, {edge, plan->max_deviation, &mesh})
+                               : simplify(mesh, {edge, plan->max_deviation});
         plan->edge_length = edge;
         plan->output_triangles = out.num_triangles();
         plan->max_input_distance = max_vertex_distance(mesh, out);
@@ -91,6 +103,7 @@ TriangleMesh remesh_to_cell_scale(const TriangleMesh &mesh, CellScaleReport *pla
     }
     // No coarser copy stays on the input: the input as it is.
     plan->simplified = plan->coarsening = false;
+    plan->pre_collapsed_triangles = 0;
     plan->edge_length = plan->min_edge_length = 0;
     plan->output_triangles = plan->input_triangles;
     return mesh;

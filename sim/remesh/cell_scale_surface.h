@@ -25,6 +25,11 @@
 // max_area_change; otherwise the threshold is halved, down to s (whose copy is kept, as
 // it always was) or, when coarsening, to the input's mean edge (then the input is used).
 //
+// A mesh far finer than the collapse edge (a hero mesh: the cow split four times, 1.5 M
+// triangles) is first reduced by a greedy collapse (greedy_collapse.h) to half the edge,
+// which keeps every vertex on the input and the input's topology, or is not used; CGAL's
+// collapse then starts from there, its bound still measured against the input.
+//
 // A mesh much coarser than the cells (a low-poly animal: the heffalump's elephant holds
 // 900 cells per triangle, the spider's abdomen 3 500) is refined instead: the relaxation
 // and division steps meet every cell of a triangle's unfolded neighbourhood, so their
@@ -58,6 +63,7 @@ struct CellScaleReport {
     double max_input_distance = 0;        // measured: input vertices to the result
     double max_deviation = 0;             // bound on the distance from the input
     double bbox_diagonal = 0;             // of the input
+    size_t pre_collapsed_triangles = 0;   // after the greedy collapse (0: none)
     int refine_levels = 0;                // midpoint splits (0 when not refined)
     double input_cells_per_triangle = 0;  // expected at the end, on the input
 
@@ -70,6 +76,11 @@ inline constexpr double max_cells_per_triangle = 128;
 inline constexpr double coarsen_entries = 4 * max_neighbourhood_entries;
 inline constexpr double max_input_distance_fraction = 0.005;
 inline constexpr double max_area_change = 0.02;
+// A mesh whose mean edge is under half of this fraction of the collapse edge is first
+// collapsed greedily to it.
+inline constexpr double pre_collapse_fraction = 0.5;
+// Its share of the distance the result may keep from the input.
+inline constexpr double pre_collapse_distance = 0.25;
 
 // Whether the mesh is to be simplified or refined, and how (output_triangles is the
 // input's until remesh_to_cell_scale has run when simplifying): a cheap look at the

@@ -1,5 +1,8 @@
 #include "sim/remesh/simplify.h"
 
+#include <CGAL/AABB_traits.h>
+#include <CGAL/AABB_tree.h>
+#include <CGAL/AABB_triangle_primitive.h>
 #include <CGAL/Polygon_mesh_processing/distance.h>
 #include <CGAL/Polygon_mesh_processing/orient_polygon_soup.h>
 #include <CGAL/Polygon_mesh_processing/polygon_soup_to_polygon_mesh.h>
@@ -66,17 +69,48 @@ double mean_edge_length(const TriangleMesh &mesh) {
     return mesh.num_triangles() > 0 ? sum / (3.0 * double(mesh.num_triangles())) : 0.0;
 }
 
-TriangleMesh simplify(const TriangleMesh &mesh, const SimplifyOptions &options) {
-    CgalMesh cm = to_cgal(mesh);
+namespace {
 
-    SMS::Edge_length_stop_predicate<double> stop(options.edge_length);
+// Collapses edges of cm under `placement` until none is shorter than edge_length.
+template <typename Placement>
+void collapse(CgalMesh &cm, double edge_length, const Placement &placement) {
+    SMS::Edge_length_stop_predicate<double> stop(edge_length);
     SMS::Bounded_normal_change_filter<> filter;
-    SMS::Bounded_distance_placement<SMS::LindstromTurk_placement<CgalMesh>, Kernel>
-        placement(options.max_deviation);
     SMS::edge_collapse(cm, stop,
                        CGAL::parameters::get_cost(SMS::Edge_length_cost<CgalMesh>())
                            .get_placement(placement)
                            .filter(filter));
+}
+
+}  // namespace
+
+TriangleMesh simplify(const TriangleMesh &mesh, const SimplifyOptions &options) {
+    CgalMesh cm = to_cgal(mesh);
+    using Base = SMS::LindstromTurk_placement<CgalMesh>;
+    if (options.reference) {
+        // The bound measured against the reference's triangles, as CGAL's own placement
+        // does against the mesh it starts from.
+        using Triangles = std::vector<Kernel::Triangle_3>;
+        using Tree = CGAL::AABB_tree<CGAL::AABB_traits<
+            Kernel, CGAL::AABB_triangle_primitive<Kernel, Triangles::const_iterator>>>;
+        Triangles triangles;
+        const TriangleMesh &ref = *options.reference;
+        triangles.reserve(ref.num_triangles());
+        for (TriId t = 0; t < ref.num_triangles(); ++t) {
+            const Vec3d a = ref.vertex(t, 0), b = ref.vertex(t, 1), c = ref.vertex(t, 2);
+            triangles.emplace_back(Point(a.x, a.y, a.z), Point(b.x, b.y, b.z),
+                                   Point(c.x, c.y, c.z));
+        }
+        Tree tree(triangles.begin(), triangles.end());
+        tree.build();
+        tree.accelerate_distance_queries();
+        collapse(
+            cm, options.edge_length,
+            SMS::Bounded_distance_placement<Base, Tree>(options.max_deviation, tree));
+    } else {
+        collapse(cm, options.edge_length,
+                 SMS::Bounded_distance_placement<Base, Kernel>(options.max_deviation));
+    }
     cm.collect_garbage();
 
     TriangleMesh out;

@@ -22,6 +22,9 @@ namespace pelage::sim {
 struct SimplifyOptions {
     double edge_length = 0;    // collapse edges shorter than this
     double max_deviation = 0;  // the result stays within this distance of the input
+    // The surface the bound refers to when the mesh is itself a reduction of it
+    // (vertex_clustering.h); null: the mesh.
+    const TriangleMesh *reference = nullptr;
 };
 
 // The simplified mesh (positions and triangles only; corner normals and UVs are

@@ -1,0 +1,184 @@
+#include "sim/remesh/greedy_collapse.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <vector>
+
+#include "sim/mesh/closest_point.h"
+#include "sim/remesh/surface_topology.h"
+
+namespace pelage::sim {
+
+std::optional<TriangleMesh> greedy_collapse(const TriangleMesh &mesh,
+                                            const GreedyCollapseOptions &options,
+                                            std::string *refused) {
+    const auto refuse = [&](const char *why) -> std::optional<TriangleMesh> {
+        if (refused) *refused = why;
+        return std::nullopt;
+    };
+    const TopologyDetail input = analyse_topology(mesh);
+    if (!input.top.edge_manifold)
+        return refuse("an edge has three faces, or two facing opposite ways");
+    const size_t nv = mesh.num_vertices(), nf = mesh.num_triangles();
+    const std::vector<Vec3d> &pos = mesh.positions;
+    std::vector<std::array<VertId, 3>> tri = mesh.triangles;
+    std::vector<char> alive(nf, 1);
+    std::vector<std::vector<TriId>> around(nv);
+    for (TriId t = 0; t < nf; ++t)
+        for (VertId v : tri[t]) around[v].push_back(t);
+    const double edge2 = options.edge_length * options.edge_length;
+    const double cos_turn = std::cos(options.max_turn_degrees * 3.141592653589793 / 180);
+    const auto has = [&](TriId f, VertId v) {
+        return tri[f][0] == v || tri[f][1] == v || tri[f][2] == v;
+    };
+    const auto normal = [&](const std::array<VertId, 3> &t) {
+        return cross(pos[t[1]] - pos[t[0]], pos[t[2]] - pos[t[0]]);
+    };
+    // The input vertices each vertex stands for, besides itself.
+    std::vector<std::vector<VertId>> stands_for(nv);
+    const double max_distance2 = options.max_distance * options.max_distance;
+    std::vector<VertId> na, nb, no;
+    std::vector<std::array<VertId, 3>> fan;
+    const auto neighbours = [&](VertId v, std::vector<VertId> &out) {
+        out.clear();
+        for (TriId f : around[v])
+            for (VertId w : tri[f])
+                if (w != v) out.push_back(w);
+        std::sort(out.begin(), out.end());
+        out.erase(std::unique(out.begin(), out.end()), out.end());
+    };
+    // b into a, which stays where it is; false when that would change the surface.
+    const auto collapse = [&](VertId b, VertId a) {
+        if (input.on_boundary[b] || input.fans[b] > 1 || input.fans[a] > 1) return false;
+        VertId opposite[2];
+        int on_edge = 0;
+        for (TriId f : around[b])
+            if (has(f, a)) {
+                if (on_edge == 2) return false;
+                for (VertId w : tri[f])
+                    if (w != a && w != b) opposite[on_edge] = w;
+                ++on_edge;
+            }
+        if (on_edge != 2) return false;
+        // The link condition: the ends share only the two opposite vertices, and each of
+        // those keeps at least three neighbours (no tetrahedron flattens).
+        neighbours(a, na);
+        neighbours(b, nb);
+        size_t common = 0;
+        for (size_t i = 0, j = 0; i < na.size() && j < nb.size();) {
+            if (na[i] < nb[j]) {
+                ++i;
+            } else if (nb[j] < na[i]) {
+                ++j;
+            } else {
+                ++common;
+                ++i;
+                ++j;
+            }
+        }
+        if (common != 2) return false;
+        for (VertId o : opposite) {
+            neighbours(o, no);
+            if (no.size() <= 3) return false;
+        }
+        // No face of b turns by more than the limit or flattens.
+        for (TriId f : around[b]) {
+            if (has(f, a)) continue;
+            std::array<VertId, 3> moved = tri[f];
+            for (VertId &v : moved)
+                if (v == b) v = a;
+            const Vec3d n0 = normal(tri[f]), n1 = normal(moved);
+            if (!(dot(n0, n1) > cos_turn * length(n0) * length(n1))) return false;
+        }
+        // Every input vertex stays within max_distance of the faces around the vertex
+        // standing for it, so within it of the surface: checked again for the vertices
+        // whose faces the collapse changes, a and b's neighbours.
+        const auto fan_after = [&](VertId w) {
+            fan.clear();
+            const auto add = [&](TriId f) {
+                if (has(f, a) && has(f, b)) return;
+                std::array<VertId, 3> t = tri[f];
+                for (VertId &v : t)
+                    if (v == b) v = a;
+                fan.push_back(t);
+            };
+            for (TriId f : around[w]) add(f);
+            if (w == a)
+                for (TriId f : around[b])
+                    if (!has(f, a)) add(f);
+        };
+        const auto near = [&](VertId v) {
+            for (const auto &t : fan)
+                if (length_squared(closest_point_on_triangle(pos[v], pos[t[0]], pos[t[1]],
+                                                             pos[t[2]]) -
+                                   pos[v]) <= max_distance2)
+                    return true;
+            return false;
+        };
+        fan_after(a);
+        if (!near(b)) return false;
+        for (VertId v : stands_for[b])
+            if (!near(v)) return false;
+        for (VertId v : stands_for[a])
+            if (!near(v)) return false;
+        for (VertId w : nb) {
+            if (w == a || stands_for[w].empty()) continue;
+            fan_after(w);
+            for (VertId v : stands_for[w])
+                if (!near(v)) return false;
+        }
+        for (TriId f : around[b]) {
+            if (has(f, a)) {
+                alive[f] = 0;
+                for (VertId w : tri[f]) {
+                    if (w == b) continue;
+                    auto &list = around[w];
+                    list.erase(std::find(list.begin(), list.end(), f));
+                }
+            } else {
+                for (VertId &v : tri[f])
+                    if (v == b) v = a;
+                around[a].push_back(f);
+            }
+        }
+        around[b].clear();
+        stands_for[a].push_back(b);
+        stands_for[a].insert(stands_for[a].end(), stands_for[b].begin(),
+                             stands_for[b].end());
+        stands_for[b] = {};
+        return true;
+    };
+    for (int pass = 0; pass < options.max_passes; ++pass) {
+        size_t collapsed = 0;
+        for (TriId t = 0; t < nf; ++t)
+            for (int c = 0; c < 3 && alive[t]; ++c) {
+                const VertId a = tri[t][c], b = tri[t][(c + 1) % 3];
+                if (length_squared(pos[a] - pos[b]) >= edge2) continue;
+                collapsed += collapse(b, a) || collapse(a, b);
+            }
+        if (collapsed == 0) break;
+    }
+
+    TriangleMesh out;
+    std::vector<char> used(nv, 0);
+    for (TriId t = 0; t < nf; ++t)
+        if (alive[t])
+            for (VertId v : tri[t]) used[v] = 1;
+    std::vector<VertId> index(nv, invalid_id);
+    for (VertId v = 0; v < nv; ++v)
+        if (used[v]) {
+            index[v] = VertId(out.positions.size());
+            out.positions.push_back(pos[v]);
+        }
+    for (TriId t = 0; t < nf; ++t) {
+        if (!alive[t]) continue;
+        out.triangles.push_back({index[tri[t][0]], index[tri[t][1]], index[tri[t][2]]});
+        out.source_face.push_back(t);
+    }
+    // A safety net under the link condition, which keeps the topology by construction.
+    if (!(surface_topology(out) == input.top)) return refuse("the topology changed");
+    return out;
+}
+
+}  // namespace pelage::sim
