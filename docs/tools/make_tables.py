@@ -598,6 +598,34 @@ def t_clip_fox():
             f"--shutter S --stats-json …` (all cores).\n")
 
 
+def t_look_animals():
+    d = data("look_animals")
+    rows = []
+    for r in d["runs"]:
+        dense = r["source"].startswith("cow.off")
+        wall_target, mb_target = (60, 3000) if dense else (30, 1500)
+        if "timeout_seconds" in r:
+            rows.append([r["mesh"], r["source"], "—", "—", "—",
+                         f"> {r['timeout_seconds']}", "—", "no"])
+            continue
+        if r["exit_code"] != 0:
+            rows.append([r["mesh"], r["source"], "—", "—", "—", num(r["wall_seconds"]),
+                         num(r["peak_rss_mb"]), "exit " + str(r["exit_code"])])
+            continue
+        met = r["wall_seconds"] <= wall_target and r["peak_rss_mb"] <= mb_target
+        rows.append([r["mesh"], r["source"], num(r["rendered_triangles"]),
+                     num(r.get("cells")), num(r.get("growth_seconds")),
+                     num(r["wall_seconds"]), num(r["peak_rss_mb"]),
+                     f"yes (≤ {wall_target} s, ≤ {mb_target / 1000:g} GB)" if met
+                     else f"no (≤ {wall_target} s, ≤ {mb_target / 1000:g} GB)"])
+    return (table(["mesh", "from", "triangles rendered", "cells", "pattern s", "wall s",
+                   "peak MB", "within target"], rows, "llrrrrrl") +
+            f"\n`pelage look MESH --res {d['res']} --spp {d['spp']}` with the default preset "
+            "(giraffe-reticulata), each a separate process on all cores, from reading the "
+            "mesh to the written EXR; *pattern s* is from the mesh to the `.cells` file, "
+            "remeshing included (`docs/tools/look_animals.py`).\n")
+
+
 TABLES = {
     "machine": t_machine, "crps": t_crps, "sim": t_sim, "sim-density": t_sim_density, "sim-mclone": t_sim_mclone, "sim-neighbours": t_sim_neighbours, "default-job": t_default_job,
     "lookup": t_lookup, "lookup-lanes": t_lookup_lanes,
@@ -608,7 +636,7 @@ TABLES = {
     "crps-errors": t_crps_errors, "lookup-quality": t_lookup_quality,
     "hair-furnace": t_hair_furnace, "gallery": t_gallery, "looks": t_looks,
     "control-measures": t_control_measures, "growth-pipelines": t_growth_pipelines,
-    "clip-fox": t_clip_fox,
+    "clip-fox": t_clip_fox, "look-animals": t_look_animals,
 }
 
 

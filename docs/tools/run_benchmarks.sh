@@ -148,6 +148,11 @@ print(json.dumps({"mesh": "Fox.glb", "clip": "Armature|Take 001|BaseLayer", "run
 PY
 fi
 
+# From a mesh to a picture: `pelage look` on every sample animal and a 1.5 M-triangle
+# cow (all cores; the fox too when PELAGE_FOX names it).
+run look_animals python3 docs/tools/look_animals.py "$pelage" "$work" \
+    >"$out/look_animals.json"
+
 python3 - "$log" >"$out/run_times.json" <<'PY'
 import json, sys
 rows = [l.rstrip("\n").split("\t") for l in open(sys.argv[1])]
