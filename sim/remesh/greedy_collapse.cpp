@@ -35,11 +35,17 @@ std::optional<TriangleMesh> greedy_collapse(const TriangleMesh &mesh,
     const auto normal = [&](const std::array<VertId, 3> &t) {
         return cross(pos[t[1]] - pos[t[0]], pos[t[2]] - pos[t[0]]);
     };
-    // The input vertices each vertex stands for, besides itself.
-    std::vector<std::vector<VertId>> stands_for(nv);
+    // The input vertices each vertex stands for, besides itself, each with the face it
+    // was last found within max_distance of (its witness).
+    struct Point {
+        VertId v;
+        TriId witness;
+    };
+    std::vector<std::vector<Point>> stands_for(nv);
     const double max_distance2 = options.max_distance * options.max_distance;
-    std::vector<VertId> na, nb, no;
-    std::vector<std::array<VertId, 3>> fan;
+    std::vector<VertId> na, nb;
+    std::vector<std::pair<TriId, std::array<VertId, 3>>> fan;
+    std::vector<std::pair<Point *, TriId>> rewitness;
     const auto neighbours = [&](VertId v, std::vector<VertId> &out) {
         out.clear();
         for (TriId f : around[v])
@@ -51,6 +57,9 @@ std::optional<TriangleMesh> greedy_collapse(const TriangleMesh &mesh,
     // b into a, which stays where it is; false when that would change the surface.
     const auto collapse = [&](VertId b, VertId a) {
         if (input.on_boundary[b] || input.fans[b] > 1 || input.fans[a] > 1) return false;
+        // A pole (the centre of a fanned cap, a UV sphere's tip) is left to CGAL: every
+        // try at it would sort its whole ring.
+        if (around[a].size() + around[b].size() > 2 * options.max_valence) return false;
         VertId opposite[2];
         int on_edge = 0;
         for (TriId f : around[b])
@@ -78,10 +87,10 @@ std::optional<TriangleMesh> greedy_collapse(const TriangleMesh &mesh,
             }
         }
         if (common != 2) return false;
-        for (VertId o : opposite) {
-            neighbours(o, no);
-            if (no.size() <= 3) return false;
-        }
+        // (On a manifold a vertex has as many neighbours as faces, one more on a
+        // boundary: counted without sorting a pole's ring.)
+        for (VertId o : opposite)
+            if (around[o].size() + (input.on_boundary[o] ? 1 : 0) <= 3) return false;
         // No face of b turns by more than the limit or flattens.
         for (TriId f : around[b]) {
             if (has(f, a)) continue;
@@ -91,9 +100,11 @@ std::optional<TriangleMesh> greedy_collapse(const TriangleMesh &mesh,
             const Vec3d n0 = normal(tri[f]), n1 = normal(moved);
             if (!(dot(n0, n1) > cos_turn * length(n0) * length(n1))) return false;
         }
-        // Every input vertex stays within max_distance of the faces around the vertex
-        // standing for it, so within it of the surface: checked again for the vertices
-        // whose faces the collapse changes, a and b's neighbours.
+        // Every input vertex stays within max_distance of a face of the surface: its
+        // witness. A collapse changes the faces around b, so the points b stands for,
+        // and those whose witness is one of b's faces (they stand with a or b's
+        // neighbours), are checked again against the faces around their vertex after
+        // it. The bound is thus an invariant, not a local guess.
         const auto fan_after = [&](VertId w) {
             fan.clear();
             const auto add = [&](TriId f) {
@@ -101,7 +112,7 @@ std::optional<TriangleMesh> greedy_collapse(const TriangleMesh &mesh,
                 std::array<VertId, 3> t = tri[f];
                 for (VertId &v : t)
                     if (v == b) v = a;
-                fan.push_back(t);
+                fan.push_back({f, t});
             };
             for (TriId f : around[w]) add(f);
             if (w == a)
@@ -109,25 +120,40 @@ std::optional<TriangleMesh> greedy_collapse(const TriangleMesh &mesh,
                     if (!has(f, a)) add(f);
         };
         const auto near = [&](VertId v) {
-            for (const auto &t : fan)
+            for (const auto &[f, t] : fan)
                 if (length_squared(closest_point_on_triangle(pos[v], pos[t[0]], pos[t[1]],
                                                              pos[t[2]]) -
                                    pos[v]) <= max_distance2)
-                    return true;
-            return false;
+                    return f;
+            return invalid_id;
         };
+        rewitness.clear();
         fan_after(a);
-        if (!near(b)) return false;
-        for (VertId v : stands_for[b])
-            if (!near(v)) return false;
-        for (VertId v : stands_for[a])
-            if (!near(v)) return false;
-        for (VertId w : nb) {
-            if (w == a || stands_for[w].empty()) continue;
-            fan_after(w);
-            for (VertId v : stands_for[w])
-                if (!near(v)) return false;
+        const TriId b_witness = near(b);
+        if (b_witness == invalid_id) return false;
+        for (Point &p : stands_for[b]) {
+            const TriId f = near(p.v);
+            if (f == invalid_id) return false;
+            rewitness.push_back({&p, f});
         }
+        const auto recheck = [&](VertId w) {
+            bool fan_made = w == a;
+            for (Point &p : stands_for[w]) {
+                if (!has(p.witness, b)) continue;
+                if (!fan_made) {
+                    fan_after(w);
+                    fan_made = true;
+                }
+                const TriId f = near(p.v);
+                if (f == invalid_id) return false;
+                rewitness.push_back({&p, f});
+            }
+            return true;
+        };
+        if (!recheck(a)) return false;
+        for (VertId w : nb)
+            if (w != a && !recheck(w)) return false;
+        for (const auto &[p, f] : rewitness) p->witness = f;
         for (TriId f : around[b]) {
             if (has(f, a)) {
                 alive[f] = 0;
@@ -143,7 +169,7 @@ std::optional<TriangleMesh> greedy_collapse(const TriangleMesh &mesh,
             }
         }
         around[b].clear();
-        stands_for[a].push_back(b);
+        stands_for[a].push_back({b, b_witness});
         stands_for[a].insert(stands_for[a].end(), stands_for[b].begin(),
                              stands_for[b].end());
         stands_for[b] = {};

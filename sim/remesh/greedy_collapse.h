@@ -12,7 +12,8 @@
 // A collapse is made only when it keeps the surface as it is (Dey et al.'s link
 // condition, "Topology preserving edge contraction", 1999: the two ends share exactly
 // the neighbours of the faces on the edge), turns no face by more than max_turn_degrees
-// nor flattens one, and touches no boundary or pinched vertex it would move. The
+// nor flattens one, and touches no boundary or pinched vertex it would move, nor a
+// pole of more than max_valence faces (the cost of a try grows with the ring). The
 // result's topology is then checked against the input's (surface_topology.h); a mesh
 // whose edges are not manifold is not reduced.
 #pragma once
@@ -28,7 +29,8 @@ struct GreedyCollapseOptions {
     double edge_length = 0;   // collapse edges shorter than this
     double max_distance = 0;  // from every input vertex to the result
     double max_turn_degrees = 45;
-    int max_passes = 8;  // over all faces; a pass that collapses nothing ends it
+    int max_passes = 8;       // over all faces; a pass that collapses nothing ends it
+    size_t max_valence = 64;  // faces around either end, about; poles are left alone
 };
 
 // The reduced mesh (positions and triangles; source_face is the input triangle each face

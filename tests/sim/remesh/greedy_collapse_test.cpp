@@ -8,6 +8,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <functional>
 #include <map>
 #include <set>
@@ -165,6 +167,43 @@ TEST(GreedyCollapse, AThinTubeKeepsItsShapeWithinTheBound) {
     for (const Vec3d &p : tube.positions)
         loose_worst = std::max(loose_worst, distance_to_mesh(p, *loose));
     EXPECT_GT(loose_worst, 2 * options.max_distance);
+}
+
+// A unit disk as a polar grid: a pole of `sectors` faces at the centre (a fanned cap),
+// rings 1/rings apart.
+TriangleMesh polar_disk(int sectors, int rings) {
+    TriangleMesh m;
+    m.positions.push_back({0, 0, 0});
+    for (int i = 1; i <= rings; ++i)
+        for (int k = 0; k < sectors; ++k) {
+            const double a = 2 * M_PI * k / sectors, r = double(i) / rings;
+            m.positions.push_back({r * std::cos(a), r * std::sin(a), 0});
+        }
+    const auto at = [&](int i, int k) {
+        return VertId(1 + (i - 1) * sectors + k % sectors);
+    };
+    for (int k = 0; k < sectors; ++k) m.triangles.push_back({0, at(1, k), at(1, k + 1)});
+    for (int i = 1; i < rings; ++i)
+        for (int k = 0; k < sectors; ++k) {
+            m.triangles.push_back({at(i, k), at(i + 1, k), at(i + 1, k + 1)});
+            m.triangles.push_back({at(i, k), at(i + 1, k + 1), at(i, k + 1)});
+        }
+    return m;
+}
+
+TEST(GreedyCollapse, ADiskAroundAPoleComesDownAndKeepsItsRim) {
+    const TriangleMesh disk = polar_disk(1000, 40);
+    const auto out = greedy_collapse(disk, {0.04, 0.001});
+    ASSERT_TRUE(out);
+    EXPECT_LT(out->num_triangles() * 2, disk.num_triangles());
+    EXPECT_EQ(euler_and_open_edges(*out), euler_and_open_edges(disk));
+    // The rim, a boundary, is whole.
+    const auto has = [&](Vec3d p) {
+        return std::find(out->positions.begin(), out->positions.end(), p) !=
+               out->positions.end();
+    };
+    for (int k = 0; k < 1000; k += 37)
+        EXPECT_TRUE(has(disk.positions[1 + 39 * 1000 + k]));
 }
 
 TEST(GreedyCollapse, RefusesAnInputWithAnEdgeOfThreeFaces) {
