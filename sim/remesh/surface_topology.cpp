@@ -2,30 +2,12 @@
 
 #include <algorithm>
 #include <cstdint>
-#include <numeric>
 #include <tuple>
 #include <vector>
 
+#include "sim/core/disjoint_sets.h"
+
 namespace pelage::sim {
-namespace {
-
-struct UnionFind {
-    std::vector<uint32_t> parent;
-    explicit UnionFind(size_t n) : parent(n) {
-        std::iota(parent.begin(), parent.end(), 0u);
-    }
-    uint32_t find(uint32_t x) {
-        while (parent[x] != x) x = parent[x] = parent[parent[x]];
-        return x;
-    }
-    void join(uint32_t a, uint32_t b) {
-        a = find(a);
-        b = find(b);
-        if (a != b) parent[std::max(a, b)] = std::min(a, b);
-    }
-};
-
-}  // namespace
 
 TopologyDetail analyse_topology(const TriangleMesh &mesh) {
     TopologyDetail detail;
@@ -48,7 +30,7 @@ TopologyDetail analyse_topology(const TriangleMesh &mesh) {
         return std::tie(x.lo, x.hi, x.corner) < std::tie(y.lo, y.hi, y.corner);
     });
     // Fans: the corners of a vertex joined across the edges at it that two faces share.
-    UnionFind corners(3 * nf), faces(nf), boundary(nv);
+    DisjointSets corners(3 * nf), faces(nf), boundary(nv);
     const auto corner_of = [&](uint32_t face, VertId v) {
         const auto &t = mesh.triangles[face];
         return uint32_t(3 * face + (t[0] == v ? 0 : t[1] == v ? 1 : 2));
@@ -65,13 +47,13 @@ TopologyDetail analyse_topology(const TriangleMesh &mesh) {
         ++num_edges;
         const VertId a = edges[i].lo, b = edges[i].hi;
         if (j - i == 1) {
-            boundary.join(a, b);
+            boundary.unite(a, b);
             on_boundary[a] = on_boundary[b] = 1;
         } else if (j - i == 2 && edges[i].forward != edges[i + 1].forward) {
             const uint32_t f = edges[i].corner / 3, g = edges[i + 1].corner / 3;
-            faces.join(f, g);
-            corners.join(corner_of(f, a), corner_of(g, a));
-            corners.join(corner_of(f, b), corner_of(g, b));
+            faces.unite(f, g);
+            corners.unite(corner_of(f, a), corner_of(g, a));
+            corners.unite(corner_of(f, b), corner_of(g, b));
         } else {
             top.edge_manifold = false;  // three faces on an edge, or two facing one way
         }

@@ -9,8 +9,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <functional>
-#include <map>
 #include <utility>
 
 #include "sim/core/input_error.h"
@@ -20,12 +18,14 @@
 #include "sim/mesh/mesh_load.h"
 #include "sim/mesh/subdivide.h"
 #include "sim/remesh/simplify.h"
+#include "tests/sim/remesh/topology_count.h"
 #include "tests/test_paths.h"
 
 namespace pelage::sim {
 namespace {
 
 using sim::closest_point_on_triangle;
+using test::euler_and_open_edges;
 
 double distance_to_mesh(Vec3d p, const TriangleMesh &m) {
     double best = 1e300;
@@ -35,37 +35,6 @@ double distance_to_mesh(Vec3d p, const TriangleMesh &m) {
                                       p, m.vertex(t, 0), m.vertex(t, 1), m.vertex(t, 2)) -
                                   p));
     return best;
-}
-
-// V − E + F with a vertex counted once per fan of triangles around it (a vertex where
-// two fans meet only at a point is two vertices of the surface, as the simplification
-// splits it), and the number of edges not shared by exactly two triangles.
-std::pair<long, long> euler_and_open_edges(const TriangleMesh &m) {
-    std::map<std::pair<VertId, VertId>, std::vector<TriId>> edges;
-    for (TriId t = 0; t < m.num_triangles(); ++t)
-        for (int c = 0; c < 3; ++c) {
-            const VertId a = m.triangles[t][c], b = m.triangles[t][(c + 1) % 3];
-            edges[{std::min(a, b), std::max(a, b)}].push_back(t);
-        }
-    long open = 0;
-    for (const auto &[e, tris] : edges) open += tris.size() != 2;
-    // Fans: the corners (t, v) joined across the edges at v they share.
-    std::map<std::pair<TriId, VertId>, std::pair<TriId, VertId>> parent;
-    std::function<std::pair<TriId, VertId>(std::pair<TriId, VertId>)> find =
-        [&](std::pair<TriId, VertId> x) {
-            auto it = parent.find(x);
-            if (it == parent.end() || it->second == x) return x;
-            return it->second = find(it->second);
-        };
-    for (TriId t = 0; t < m.num_triangles(); ++t)
-        for (VertId v : m.triangles[t]) parent[{t, v}] = {t, v};
-    for (const auto &[e, tris] : edges)
-        for (size_t k = 1; k < tris.size(); ++k)
-            for (VertId v : {e.first, e.second})
-                parent[find({tris[k], v})] = find({tris[0], v});
-    long fans = 0;
-    for (const auto &[x, p] : parent) fans += find(x) == x;
-    return {fans - long(edges.size()) + long(m.num_triangles()), open};
 }
 
 TEST(CellScaleSurface, LeavesALightMeshAlone) {

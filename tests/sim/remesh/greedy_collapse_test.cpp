@@ -1,7 +1,6 @@
 // The greedy collapse (sim/remesh/greedy_collapse.h) and the topology count it checks
-// itself with (surface_topology.h). The topology is checked with a count written
-// separately (euler_and_open_edges, as in cell_scale_surface_test.cpp: the code under
-// test has its own), distances by brute force with Ericson's closest point, and the
+// itself with (surface_topology.h). The topology is checked with the tests' own count
+// (topology_count.h), distances by brute force with Ericson's closest point, and the
 // vertices against the input's own.
 
 #include "sim/remesh/greedy_collapse.h"
@@ -10,8 +9,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <functional>
-#include <map>
 #include <set>
 #include <string>
 #include <utility>
@@ -21,38 +18,13 @@
 #include "sim/mesh/procedural_mesh.h"
 #include "sim/mesh/subdivide.h"
 #include "sim/remesh/surface_topology.h"
+#include "tests/sim/remesh/topology_count.h"
 #include "tests/test_paths.h"
 
 namespace pelage::sim {
 namespace {
 
-// V − E + F with a vertex counted once per fan, and the edges not on exactly two faces.
-std::pair<long, long> euler_and_open_edges(const TriangleMesh &m) {
-    std::map<std::pair<VertId, VertId>, std::vector<TriId>> edges;
-    for (TriId t = 0; t < m.num_triangles(); ++t)
-        for (int c = 0; c < 3; ++c) {
-            const VertId a = m.triangles[t][c], b = m.triangles[t][(c + 1) % 3];
-            edges[{std::min(a, b), std::max(a, b)}].push_back(t);
-        }
-    long open = 0;
-    for (const auto &[e, tris] : edges) open += tris.size() != 2;
-    std::map<std::pair<TriId, VertId>, std::pair<TriId, VertId>> parent;
-    std::function<std::pair<TriId, VertId>(std::pair<TriId, VertId>)> find =
-        [&](std::pair<TriId, VertId> x) {
-            auto it = parent.find(x);
-            if (it == parent.end() || it->second == x) return x;
-            return it->second = find(it->second);
-        };
-    for (TriId t = 0; t < m.num_triangles(); ++t)
-        for (VertId v : m.triangles[t]) parent[{t, v}] = {t, v};
-    for (const auto &[e, tris] : edges)
-        for (size_t k = 1; k < tris.size(); ++k)
-            for (VertId v : {e.first, e.second})
-                parent[find({tris[k], v})] = find({tris[0], v});
-    long fans = 0;
-    for (const auto &[x, p] : parent) fans += find(x) == x;
-    return {fans - long(edges.size()) + long(m.num_triangles()), open};
-}
+using test::euler_and_open_edges;
 
 double distance_to_mesh(Vec3d p, const TriangleMesh &m) {
     double best = 1e300;
