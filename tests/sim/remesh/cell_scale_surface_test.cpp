@@ -14,28 +14,17 @@
 #include "sim/core/input_error.h"
 #include "sim/crps/surface.h"
 #include "sim/crps/surface_sampling.h"
-#include "sim/mesh/closest_point.h"
 #include "sim/mesh/mesh_load.h"
 #include "sim/mesh/subdivide.h"
 #include "sim/remesh/simplify.h"
-#include "tests/sim/remesh/topology_count.h"
+#include "tests/sim/remesh/surface_reference.h"
 #include "tests/test_paths.h"
 
 namespace pelage::sim {
 namespace {
 
-using sim::closest_point_on_triangle;
+using test::distance_to_mesh;
 using test::euler_and_open_edges;
-
-double distance_to_mesh(Vec3d p, const TriangleMesh &m) {
-    double best = 1e300;
-    for (TriId t = 0; t < m.num_triangles(); ++t)
-        best =
-            std::min(best, length(closest_point_on_triangle(
-                                      p, m.vertex(t, 0), m.vertex(t, 1), m.vertex(t, 2)) -
-                                  p));
-    return best;
-}
 
 TEST(CellScaleSurface, LeavesALightMeshAlone) {
     // Teo's 760-triangle sphere with 150 cells: triangles smaller than the cells, but

@@ -1,6 +1,6 @@
 // The greedy collapse (sim/remesh/greedy_collapse.h) and the topology count it checks
 // itself with (surface_topology.h). The topology is checked with the tests' own count
-// (topology_count.h), distances by brute force with Ericson's closest point, and the
+// (surface_reference.h), distances by brute force with Ericson's closest point, and the
 // vertices against the input's own.
 
 #include "sim/remesh/greedy_collapse.h"
@@ -13,28 +13,18 @@
 #include <string>
 #include <utility>
 
-#include "sim/mesh/closest_point.h"
 #include "sim/mesh/mesh_load.h"
 #include "sim/mesh/procedural_mesh.h"
 #include "sim/mesh/subdivide.h"
 #include "sim/remesh/surface_topology.h"
-#include "tests/sim/remesh/topology_count.h"
+#include "tests/sim/remesh/surface_reference.h"
 #include "tests/test_paths.h"
 
 namespace pelage::sim {
 namespace {
 
+using test::distance_to_mesh;
 using test::euler_and_open_edges;
-
-double distance_to_mesh(Vec3d p, const TriangleMesh &m) {
-    double best = 1e300;
-    for (TriId t = 0; t < m.num_triangles(); ++t)
-        best =
-            std::min(best, length(closest_point_on_triangle(
-                                      p, m.vertex(t, 0), m.vertex(t, 1), m.vertex(t, 2)) -
-                                  p));
-    return best;
-}
 
 double mean_edge(const TriangleMesh &m) {
     double sum = 0;

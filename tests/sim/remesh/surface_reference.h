@@ -1,6 +1,7 @@
-// The tests' own count of a mesh's topology, written apart from sim/remesh's
-// (surface_topology.h) so that the simplifications' tests do not check the code with
-// itself: ordered maps and a recursive find, no sorting of half-edges.
+// The simplification tests' own references, written apart from sim/remesh so that the
+// tests do not check the code with itself: a count of a mesh's topology (ordered maps
+// and a recursive find, where surface_topology.h sorts half-edges) and the distance to
+// a mesh by brute force (Ericson's closest point on every triangle, no tree).
 #pragma once
 
 #include <algorithm>
@@ -9,6 +10,7 @@
 #include <utility>
 #include <vector>
 
+#include "sim/mesh/closest_point.h"
 #include "sim/mesh/mesh.h"
 
 namespace pelage::test {
@@ -43,6 +45,17 @@ inline std::pair<long, long> euler_and_open_edges(const sim::TriangleMesh &m) {
     long fans = 0;
     for (const auto &[x, p] : parent) fans += find(x) == x;
     return {fans - long(edges.size()) + long(m.num_triangles()), open};
+}
+
+// The distance from p to the nearest triangle of m.
+inline double distance_to_mesh(sim::Vec3d p, const sim::TriangleMesh &m) {
+    double best = 1e300;
+    for (sim::TriId t = 0; t < m.num_triangles(); ++t)
+        best =
+            std::min(best, length(sim::closest_point_on_triangle(
+                                      p, m.vertex(t, 0), m.vertex(t, 1), m.vertex(t, 2)) -
+                                  p));
+    return best;
 }
 
 }  // namespace pelage::test
