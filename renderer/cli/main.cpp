@@ -99,6 +99,7 @@ extern "C" __attribute__((visibility("default"))) int pelage_cli_main(int argc,
         commands.emplace_back(app.get_subcommands({})[before], std::move(run));
     };
     add(renderer::cli::add_look_command);
+    add(renderer::cli::add_explore_command);
     add(renderer::cli::add_crps_command);
     add(renderer::cli::add_sim_command);
     add(renderer::cli::add_stats_command);

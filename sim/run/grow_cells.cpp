@@ -145,9 +145,21 @@ GrownCells grow_cells(const GrowRequest &r) {
             g.stats.growth.push_back(
                 {growing->age(), simulation.area(), simulation.cells().size()});
     }
+    // The live view's snapshot: on a growing surface the cells are carried to the rest
+    // shape, as the file keeps them.
+    auto look = [&] {
+        if (r.cancelled && r.cancelled()) throw GrowCancelled{};
+        if (!r.snapshot || !r.snapshot_due || !r.snapshot_due()) return;
+        sim::Cells cells = simulation.cells();
+        if (growing) sim::carry_cells(growing->crps(), surface.crps, cells);
+        r.snapshot(surface, sim::make_cells_data(surface.mesh, surface.crps,
+                                                 simulation.types(), cells, "", r.seed));
+    };
+    look();
     if (r.progress) r.progress(0);
     simulation.run([&](double f) {
         if (r.progress) r.progress(f);
+        look();
     });
     {
         // Pattern before growth: the one sample is the start.

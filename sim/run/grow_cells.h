@@ -11,6 +11,7 @@
 #include <string>
 
 #include "sim/cells_io/cells_file.h"
+#include "sim/crps/surface.h"
 #include "sim/mosaic/cell_types.h"
 #include "sim/mosaic/cm_simulation.h"
 #include "sim/remesh/cell_scale_surface.h"
@@ -31,7 +32,19 @@ struct GrowRequest {
     std::function<void(double)> progress;
     // Told what the run does before it starts, e.g. that it simplifies the surface.
     std::function<void(const std::string &)> note;
+    // A live view of the run (`pelage explore`): asked after the initial relaxation and
+    // after every relaxation step whether a snapshot is wanted, then handed the cells as
+    // they stand, packed as a .cells file holds them (params_json empty) on the
+    // simulation surface. Not called when unset; neither changes the run.
+    std::function<bool()> snapshot_due;
+    std::function<void(const Surface &surface, CellsData &&cells)> snapshot;
+    // Asked as often as snapshot_due; true abandons the run: grow_cells() throws
+    // GrowCancelled.
+    std::function<bool()> cancelled;
 };
+
+// Thrown by grow_cells() when the request's `cancelled` says so.
+struct GrowCancelled {};
 
 struct GrownCells {
     Preset preset;

@@ -1,0 +1,373 @@
+#include "renderer/explore/explore_session.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+
+#include "renderer/explore/pattern_texture.h"
+#include "shader/mosaic/pattern.h"
+#include "shader/statistics/stats_report.h"
+#include "shader/transfer/surface_transfer.h"
+#include "sim/cells_io/cells_file.h"
+#include "sim/core/atomic_file.h"
+#include "sim/core/input_error.h"
+#include "sim/mesh/mesh_write_obj.h"
+#include "sim/mosaic/cell_types.h"
+#include "sim/mosaic/cm_simulation.h"
+#include "sim/remesh/simplify.h"
+#include "sim/run/grow_cells.h"
+
+namespace pelage::renderer::explore {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double since(Clock::time_point t0) {
+    return std::chrono::duration<double>(Clock::now() - t0).count();
+}
+
+template <class T>
+void put(std::vector<uint8_t> &out, const T &v) {
+    const size_t at = out.size();
+    out.resize(at + sizeof(T));
+    std::memcpy(out.data() + at, &v, sizeof(T));
+}
+
+// The page's mesh: the triangles unwelded (each has its own texture tile), with normals
+// averaged over the faces around each vertex (by angle-free area weighting), so the
+// surface shades smoothly.
+std::vector<uint8_t> pack_mesh(const sim::TriangleMesh &mesh,
+                               const TypeTextureLayout &l) {
+    const size_t n = mesh.num_triangles();
+    std::vector<sim::Vec3d> normal(mesh.positions.size(), sim::Vec3d{0, 0, 0});
+    for (const auto &t : mesh.triangles) {
+        const sim::Vec3d a = mesh.positions[t[0]], b = mesh.positions[t[1]],
+                         c = mesh.positions[t[2]];
+        const sim::Vec3d f = cross(b - a, c - a);  // twice the area, along the normal
+        for (sim::VertId v : t) normal[v] = normal[v] + f;
+    }
+    std::vector<uint8_t> out;
+    out.reserve(4 + n * 24 * 4);
+    put(out, uint32_t(n));
+    for (const auto &t : mesh.triangles)
+        for (sim::VertId v : t)
+            for (double x :
+                 {mesh.positions[v].x, mesh.positions[v].y, mesh.positions[v].z})
+                put(out, float(x));
+    for (const auto &t : mesh.triangles)
+        for (sim::VertId v : t) {
+            const double len = length(normal[v]);
+            const sim::Vec3d u = len > 0 ? normal[v] / len : sim::Vec3d{0, 1, 0};
+            for (double x : {u.x, u.y, u.z}) put(out, float(x));
+        }
+    for (float uv : l.corner_uvs) put(out, uv);
+    return out;
+}
+
+std::string read_text(const std::string &path) {
+    std::ifstream in(path, std::ios::binary);
+    return std::string(std::istreambuf_iterator<char>(in), {});
+}
+
+}  // namespace
+
+std::string simulation_key(const nlohmann::json &preset) {
+    nlohmann::json j = preset;
+    for (const char *k : {"name", "description", "source", "notes", "published"})
+        j.erase(k);
+    if (j.contains("types") && j["types"].is_array())
+        for (nlohmann::json &t : j["types"])
+            if (t.is_object())
+                for (const char *k :
+                     {"colour", "color", "eumelanin", "pheomelanin", "notes"})
+                    t.erase(k);
+    return j.dump();
+}
+
+ExploreSession::ExploreSession(ExploreOptions options) : m_options(std::move(options)) {
+    m_input = std::make_unique<sim::Surface>(sim::build_surface(m_options.mesh));
+    m_input_hash = sim::mesh_hash(m_input->mesh);
+    std::filesystem::create_directories(m_options.work_dir);
+    // The page draws the input mesh whatever surface a stage simulates on.
+    m_layout = std::make_unique<TypeTextureLayout>(
+        layout_type_texture(m_input->mesh, m_options.texture_size));
+    m_mesh_bytes = pack_mesh(m_input->mesh, *m_layout);
+    m_mesh_version = 1;
+    m_state = {{"stage", ""},      {"phase", ""},  {"progress", 0.0},
+               {"running", false}, {"error", ""},  {"job", 0},
+               {"stats", nullptr}, {"timing", {}}, {"mesh", m_options.mesh}};
+    m_worker = std::thread([this] { work(); });
+}
+
+ExploreSession::~ExploreSession() {
+    {
+        std::lock_guard lock(m_mutex);
+        m_stop = true;
+    }
+    m_wake.notify_all();
+    m_worker.join();
+}
+
+void ExploreSession::changed() {
+    ++m_version;
+    m_changed.notify_all();
+}
+
+uint64_t ExploreSession::submit(const std::string &preset_json, uint64_t seed) {
+    // The parser's own checks and messages; the file name is the page's field.
+    const sim::Preset preset = sim::parse_preset(preset_json, "preset");
+    if (preset.growth && preset.growth->has_mesh_keys())
+        throw InputError("preset", 0, "growth",
+                         "growth keys that name mesh files are not explored (grow it "
+                         "with `pelage sim`)");
+    const nlohmann::json parsed = nlohmann::json::parse(preset_json);
+    const std::string key = simulation_key(parsed) + "#" + std::to_string(seed);
+    std::lock_guard lock(m_mutex);
+    m_state["preset"] = parsed;
+    m_state["seed"] = seed;
+    nlohmann::json types = nlohmann::json::array();
+    for (const sim::CellType &t : preset.types.types())
+        types.push_back({{"name", t.name}, {"colour", t.colour}});
+    m_state["types"] = types;
+    if (key == m_sim_key) {
+        // The same cells: the finished ones are labelled with the new preset when the
+        // worker is idle, else the running job takes the new text at its end.
+        m_pending.preset_text = preset_json;
+        if (m_result.ready) {
+            sim::CellsData data = sim::read_cells_file(m_result.cells_path);
+            nlohmann::json params = nlohmann::json::parse(data.params_json);
+            params["preset"] = nlohmann::json::parse(preset.json_text);
+            data.params_json = params.dump();
+            data.types = preset.types.types();
+            sim::write_cells_file(m_result.cells_path, data);
+            write_file_atomically(m_result.preset_path,
+                                  [&](std::ostream &out) { out << preset_json; });
+            m_result.preset_text = preset_json;
+        }
+        changed();
+        return 0;
+    }
+    m_sim_key = key;
+    m_pending = {++m_next_id, preset_json, seed};
+    m_result.ready = false;
+    m_state["job"] = m_pending.id;
+    m_state["running"] = true;
+    m_state["error"] = "";
+    m_state["stage"] = "";
+    m_state["progress"] = 0.0;
+    m_state["stats"] = nullptr;
+    m_state["timing"] = nlohmann::json::object();
+    changed();
+    m_wake.notify_all();
+    return m_pending.id;
+}
+
+nlohmann::json ExploreSession::status(uint64_t after, double wait_seconds) const {
+    std::unique_lock lock(m_mutex);
+    m_changed.wait_for(lock, std::chrono::duration<double>(wait_seconds),
+                       [&] { return m_version > after || m_stop; });
+    nlohmann::json j = m_state;
+    j["version"] = m_version;
+    j["mesh_version"] = m_mesh_version;
+    j["texture_version"] = m_texture_version;
+    j["texture_size"] = m_options.texture_size;
+    j["result_ready"] = m_result.ready;
+    return j;
+}
+
+std::vector<uint8_t> ExploreSession::mesh_bytes(uint64_t *version) const {
+    std::lock_guard lock(m_mutex);
+    *version = m_mesh_version;
+    return m_mesh_bytes;
+}
+
+std::vector<uint8_t> ExploreSession::texture_bytes(uint64_t *version) const {
+    std::lock_guard lock(m_mutex);
+    *version = m_texture_version;
+    return m_texture;
+}
+
+ExploreResult ExploreSession::result() const {
+    std::lock_guard lock(m_mutex);
+    return m_result;
+}
+
+void ExploreSession::work() {
+    for (;;) {
+        Job job;
+        {
+            std::unique_lock lock(m_mutex);
+            m_wake.wait(lock, [&] { return m_stop || m_pending.id > m_started; });
+            if (m_stop) return;
+            job = m_pending;
+            m_started = job.id;
+        }
+        try {
+            run_job(job);
+        } catch (const sim::GrowCancelled &) {
+            // A newer job is pending: the loop takes it.
+        } catch (const std::exception &e) {
+            std::lock_guard lock(m_mutex);
+            if (m_pending.id == job.id) {
+                m_state["error"] = e.what();
+                m_state["running"] = false;
+                changed();
+            }
+        }
+    }
+}
+
+std::string ExploreSession::preview_surface() {
+    if (m_preview_tried) return m_preview_mesh;
+    m_preview_tried = true;
+    const sim::TriangleMesh &input = m_input->mesh;
+    // Meshes this light simulate a preview on themselves in a moment; far heavier ones
+    // would spend longer simplifying than the preview saves.
+    if (input.num_triangles() < 2000 || input.num_triangles() > 200000) return "";
+    sim::Bounds3 box;
+    for (const sim::Vec3d &p : input.positions) box.extend(p);
+    const double bound = m_options.preview_deviation * box.diagonal();
+    // Edges √divisor times the input's: the preview's triangles hold as many cells as
+    // the full run's. Halved while the copy strays from the input (a thin part
+    // collapsed).
+    double edge = std::sqrt(m_options.preview_divisor) * sim::mean_edge_length(input);
+    for (int attempt = 0; attempt < 3; ++attempt, edge *= 0.5) {
+        const sim::TriangleMesh coarse = sim::simplify(input, {edge, bound});
+        if (sim::max_vertex_distance(input, coarse) > 1.5 * bound) continue;
+        m_preview_mesh = m_options.work_dir + "/preview_surface.obj";
+        sim::write_obj(m_preview_mesh, coarse, {});
+        return m_preview_mesh;
+    }
+    return "";
+}
+
+void ExploreSession::run_job(const Job &job) {
+    const Clock::time_point t0 = Clock::now();
+    const std::string dir = m_options.work_dir;
+    const std::string preset_path = dir + "/job.json";
+    write_file_atomically(preset_path,
+                          [&](std::ostream &out) { out << job.preset_text; });
+    const sim::Preset preset = sim::parse_preset(job.preset_text, preset_path);
+    const uint64_t full = sim::initial_cell_count(preset.params, m_input->crps);
+    const uint64_t preview = std::max<uint64_t>(
+        m_options.preview_min_cells,
+        uint64_t(std::llround(double(full) / m_options.preview_divisor)));
+    struct Stage {
+        const char *name;
+        uint64_t cells;    // 0: the preset's own count
+        std::string mesh;  // the surface it grows on
+        bool simplify;     // to the cells' scale, as `pelage sim` does
+    };
+    std::vector<Stage> stages;
+    if (2 * preview < full)
+        if (const std::string coarse = preview_surface(); !coarse.empty())
+            stages.push_back({"preview", preview, coarse, false});
+    stages.push_back({"full", 0, m_options.mesh, true});
+
+    auto stale = [&] {
+        std::lock_guard lock(m_mutex);
+        return m_stop || m_pending.id != job.id;
+    };
+    double texture_seconds = 0;  // what the last snapshot's texture took
+    auto show = [&](const sim::Crps &crps, const sim::CellsData &cells,
+                    const shader::transfer::SurfaceTransfer *transfer,
+                    const char *stage) {
+        const Clock::time_point start = Clock::now();
+        std::vector<uint8_t> texture = type_texture(*m_layout, crps, cells, transfer);
+        texture_seconds = since(start);
+        std::lock_guard lock(m_mutex);
+        if (m_pending.id != job.id) return;
+        m_texture = std::move(texture);
+        ++m_texture_version;
+        m_state["texture_stage"] = stage;
+        m_state["texture_job"] = job.id;
+        m_state["texture_cells"] = cells.num_cells();
+        if (!m_state["timing"].contains("first_pattern_seconds"))
+            m_state["timing"]["first_pattern_seconds"] = since(t0);
+        changed();
+    };
+
+    for (const Stage &stage : stages) {
+        {
+            std::lock_guard lock(m_mutex);
+            m_state["stage"] = stage.name;
+            m_state["progress"] = 0.0;
+            changed();
+        }
+        Clock::time_point last_snapshot = Clock::now() - std::chrono::hours(1);
+        Clock::time_point last_progress = last_snapshot;
+        sim::GrowRequest r;
+        r.mesh = stage.mesh;
+        r.simplify = stage.simplify;
+        r.preset = preset_path;
+        r.preset_dir = m_options.preset_dir;
+        r.seed = job.seed;
+        r.initial_cells = stage.cells;
+        r.phase = [&](const std::string &phase) {
+            std::lock_guard lock(m_mutex);
+            m_state["phase"] = phase;
+            changed();
+        };
+        r.progress = [&](double f) {
+            if (since(last_progress) < 0.1 && f < 1) return;
+            last_progress = Clock::now();
+            std::lock_guard lock(m_mutex);
+            m_state["progress"] = f;
+            changed();
+        };
+        r.cancelled = stale;
+        // Snapshots take at most a quarter of the time: the texture of 100 000 cells
+        // takes longer than the interval.
+        r.snapshot_due = [&] {
+            return since(last_snapshot) >=
+                   std::max(m_options.snapshot_seconds, 3 * texture_seconds);
+        };
+        // A stage on another surface than the page's mesh: the texels are carried onto
+        // it, as the renderer carries a render mesh.
+        std::unique_ptr<shader::transfer::SurfaceTransfer> transfer;
+        r.snapshot = [&](const sim::Surface &surface, sim::CellsData &&cells) {
+            if (cells.mesh_hash != m_input_hash && !transfer)
+                transfer = std::make_unique<shader::transfer::SurfaceTransfer>(
+                    surface, m_input->mesh, stage.mesh, m_options.mesh);
+            show(surface.crps, cells, transfer.get(), stage.name);
+            last_snapshot = Clock::now();
+        };
+        const sim::GrownCells grown = sim::grow_cells(r);
+        const std::string cells_path = dir + "/" + stage.name + ".cells";
+        sim::write_cells_file(cells_path, grown.data);
+        // The finished cells as the renderer finds them: on the input mesh, through the
+        // same pattern class (and its surface transfer) `pelage stats --mesh` uses.
+        const shader::mosaic::MosaicPattern pattern(cells_path, m_options.mesh);
+        show(pattern.surface().crps, pattern.data(), pattern.transfer(), stage.name);
+        const nlohmann::json stats =
+            shader::statistics::stats_report(pattern, cells_path, {});
+        std::lock_guard lock(m_mutex);
+        if (m_pending.id != job.id) throw sim::GrowCancelled{};
+        m_state["stats"] = stats;
+        m_state["stats_stage"] = stage.name;
+        m_state["timing"][std::string(stage.name) + "_seconds"] = since(t0);
+        if (std::string(stage.name) == "full") {
+            m_state["running"] = false;
+            m_state["progress"] = 1.0;
+            // A look-only change that arrived while this ran is the job's text now.
+            const std::string text = m_pending.preset_text;
+            sim::CellsData data = grown.data;
+            if (text != job.preset_text) {
+                const sim::Preset now = sim::parse_preset(text, "preset");
+                nlohmann::json params = nlohmann::json::parse(data.params_json);
+                params["preset"] = nlohmann::json::parse(now.json_text);
+                data.params_json = params.dump();
+                data.types = now.types.types();
+                sim::write_cells_file(cells_path, data);
+            }
+            write_file_atomically(preset_path, [&](std::ostream &out) { out << text; });
+            m_result = {true, text, job.seed, cells_path, preset_path};
+        }
+        changed();
+    }
+}
+
+}  // namespace pelage::renderer::explore
