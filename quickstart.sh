@@ -23,6 +23,8 @@ packages=(
     ffmpeg               # pelage movie (encodes EXR sequences)
     fonts-dejavu-core    # labels of `pelage compare` contact sheets
     slurm-wlm munge      # tests: the farm recipe on a private Slurm cluster (tests/farm)
+    libcpp-httplib-dev libjs-three   # pelage explore: its HTTP server and its page's 3D view
+    chromium chromium-driver         # tests: the explorer's page in a headless browser
 )
 missing=()
 for p in "${packages[@]}"; do
