@@ -127,7 +127,7 @@ int run(const ExploreCliOptions &o) {
     hooks.render = [&](const explore::ExploreResult &r, int width, int height, int spp,
                        const std::string &png) {
         LookSetup s = base;
-        s.mesh = fs::absolute(mesh).string();
+        s.mesh = mesh_for_scene(mesh, work);
         s.cells = r.cells_path;
         s.preset = r.preset_path;
         s.seed = r.seed;
