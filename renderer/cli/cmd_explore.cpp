@@ -6,6 +6,7 @@
 #include <signal.h>
 #include <stdlib.h>
 
+#include <csignal>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -81,6 +82,18 @@ LookSetup explore_setup(const explore::ExploreSession &session) {
 }
 
 int run(const ExploreCliOptions &o) {
+    // Ctrl-C and SIGTERM stop the server from a thread of their own (started below); the
+    // workers finish and the working folder is removed. Blocked before any thread starts,
+    // so that every thread inherits the mask and none dies of them. A shell starts
+    // background jobs with SIGINT ignored, and an ignored signal never reaches sigwait:
+    // the default is restored.
+    std::signal(SIGINT, SIG_DFL);
+    std::signal(SIGTERM, SIG_DFL);
+    sigset_t stop_signals;
+    sigemptyset(&stop_signals);
+    sigaddset(&stop_signals, SIGINT);
+    sigaddset(&stop_signals, SIGTERM);
+    pthread_sigmask(SIG_BLOCK, &stop_signals, nullptr);
     const auto control = o.threads.apply();
     std::string mesh = o.mesh;
     if (mesh.empty()) {
@@ -168,13 +181,6 @@ int run(const ExploreCliOptions &o) {
     explore::ExploreServer server(session, data_path("explore"), shipped_presets(),
                                   hooks);
     const int port = server.bind(o.host, o.port);
-    // Ctrl-C and SIGTERM stop the server from a thread of their own; the workers finish
-    // and the working folder is removed.
-    sigset_t stop_signals;
-    sigemptyset(&stop_signals);
-    sigaddset(&stop_signals, SIGINT);
-    sigaddset(&stop_signals, SIGTERM);
-    pthread_sigmask(SIG_BLOCK, &stop_signals, nullptr);
     std::thread waiter([&] {
         int sig = 0;
         sigwait(&stop_signals, &sig);

@@ -3,7 +3,8 @@
 # temporary prefix, the prefix copied to a second place and the first removed, then,
 # from a working folder outside both trees and with none of pelage's environment
 # variables set: `pelage shaders`, `pelage sim` with a preset by name on a procedural
-# mesh, and `pelage render` of a clonal_mosaic scene with an OCIO view. Nothing may come
+# mesh, `pelage render` of a clonal_mosaic scene with an OCIO view, and `pelage explore`
+# serving its page and three.js. Nothing may come
 # from the build or source tree: no installed file has either on its RPATH, the dynamic
 # loader opens no file in them, and with a part of the installation taken away the
 # command fails naming the installation's path instead of falling back to the sources.
@@ -43,7 +44,10 @@ cd "$work/cwd" || exit 1
 
 for f in bin/pelage lib/pelage/libpelage_cli.so lib/pelage/shaders/clonal_mosaic.so \
     lib/pelage/shaders/diffuse.so share/pelage/ocio/config.ocio \
-    share/pelage/ocio/luts/filmic.spi1d share/pelage/scenes/presets/walter-cheetah.json; do
+    share/pelage/ocio/luts/filmic.spi1d share/pelage/scenes/presets/walter-cheetah.json \
+    share/pelage/explore/index.html share/pelage/explore/explore.js \
+    share/pelage/explore/three/build/three.module.js \
+    share/pelage/explore/three/examples/jsm/controls/OrbitControls.js; do
     [ -s "$prefix/$f" ] || fail "$f is not installed"
 done
 
@@ -91,6 +95,32 @@ run render "$pelage" render scene.json
 [ "$rc" = 0 ] || fail "pelage render: exit $rc: $(tail -3 "$work/render.err")"
 [ -s out/coat.exr ] || fail "pelage render wrote no EXR"
 [ -s out/coat.png ] || fail "pelage render wrote no preview"
+
+# `pelage explore` serves the installation's page and its copy of three.js.
+timeout 60 "$pelage" explore procedural:sphere:12x12 --preset walter-cheetah --port 0 \
+    >"$work/explore.out" 2>"$work/explore.err" &
+explore_pid=$!
+url=""
+for _ in $(seq 100); do
+    url=$(grep -o 'http://127.0.0.1:[0-9]*/' "$work/explore.out")
+    [ -n "$url" ] && break
+    sleep 0.1
+done
+if [ -z "$url" ]; then
+    fail "pelage explore printed no URL: $(tail -3 "$work/explore.err")"
+else
+    python3 - "$url" <<'PY' || fail "pelage explore does not serve its page"
+import sys, urllib.request
+for path, needle in (("", b"pelage explore"), ("three/build/three.module.js", b"REVISION"),
+                     ("three/examples/jsm/controls/OrbitControls.js", b"OrbitControls")):
+    with urllib.request.urlopen(sys.argv[1] + path, timeout=10) as r:
+        assert needle in r.read(), path
+PY
+fi
+kill -INT "$explore_pid" 2>/dev/null
+wait "$explore_pid"
+rc=$?
+[ "$rc" = 0 ] || fail "pelage explore did not stop cleanly on Ctrl-C: exit $rc"
 
 # Without the installation's OCIO config or presets the command fails naming where they
 # should have been: there is no copy in the source tree to fall back on.
