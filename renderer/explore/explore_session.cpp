@@ -244,6 +244,20 @@ std::string ExploreSession::preview_surface() {
     return "";
 }
 
+const SampleTargets *ExploreSession::targets_on(const sim::Surface &surface,
+                                                const std::string &name) {
+    const uint64_t h = sim::mesh_hash(surface.mesh);
+    if (h == m_input_hash) return nullptr;
+    auto it = m_targets.find(h);
+    if (it == m_targets.end()) {
+        if (m_targets.size() >= 4) m_targets.clear();
+        const shader::transfer::SurfaceTransfer transfer(surface, m_input->mesh, name,
+                                                         m_options.mesh);
+        it = m_targets.emplace(h, map_samples(*m_layout, transfer)).first;
+    }
+    return &it->second;
+}
+
 void ExploreSession::run_job(const Job &job) {
     const Clock::time_point t0 = Clock::now();
     const std::string dir = m_options.work_dir;
@@ -273,10 +287,9 @@ void ExploreSession::run_job(const Job &job) {
     };
     double texture_seconds = 0;  // what the last snapshot's texture took
     auto show = [&](const sim::Crps &crps, const sim::CellsData &cells,
-                    const shader::transfer::SurfaceTransfer *transfer,
-                    const char *stage) {
+                    const SampleTargets *targets, const char *stage) {
         const Clock::time_point start = Clock::now();
-        std::vector<uint8_t> texture = type_texture(*m_layout, crps, cells, transfer);
+        std::vector<uint8_t> texture = type_texture(*m_layout, crps, cells, targets);
         texture_seconds = since(start);
         std::lock_guard lock(m_mutex);
         if (m_pending.id != job.id) return;
@@ -284,6 +297,7 @@ void ExploreSession::run_job(const Job &job) {
         ++m_texture_version;
         m_state["texture_stage"] = stage;
         m_state["texture_job"] = job.id;
+        m_state["texture_seconds"] = texture_seconds;
         m_state["texture_cells"] = cells.num_cells();
         if (!m_state["timing"].contains("first_pattern_seconds"))
             m_state["timing"]["first_pattern_seconds"] = since(t0);
@@ -325,14 +339,8 @@ void ExploreSession::run_job(const Job &job) {
             return since(last_snapshot) >=
                    std::max(m_options.snapshot_seconds, 3 * texture_seconds);
         };
-        // A stage on another surface than the page's mesh: the texels are carried onto
-        // it, as the renderer carries a render mesh.
-        std::unique_ptr<shader::transfer::SurfaceTransfer> transfer;
         r.snapshot = [&](const sim::Surface &surface, sim::CellsData &&cells) {
-            if (cells.mesh_hash != m_input_hash && !transfer)
-                transfer = std::make_unique<shader::transfer::SurfaceTransfer>(
-                    surface, m_input->mesh, stage.mesh, m_options.mesh);
-            show(surface.crps, cells, transfer.get(), stage.name);
+            show(surface.crps, cells, targets_on(surface, stage.mesh), stage.name);
             last_snapshot = Clock::now();
         };
         const sim::GrownCells grown = sim::grow_cells(r);
@@ -341,7 +349,8 @@ void ExploreSession::run_job(const Job &job) {
         // The finished cells as the renderer finds them: on the input mesh, through the
         // same pattern class (and its surface transfer) `pelage stats --mesh` uses.
         const shader::mosaic::MosaicPattern pattern(cells_path, m_options.mesh);
-        show(pattern.surface().crps, pattern.data(), pattern.transfer(), stage.name);
+        show(pattern.surface().crps, pattern.data(),
+             targets_on(pattern.surface(), stage.mesh), stage.name);
         const nlohmann::json stats =
             shader::statistics::stats_report(pattern, cells_path, {});
         std::lock_guard lock(m_mutex);

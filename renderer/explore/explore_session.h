@@ -16,6 +16,7 @@
 
 #include <condition_variable>
 #include <cstdint>
+#include <map>
 #include <memory>
 #include <mutex>
 #include <nlohmann/json.hpp>
@@ -94,6 +95,9 @@ class ExploreSession {
     // The preview's surface (a mesh file in the work folder), made on first use; "" when
     // none would help or none keeps to the input.
     std::string preview_surface();
+    // Where the layout's samples lie on `surface` (null: it is the input mesh), kept
+    // per surface: a preview's surface serves every job.
+    const SampleTargets *targets_on(const sim::Surface &surface, const std::string &name);
     // Under m_mutex: records a change for the page.
     void changed();
 
@@ -103,6 +107,7 @@ class ExploreSession {
     std::unique_ptr<TypeTextureLayout> m_layout;  // on the input mesh
     bool m_preview_tried = false;                 // the worker's own
     std::string m_preview_mesh;
+    std::map<uint64_t, SampleTargets> m_targets;  // the worker's own, by mesh hash
 
     mutable std::mutex m_mutex;
     mutable std::condition_variable m_changed;

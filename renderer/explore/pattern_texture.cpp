@@ -9,7 +9,6 @@
 
 #include "shader/mosaic/cell_table.h"
 #include "shader/mosaic/closest_cell.h"
-#include "shader/transfer/surface_transfer.h"
 
 namespace pelage::renderer::explore {
 namespace {
@@ -89,6 +88,14 @@ TypeTextureLayout layout_type_texture(const sim::TriangleMesh &mesh, int size) {
         const float uv[6] = {x0 / s, y0 / s, (x0 + d) / s, y0 / s, x0 / s, (y0 + d) / s};
         std::copy(uv, uv + 6, &l.corner_uvs[6 * t]);
         const int k = fits.k[t];
+        auto at = [&](int i, int j) {
+            return uint32_t(fits.y[t] + j) * uint32_t(size) + uint32_t(fits.x[t] + i);
+        };
+        for (int j = 0; j < k; ++j)
+            for (int i = k - j; i < k; ++i) {
+                const int e = i + j - (k - 1);
+                l.fill.push_back({at(i, j), at(i - e / 2, j - (e - e / 2))});
+            }
         for (int j = 0; j < k; ++j)
             for (int i = 0; i + j <= k - 1; ++i) {
                 l.texel.push_back(uint32_t(fits.y[t] + j) * uint32_t(size) +
@@ -101,9 +108,21 @@ TypeTextureLayout layout_type_texture(const sim::TriangleMesh &mesh, int size) {
     return l;
 }
 
+SampleTargets map_samples(const TypeTextureLayout &layout,
+                          const shader::transfer::SurfaceTransfer &transfer) {
+    SampleTargets out(layout.texel.size());
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, out.size(), 4096),
+                      [&](const tbb::blocked_range<size_t> &r) {
+                          for (size_t i = r.begin(); i < r.end(); ++i)
+                              out[i] =
+                                  transfer.map(layout.tri[i], layout.b1[i], layout.b2[i]);
+                      });
+    return out;
+}
+
 std::vector<uint8_t> type_texture(const TypeTextureLayout &layout, const sim::Crps &crps,
                                   const sim::CellsData &data,
-                                  const shader::transfer::SurfaceTransfer *transfer) {
+                                  const SampleTargets *targets) {
     if (data.num_triangles() != crps.num_triangles())
         throw std::invalid_argument("type_texture: the cells lie on another surface");
     std::vector<shader::mosaic::CellOnSurface> list;
@@ -115,23 +134,25 @@ std::vector<uint8_t> type_texture(const TypeTextureLayout &layout, const sim::Cr
         shader::mosaic::make_cell_table(data.num_triangles(), list);
     const shader::mosaic::ClosestCellIndex index(crps, table);
     std::vector<uint8_t> out(size_t(layout.size) * size_t(layout.size), no_type);
-    tbb::parallel_for(tbb::blocked_range<size_t>(0, layout.texel.size(), 4096),
-                      [&](const tbb::blocked_range<size_t> &r) {
-                          for (size_t i = r.begin(); i < r.end(); ++i) {
-                              shader::transfer::SurfaceTransfer::Target at{
+    tbb::parallel_for(
+        tbb::blocked_range<size_t>(0, layout.texel.size(), 4096),
+        [&](const tbb::blocked_range<size_t> &r) {
+            for (size_t i = r.begin(); i < r.end(); ++i) {
+                const shader::transfer::SurfaceTransfer::Target at =
+                    targets ? (*targets)[i]
+                            : shader::transfer::SurfaceTransfer::Target{
                                   layout.tri[i], layout.b1[i], layout.b2[i]};
-                              if (transfer) at = transfer->map(at.tri, at.b1, at.b2);
-                              const sim::CrpsFrame &f = crps.frame(at.tri);
-                              const sim::Vec2d e1 = f.v[1] - f.v[0], e2 = f.v[2] - f.v[0];
-                              const shader::mosaic::Vec2f q{
-                                  float(f.v[0].x + at.b1 * e1.x + at.b2 * e2.x),
-                                  float(f.v[0].y + at.b1 * e1.y + at.b2 * e2.y)};
-                              const shader::mosaic::ClosestCell c =
-                                  index.find_nearest(at.tri, q);
-                              if (c.index != shader::mosaic::ClosestCell::none)
-                                  out[layout.texel[i]] = table.type[c.index];
-                          }
-                      });
+                const sim::CrpsFrame &f = crps.frame(at.tri);
+                const sim::Vec2d e1 = f.v[1] - f.v[0], e2 = f.v[2] - f.v[0];
+                const shader::mosaic::Vec2f q{
+                    float(f.v[0].x + at.b1 * e1.x + at.b2 * e2.x),
+                    float(f.v[0].y + at.b1 * e1.y + at.b2 * e2.y)};
+                const shader::mosaic::ClosestCell c = index.find_nearest(at.tri, q);
+                if (c.index != shader::mosaic::ClosestCell::none)
+                    out[layout.texel[i]] = table.type[c.index];
+            }
+        });
+    for (const auto &[to, from] : layout.fill) out[to] = out[from];
     return out;
 }
 

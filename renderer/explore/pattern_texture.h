@@ -13,15 +13,13 @@
 #pragma once
 
 #include <cstdint>
+#include <utility>
 #include <vector>
 
+#include "shader/transfer/surface_transfer.h"
 #include "sim/cells_io/cells_file.h"
 #include "sim/crps/crps.h"
 #include "sim/mesh/mesh.h"
-
-namespace pelage::shader::transfer {
-class SurfaceTransfer;
-}
 
 namespace pelage::renderer::explore {
 
@@ -34,19 +32,29 @@ struct TypeTextureLayout {
     std::vector<uint32_t> texel;
     std::vector<sim::TriId> tri;
     std::vector<float> b1, b2;
+    // The rest of each tile, (texel, sample's texel): a copy of the nearest sample on the
+    // triangle's long edge. A multisampled fragment at a triangle's border may read just
+    // outside the triangle's half of its tile.
+    std::vector<std::pair<uint32_t, uint32_t>> fill;
 };
 
 // `size` ≥ 2 × √(triangles) so that every triangle gets a tile of at least 2 × 2 texels;
 // throws std::invalid_argument otherwise.
 TypeTextureLayout layout_type_texture(const sim::TriangleMesh &mesh, int size);
 
+// Where each sample of the layout lies on another surface of the same shape (a
+// simplified or refined copy), as the renderer carries its mesh onto the one the cells
+// were grown on (shader/transfer/surface_transfer.h).
+using SampleTargets = std::vector<shader::transfer::SurfaceTransfer::Target>;
+SampleTargets map_samples(const TypeTextureLayout &layout,
+                          const shader::transfer::SurfaceTransfer &transfer);
+
 // Texel value: the type index of the nearest cell (255 outside every triangle, or where
 // no cell is reachable). `cells` lie on `crps`'s triangles: the layout's mesh, or the
-// surface `transfer` carries the layout's mesh onto (a simplified or refined copy, as
-// the renderer carries its mesh: shader/transfer/surface_transfer.h).
+// surface `targets` (map_samples) place the samples on.
 constexpr uint8_t no_type = 255;
-std::vector<uint8_t> type_texture(
-    const TypeTextureLayout &layout, const sim::Crps &crps, const sim::CellsData &cells,
-    const shader::transfer::SurfaceTransfer *transfer = nullptr);
+std::vector<uint8_t> type_texture(const TypeTextureLayout &layout, const sim::Crps &crps,
+                                  const sim::CellsData &cells,
+                                  const SampleTargets *targets = nullptr);
 
 }  // namespace pelage::renderer::explore

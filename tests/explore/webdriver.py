@@ -77,6 +77,11 @@ class Browser:
         return _call("POST", self._s("/execute/sync"),
                      {"script": script, "args": list(args)})["value"]
 
+    def js_async(self, script, *args):
+        """Runs `script`, which calls its last argument with the result, in the page."""
+        return _call("POST", self._s("/execute/async"),
+                     {"script": script, "args": list(args)})["value"]
+
     def wait(self, script, timeout, what):
         """Waits until `script` returns a truthy value; returns it."""
         deadline = time.time() + timeout

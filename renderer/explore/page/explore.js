@@ -45,7 +45,8 @@ const state = {
   meshVersion: 0,
   textureVersion: 0,
   job: 0,
-  sentAt: null,      // when the last simulating change was sent (performance.now())
+  changedAt: null,   // when the change being sent was made (performance.now())
+  sentAt: null,      // ... the last simulating one, until its first pattern shows
   sentJob: null,
   timings: [],       // change → first pattern shown, ms, per simulating change
 };
@@ -107,13 +108,26 @@ function resize() {
     camera.updateProjectionMatrix();
   }
 }
-function frame() {
-  resize();
-  controls.update();
-  renderer.render(scene, camera);
+// Drawn only when something changed (the view moved, a texture or colour arrived): a
+// page drawn in software would otherwise take a core from the simulation.
+let framePending = false;
+function redraw() {
+  if (framePending) return;
+  framePending = true;
   requestAnimationFrame(frame);
 }
-requestAnimationFrame(frame);
+function frame() {
+  framePending = false;
+  resize();
+  const moving = controls.update();  // true while the view glides to a stop
+  renderer.render(scene, camera);
+  if (moving) redraw();
+}
+controls.addEventListener('change', redraw);
+state.controls = controls;  // for tests and the curious
+state.redraw = redraw;
+window.addEventListener('resize', redraw);
+redraw();
 
 async function loadMesh() {
   const r = await fetch('api/mesh');
@@ -140,6 +154,7 @@ async function loadMesh() {
   camera.far = s.radius * 100;
   camera.updateProjectionMatrix();
   state.meshVersion = version;
+  redraw();
 }
 
 async function loadTexture(status) {
@@ -162,6 +177,7 @@ async function loadTexture(status) {
   }
   texture.needsUpdate = true;
   state.textureVersion = version;
+  redraw();
   if (state.sentAt !== null && status.texture_job === state.sentJob) {
     // Shown once the browser has drawn it.
     const sent = state.sentAt;
@@ -189,6 +205,7 @@ function applyPalette() {
     const c = types[i] ? (types[i].colour || types[i].color) : null;
     if (c) palette[i].set(c[0], c[1], c[2]);
   }
+  redraw();
 }
 
 // --- The panel, built from the preset ---
@@ -424,12 +441,14 @@ let sendTimer = null;
 function changed() {
   // A dragged slider sends at most every 150 ms; the server cancels the stale run.
   if (sendTimer) return;
+  state.changedAt = performance.now();  // the wait the user sees starts here
   sendTimer = setTimeout(() => { sendTimer = null; send(); }, 150);
 }
 
 async function send() {
   const seed = Number(document.getElementById('seed').value);
-  const sentAt = performance.now();
+  const sentAt = state.changedAt ?? performance.now();
+  state.changedAt = null;
   const r = await fetch('api/preset', {
     method: 'POST',
     headers: { 'Content-Type': 'application/json' },

@@ -84,7 +84,8 @@ TEST(TypeTexture, EveryTexelHoldsTheNearestCellsTypeOnAPlane) {
     }
     EXPECT_GT(checked, layout.texel.size() * 99 / 100);
     EXPECT_EQ(agree, checked);
-    EXPECT_EQ(covered, layout.texel.size());  // every sample's texel, and only those
+    // Every texel of every tile, and only those: the samples and the rest of the tiles.
+    EXPECT_EQ(covered, layout.texel.size() + layout.fill.size());
 }
 
 TEST(TypeTexture, NearestFilteringReadsTheFragmentsOwnTriangleOnTheCow) {
