@@ -10,12 +10,16 @@ Measured, per drag of the giraffe's repulsion radius w_r (the slider's input eve
   server_first_s       the server's share: from the run's start to its first texture
   preview_s, full_s    from the run's start to the preview's and the full scale's end
 and the page's frame rate while the view turns and the server simulates (its largest gap
-between frames)."""
+between frames); then the path-traced preview, and whether `pelage render` of the saved
+scene gives the very same image."""
 import json
 import os
 import statistics
+import subprocess
 import sys
+import tempfile
 import time
+import urllib.request
 
 here = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, os.path.join(here, "..", "..", "tests", "explore"))
@@ -55,7 +59,9 @@ def drag(b, value):
 def main(pelage, mesh, images):
     out = {"mesh": os.path.basename(mesh), "preset": "giraffe-reticulata", "seed": 1,
            "browser": "headless Chromium, SwiftShader WebGL", "window": [1400, 900]}
-    with webdriver.Explorer(pelage, [mesh]) as ex, webdriver.Browser(1400, 900) as b:
+    with tempfile.TemporaryDirectory() as saved, \
+            webdriver.Explorer(pelage, [mesh, "--out", saved]) as ex, \
+            webdriver.Browser(1400, 900) as b:
         b.get(ex.url)
         first = b.wait(READY.replace("JOB", "1"), 300, "the first full-scale pattern")
         out["texture_size"] = first["texture_size"]
@@ -92,6 +98,29 @@ def main(pelage, mesh, images):
         out["changes"] = changes
         out["change_to_pattern_median_s"] = statistics.median(
             c["change_to_pattern_s"] for c in changes)
+
+        # Render and save, as the docs' last screenshot shows them; then the saved scene
+        # rendered by `pelage render` at the preview's size and samples.
+        t0 = time.time()
+        b.js("document.getElementById('render').click()")
+        b.wait("const t = document.getElementById('render-status').textContent;"
+               "return t.startsWith('64 samples') && !t.endsWith('…')", 300, "the render")
+        out["render_480x270_64spp_s"] = time.time() - t0
+        b.js("document.getElementById('save-name').value = 'explore_cow';"
+             "document.getElementById('save').click();")
+        b.wait("return document.getElementById('saved').textContent.startsWith('saved')",
+               60, "the save")
+        b.js("document.getElementById('panel').scrollTop = 1e6")
+        time.sleep(1)
+        b.screenshot(os.path.join(images, "explore_cow_render.png"))
+        with urllib.request.urlopen(ex.url + "api/render.png", timeout=30) as r:
+            page_png = r.read()
+        png = os.path.join(saved, "check.png")
+        t0 = time.time()
+        subprocess.run([pelage, "render", os.path.join(saved, "explore_cow.json"), "--res",
+                        "480x270", "--spp", "64", "--preview", png, "-q"], check=True)
+        out["saved_scene_render_s"] = time.time() - t0
+        out["saved_scene_renders_the_same_image"] = open(png, "rb").read() == page_png
     json.dump(out, sys.stdout, indent=2)
     print()
 

@@ -23,7 +23,8 @@ import sys
 
 DOCS = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 DATA = os.path.join(DOCS, "data")
-FILES = ["performance.md", "validation.md", "guide/presets.md", "guide/growth-and-control.md"]
+FILES = ["performance.md", "validation.md", "guide/presets.md", "guide/growth-and-control.md",
+         "guide/explore.md"]
 MARKER = re.compile(
     r"(<!-- BEGIN generated: (?P<name>[\w.-]+) -->\n)(?P<body>.*?)(<!-- END generated: (?P=name) -->)",
     re.S)
@@ -626,6 +627,30 @@ def t_look_animals():
             "remeshing included (`docs/tools/look_animals.py`).\n")
 
 
+def t_explore():
+    d = data("explore")
+    rows = []
+    for c in d["changes"]:
+        rows.append([num(c["w_r"]), num(c["change_to_pattern_s"]), num(c["server_first_s"]),
+                     num(c["preview_s"]), num(c["full_s"]), num(c["spots"]),
+                     num(c["spot_fraction_by_area"])])
+    met = d["change_to_pattern_median_s"] <= 1
+    return (table(["w_r dragged to", "change → first pattern shown, s", "server's share, s",
+                   "preview done, s", "full scale done, s", "spots", "spot fraction by area"],
+                  rows) +
+            f"\nMedian from a changed control to the first pattern on the page: "
+            f"**{num(d['change_to_pattern_median_s'])} s** "
+            f"({'within' if met else 'over'} the 1 s target). While the server simulated, "
+            f"the page turned its view at {num(d['fps_while_simulating'])} frames per second "
+            f"(longest gap {num(d['longest_frame_gap_s'])} s), drawn in software. The "
+            f"path-traced preview (480×270, 64 spp) took {num(d['render_480x270_64spp_s'])} s; "
+            f"`pelage render` of the saved scene "
+            f"{'gave the very same image' if d['saved_scene_renders_the_same_image'] else 'gave another image'}"
+            f". `pelage explore` on {d['mesh']} with {d['preset']} (seed {d['seed']}, "
+            f"{num(d['cells'])} cells at full scale), driven in {d['browser']} on the same two "
+            f"cores (`docs/tools/explore_page.py`).\n")
+
+
 TABLES = {
     "machine": t_machine, "crps": t_crps, "sim": t_sim, "sim-density": t_sim_density, "sim-mclone": t_sim_mclone, "sim-neighbours": t_sim_neighbours, "default-job": t_default_job,
     "lookup": t_lookup, "lookup-lanes": t_lookup_lanes,
@@ -636,7 +661,7 @@ TABLES = {
     "crps-errors": t_crps_errors, "lookup-quality": t_lookup_quality,
     "hair-furnace": t_hair_furnace, "gallery": t_gallery, "looks": t_looks,
     "control-measures": t_control_measures, "growth-pipelines": t_growth_pipelines,
-    "clip-fox": t_clip_fox, "look-animals": t_look_animals,
+    "clip-fox": t_clip_fox, "look-animals": t_look_animals, "explore": t_explore,
 }
 
 

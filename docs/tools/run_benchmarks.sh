@@ -153,6 +153,11 @@ fi
 run look_animals python3 docs/tools/look_animals.py "$pelage" "$work" \
     >"$out/look_animals.json"
 
+# `pelage explore` on the cow in headless Chromium: its interactivity, and the docs'
+# screenshots of the page (images/explore_cow*.png).
+run explore python3 docs/tools/explore_page.py "$pelage" scenes/meshes/cow.off images \
+    >"$out/explore.json"
+
 python3 - "$log" >"$out/run_times.json" <<'PY'
 import json, sys
 rows = [l.rstrip("\n").split("\t") for l in open(sys.argv[1])]
