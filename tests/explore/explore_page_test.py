@@ -4,7 +4,7 @@ pattern on the mesh; dragging the repulsion radius (w_r) re-simulates, and the n
 and its statistics appear; restyling the types' colours repaints without simulating, and
 the canvas then shows both colours; Save writes a preset that `pelage sim` grows into
 the same bytes, and a scene that `pelage render` renders from those cells without growing
-them again; the path-traced preview finishes. Everything is started and stopped here,
+them again, to the very image of the page's path-traced preview. Everything is started and stopped here,
 each wait bounded. Usage: explore_page_test.py PELAGE. Exit 77 (skipped) when Chromium or
 its driver is missing."""
 import json
@@ -12,6 +12,7 @@ import os
 import subprocess
 import sys
 import tempfile
+import urllib.request
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import webdriver  # noqa: E402
@@ -115,14 +116,21 @@ def main(pelage):
         check(b.js("const i = document.getElementById('render-image');"
                    "return i.complete && i.naturalWidth") == 480, "no preview image shown")
 
-        # The saved scene renders from the saved cells: they are not grown again.
+        with urllib.request.urlopen(ex.url + "api/render.png", timeout=30) as r:
+            page_png = r.read()
+
+        # The saved scene renders from the saved cells (they are not grown again) to the
+        # very image the page showed, at its size and samples.
         before = open(cells, "rb").read()
-        r = subprocess.run([pelage, "render", scene, "--res", "160x90", "--spp", "4"],
-                           capture_output=True, text=True, timeout=300)
+        check_png = os.path.join(tmp, "check.png")
+        r = subprocess.run([pelage, "render", scene, "--res", "480x270", "--spp", "64",
+                            "--preview", check_png], capture_output=True, text=True,
+                           timeout=300)
         check(r.returncode == 0, f"pelage render failed: {r.stderr}")
         check("growing" not in r.stderr, f"pelage render grew the pattern again: {r.stderr}")
         check(open(cells, "rb").read() == before, "pelage render rewrote the cells")
-        check(os.path.exists(os.path.join(tmp, "leo.exr")), "pelage render wrote no leo.exr")
+        check(open(check_png, "rb").read() == page_png,
+              "pelage render of the saved scene differs from the page's preview")
     return 0
 
 
