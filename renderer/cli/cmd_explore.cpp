@@ -56,15 +56,6 @@ std::vector<std::pair<std::string, std::string>> shipped_presets() {
     return out;
 }
 
-// The mesh's path as a scene in `dir` names it (as `pelage look` does).
-std::string mesh_for_scene(const std::string &mesh, const fs::path &dir) {
-    if (mesh.rfind("procedural:", 0) == 0) return mesh;
-    const fs::path abs = fs::absolute(mesh).lexically_normal();
-    const fs::path rel = abs.lexically_relative(dir);
-    if (!rel.empty() && *rel.begin() != "..") return rel.generic_string();
-    return abs.string();
-}
-
 // The look's scene: the mesh framed as `pelage look` frames it, its pattern the
 // explored preset and seed, grown into `cells`.
 LookSetup explore_setup(const explore::ExploreSession &session) {
@@ -140,7 +131,7 @@ int run(const ExploreCliOptions &o) {
     hooks.render = [&](const explore::ExploreResult &r, int width, int height, int spp,
                        const std::string &png) {
         LookSetup s = base;
-        s.mesh = mesh_for_scene(mesh, work);
+        s.mesh = mesh_reference(mesh, work);
         s.cells = r.cells_path;
         s.preset = r.preset_path;
         s.seed = r.seed;
@@ -160,7 +151,7 @@ int run(const ExploreCliOptions &o) {
     hooks.save = [&](const explore::ExploreResult &r, const std::string &stem) {
         const std::string preset_file = stem + "_preset.json";
         LookSetup s = base;
-        s.mesh = mesh_for_scene(mesh, out);
+        s.mesh = mesh_reference(mesh, out);
         s.cells = stem + ".cells";
         s.preset = preset_file;
         s.seed = r.seed;

@@ -49,18 +49,6 @@ Vec3f parse_up(const std::string &text) {
     throw InputError("", 0, "--up", "\"" + text + "\": expected x, y, z, -x, -y or -z");
 }
 
-// The mesh's path as the scene names it: relative when it sits in the scene's folder
-// (the two move together), absolute otherwise.
-std::string mesh_reference(const std::string &mesh, const fs::path &scene_dir) {
-    if (mesh.rfind("procedural:", 0) == 0) return mesh;
-    const sim::MeshSpec spec = sim::parse_mesh_spec(mesh);
-    const std::string object = spec.object.empty() ? "" : "#" + spec.object;
-    const fs::path abs = fs::absolute(spec.path).lexically_normal();
-    const fs::path rel = abs.lexically_relative(scene_dir);
-    if (!rel.empty() && *rel.begin() != "..") return rel.generic_string() + object;
-    return abs.string() + object;
-}
-
 int run(const LookOptions &o) {
     // --- Everything checked before anything is written ---
     // The animal's name: the object chosen in the file, else the file's name.

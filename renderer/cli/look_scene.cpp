@@ -5,7 +5,22 @@
 #include <algorithm>
 #include <cmath>
 
+#include "sim/mesh/mesh_objects.h"
+
 namespace pelage::renderer::cli {
+
+std::string mesh_reference(const std::string &mesh,
+                           const std::filesystem::path &scene_dir) {
+    namespace fs = std::filesystem;
+    if (mesh.rfind("procedural:", 0) == 0) return mesh;
+    const sim::MeshSpec spec = sim::parse_mesh_spec(mesh);
+    const std::string object = spec.object.empty() ? "" : "#" + spec.object;
+    const fs::path abs = fs::absolute(spec.path).lexically_normal();
+    const fs::path rel = abs.lexically_relative(scene_dir);
+    if (!rel.empty() && *rel.begin() != "..") return rel.generic_string() + object;
+    return abs.string() + object;
+}
+
 namespace {
 
 using json = nlohmann::ordered_json;

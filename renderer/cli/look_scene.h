@@ -3,6 +3,7 @@
 // scene file, so the user edits it and renders it again with `pelage render`.
 #pragma once
 
+#include <filesystem>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
@@ -42,6 +43,11 @@ struct LookSetup {
     double fps = 24;
     double shutter = 0;  // motion blur over [0, shutter] of each frame (0: sharp)
 };
+
+// A mesh (a file, FILE#NAME or procedural:...) as a scene in `scene_dir` names it:
+// relative when it sits in that folder (the two move together), absolute otherwise.
+std::string mesh_reference(const std::string &mesh,
+                           const std::filesystem::path &scene_dir);
 
 // The scene, its keys in the order a person reads them (camera, film, lights, objects).
 nlohmann::ordered_json look_scene(const LookSetup &s);

@@ -22,6 +22,16 @@ void reply_error(httplib::Response &res, int status, const std::string &message)
     reply_json(res, {{"error", message}}, status);
 }
 
+// Binary data with its version (X-Pelage-Version), or 404 with `missing` when empty.
+void reply_bytes(httplib::Response &res, const std::vector<uint8_t> &bytes,
+                 uint64_t version, const std::string &missing) {
+    if (bytes.empty()) return reply_error(res, 404, missing);
+    res.set_header("X-Pelage-Version", std::to_string(version));
+    res.set_header("Cache-Control", "no-store");
+    res.set_content(reinterpret_cast<const char *>(bytes.data()), bytes.size(),
+                    "application/octet-stream");
+}
+
 // The request's body as a JSON object; throws std::invalid_argument naming what is wrong.
 nlohmann::json body_object(const httplib::Request &req) {
     const nlohmann::json j = nlohmann::json::parse(req.body, nullptr, false);
@@ -118,20 +128,12 @@ void ExploreServer::routes() {
     s.Get("/api/mesh", [this](const httplib::Request &, httplib::Response &res) {
         uint64_t version = 0;
         const std::vector<uint8_t> bytes = m_session.mesh_bytes(&version);
-        if (bytes.empty()) return reply_error(res, 404, "no surface yet");
-        res.set_header("X-Pelage-Version", std::to_string(version));
-        res.set_header("Cache-Control", "no-store");
-        res.set_content(reinterpret_cast<const char *>(bytes.data()), bytes.size(),
-                        "application/octet-stream");
+        reply_bytes(res, bytes, version, "no surface yet");
     });
     s.Get("/api/texture", [this](const httplib::Request &, httplib::Response &res) {
         uint64_t version = 0;
         const std::vector<uint8_t> bytes = m_session.texture_bytes(&version);
-        if (bytes.empty()) return reply_error(res, 404, "no pattern yet");
-        res.set_header("X-Pelage-Version", std::to_string(version));
-        res.set_header("Cache-Control", "no-store");
-        res.set_content(reinterpret_cast<const char *>(bytes.data()), bytes.size(),
-                        "application/octet-stream");
+        reply_bytes(res, bytes, version, "no pattern yet");
     });
     s.Post("/api/preset", [this](const httplib::Request &req, httplib::Response &res) {
         const nlohmann::json j = body_object(req);

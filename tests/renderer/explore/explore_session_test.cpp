@@ -195,6 +195,7 @@ TEST(ExploreServer, BadRequestsGetA4xxAndTheServerGoesOn) {
     r = client.Get("/api/mesh");
     ASSERT_TRUE(r);
     EXPECT_EQ(r->status, 200);
+    EXPECT_EQ(r->get_header_value("X-Pelage-Version"), "1");  // the page's cue to reload
     server.stop();
     serving.join();
 }
