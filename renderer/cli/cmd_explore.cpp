@@ -175,6 +175,7 @@ int run(const ExploreCliOptions &o) {
     std::thread waiter([&] {
         int sig = 0;
         sigwait(&stop_signals, &sig);
+        session.shutdown();  // long polls answer now, so the server's threads end
         server.stop();
     });
     session.submit(start.json_text, o.seed);

@@ -102,12 +102,17 @@ ExploreSession::ExploreSession(ExploreOptions options) : m_options(std::move(opt
     m_worker = std::thread([this] { work(); });
 }
 
-ExploreSession::~ExploreSession() {
+void ExploreSession::shutdown() {
     {
         std::lock_guard lock(m_mutex);
         m_stop = true;
     }
     m_wake.notify_all();
+    m_changed.notify_all();
+}
+
+ExploreSession::~ExploreSession() {
+    shutdown();
     m_worker.join();
 }
 

@@ -80,6 +80,9 @@ class ExploreSession {
     std::vector<uint8_t> texture_bytes(uint64_t *version) const;
 
     ExploreResult result() const;
+    // Ends the run in progress at its next step and answers every waiting status() at
+    // once (the server is stopping); the session takes no more jobs.
+    void shutdown();
     const std::string &mesh() const { return m_options.mesh; }
     const std::string &work_dir() const { return m_options.work_dir; }
     const sim::Surface &input_surface() const { return *m_input; }
