@@ -2,12 +2,11 @@
 
 #include <algorithm>
 #include <chrono>
-#include <cmath>
-#include <cstring>
 #include <filesystem>
-#include <fstream>
 
 #include "renderer/explore/pattern_texture.h"
+#include "renderer/explore/preview_surface.h"
+#include "renderer/explore/view_mesh.h"
 #include "shader/mosaic/pattern.h"
 #include "shader/statistics/stats_report.h"
 #include "shader/transfer/surface_transfer.h"
@@ -17,7 +16,6 @@
 #include "sim/mesh/mesh_write_obj.h"
 #include "sim/mosaic/cell_types.h"
 #include "sim/mosaic/cm_simulation.h"
-#include "sim/remesh/simplify.h"
 #include "sim/run/grow_cells.h"
 
 namespace pelage::renderer::explore {
@@ -27,49 +25,6 @@ using Clock = std::chrono::steady_clock;
 
 double since(Clock::time_point t0) {
     return std::chrono::duration<double>(Clock::now() - t0).count();
-}
-
-template <class T>
-void put(std::vector<uint8_t> &out, const T &v) {
-    const size_t at = out.size();
-    out.resize(at + sizeof(T));
-    std::memcpy(out.data() + at, &v, sizeof(T));
-}
-
-// The page's mesh: the triangles unwelded (each has its own texture tile), with normals
-// averaged over the faces around each vertex (by angle-free area weighting), so the
-// surface shades smoothly.
-std::vector<uint8_t> pack_mesh(const sim::TriangleMesh &mesh,
-                               const TypeTextureLayout &l) {
-    const size_t n = mesh.num_triangles();
-    std::vector<sim::Vec3d> normal(mesh.positions.size(), sim::Vec3d{0, 0, 0});
-    for (const auto &t : mesh.triangles) {
-        const sim::Vec3d a = mesh.positions[t[0]], b = mesh.positions[t[1]],
-                         c = mesh.positions[t[2]];
-        const sim::Vec3d f = cross(b - a, c - a);  // twice the area, along the normal
-        for (sim::VertId v : t) normal[v] = normal[v] + f;
-    }
-    std::vector<uint8_t> out;
-    out.reserve(4 + n * 24 * 4);
-    put(out, uint32_t(n));
-    for (const auto &t : mesh.triangles)
-        for (sim::VertId v : t)
-            for (double x :
-                 {mesh.positions[v].x, mesh.positions[v].y, mesh.positions[v].z})
-                put(out, float(x));
-    for (const auto &t : mesh.triangles)
-        for (sim::VertId v : t) {
-            const double len = length(normal[v]);
-            const sim::Vec3d u = len > 0 ? normal[v] / len : sim::Vec3d{0, 1, 0};
-            for (double x : {u.x, u.y, u.z}) put(out, float(x));
-        }
-    for (float uv : l.corner_uvs) put(out, uv);
-    return out;
-}
-
-std::string read_text(const std::string &path) {
-    std::ifstream in(path, std::ios::binary);
-    return std::string(std::istreambuf_iterator<char>(in), {});
 }
 
 }  // namespace
@@ -94,7 +49,7 @@ ExploreSession::ExploreSession(ExploreOptions options) : m_options(std::move(opt
     // The page draws the input mesh whatever surface a stage simulates on.
     m_layout = std::make_unique<TypeTextureLayout>(
         layout_type_texture(m_input->mesh, m_options.texture_size));
-    m_mesh_bytes = pack_mesh(m_input->mesh, *m_layout);
+    m_mesh_bytes = view_mesh_bytes(m_input->mesh, *m_layout);
     m_mesh_version = 1;
     m_state = {{"stage", ""},      {"phase", ""},  {"progress", 0.0},
                {"running", false}, {"error", ""},  {"job", 0},
@@ -228,25 +183,12 @@ void ExploreSession::work() {
 std::string ExploreSession::preview_surface() {
     if (m_preview_tried) return m_preview_mesh;
     m_preview_tried = true;
-    const sim::TriangleMesh &input = m_input->mesh;
-    // Meshes this light simulate a preview on themselves in a moment; far heavier ones
-    // would spend longer simplifying than the preview saves.
-    if (input.num_triangles() < 2000 || input.num_triangles() > 200000) return "";
-    sim::Bounds3 box;
-    for (const sim::Vec3d &p : input.positions) box.extend(p);
-    const double bound = m_options.preview_deviation * box.diagonal();
-    // Edges √divisor times the input's: the preview's triangles hold as many cells as
-    // the full run's. Halved while the copy strays from the input (a thin part
-    // collapsed).
-    double edge = std::sqrt(m_options.preview_divisor) * sim::mean_edge_length(input);
-    for (int attempt = 0; attempt < 3; ++attempt, edge *= 0.5) {
-        const sim::TriangleMesh coarse = sim::simplify(input, {edge, bound});
-        if (sim::max_vertex_distance(input, coarse) > 1.5 * bound) continue;
-        m_preview_mesh = m_options.work_dir + "/preview_surface.obj";
-        sim::write_obj(m_preview_mesh, coarse, {});
-        return m_preview_mesh;
-    }
-    return "";
+    const std::optional<sim::TriangleMesh> coarse = simplify_for_preview(
+        m_input->mesh, m_options.preview_divisor, m_options.preview_deviation);
+    if (!coarse) return "";
+    m_preview_mesh = m_options.work_dir + "/preview_surface.obj";
+    sim::write_obj(m_preview_mesh, *coarse, {});
+    return m_preview_mesh;
 }
 
 const SampleTargets *ExploreSession::targets_on(const sim::Surface &surface,

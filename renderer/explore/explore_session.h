@@ -71,9 +71,7 @@ class ExploreSession {
     // have passed.
     nlohmann::json status(uint64_t after, double wait_seconds) const;
 
-    // The simulation surface as the page draws it: uint32 triangle count n, then n × 9
-    // float32 positions, n × 9 float32 normals (smooth), n × 6 float32 texture
-    // coordinates, all little-endian; and its version.
+    // The input mesh as the page draws it (view_mesh.h), and its version.
     std::vector<uint8_t> mesh_bytes(uint64_t *version) const;
     // The latest type texture (size × size bytes, row y at v = (y + 0.5) / size) and
     // its version.
