@@ -39,8 +39,9 @@ TEST(UsageCli, MistypedCommandSuggestsTheClosest) {
     EXPECT_EQ(err, "pelage bench: unknown command \"rendr\"; did you mean \"render\"?\n");
     // Nothing close: the commands are listed instead.
     EXPECT_EQ(run_pelage("frobnicate", &out, &err), 2);
-    EXPECT_NE(err.find("unknown command \"frobnicate\" (commands: look, crps, sim,"),
-              std::string::npos)
+    EXPECT_NE(
+        err.find("unknown command \"frobnicate\" (commands: look, explore, crps, sim,"),
+        std::string::npos)
         << err;
 }
 
