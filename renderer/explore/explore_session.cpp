@@ -51,10 +51,12 @@ ExploreSession::ExploreSession(ExploreOptions options) : m_options(std::move(opt
         layout_type_texture(m_input->mesh, m_options.texture_size));
     m_mesh_bytes = view_mesh_bytes(m_input->mesh, *m_layout);
     m_mesh_version = 1;
-    m_state = {{"stage", ""},      {"phase", ""},  {"progress", 0.0},
-               {"running", false}, {"error", ""},  {"job", 0},
-               {"stats", nullptr}, {"timing", {}}, {"mesh", m_options.mesh}};
+    m_state = {{"stage", ""},           {"phase", ""},       {"progress", 0.0},
+               {"running", false},      {"error", ""},       {"job", 0},
+               {"stats", nullptr},      {"stats_stage", ""}, {"timing", {}},
+               {"mesh", m_options.mesh}};
     m_worker = std::thread([this] { work(); });
+    m_measurer = std::thread([this] { measure(); });
 }
 
 void ExploreSession::shutdown() {
@@ -69,6 +71,7 @@ void ExploreSession::shutdown() {
 ExploreSession::~ExploreSession() {
     shutdown();
     m_worker.join();
+    m_measurer.join();
 }
 
 void ExploreSession::changed() {
@@ -119,6 +122,7 @@ uint64_t ExploreSession::submit(const std::string &preset_json, uint64_t seed) {
     m_state["stage"] = "";
     m_state["progress"] = 0.0;
     m_state["stats"] = nullptr;
+    m_state["stats_stage"] = "";
     m_state["timing"] = nlohmann::json::object();
     changed();
     m_wake.notify_all();
@@ -168,9 +172,12 @@ void ExploreSession::work() {
         try {
             run_job(job);
         } catch (const sim::GrowCancelled &) {
+            std::lock_guard lock(m_mutex);
+            prune_files();
             // A newer job is pending: the loop takes it.
         } catch (const std::exception &e) {
             std::lock_guard lock(m_mutex);
+            prune_files();
             if (m_pending.id == job.id) {
                 m_state["error"] = e.what();
                 m_state["running"] = false;
@@ -207,8 +214,7 @@ const SampleTargets *ExploreSession::targets_on(const sim::Surface &surface,
 
 void ExploreSession::run_job(const Job &job) {
     const Clock::time_point t0 = Clock::now();
-    const std::string dir = m_options.work_dir;
-    const std::string preset_path = dir + "/job.json";
+    const std::string preset_path = job_file(job.id, "preset.json");
     write_file_atomically(preset_path,
                           [&](std::ostream &out) { out << job.preset_text; });
     const sim::Preset preset = sim::parse_preset(job.preset_text, preset_path);
@@ -291,38 +297,82 @@ void ExploreSession::run_job(const Job &job) {
             last_snapshot = Clock::now();
         };
         const sim::GrownCells grown = sim::grow_cells(r);
-        const std::string cells_path = dir + "/" + stage.name + ".cells";
+        const std::string cells_path =
+            job_file(job.id, std::string(stage.name) + ".cells");
         sim::write_cells_file(cells_path, grown.data);
         // The finished cells as the renderer finds them: on the input mesh, through the
         // same pattern class (and its surface transfer) `pelage stats --mesh` uses.
-        const shader::mosaic::MosaicPattern pattern(cells_path, m_options.mesh);
-        show(pattern.surface().crps, pattern.data(),
-             targets_on(pattern.surface(), stage.mesh), stage.name);
-        const nlohmann::json stats =
-            shader::statistics::stats_report(pattern, cells_path, {});
-        std::lock_guard lock(m_mutex);
-        if (m_pending.id != job.id) throw sim::GrowCancelled{};
-        m_state["stats"] = stats;
-        m_state["stats_stage"] = stage.name;
-        m_state["timing"][std::string(stage.name) + "_seconds"] = since(t0);
-        if (std::string(stage.name) == "full") {
-            m_state["running"] = false;
-            m_state["progress"] = 1.0;
-            // A look-only change that arrived while this ran is the job's text now.
-            const std::string text = m_pending.preset_text;
-            sim::CellsData data = grown.data;
-            if (text != job.preset_text) {
-                const sim::Preset now = sim::parse_preset(text, "preset");
-                nlohmann::json params = nlohmann::json::parse(data.params_json);
-                params["preset"] = nlohmann::json::parse(now.json_text);
-                data.params_json = params.dump();
-                data.types = now.types.types();
-                sim::write_cells_file(cells_path, data);
+        auto pattern = std::make_shared<const shader::mosaic::MosaicPattern>(
+            cells_path, m_options.mesh);
+        show(pattern->surface().crps, pattern->data(),
+             targets_on(pattern->surface(), stage.mesh), stage.name);
+        {
+            std::lock_guard lock(m_mutex);
+            if (m_pending.id != job.id) throw sim::GrowCancelled{};
+            m_state["timing"][std::string(stage.name) + "_seconds"] = since(t0);
+            if (std::string(stage.name) == "full") {
+                m_state["running"] = false;
+                m_state["progress"] = 1.0;
+                // A look-only change that arrived while this ran is the job's text now.
+                const std::string text = m_pending.preset_text;
+                if (text != job.preset_text) {
+                    sim::CellsData data = grown.data;
+                    const sim::Preset now = sim::parse_preset(text, "preset");
+                    nlohmann::json params = nlohmann::json::parse(data.params_json);
+                    params["preset"] = nlohmann::json::parse(now.json_text);
+                    data.params_json = params.dump();
+                    data.types = now.types.types();
+                    sim::write_cells_file(cells_path, data);
+                }
+                write_file_atomically(preset_path,
+                                      [&](std::ostream &out) { out << text; });
+                m_result = {true, text, job.seed, cells_path, preset_path};
+                m_kept.push_back(job.id);
+                if (m_kept.size() > 2) m_kept.pop_front();
+                prune_files();
             }
-            write_file_atomically(preset_path, [&](std::ostream &out) { out << text; });
-            m_result = {true, text, job.seed, cells_path, preset_path};
+            // Measured beside the next stage or job: a change made as a run ends starts
+            // at once.
+            m_measure = {job.id, stage.name, pattern, cells_path};
+            changed();
         }
+        m_wake.notify_all();
+    }
+}
+
+void ExploreSession::measure() {
+    for (;;) {
+        Measure m;
+        {
+            std::unique_lock lock(m_mutex);
+            m_wake.wait(lock, [&] { return m_stop || m_measure.pattern; });
+            if (m_stop) return;
+            m = std::move(m_measure);
+            m_measure = {};
+        }
+        const nlohmann::json stats =
+            shader::statistics::stats_report(*m.pattern, m.cells_path, {});
+        std::lock_guard lock(m_mutex);
+        if (m_pending.id != m.job) continue;
+        m_state["stats"] = stats;
+        m_state["stats_stage"] = m.stage;
         changed();
+    }
+}
+
+std::string ExploreSession::job_file(uint64_t job, const std::string &name) const {
+    return m_options.work_dir + "/job" + std::to_string(job) + "_" + name;
+}
+
+void ExploreSession::prune_files() {
+    const std::vector<uint64_t> kept(m_kept.begin(), m_kept.end());
+    std::error_code ec;
+    for (const auto &e : std::filesystem::directory_iterator(m_options.work_dir, ec)) {
+        const std::string name = e.path().filename().string();
+        if (name.rfind("job", 0) != 0) continue;
+        const uint64_t id = std::strtoull(name.c_str() + 3, nullptr, 10);
+        if (std::find(kept.begin(), kept.end(), id) == kept.end())
+            std::filesystem::remove(e.path(), ec);
     }
 }
 

@@ -4,8 +4,9 @@
 // fraction of the full run's time), then at full scale, the result `pelage sim` gives for
 // the same preset, seed and mesh. While a stage runs, snapshots of its cells become type
 // textures (pattern_texture.h) every `snapshot_seconds`; when it ends its statistics are
-// measured as `pelage stats --mesh` measures them (shader/statistics/stats_report.h). A
-// newer preset cancels the run in progress at its next step. A change to nothing but
+// measured as `pelage stats --mesh` measures them (shader/statistics/stats_report.h), on
+// a thread of their own so that the next stage or job starts at once. A newer preset
+// cancels the run in progress at its next step. A change to nothing but
 // the types' look (colours, melanin, names of the whole preset) does not simulate: the
 // finished cells are re-labelled with the new preset, which is what growing them again
 // would give, since the simulation never reads those keys.
@@ -16,6 +17,7 @@
 
 #include <condition_variable>
 #include <cstdint>
+#include <deque>
 #include <map>
 #include <memory>
 #include <mutex>
@@ -25,6 +27,7 @@
 #include <vector>
 
 #include "renderer/explore/pattern_texture.h"
+#include "shader/mosaic/pattern.h"
 #include "sim/crps/surface.h"
 
 namespace pelage::renderer::explore {
@@ -93,6 +96,13 @@ class ExploreSession {
     };
     void work();
     void run_job(const Job &job);
+    // The statistics thread: measures the latest finished stage while the worker goes on.
+    void measure();
+    // A file of job `job` in the work folder. Under m_mutex, prune_files() removes the
+    // files of every job but the last two results' (as a result arrives, and after a
+    // cancelled job).
+    std::string job_file(uint64_t job, const std::string &name) const;
+    void prune_files();
     // The preview's surface (a mesh file in the work folder), made on first use; "" when
     // none would help or none keeps to the input.
     std::string preview_surface();
@@ -123,7 +133,15 @@ class ExploreSession {
     std::vector<uint8_t> m_mesh_bytes, m_texture;
     uint64_t m_mesh_version = 0, m_texture_version = 0;
     ExploreResult m_result;
-    std::thread m_worker;
+    std::deque<uint64_t> m_kept;  // the jobs of the last two results: their files stay
+    struct Measure {
+        uint64_t job = 0;
+        std::string stage;
+        std::shared_ptr<const shader::mosaic::MosaicPattern> pattern;
+        std::string cells_path;
+    };
+    Measure m_measure;  // the stage to measure next (pattern null: none)
+    std::thread m_worker, m_measurer;
 };
 
 // The preset's JSON without the keys the simulation never reads (the types' colours

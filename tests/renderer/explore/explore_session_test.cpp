@@ -9,7 +9,9 @@
 #include <httplib.h>
 
 #include <chrono>
+#include <filesystem>
 #include <nlohmann/json.hpp>
+#include <set>
 #include <thread>
 
 #include "renderer/explore/explore_server.h"
@@ -37,7 +39,7 @@ nlohmann::json leopard() {
         test::slurp(test::source_path("scenes/presets/teo-leopard.json")));
 }
 
-// Waits (at most a minute) until the session's full-scale result is ready.
+// Waits (at most a minute) until the session's full-scale result is ready and measured.
 nlohmann::json wait_ready(const ExploreSession &s) {
     const auto end = std::chrono::steady_clock::now() + std::chrono::seconds(60);
     uint64_t version = 0;
@@ -45,7 +47,7 @@ nlohmann::json wait_ready(const ExploreSession &s) {
         const nlohmann::json j = s.status(version, 1.0);
         version = j["version"];
         if (!j["error"].get<std::string>().empty()) ADD_FAILURE() << j["error"];
-        if (j["result_ready"]) return j;
+        if (j["result_ready"] && j["stats_stage"] == "full") return j;
     }
     ADD_FAILURE() << "no result within a minute";
     return {};
@@ -107,6 +109,29 @@ TEST(ExploreSession, ANewerPresetCancelsTheRunInProgress) {
     const nlohmann::json status = wait_ready(session);
     EXPECT_EQ(status["job"], second);
     EXPECT_EQ(test::slurp(session.result().cells_path), grown_bytes(tmp, preset, 1));
+}
+
+TEST(ExploreSession, KeepsTheFilesOfTheLastTwoResultsOnly) {
+    test::TempDir tmp;
+    const ExploreOptions o = options(tmp);
+    ExploreSession session(o);
+    nlohmann::json preset = leopard();
+    std::vector<uint64_t> jobs;
+    for (double w_r : {2.0, 2.5, 3.0, 3.5}) {
+        preset["simulation"]["w_r"] = w_r;
+        jobs.push_back(session.submit(preset.dump(), 1));
+        wait_ready(session);
+    }
+    // A render of the previous result may still be reading its files.
+    std::set<std::string> held;
+    for (const auto &e : std::filesystem::directory_iterator(o.work_dir)) {
+        const std::string name = e.path().filename().string();
+        if (name.rfind("job", 0) == 0) held.insert(name.substr(0, name.find('_')));
+    }
+    EXPECT_EQ(held, (std::set<std::string>{"job" + std::to_string(jobs[2]),
+                                           "job" + std::to_string(jobs[3])}));
+    EXPECT_EQ(session.result().cells_path,
+              o.work_dir + "/job" + std::to_string(jobs[3]) + "_full.cells");
 }
 
 TEST(ExploreSession, ABadPresetGetsTheParsersMessage) {
