@@ -47,8 +47,20 @@ ExploreSession::ExploreSession(ExploreOptions options) : m_options(std::move(opt
     m_input_hash = sim::mesh_hash(m_input->mesh);
     std::filesystem::create_directories(m_options.work_dir);
     // The page draws the input mesh whatever surface a stage simulates on.
-    m_layout = std::make_unique<TypeTextureLayout>(
-        layout_type_texture(m_input->mesh, m_options.texture_size));
+    // A mesh of many small triangles needs a larger texture for its tiles of at least
+    // 2 × 2 texels (the cow split four times, 1.5 M triangles: 4096²).
+    const double n = double(m_input->mesh.num_triangles());
+    int size = m_options.texture_size;
+    while (size < max_texture_size && double(size) * size < 6 * n) size *= 2;
+    if (double(size) * size < 6 * n)
+        throw InputError(m_options.mesh, 0, "",
+                         std::to_string(m_input->mesh.num_triangles()) +
+                             " triangles: the explorer draws at most " +
+                             std::to_string(max_texture_size * max_texture_size / 6) +
+                             " (simplify the mesh for exploring; `pelage sim` and "
+                             "`pelage look` take it as it is)");
+    m_layout =
+        std::make_unique<TypeTextureLayout>(layout_type_texture(m_input->mesh, size));
     m_mesh_bytes = view_mesh_bytes(m_input->mesh, *m_layout);
     m_mesh_version = 1;
     m_state = {{"stage", ""},           {"phase", ""},       {"progress", 0.0},
@@ -137,7 +149,7 @@ nlohmann::json ExploreSession::status(uint64_t after, double wait_seconds) const
     j["version"] = m_version;
     j["mesh_version"] = m_mesh_version;
     j["texture_version"] = m_texture_version;
-    j["texture_size"] = m_options.texture_size;
+    j["texture_size"] = m_layout->size;
     j["result_ready"] = m_result.ready;
     return j;
 }

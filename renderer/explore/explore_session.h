@@ -33,10 +33,10 @@
 namespace pelage::renderer::explore {
 
 struct ExploreOptions {
-    std::string mesh;        // a mesh file, FILE#NAME or procedural:...
-    std::string preset_dir;  // the shipped presets (scenes/presets)
-    std::string work_dir;    // the session's own files (the stages' .cells, the preset)
-    int texture_size = 2048;
+    std::string mesh;         // a mesh file, FILE#NAME or procedural:...
+    std::string preset_dir;   // the shipped presets (scenes/presets)
+    std::string work_dir;     // the session's own files (the stages' .cells, the preset)
+    int texture_size = 2048;  // doubled, up to max_texture_size, for many triangles
     double snapshot_seconds = 0.25;  // between snapshots of a running stage
     // The preview stage starts from the full count / preview_divisor cells (at least
     // preview_min_cells); none when that is not under half the full count.
@@ -46,6 +46,10 @@ struct ExploreOptions {
     // within this fraction of the bounding-box diagonal of the input.
     double preview_deviation = 0.01;
 };
+
+// The largest type texture a page is sent: WebGL implementations take 8192² and more
+// (SwiftShader's limit is 8192).
+inline constexpr int max_texture_size = 8192;
 
 // The finished full-scale run, for saving and rendering.
 struct ExploreResult {
