@@ -1,4 +1,5 @@
-# pelage_add_library(SOURCES <files...> [PUBLIC_DEPS <targets...>] [PRIVATE_DEPS <targets...>])
+# pelage_add_library(SOURCES <files...> [PUBLIC_DEPS <targets...>]
+#                    [PRIVATE_DEPS <targets...>])
 #
 # One library per source folder: the folder sim/mesh is the target pelage_sim_mesh
 # (alias pelage::sim::mesh). Dependencies name the folders a folder may use, so an
@@ -12,7 +13,8 @@ function(pelage_add_library)
     if(ARG_SOURCES)
         add_library(${_name} STATIC ${ARG_SOURCES})
         target_include_directories(${_name} PUBLIC ${PROJECT_SOURCE_DIR})
-        target_link_libraries(${_name} PUBLIC ${ARG_PUBLIC_DEPS} PRIVATE ${ARG_PRIVATE_DEPS})
+        target_link_libraries(${_name} PUBLIC ${ARG_PUBLIC_DEPS}
+                                       PRIVATE ${ARG_PRIVATE_DEPS})
     else()
         add_library(${_name} INTERFACE)
         target_include_directories(${_name} INTERFACE ${PROJECT_SOURCE_DIR})

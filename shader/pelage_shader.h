@@ -91,7 +91,8 @@ typedef struct PelageMeshView {
                                "procedural:..."), for messages only */
 } PelageMeshView;
 
-/* Prints one warning for the user (the renderer prefixes the object's name). */
+/* Prints one warning for the user on stderr, as given, once per process (an animation
+   creates a plugin instance per frame). */
 typedef void (*PelageWarnFn)(void *context, const char *message);
 
 typedef struct PelageParamSet {

@@ -13,8 +13,8 @@ namespace pelage::renderer::cli {
 
 namespace {
 
-// MClone (Walter's program) on this configuration and the cow, global relaxation, as
-// measured for issue 38 on the project's 2-core machine: 30.6 CPU s.
+// MClone (Walter's program) on this configuration and the cow, global relaxation, on
+// the project's 2-core reference machine: 30.6 CPU s.
 constexpr double mclone_cpu_seconds = 30.6;
 constexpr uint64_t initial_cells = 16000;
 

@@ -29,10 +29,10 @@
 #include <sstream>
 
 #include "renderer/cli/bench.h"
-#include "renderer/cli/grow_shown.h"
-#include "renderer/cli/input_hash.h"
 #include "renderer/core/install_layout.h"
 #include "renderer/integrator/render.h"
+#include "renderer/job/input_hash.h"
+#include "renderer/job/scene_patterns.h"
 #include "renderer/plugins/plugin_loader.h"
 #include "renderer/scene/scene.h"
 #include "renderer/scene_file/scene_file.h"

@@ -16,9 +16,9 @@
 #include <thread>
 
 #include "renderer/cli/bench.h"
-#include "renderer/cli/grow_shown.h"
 #include "renderer/geometry/packet_intersect.h"
 #include "renderer/integrator/render.h"
+#include "renderer/job/scene_patterns.h"
 #include "renderer/scene_file/scene_file.h"
 #include "sim/core/input_error.h"
 

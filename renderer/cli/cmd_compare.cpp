@@ -10,9 +10,9 @@
 #include <sstream>
 
 #include "renderer/cli/common.h"
-#include "renderer/cli/grow_shown.h"
 #include "renderer/image/contact_sheet.h"
 #include "renderer/image/image_output.h"
+#include "renderer/job/scene_patterns.h"
 #include "renderer/plugins/plugin_loader.h"
 #include "renderer/tools/compare.h"
 #include "shader/bake/bake.h"

@@ -14,10 +14,10 @@
 
 #include "renderer/camera/auto_frame.h"
 #include "renderer/cli/common.h"
-#include "renderer/cli/look_scene.h"
-#include "renderer/cli/render_plan.h"
 #include "renderer/explore/explore_server.h"
 #include "renderer/explore/explore_session.h"
+#include "renderer/job/render_job.h"
+#include "renderer/look/look_scene.h"
 #include "sim/core/atomic_file.h"
 #include "sim/core/input_error.h"
 #include "sim/mosaic/cell_types.h"
@@ -71,6 +71,14 @@ LookSetup explore_setup(const explore::ExploreSession &session) {
     s.object_name = "animal";
     return s;
 }
+
+// A render for the page says nothing but its warnings.
+class Warnings : public RenderObserver {
+  public:
+    void warning(const std::string &line) override {
+        std::fprintf(stderr, "pelage explore: %s\n", line.c_str());
+    }
+};
 
 int run(const ExploreCliOptions &o) {
     // Ctrl-C and SIGTERM stop the server from a thread of their own (started below); the
@@ -140,13 +148,11 @@ int run(const ExploreCliOptions &o) {
         s.spp = spp;
         s.output = work + "/render.exr";
         s.preview = png;
-        const std::string scene = work + "/render_scene.json";
-        const std::string text = format_scene_json(look_scene(s));
-        write_file_atomically(scene, [&](std::ostream &os) { os << text; });
-        RenderCliOptions ro;
-        ro.scene = scene;
-        ro.quiet.quiet = true;
-        if (run_render(ro) != 0) throw std::runtime_error("the render failed");
+        // The scene a save writes, rendered from memory (it anchors in the work folder).
+        const RenderJob job = render_job_from_text(format_scene_json(look_scene(s)),
+                                                   work + "/render_scene.json");
+        Warnings warnings;
+        run_render_job(job, warnings);
     };
     hooks.save = [&](const explore::ExploreResult &r, const std::string &stem) {
         const std::string preset_file = stem + "_preset.json";

@@ -1,5 +1,5 @@
 // `pelage merge TILES... -o OUT.exr`: joins the tiles `pelage render --tile I/N` wrote
-// (renderer/cli/render_tiles.h) into the whole still: the same file, byte for byte, as
+// (renderer/job/render_tiles.h) into the whole still: the same file, byte for byte, as
 // a whole render of it. The tiles must belong together: one pelage:settings_xxh3, one
 // display window, one tile count, every tile present once and complete, each covering
 // exactly its rows. Anything else is exit 2 naming the file, and nothing is written.
@@ -15,8 +15,8 @@
 #include <nlohmann/json.hpp>
 
 #include "renderer/cli/common.h"
-#include "renderer/cli/render_tiles.h"
 #include "renderer/image/image_output.h"
+#include "renderer/job/render_tiles.h"
 #include "sim/core/input_error.h"
 
 namespace pelage::renderer::cli {

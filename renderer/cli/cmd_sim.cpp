@@ -11,7 +11,7 @@
 #include <cstdio>
 
 #include "renderer/cli/common.h"
-#include "renderer/cli/grow_shown.h"
+#include "renderer/job/scene_patterns.h"
 #include "sim/cells_io/cells_file.h"
 #include "sim/cells_io/pattern_stats.h"
 #include "sim/core/input_error.h"

@@ -3,8 +3,9 @@
 // cells were grown on (its hash), lookups take its triangles directly; when it is
 // another mesh of the same shape, the simulation surface is rebuilt from the file and
 // transfer() carries the render mesh's points onto it (surface_transfer.h). The
-// clonal_mosaic plugin, the fur layer, `pelage lookup` and `pelage bake` all go through
-// this one class, so every tool sees exactly the renderer's pattern.
+// clonal_mosaic plugin (and through it the colour under every fur root), `pelage
+// lookup` and `pelage bake` all go through this one class, so every tool sees exactly
+// the renderer's pattern.
 #pragma once
 
 #include <memory>

@@ -9,8 +9,8 @@
 namespace pelage::sim {
 namespace {
 
-// Files of several objects loaded whole are noted once: the renderer, a shader plugin
-// and a deformation may each load the same file.
+// Files of several objects loaded whole are noted once per process: a render job loads
+// the same file for its pattern's growth, its geometry and each deformation.
 void note_merged_objects(const std::string &path, const MeshReadStats &read) {
     if (read.pieces_read < 2) return;
     static std::mutex mutex;

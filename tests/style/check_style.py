@@ -3,7 +3,9 @@
 
 1. every C/C++ source is clang-format clean against the repository's .clang-format;
 2. no line is longer than 90 columns (counted in characters), except inside raw string
-   literals (test scenes written as JSON keep their natural shape);
+   literals (test scenes written as JSON keep their natural shape); CMake files too,
+   with no tab and no trailing space (nothing formats them: C++'s formatter mangles
+   them);
 3. no file refers to material outside the repository.
 
 Usage: check_style.py REPO_ROOT [CLANG_FORMAT]
@@ -15,6 +17,7 @@ from pathlib import Path
 
 COLUMNS = 90
 SOURCE = re.compile(r".*\.(h|hpp|c|cpp)$")
+CMAKE = re.compile(r"(^|.*/)(CMakeLists\.txt|[^/]*\.cmake)$")
 # Anything under these never passes through the rules: fuzz inputs are arbitrary bytes.
 SKIP = ("tests/fuzz/corpus/", "tests/fuzz/crashes/")
 OUTSIDE = re.compile(r"\.\./shared|shared/(seeds|research)|style\.md")
@@ -71,6 +74,14 @@ def main():
 
     for s in sources:
         problems += long_lines(s)
+    for f in files:
+        if not CMAKE.match(f) or not (root / f).is_file():
+            continue
+        for number, line in enumerate((root / f).read_text(encoding="utf-8").splitlines(), 1):
+            if len(line) > COLUMNS:
+                problems.append(f"{f}:{number}: {len(line)} columns (limit {COLUMNS})")
+            if "\t" in line or line != line.rstrip():
+                problems.append(f"{f}:{number}: a tab or a trailing space")
 
     for f in files:
         p = root / f

@@ -12,20 +12,21 @@
 #include "renderer/scene_file/scene_file.h"
 #include "sim/core/content_hash.h"
 
-namespace pelage::renderer::cli {
+namespace pelage::renderer {
 
 // The files `desc` reads, in a fixed order: every object's mesh, deformation meshes and
 // cells file, every environment image, and every string in a material's parameters
 // that names an existing file (a texture's image), relative to the scene's folder.
 std::vector<std::string> scene_input_files(const SceneDesc &desc);
 
-// The settings hash of a render: the scene file as canonical JSON with the film's
-// resolution, spp, noise threshold and view as `desc` has them (command-line overrides
-// applied) and its output names left out, then `seed`, the contents of
+// The settings hash of a render: the scene's text `scene_text` as canonical JSON with the
+// film's resolution, spp, noise threshold and view as `desc` has them (command-line
+// overrides applied) and its output names left out, then `seed`, the contents of
 // scene_input_files(desc) and of the shader plugins its materials load, and the pelage
 // version. Equal hashes mean the same pixels.
-std::string settings_hash(const SceneDesc &desc, const PluginRegistry &plugins,
-                          uint64_t seed, const std::string &version);
+std::string settings_hash(const SceneDesc &desc, const std::string &scene_text,
+                          const PluginRegistry &plugins, uint64_t seed,
+                          const std::string &version);
 
 // The hash of frame `frame` of a render whose settings hash is `settings`: what an EXR
 // records as pelage:settings_xxh3.
@@ -36,4 +37,4 @@ std::string recorded_settings_hash(const std::string &exr);
 // A string attribute of an EXR's header, "" when absent or unreadable.
 std::string exr_string_attribute(const std::string &exr, const std::string &name);
 
-}  // namespace pelage::renderer::cli
+}  // namespace pelage::renderer

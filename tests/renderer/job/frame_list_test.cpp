@@ -1,5 +1,5 @@
 // Frame lists: every accepted form, and every refusal naming the offending item.
-#include "renderer/cli/frame_list.h"
+#include "renderer/job/frame_list.h"
 
 #include <gtest/gtest.h>
 
@@ -8,7 +8,7 @@
 
 #include "sim/core/input_error.h"
 
-namespace pelage::renderer::cli {
+namespace pelage::renderer {
 namespace {
 
 std::vector<int> frames(const std::string &spec, int step = 1) {
@@ -82,4 +82,4 @@ TEST(FrameList, RefusesMalformedItemsNamingThem) {
 }
 
 }  // namespace
-}  // namespace pelage::renderer::cli
+}  // namespace pelage::renderer

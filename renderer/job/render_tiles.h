@@ -10,7 +10,7 @@
 
 #include "renderer/image/image_output.h"
 
-namespace pelage::renderer::cli {
+namespace pelage::renderer {
 
 struct TileSpec {
     int index = 1, count = 1;   // tile `index` of `count`, 1-based
@@ -41,4 +41,4 @@ std::vector<float> tile_pixels(const std::vector<float> &pixels, int height, int
 void describe_tile(const TileSpec &tile, int width, int height, int y0, int y1,
                    uint64_t samples, int spp, ImageMetadata *meta);
 
-}  // namespace pelage::renderer::cli
+}  // namespace pelage::renderer

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-namespace pelage::renderer::cli {
+namespace pelage::renderer {
 
 // One item of a frame list: first..last (inclusive) every `step`-th frame.
 struct FrameRange {
@@ -23,4 +23,4 @@ std::vector<FrameRange> parse_frame_ranges(const std::string &spec, int default_
 // Every frame of the ranges, ascending, each once.
 std::vector<int> expand_frames(const std::vector<FrameRange> &ranges);
 
-}  // namespace pelage::renderer::cli
+}  // namespace pelage::renderer

@@ -1,4 +1,4 @@
-#include "renderer/cli/look_scene.h"
+#include "renderer/look/look_scene.h"
 
 #include <fmt/core.h>
 
@@ -7,7 +7,7 @@
 
 #include "sim/mesh/mesh_objects.h"
 
-namespace pelage::renderer::cli {
+namespace pelage::renderer {
 
 std::string mesh_reference(const std::string &mesh,
                            const std::filesystem::path &scene_dir) {
@@ -186,4 +186,4 @@ std::string format_scene_json(const json &j) {
     return out + "\n";
 }
 
-}  // namespace pelage::renderer::cli
+}  // namespace pelage::renderer

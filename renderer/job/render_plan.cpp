@@ -1,13 +1,13 @@
-#include "renderer/cli/render_plan.h"
+#include "renderer/job/render_plan.h"
 
 #include <cctype>
 #include <filesystem>
 
-#include "renderer/cli/frame_list.h"
 #include "renderer/image/frame_pattern.h"
+#include "renderer/job/frame_list.h"
 #include "sim/core/input_error.h"
 
-namespace pelage::renderer::cli {
+namespace pelage::renderer {
 
 namespace fs = std::filesystem;
 
@@ -34,7 +34,7 @@ std::string preview_beside(const std::string &output, const std::string &extensi
 }
 
 // The frames --frames (and --step) ask for, each inside the animation.
-std::vector<int> requested_frames(const RenderCliOptions &o, const AnimationDesc &anim,
+std::vector<int> requested_frames(const RenderJob &o, const AnimationDesc &anim,
                                   const std::string &scene_path) {
     if (!anim.present)
         throw InputError(
@@ -53,18 +53,20 @@ std::vector<int> requested_frames(const RenderCliOptions &o, const AnimationDesc
 
 }  // namespace
 
-RenderPlan plan_render(const RenderCliOptions &o, SceneDesc &desc) {
+RenderPlan plan_render(const RenderJob &o, SceneDesc &desc) {
     if (o.spp > 0) desc.film.spp = o.spp;
     if (o.noise_threshold >= 0) desc.film.noise_threshold = float(o.noise_threshold);
-    if (!o.res.empty())
-        parse_resolution(o.res, 65536, &desc.film.width, &desc.film.height);
+    if (o.width > 0 && o.height > 0) {
+        desc.film.width = o.width;
+        desc.film.height = o.height;
+    }
     if (!o.view.empty()) desc.film.view = o.view;
     if (o.cryptomatte) desc.film.cryptomatte = {"*"};
     RenderPlan plan;
     plan.output = !o.output.empty() ? o.output : desc.film.output;
     const std::string &output = plan.output;
     if (output.empty())
-        throw InputError(o.scene, 0, "film.output",
+        throw InputError(desc.path, 0, "film.output",
                          "no output file: give -o OUT.exr or set film.output");
     if (lower_extension(output) != ".exr")
         throw InputError("", 0, "-o",
@@ -98,7 +100,7 @@ RenderPlan plan_render(const RenderCliOptions &o, SceneDesc &desc) {
 
     // --frames LIST [--step N], or the still (an animation's first frame).
     plan.animated = !o.frames.empty();
-    plan.frames = plan.animated ? requested_frames(o, desc.animation, o.scene)
+    plan.frames = plan.animated ? requested_frames(o, desc.animation, desc.path)
                                 : std::vector<int>{desc.animation.first_frame};
     if (plan.frames.size() > 1 && !has_frame_token(output))
         throw InputError("", 0, "-o",
@@ -114,9 +116,10 @@ RenderPlan plan_render(const RenderCliOptions &o, SceneDesc &desc) {
         throw InputError("", 0, "--resume",
                          "resumes a frame range or a tile: give --frames or --tile too");
 
-    for (const auto &[flag, file] : {std::pair<std::string, std::string>{"-o", output},
-                                     {"--preview", preview},
-                                     {"--stats-json", o.stats_json.path}}) {
+    std::vector<std::pair<std::string, std::string>> files = {{"-o", output},
+                                                              {"--preview", preview}};
+    files.insert(files.end(), o.other_outputs.begin(), o.other_outputs.end());
+    for (const auto &[flag, file] : files) {
         if (file.empty()) continue;
         const fs::path dir = fs::absolute(fs::path(file)).parent_path();
         if (!fs::is_directory(dir))
@@ -127,4 +130,4 @@ RenderPlan plan_render(const RenderCliOptions &o, SceneDesc &desc) {
     return plan;
 }
 
-}  // namespace pelage::renderer::cli
+}  // namespace pelage::renderer

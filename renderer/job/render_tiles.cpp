@@ -1,11 +1,11 @@
-#include "renderer/cli/render_tiles.h"
+#include "renderer/job/render_tiles.h"
 
 #include <climits>
 #include <cstddef>
 
 #include "sim/core/input_error.h"
 
-namespace pelage::renderer::cli {
+namespace pelage::renderer {
 
 std::string TileSpec::label() const {
     return std::to_string(index) + "/" + std::to_string(count);
@@ -73,4 +73,4 @@ void describe_tile(const TileSpec &tile, int width, int height, int y0, int y1,
     meta->strings.push_back({tile_samples_attribute, std::to_string(samples)});
 }
 
-}  // namespace pelage::renderer::cli
+}  // namespace pelage::renderer

@@ -1,4 +1,4 @@
-#include "renderer/cli/frame_list.h"
+#include "renderer/job/frame_list.h"
 
 #include <algorithm>
 #include <climits>
@@ -6,7 +6,7 @@
 
 #include "sim/core/input_error.h"
 
-namespace pelage::renderer::cli {
+namespace pelage::renderer {
 
 namespace {
 
@@ -83,4 +83,4 @@ std::vector<int> expand_frames(const std::vector<FrameRange> &ranges) {
     return frames;
 }
 
-}  // namespace pelage::renderer::cli
+}  // namespace pelage::renderer

@@ -1,19 +1,22 @@
-#include "renderer/cli/grow_shown.h"
+#include "renderer/job/scene_patterns.h"
+
+#include <fmt/format.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cstdio>
 #include <optional>
 
-#include "renderer/cli/common.h"
+#include "renderer/core/install_layout.h"
 #include "renderer/core/progress.h"
 #include "renderer/core/setup_phase.h"
 #include "sim/cells_io/cells_file.h"
 
-namespace pelage::renderer::cli {
+namespace pelage::renderer {
 
 sim::GrownCells grow_cells_shown(sim::GrowRequest r, const std::string &label,
                                  bool show) {
-    r.preset_dir = data_path("scenes/presets");
+    r.preset_dir = find_data("scenes/presets");
     const bool tty = show && Progress::stderr_is_tty();
     SetupPhase::show(label, tty);
     std::optional<SetupPhase> phase;
@@ -35,29 +38,39 @@ sim::GrownCells grow_cells_shown(sim::GrowRequest r, const std::string &label,
     return grown;
 }
 
-void grow_scene_patterns(const SceneDesc &scene, bool quiet) {
+void grow_scene_patterns(const SceneDesc &scene,
+                         const std::function<void(const std::string &)> &note) {
     for (const ObjectDesc &o : scene.objects) {
         if (!o.pattern) continue;
         sim::GrowRequest request;
         request.mesh = o.mesh;
         request.preset = o.pattern->preset;
-        request.preset_dir = data_path("scenes/presets");
+        request.preset_dir = find_data("scenes/presets");
         request.seed = o.pattern->seed;
         std::string why;
         if (sim::cells_match(o.cells, request, &why)) continue;
-        if (!quiet)
-            std::fprintf(stderr, "%s: %s, growing %s (seed %llu) on %s\n",
-                         o.cells.c_str(), why.c_str(), o.pattern->preset.c_str(),
-                         static_cast<unsigned long long>(o.pattern->seed),
-                         o.mesh.c_str());
-        const Timer timer;
+        if (note)
+            note(fmt::format("{}: {}, growing {} (seed {}) on {}", o.cells, why,
+                             o.pattern->preset, o.pattern->seed, o.mesh));
+        const auto start = std::chrono::steady_clock::now();
         const sim::GrownCells grown =
-            grow_cells_shown(request, "pattern of " + o.name, !quiet);
+            grow_cells_shown(request, "pattern of " + o.name, bool(note));
         sim::write_cells_file(o.cells, grown.data);
-        if (!quiet)
-            std::fprintf(stderr, "%s: %zu cells, %.1f s\n", o.cells.c_str(),
-                         grown.data.num_cells(), timer.seconds());
+        if (note)
+            note(fmt::format(
+                "{}: {} cells, {:.1f} s", o.cells, grown.data.num_cells(),
+                std::chrono::duration<double>(std::chrono::steady_clock::now() - start)
+                    .count()));
     }
 }
 
-}  // namespace pelage::renderer::cli
+void grow_scene_patterns(const SceneDesc &scene, bool quiet) {
+    std::function<void(const std::string &)> note;
+    if (!quiet)
+        note = [](const std::string &line) {
+            std::fprintf(stderr, "%s\n", line.c_str());
+        };
+    grow_scene_patterns(scene, note);
+}
+
+}  // namespace pelage::renderer

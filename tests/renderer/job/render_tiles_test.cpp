@@ -1,5 +1,5 @@
 // Tiles of a still: "I/N" parsing, the bands covering every row once, and cropping.
-#include "renderer/cli/render_tiles.h"
+#include "renderer/job/render_tiles.h"
 
 #include <gtest/gtest.h>
 
@@ -9,7 +9,7 @@
 
 #include "sim/core/input_error.h"
 
-namespace pelage::renderer::cli {
+namespace pelage::renderer {
 namespace {
 
 TEST(RenderTiles, ParsesOneBasedTiles) {
@@ -62,4 +62,4 @@ TEST(RenderTiles, TilePixelsAreTheBandsRows) {
 }
 
 }  // namespace
-}  // namespace pelage::renderer::cli
+}  // namespace pelage::renderer

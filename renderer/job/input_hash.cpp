@@ -1,4 +1,4 @@
-#include "renderer/cli/input_hash.h"
+#include "renderer/job/input_hash.h"
 
 #include <OpenImageIO/imageio.h>
 
@@ -12,7 +12,7 @@
 #include "sim/growth/growth_spec.h"
 #include "sim/mesh/mesh_objects.h"
 
-namespace pelage::renderer::cli {
+namespace pelage::renderer {
 
 namespace fs = std::filesystem;
 
@@ -56,15 +56,13 @@ std::vector<std::string> scene_input_files(const SceneDesc &desc) {
     return files;
 }
 
-std::string settings_hash(const SceneDesc &desc, const PluginRegistry &plugins,
-                          uint64_t seed, const std::string &version) {
+std::string settings_hash(const SceneDesc &desc, const std::string &scene_text,
+                          const PluginRegistry &plugins, uint64_t seed,
+                          const std::string &version) {
     ContentHash h;
-    std::ifstream in(desc.path, std::ios::binary);
-    std::ostringstream text;
-    text << in.rdbuf();
     // The scene as parsed JSON: whitespace and key order do not count, and std::map
     // objects dump with sorted keys. The film carries the values rendered.
-    nlohmann::json j = nlohmann::json::parse(text.str(), nullptr, false, true);
+    nlohmann::json j = nlohmann::json::parse(scene_text, nullptr, false, true);
     if (j.is_object()) {
         nlohmann::json &film = j["film"];
         if (!film.is_object()) film = nlohmann::json::object();
@@ -77,7 +75,7 @@ std::string settings_hash(const SceneDesc &desc, const PluginRegistry &plugins,
         film["view"] = desc.film.view;
         h.add(j.dump());
     } else {
-        h.add(text.str());  // load_scene_file accepted it, so this does not happen
+        h.add(scene_text);  // parse_scene accepted it, so this does not happen
     }
     h.add("seed " + std::to_string(seed));
     for (const std::string &f : scene_input_files(desc)) h.add_file(f);
@@ -112,4 +110,4 @@ std::string recorded_settings_hash(const std::string &exr) {
     return exr_string_attribute(exr, "pelage:settings_xxh3");
 }
 
-}  // namespace pelage::renderer::cli
+}  // namespace pelage::renderer

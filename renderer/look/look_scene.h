@@ -10,7 +10,7 @@
 
 #include "renderer/camera/auto_frame.h"
 
-namespace pelage::renderer::cli {
+namespace pelage::renderer {
 
 struct LookSetup {
     Framing framing;
@@ -56,4 +56,4 @@ nlohmann::ordered_json look_scene(const LookSetup &s);
 // on one line.
 std::string format_scene_json(const nlohmann::ordered_json &j);
 
-}  // namespace pelage::renderer::cli
+}  // namespace pelage::renderer

@@ -1,4 +1,4 @@
-#include "renderer/cli/look_objects.h"
+#include "renderer/look/look_objects.h"
 
 #include <algorithm>
 #include <cmath>
@@ -7,7 +7,7 @@
 
 #include "sim/mesh/mesh_io.h"
 
-namespace pelage::renderer::cli {
+namespace pelage::renderer {
 namespace {
 
 // A triangle by its corners' positions, whatever their order: the same triangle read
@@ -162,4 +162,4 @@ LookObjects choose_look_objects(const std::string &path, const double up[3],
     return out;
 }
 
-}  // namespace pelage::renderer::cli
+}  // namespace pelage::renderer

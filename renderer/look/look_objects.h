@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-namespace pelage::renderer::cli {
+namespace pelage::renderer {
 
 struct LookObject {
     std::string name;  // selects it: "PATH#name" (sim/mesh/mesh_objects.h)
@@ -35,4 +35,4 @@ struct LookObjects {
 LookObjects choose_look_objects(const std::string &path, const double up[3],
                                 size_t max_names = 64);
 
-}  // namespace pelage::renderer::cli
+}  // namespace pelage::renderer
