@@ -1,7 +1,7 @@
 // Where pelage finds its parts: relative to the running executable (/proc/self/exe), so
 // an installation works wherever its prefix is copied or moved. The build tree has the
 // same layout as an installation (default GNUInstallDirs folders shown):
-//   bin/pelage                   the command (renderer/cli/launcher.cpp)
+//   bin/pelage                   the command (apps/pelage/launcher.cpp)
 //   lib/pelage/libpelage_cli.so  the command's body, loaded by bin/pelage
 //   lib/pelage/shaders/*.so      the shader plugins (plugin_loader.h)
 //   share/pelage/ocio/           the OpenColorIO config and its LUT

@@ -17,6 +17,7 @@
 #include <string>
 #include <vector>
 
+#include "shader/clonal_mosaic/pattern_cache.h"
 #include "shader/mosaic/coherent_lookup.h"
 #include "shader/mosaic/mosaic_lod.h"
 #include "shader/mosaic/pattern.h"
@@ -50,7 +51,8 @@ struct CellLook {
 };
 
 struct ClonalMosaic {
-    std::unique_ptr<shader::mosaic::MosaicPattern> pattern;
+    // Shared by every instance of this file on this mesh (pattern_cache.h).
+    std::shared_ptr<const shader::mosaic::MosaicPattern> pattern;
     const shader::mosaic::CellTable *cells_ptr = nullptr;
     const shader::mosaic::ClosestCellIndex *index = nullptr;
     // Rendering another mesh of the simulation surface's shape: hits are carried onto it
@@ -348,7 +350,7 @@ std::unique_ptr<ClonalMosaic> make(const PelageParamSet &ps) {
                                     "\" is none of \"geodesic\", \"edges\", \"teo\"");
 
     const std::string mesh_name = ps.mesh.mesh_name ? ps.mesh.mesh_name : "the mesh";
-    cm->pattern = std::make_unique<shader::mosaic::MosaicPattern>(
+    cm->pattern = shader::clonal_mosaic::cached_pattern(
         ps.mesh.cells_path, rest_mesh(ps.mesh), mesh_name,
         neighbourhood == "geodesic" ? shader::mosaic::Neighbourhood::geodesic
         : neighbourhood == "teo"    ? shader::mosaic::Neighbourhood::unfolding_teo

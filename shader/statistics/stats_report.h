@@ -1,5 +1,5 @@
 // What `pelage stats` reports of a pattern, as the JSON its keys are a contract for
-// (renderer/cli/cmd_stats.cpp lists them): the counts, the look measured on the surface
+// (apps/pelage/cmd_stats.cpp lists them): the counts, the look measured on the surface
 // through the closest-cell search (area fractions, spots) and, for cells grown with
 // anisotropy, how their borders follow its field. One function for the command and for
 // `pelage explore`'s statistics panel, so the two always show the same numbers.
