@@ -40,10 +40,8 @@ std::shared_ptr<const mosaic::MosaicPattern> cached_pattern(
     std::error_code ec;
     const fs::path path = fs::absolute(cells_path, ec).lexically_normal();
     const uintmax_t size = fs::file_size(path, ec);
-    const int64_t written = ec ? 0
-                               : int64_t(fs::last_write_time(path, ec)
-                                             .time_since_epoch()
-                                             .count());
+    const int64_t written =
+        ec ? 0 : int64_t(fs::last_write_time(path, ec).time_since_epoch().count());
     if (ec)  // unreadable: the pattern's own error says so
         return std::make_shared<const mosaic::MosaicPattern>(cells_path, std::move(rest),
                                                              mesh_name, neighbourhood);

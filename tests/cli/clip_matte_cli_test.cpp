@@ -9,6 +9,8 @@
 
 #include <array>
 #include <cmath>
+#include <fstream>
+#include <iterator>
 #include <string>
 #include <vector>
 
@@ -137,6 +139,37 @@ TEST(ClipMatteCli, ASurfacePointKeepsItsCloneFromFrameToFrame) {
     // The pose moves the points in the picture: a pattern fixed in the image (or in
     // space) would not keep them.
     EXPECT_LT(double(same_pixel), 0.8 * compared) << same_pixel << " of " << compared;
+}
+
+// A clip's frames share what does not change between them (the pattern and its
+// closest-cell index): each frame of one run is, byte for byte, the frame rendered by a
+// run of its own, the skin and the fur coloured by the pattern under its roots.
+TEST(ClipFramesCli, AFrameOfARunIsTheFrameRenderedAlone) {
+    TempDir tmp;
+    const std::string mesh = tmp.write("strip.gltf", skinned_strip());
+    std::string err;
+    ASSERT_EQ(run_pelage("look " + mesh +
+                             " --clip bend --frames 0-24x12 --res 160x90 --spp 2 --fur "
+                             "-q -o " +
+                             tmp.file("strip.exr"),
+                         nullptr, &err),
+              0)
+        << err;
+    for (const char *frame : {"12", "24"}) {
+        ASSERT_EQ(run_pelage("render " + tmp.file("strip.json") + " --frames " + frame +
+                                 " -q -o " + tmp.file("alone.####.exr"),
+                             nullptr, &err),
+                  0)
+            << err;
+        const std::string n = std::string(frame).size() == 2 ? "00" : "000";
+        std::ifstream a(tmp.file("strip." + n + frame + ".exr"), std::ios::binary),
+            b(tmp.file("alone." + n + frame + ".exr"), std::ios::binary);
+        const std::string run((std::istreambuf_iterator<char>(a)), {}),
+            alone((std::istreambuf_iterator<char>(b)), {});
+        ASSERT_FALSE(run.empty());
+        EXPECT_TRUE(run == alone)
+            << "frame " << frame << " differs from its render alone";
+    }
 }
 
 }  // namespace
