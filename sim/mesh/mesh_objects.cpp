@@ -1,8 +1,11 @@
 #include "sim/mesh/mesh_objects.h"
 
 #include <algorithm>
+#include <fstream>
+#include <iterator>
 #include <unordered_set>
 
+#include "sim/core/content_hash.h"
 #include "sim/core/input_error.h"
 #include "sim/mesh/mesh_io.h"
 
@@ -49,6 +52,21 @@ void fail_unknown_object(const std::string &path, const std::string &object,
                          (names.empty() ? std::string("the file names no objects")
                                         : "the file's objects: " + list) +
                          ")");
+}
+
+std::string mesh_reference_hash(const std::string &spec) {
+    ContentHash h;
+    if (spec.rfind("procedural:", 0) == 0) {
+        h.add(spec);
+        return h.hex();
+    }
+    const MeshSpec m = parse_mesh_spec(spec);
+    std::ifstream in(m.path, std::ios::binary);
+    if (!in) return "";
+    h.add(std::string(std::istreambuf_iterator<char>(in), {}));
+    // One object of the file is another mesh than the whole file or another object.
+    if (!m.object.empty()) h.add("#" + m.object);
+    return h.hex();
 }
 
 }  // namespace pelage::sim

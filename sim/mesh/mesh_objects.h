@@ -19,6 +19,11 @@ struct MeshSpec {
 // without one is a path. Throws InputError for "zoo.glb#" (no name after the '#').
 MeshSpec parse_mesh_spec(const std::string &spec);
 
+// A mesh reference's identity by content (16 hex digits), so that a scene and its files
+// can move together: a file's bytes, then for FILE#NAME the object's name; a
+// procedural:... spec its text. "" when the file cannot be read.
+std::string mesh_reference_hash(const std::string &spec);
+
 // `names` without empty strings and repeats, in their first order.
 std::vector<std::string> unique_names(const std::vector<std::string> &names);
 

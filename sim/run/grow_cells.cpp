@@ -15,26 +15,13 @@
 #include "sim/crps/body_length.h"
 #include "sim/crps/surface.h"
 #include "sim/growth/growth_shape.h"
+#include "sim/mesh/mesh_objects.h"
 #include "sim/mosaic/growing_surface.h"
 #include "sim/run/setup_step.h"
 #include "sim/run/simulation_surface.h"
 
 namespace pelage::sim {
 namespace {
-
-// The mesh's identity for a cached pattern: its content, not its name, so a scene and
-// its files can move together.
-std::string mesh_content_hash(const std::string &mesh) {
-    ContentHash h;
-    if (mesh.rfind("procedural:", 0) == 0) {
-        h.add(mesh);
-    } else {
-        std::ifstream in(mesh, std::ios::binary);
-        if (!in) return "";
-        h.add(std::string(std::istreambuf_iterator<char>(in), {}));
-    }
-    return h.hex();
-}
 
 // The content of the growth block's mesh keys: a pattern grown through other shapes is
 // another pattern.
@@ -43,7 +30,7 @@ nlohmann::json growth_mesh_hashes(const sim::Preset &preset) {
     if (preset.growth)
         for (const sim::GrowthKey &k : preset.growth->keys)
             if (k.kind == sim::GrowthKey::Kind::mesh)
-                out.push_back(mesh_content_hash(k.mesh));
+                out.push_back(mesh_reference_hash(k.mesh));
     return out;
 }
 
@@ -170,7 +157,7 @@ GrownCells grow_cells(const GrowRequest &r) {
     g.params = {
         {"preset", nlohmann::json::parse(g.preset.json_text)},
         {"mesh", r.mesh},
-        {"mesh_xxh3", mesh_content_hash(r.mesh)},
+        {"mesh_xxh3", mesh_reference_hash(r.mesh)},
         {"seed", r.seed},
         {"initial_cells", g.stats.initial_cells},
         {"relax", g.preset.params.relax == sim::RelaxMode::local ? "local" : "global"},
@@ -220,7 +207,7 @@ bool cells_match(const std::string &path, const GrowRequest &r, std::string *why
         return differs("grown from another preset");
     if (params.value("seed", uint64_t(0)) != r.seed)
         return differs("grown with another seed");
-    if (params.value("mesh_xxh3", std::string()) != mesh_content_hash(r.mesh))
+    if (params.value("mesh_xxh3", std::string()) != mesh_reference_hash(r.mesh))
         return differs("grown on another mesh");
     if (params.value("growth_meshes_xxh3", nlohmann::json::array()) !=
         growth_mesh_hashes(preset))
