@@ -19,7 +19,7 @@
 #include "renderer/scene_file/scene_fur.h"
 #include "sim/core/input_error.h"
 #include "sim/crps/surface.h"
-#include "sim/mosaic/cell_types.h"
+#include "sim/mosaic/preset.h"
 
 namespace pelage::renderer::cli {
 namespace {

@@ -19,6 +19,7 @@
 #include "sim/core/input_error.h"
 #include "sim/crps/surface.h"
 #include "sim/mosaic/cm_simulation.h"
+#include "sim/mosaic/preset.h"
 
 namespace pelage::renderer::cli {
 namespace {

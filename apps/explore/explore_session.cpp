@@ -14,8 +14,8 @@
 #include "sim/core/atomic_file.h"
 #include "sim/core/input_error.h"
 #include "sim/mesh/mesh_write_obj.h"
-#include "sim/mosaic/cell_types.h"
 #include "sim/mosaic/cm_simulation.h"
+#include "sim/mosaic/preset.h"
 #include "sim/run/grow_cells.h"
 
 namespace pelage::renderer::explore {

@@ -20,7 +20,7 @@
 #include "renderer/look/look_scene.h"
 #include "sim/core/atomic_file.h"
 #include "sim/core/input_error.h"
-#include "sim/mosaic/cell_types.h"
+#include "sim/mosaic/preset.h"
 
 namespace pelage::renderer::cli {
 namespace {

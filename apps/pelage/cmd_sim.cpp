@@ -15,6 +15,7 @@
 #include "sim/cells_io/cells_file.h"
 #include "sim/cells_io/pattern_stats.h"
 #include "sim/core/input_error.h"
+#include "sim/mosaic/preset.h"
 
 namespace pelage::renderer::cli {
 namespace {

@@ -25,6 +25,7 @@
 #include "sim/cells_io/pattern_stats.h"
 #include "sim/core/input_error.h"
 #include "sim/crps/surface.h"
+#include "sim/mosaic/preset.h"
 
 namespace pelage::renderer::cli {
 namespace {

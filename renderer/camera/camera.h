@@ -5,7 +5,7 @@
 #include <array>
 
 #include "renderer/core/math.h"
-#include "renderer/scene_file/scene_file.h"
+#include "renderer/scene_frame/scene_frame.h"
 
 namespace pelage::renderer {
 

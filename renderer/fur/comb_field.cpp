@@ -7,7 +7,7 @@
 
 #include "sim/cells_io/cells_file.h"
 #include "sim/core/input_error.h"
-#include "sim/mosaic/cell_types.h"
+#include "sim/mosaic/preset.h"
 
 namespace pelage::renderer {
 

@@ -17,6 +17,7 @@
 #include "renderer/job/input_hash.h"
 #include "renderer/job/render_plan.h"
 #include "renderer/job/scene_patterns.h"
+#include "renderer/scene_frame/scene_frame.h"
 #include "sim/core/input_error.h"
 
 namespace pelage::renderer {

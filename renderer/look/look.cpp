@@ -11,7 +11,7 @@
 #include "sim/core/input_error.h"
 #include "sim/mesh/mesh_load.h"
 #include "sim/mesh/mesh_objects.h"
-#include "sim/mosaic/cell_types.h"
+#include "sim/mosaic/preset.h"
 
 namespace pelage::renderer {
 

@@ -202,14 +202,4 @@ SceneDesc load_scene_file(const std::string &path);
 // The same, from text; `path` names it in errors and anchors relative paths.
 SceneDesc parse_scene(const std::string &text, const std::string &path);
 
-// Rotation by `degrees` about `axis` (unit) through `center`.
-Affine rotation_about(Vec3f axis, Vec3f center, float degrees);
-// The turntable angle at frame `frame` plus `time` (in frames, the shutter position).
-float turntable_degrees(const AnimationDesc &a, double frame_time);
-// The camera at frame + time (time in frames): orbited for a camera turntable.
-CameraDesc camera_at(const SceneDesc &scene, double frame_time);
-// The scene as frame `frame` shows it (shutter open): camera orbited or objects turned,
-// deforming objects at their pose for the frame.
-SceneDesc scene_at_frame(const SceneDesc &scene, int frame);
-
 }  // namespace pelage::renderer

@@ -5,6 +5,7 @@
 #include "sim/control/surface_control.h"
 #include "sim/crps/surface_sampling.h"
 #include "sim/mesh/mesh_load.h"
+#include "sim/mosaic/preset.h"
 
 namespace pelage::shader::statistics {
 

@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "shader/mosaic/pattern.h"
-#include "sim/mosaic/cell_types.h"
+#include "sim/mosaic/preset.h"
 
 namespace pelage::shader::statistics {
 

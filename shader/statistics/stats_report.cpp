@@ -7,7 +7,7 @@
 #include "sim/core/input_error.h"
 #include "sim/crps/surface.h"
 #include "sim/mosaic/anisotropy_field.h"
-#include "sim/mosaic/cell_types.h"
+#include "sim/mosaic/preset.h"
 
 namespace pelage::shader::statistics {
 namespace {

@@ -1,4 +1,5 @@
-// Cell types of the Clonal Mosaic model and the presets that configure a simulation.
+// Cell types of the Clonal Mosaic model and the parameters of a run (the presets that
+// set them are read by preset.h).
 // Walter, Fournier, Reimers, GI 1998, Table 1 ("Attributes of a cell") and Walter's
 // thesis (UBC 1998) §3.3; Teo (NTU 2006) Table 3.1, whose "repulsiveness" is 1 − α.
 //
@@ -18,9 +19,7 @@
 #include <string>
 #include <vector>
 
-#include "sim/control/control_spec.h"
 #include "sim/field/field_spec.h"
-#include "sim/growth/growth_spec.h"
 
 namespace pelage::sim {
 
@@ -103,30 +102,5 @@ struct SimParams {
     DivisionDistribution division_distribution = DivisionDistribution::poisson;
     double child_radius_factor = 0.005;  // child within 0.005·r (a disc of diameter 1% r)
 };
-
-struct Preset {
-    std::string name, description;
-    CellTypes types;
-    SimParams params;
-    // Regions, masks and local parameters (Queiroz & Walter §V); SimParams and the types
-    // hold the defaults of the local ones.
-    ControlSpec control;
-    std::string json_text;  // the preset as read (compact JSON), stored in .cells files
-    std::optional<GrowthSpec> growth;  // the "growth" block (sim/growth/growth_spec.h)
-};
-
-// Parses a preset from JSON text; `file` names the source in InputError messages, which
-// carry the JSON path of the offending field (e.g. "types[1].colour").
-Preset parse_preset(const std::string &json_text, const std::string &file);
-// Reads and parses a preset file; InputError when missing or malformed.
-Preset load_preset_file(const std::string &path);
-
-}  // namespace pelage::sim
-
-namespace pelage::sim {
-
-// A preset by name ("giraffe-reticulata" → presets_dir/giraffe-reticulata.json) or by
-// path (anything ending in .json or containing '/'). Unknown names list what exists.
-Preset load_preset(const std::string &name_or_path, const std::string &presets_dir);
 
 }  // namespace pelage::sim

@@ -17,6 +17,7 @@
 #include "sim/growth/growth_shape.h"
 #include "sim/mesh/mesh_objects.h"
 #include "sim/mosaic/growing_surface.h"
+#include "sim/mosaic/preset.h"
 #include "sim/run/setup_step.h"
 #include "sim/run/simulation_surface.h"
 

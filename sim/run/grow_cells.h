@@ -12,8 +12,8 @@
 
 #include "sim/cells_io/cells_file.h"
 #include "sim/crps/surface.h"
-#include "sim/mosaic/cell_types.h"
 #include "sim/mosaic/cm_simulation.h"
+#include "sim/mosaic/preset.h"
 #include "sim/remesh/cell_scale_surface.h"
 
 namespace pelage::sim {

@@ -8,6 +8,7 @@
 
 #include "sim/mosaic/cm_simulation.h"
 #include "sim/mosaic/final_cells.h"
+#include "sim/mosaic/preset.h"
 #include "sim/run/setup_step.h"
 
 namespace pelage::sim {

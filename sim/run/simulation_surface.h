@@ -9,7 +9,7 @@
 #include <string>
 
 #include "sim/crps/surface.h"
-#include "sim/mosaic/cell_types.h"
+#include "sim/mosaic/preset.h"
 #include "sim/remesh/cell_scale_surface.h"
 
 namespace pelage::sim {

@@ -16,6 +16,7 @@
 
 #include "renderer/camera/camera.h"
 #include "renderer/scene/scene.h"
+#include "renderer/scene_frame/scene_frame.h"
 #include "tests/renderer/animation/skinned_strip.h"
 #include "tests/test_paths.h"
 

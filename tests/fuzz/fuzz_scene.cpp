@@ -6,6 +6,7 @@
 #include <string>
 
 #include "renderer/scene_file/scene_file.h"
+#include "renderer/scene_frame/scene_frame.h"
 #include "sim/core/input_error.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {

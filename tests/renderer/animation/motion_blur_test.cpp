@@ -10,6 +10,7 @@
 
 #include "renderer/geometry/fur_geometry.h"
 #include "renderer/scene/scene.h"
+#include "renderer/scene_frame/scene_frame.h"
 #include "sim/core/input_error.h"
 #include "tests/renderer/animation/moving_plate.h"
 #include "tests/renderer/animation/skinned_strip.h"

@@ -13,6 +13,7 @@
 #include <nlohmann/json.hpp>
 
 #include "renderer/scene_file/scene_file.h"
+#include "renderer/scene_frame/scene_frame.h"
 #include "sim/core/input_error.h"
 #include "sim/mesh/mesh_load.h"
 #include "tests/renderer/animation/gltf_reference.h"

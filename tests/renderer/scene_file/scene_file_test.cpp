@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include "renderer/scene_frame/scene_frame.h"
 #include "sim/core/input_error.h"
 #include "tests/test_paths.h"
 

@@ -10,6 +10,7 @@
 #include "sim/core/input_error.h"
 #include "sim/crps/surface.h"
 #include "sim/mosaic/cm_simulation.h"
+#include "sim/mosaic/preset.h"
 #include "tests/sim/sim_test_util.h"
 #include "tests/test_paths.h"
 

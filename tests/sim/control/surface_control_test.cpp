@@ -18,6 +18,7 @@
 #include "sim/mesh/closest_point.h"
 #include "sim/mesh/procedural_mesh.h"
 #include "sim/mosaic/cm_simulation.h"
+#include "sim/mosaic/preset.h"
 #include "tests/oracle/exact_geodesic_oracle.h"
 #include "tests/sim/sim_test_util.h"
 #include "tests/test_paths.h"

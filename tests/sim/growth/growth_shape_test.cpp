@@ -11,7 +11,7 @@
 #include "sim/mesh/mesh_load.h"
 #include "sim/mesh/mesh_write_obj.h"
 #include "sim/mesh/procedural_mesh.h"
-#include "sim/mosaic/cell_types.h"
+#include "sim/mosaic/preset.h"
 #include "tests/sim/sim_test_util.h"
 #include "tests/test_paths.h"
 

@@ -10,6 +10,7 @@
 #include "sim/field/vector_heat.h"
 #include "sim/mesh/procedural_mesh.h"
 #include "sim/mosaic/cm_simulation.h"
+#include "sim/mosaic/preset.h"
 #include "tests/sim/sim_test_util.h"
 
 namespace pelage::sim {

@@ -10,6 +10,7 @@
 #include "sim/cells_io/cells_file.h"
 #include "sim/core/random.h"
 #include "sim/crps/surface.h"
+#include "sim/mosaic/preset.h"
 #include "tests/sim/sim_test_util.h"
 #include "tests/test_paths.h"
 

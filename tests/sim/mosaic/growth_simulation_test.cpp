@@ -12,6 +12,7 @@
 #include "sim/crps/surface.h"
 #include "sim/mosaic/cm_simulation.h"
 #include "sim/mosaic/growing_surface.h"
+#include "sim/mosaic/preset.h"
 #include "tests/sim/mosaic/growth_test_util.h"
 
 namespace pelage::sim {

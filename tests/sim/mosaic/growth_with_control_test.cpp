@@ -13,6 +13,7 @@
 #include "sim/mesh/procedural_mesh.h"
 #include "sim/mosaic/cm_simulation.h"
 #include "sim/mosaic/growing_surface.h"
+#include "sim/mosaic/preset.h"
 #include "tests/sim/mosaic/growth_test_util.h"
 #include "tests/sim/sim_test_util.h"
 

@@ -1,4 +1,6 @@
 // Presets: every shipped preset parses; bad values are InputErrors naming the JSON path.
+#include "sim/mosaic/preset.h"
+
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -6,7 +8,6 @@
 
 #include "sim/core/input_error.h"
 #include "sim/crps/surface.h"
-#include "sim/mosaic/cell_types.h"
 #include "sim/mosaic/cm_simulation.h"
 #include "tests/sim/sim_test_util.h"
 #include "tests/test_paths.h"

@@ -1,0 +1,36 @@
+// Presets: the cell types, parameters, spatial control and growth that configure a
+// simulation, read from JSON strictly (unknown keys and out-of-range values are
+// InputError naming the JSON path), and found by name among the shipped presets.
+#pragma once
+
+#include <optional>
+#include <string>
+
+#include "sim/control/control_spec.h"
+#include "sim/growth/growth_spec.h"
+#include "sim/mosaic/cell_types.h"
+
+namespace pelage::sim {
+
+struct Preset {
+    std::string name, description;
+    CellTypes types;
+    SimParams params;
+    // Regions, masks and local parameters (Queiroz & Walter §V); SimParams and the types
+    // hold the defaults of the local ones.
+    ControlSpec control;
+    std::string json_text;  // the preset as read (compact JSON), stored in .cells files
+    std::optional<GrowthSpec> growth;  // the "growth" block (sim/growth/growth_spec.h)
+};
+
+// Parses a preset from JSON text; `file` names the source in InputError messages, which
+// carry the JSON path of the offending field (e.g. "types[1].colour").
+Preset parse_preset(const std::string &json_text, const std::string &file);
+// Reads and parses a preset file; InputError when missing or malformed.
+Preset load_preset_file(const std::string &path);
+
+// A preset by name ("giraffe-reticulata" → presets_dir/giraffe-reticulata.json) or by
+// path (anything ending in .json or containing '/'). Unknown names list what exists.
+Preset load_preset(const std::string &name_or_path, const std::string &presets_dir);
+
+}  // namespace pelage::sim
