@@ -207,11 +207,12 @@ RenderJob render_job_from_text(const std::string &text, const std::string &path)
 RenderTotals run_render_job(const RenderJob &job, RenderObserver &observer) {
     const Timer wall;
     SceneDesc desc = job.scene;
-    const RenderPlan plan_checked = plan_render(job, desc);
-    // After the outputs are checked: a bad -o fails before a long growth.
-    grow_scene_patterns(desc, [&](const std::string &line) { observer.note(line); });
+    RenderPlan plan = plan_render(job, desc);
+    // After the outputs are checked: a bad -o fails before a long growth. Its bar shows
+    // where the render's does.
+    grow_scene_patterns(
+        desc, [&](const std::string &line) { observer.note(line); }, job.progress);
     const PluginRegistry plugins;
-    RenderPlan plan = plan_checked;
     plan.settings =
         settings_hash(desc, job.scene_text, plugins, job.seed, PELAGE_VERSION);
     const std::unique_ptr<Scene> shared_scene = shared_scene_for(desc, plugins);

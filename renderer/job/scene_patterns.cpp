@@ -39,7 +39,8 @@ sim::GrownCells grow_cells_shown(sim::GrowRequest r, const std::string &label,
 }
 
 void grow_scene_patterns(const SceneDesc &scene,
-                         const std::function<void(const std::string &)> &note) {
+                         const std::function<void(const std::string &)> &note,
+                         bool show) {
     for (const ObjectDesc &o : scene.objects) {
         if (!o.pattern) continue;
         sim::GrowRequest request;
@@ -54,7 +55,7 @@ void grow_scene_patterns(const SceneDesc &scene,
                              o.pattern->preset, o.pattern->seed, o.mesh));
         const auto start = std::chrono::steady_clock::now();
         const sim::GrownCells grown =
-            grow_cells_shown(request, "pattern of " + o.name, bool(note));
+            grow_cells_shown(request, "pattern of " + o.name, show);
         sim::write_cells_file(o.cells, grown.data);
         if (note)
             note(fmt::format(
@@ -70,7 +71,7 @@ void grow_scene_patterns(const SceneDesc &scene, bool quiet) {
         note = [](const std::string &line) {
             std::fprintf(stderr, "%s\n", line.c_str());
         };
-    grow_scene_patterns(scene, note);
+    grow_scene_patterns(scene, note, !quiet);
 }
 
 }  // namespace pelage::renderer

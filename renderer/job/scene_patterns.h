@@ -18,9 +18,9 @@ sim::GrownCells grow_cells_shown(sim::GrowRequest request, const std::string &la
 
 // Grows every object's "pattern" whose cells file is missing or was grown otherwise
 // (sim::cells_match), writing the file atomically. `note` (when set) is told why and
-// what it took, and the growth shows its set-up steps and bar on a terminal.
+// what it took; with `show`, the growth draws its set-up steps and bar on a terminal.
 void grow_scene_patterns(const SceneDesc &scene,
-                         const std::function<void(const std::string &)> &note);
+                         const std::function<void(const std::string &)> &note, bool show);
 // The same, the notes on stderr unless `quiet` (stdout may carry a command's JSON).
 void grow_scene_patterns(const SceneDesc &scene, bool quiet);
 
