@@ -1,5 +1,6 @@
-// The rig's contents (renderer/animation/rig.h), shared by its reader (rig_read.cpp)
-// and its posing (rig_pose.cpp): plain copies of what assimp read, times in seconds.
+// The rig's contents (renderer/animation/rig.h), shared by its reader (rig_read.cpp),
+// its queries (rig.cpp) and its posing (rig_pose.cpp): plain copies of what assimp
+// read, times in seconds.
 #pragma once
 
 #include <cstdint>

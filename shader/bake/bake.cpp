@@ -5,9 +5,9 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <map>
 #include <stdexcept>
 
+#include "shader/bake/bake_texels.h"
 #include "sim/crps/cell_walk.h"
 
 namespace pelage::shader::bake {
@@ -15,51 +15,6 @@ namespace {
 
 using sim::Vec2d;
 using sim::Vec3d;
-
-// A layout triangle in its tile's texel coordinates (x right, y down), with the affine
-// map from texel offsets to barycentric coordinates and to surface displacements.
-struct TexelTriangle {
-    std::array<Vec2d, 3> p;
-    double i00 = 0, i01 = 0, i10 = 0, i11 = 0;  // inverse of [p1 - p0, p2 - p0]
-    Vec3d jx, jy;           // surface displacement per texel along x and y
-    float footprint = 0;    // the texel's width on the surface (pattern units)
-    double x0, x1, y0, y1;  // bounding box
-    bool valid = false;
-
-    Vec3d barycentric(Vec2d q) const {
-        const Vec2d r = q - p[0];
-        const double b1 = i00 * r.x + i01 * r.y, b2 = i10 * r.x + i11 * r.y;
-        return {1 - b1 - b2, b1, b2};
-    }
-};
-
-// The nearest point of segment ab to q, as the parameter along it.
-double segment_param(Vec2d q, Vec2d a, Vec2d b) {
-    const Vec2d ab = b - a;
-    return std::clamp(dot(q - a, ab) / std::max(dot(ab, ab), 1e-300), 0.0, 1.0);
-}
-
-// Distance from q to the triangle (0 inside) and the barycentrics of its nearest point.
-double distance_to(const TexelTriangle &t, Vec2d q, Vec3d *b_nearest) {
-    const Vec3d b = t.barycentric(q);
-    if (b.x >= 0 && b.y >= 0 && b.z >= 0) {
-        *b_nearest = b;
-        return 0;
-    }
-    double best = 1e300;
-    for (int k = 0; k < 3; ++k) {
-        const Vec2d A = t.p[k], B = t.p[(k + 1) % 3];
-        const double s = segment_param(q, A, B), d = length(q - (A + (B - A) * s));
-        if (d < best) {
-            best = d;
-            double w[3] = {0, 0, 0};
-            w[k] = 1 - s;
-            w[(k + 1) % 3] = s;
-            *b_nearest = {w[0], w[1], w[2]};
-        }
-    }
-    return best;
-}
 
 // What a texel shows, from the cells around its surface point.
 struct Looks {
@@ -159,6 +114,85 @@ void fill_empty(std::vector<float> &px, const std::vector<uint8_t> &covered, int
     }
 }
 
+// The surface point texel centre q shows, owned by triangle `owner` (T) at distance
+// `dist`: the nearest point of T, carried onto the pattern's mesh, and for a gutter texel
+// walked on from there by the texel's offset.
+struct TexelPoint {
+    sim::TriId tri;
+    float b1, b2;
+};
+
+TexelPoint texel_point(const BakeLayout &layout, const sim::Crps &crps,
+                       const TexelTriangle &T, sim::TriId owner, float dist, Vec2d q) {
+    Vec3d b;
+    T.distance_to(q, &b);
+    sim::TriId s = owner;
+    float b1 = float(b.y), b2 = float(b.z);
+    if (layout.transfer) {
+        const auto at = layout.transfer->map(s, b1, b2);
+        s = at.tri;
+        b1 = at.b1;
+        b2 = at.b2;
+    }
+    if (dist > 0) {
+        // Walk from the border point by the texel's offset, over the surface into
+        // whatever triangle lies there.
+        const Vec2d from = T.p[0] * b.x + T.p[1] * b.y + T.p[2] * b.z;
+        const Vec2d off = q - from;
+        const Vec3d d3 = T.jx * off.x + T.jy * off.y;
+        const sim::CrpsFrame &f = crps.frame(s);
+        const Vec3d dl = f.rotation * d3;
+        const Vec2d start = crps.barycentric_to_2d(
+            s, {1.0 - double(b1) - double(b2), double(b1), double(b2)});
+        const sim::SurfacePoint end = sim::walk(crps, {s, start}, {dl.x, dl.z});
+        const Vec3d be = crps.to_barycentric(end.tri, end.p);
+        s = end.tri;
+        b1 = float(be.y);
+        b2 = float(be.z);
+    }
+    return {s, b1, b2};
+}
+
+// Each owned texel's look, rows in parallel; the others stay black, transparent and
+// without ids.
+void shade_tile(const mosaic::MosaicPattern &pattern, const Looks &looks,
+                const BakeLayout &layout, const std::vector<TexelTriangle> &tris,
+                const TexelOwners &owners, std::vector<float> &pixels) {
+    const int W = layout.width, H = layout.height, C = BakeResult::channels;
+    const sim::Crps &crps = pattern.surface().crps;
+    const size_t n = size_t(W) * H;
+    pixels.assign(n * C, 0.0f);
+    for (size_t i = 0; i < n; ++i)
+        for (int c = 4; c < C; ++c) pixels[i * C + c] = -1;
+    tbb::parallel_for(tbb::blocked_range<int>(0, H, 4), [&](const auto &r) {
+        for (int y = r.begin(); y != r.end(); ++y)
+            for (int x = 0; x < W; ++x) {
+                const size_t i = size_t(y) * W + x;
+                if (owners.owner[i] == sim::invalid_id) continue;
+                const TexelTriangle &T = tris[owners.owner[i]];
+                const TexelPoint at = texel_point(layout, crps, T, owners.owner[i],
+                                                  owners.dist[i], {x + 0.5, y + 0.5});
+                shade_texel(pattern, looks, at.tri, at.b1, at.b2, T.footprint,
+                            &pixels[i * C]);
+            }
+    });
+}
+
+// Adds the tile's texels to the result's counts; returns which texels are covered.
+std::vector<uint8_t> count_texels(const TexelOwners &owners,
+                                  const std::vector<float> &pixels, BakeResult &out) {
+    const int C = BakeResult::channels;
+    const size_t n = owners.owner.size();
+    std::vector<uint8_t> covered(n);
+    for (size_t i = 0; i < n; ++i) {
+        covered[i] = pixels[i * C + 3] > 0;
+        out.texels_inside += owners.owner[i] != sim::invalid_id && owners.dist[i] == 0;
+        out.texels_gutter += owners.owner[i] != sim::invalid_id && owners.dist[i] > 0;
+        out.texels_overlapped += owners.strictly_inside[i] >= 2;
+    }
+    return covered;
+}
+
 }  // namespace
 
 int udim_of(Vec2d uv) {
@@ -169,25 +203,6 @@ int udim_of(Vec2d uv) {
             ") lies outside the UDIM tiles 1001-1100 (0 <= u < 10, 0 <= v < 10)");
     return 1001 + int(u) + 10 * int(v);
 }
-
-namespace {
-
-// The tile of triangle t (its UV centroid's), checking every corner's range.
-int tile_of(const sim::TriangleMesh &mesh, const Vec2d *uv, sim::TriId t) {
-    try {
-        const int udim = udim_of((uv[0] + uv[1] + uv[2]) / 3);
-        for (int c = 0; c < 3; ++c)  // corners may lie on the tiles' far borders
-            if (!(uv[c].x >= 0 && uv[c].x <= 10 && uv[c].y >= 0 && uv[c].y <= 10))
-                udim_of(uv[c]);
-        return udim;
-    } catch (const std::invalid_argument &e) {
-        const uint32_t face = t < mesh.source_face.size() ? mesh.source_face[t] : t;
-        throw std::invalid_argument("triangle " + std::to_string(t) + " (face " +
-                                    std::to_string(face + 1) + "): " + e.what());
-    }
-}
-
-}  // namespace
 
 std::vector<int> udim_tiles(const sim::TriangleMesh &mesh,
                             const std::vector<sim::Vec2d> &corner_uvs) {
@@ -203,149 +218,24 @@ std::vector<int> udim_tiles(const sim::TriangleMesh &mesh,
 
 BakeResult bake_layout(const mosaic::MosaicPattern &pattern, const BakeLayout &layout,
                        const std::function<void(BakedTile &&)> &on_tile) {
-    const sim::TriangleMesh &mesh = *layout.mesh;
-    const size_t nt = mesh.num_triangles();
-    udim_tiles(mesh, layout.corner_uvs);  // every check, before any work
-    const int W = layout.width, H = layout.height, C = BakeResult::channels;
+    udim_tiles(*layout.mesh, layout.corner_uvs);  // every check, before any work
+    const int W = layout.width, H = layout.height;
     const double gutter = layout.gutter;
-    const double scale = layout.transfer ? layout.transfer->scale() : 1.0;
 
     BakeResult out;
     out.width = W;
     out.height = H;
-    // --- Each triangle in its tile's texel coordinates ---
-    std::vector<TexelTriangle> tris(nt);
-    std::map<int, std::vector<uint32_t>> by_tile;
-    for (sim::TriId t = 0; t < nt; ++t) {
-        const Vec2d *uv = &layout.corner_uvs[3 * size_t(t)];
-        const int udim = tile_of(mesh, uv, t);
-        const int ut = (udim - 1001) % 10, vt = (udim - 1001) / 10;
-        TexelTriangle &T = tris[t];
-        for (int c = 0; c < 3; ++c)
-            T.p[c] = {(uv[c].x - ut) * W, (1 - (uv[c].y - vt)) * H};
-        const Vec2d a = T.p[1] - T.p[0], b = T.p[2] - T.p[0];
-        const double det = cross(a, b);
-        if (!(std::abs(det) > 1e-12)) {
-            ++out.degenerate_triangles;
-            continue;
-        }
-        T.i00 = b.y / det;
-        T.i01 = -b.x / det;
-        T.i10 = -a.y / det;
-        T.i11 = a.x / det;
-        const Vec3d E1 = mesh.vertex(t, 1) - mesh.vertex(t, 0),
-                    E2 = mesh.vertex(t, 2) - mesh.vertex(t, 0);
-        T.jx = (E1 * T.i00 + E2 * T.i10) * scale;
-        T.jy = (E1 * T.i01 + E2 * T.i11) * scale;
-        // The larger singular value of [jx jy]: the texel's widest extent on the surface.
-        const double xx = dot(T.jx, T.jx), yy = dot(T.jy, T.jy), xy = dot(T.jx, T.jy);
-        const double tr = 0.5 * (xx + yy),
-                     dd = std::sqrt(0.25 * (xx - yy) * (xx - yy) + xy * xy);
-        T.footprint = float(std::sqrt(tr + dd));
-        T.x0 = std::min({T.p[0].x, T.p[1].x, T.p[2].x}) - gutter;
-        T.x1 = std::max({T.p[0].x, T.p[1].x, T.p[2].x}) + gutter;
-        T.y0 = std::min({T.p[0].y, T.p[1].y, T.p[2].y}) - gutter;
-        T.y1 = std::max({T.p[0].y, T.p[1].y, T.p[2].y}) + gutter;
-        T.valid = true;
-        by_tile[udim].push_back(t);
-    }
+    const TexelLayout texels = lay_out_texels(layout);
+    out.degenerate_triangles = texels.degenerate_triangles;
 
     const Looks looks = looks_of(pattern);
-    const sim::Crps &crps = pattern.surface().crps;
-    constexpr int band = 16;  // rows per parallel task
-    out.num_tiles = by_tile.size();
-    for (const auto &[udim, list] : by_tile) {
-        // --- Owners: per texel, the nearest triangle within the gutter (the first one,
-        // by id, among those that hold its centre) ---
-        const int nbands = (H + band - 1) / band;
-        std::vector<std::vector<uint32_t>> in_band(static_cast<size_t>(nbands));
-        for (uint32_t t : list) {
-            const int r0 = std::max(0, int(std::floor(tris[t].y0 - 0.5))),
-                      r1 = std::min(H - 1, int(std::ceil(tris[t].y1 - 0.5)));
-            for (int b = r0 / band; b <= r1 / band && r0 <= r1; ++b)
-                in_band[size_t(b)].push_back(t);
-        }
-        const size_t n = size_t(W) * H;
-        std::vector<float> dist(n, std::numeric_limits<float>::infinity());
-        std::vector<uint32_t> owner(n, sim::invalid_id);
-        std::vector<uint8_t> strictly_inside(n, 0);
-        tbb::parallel_for(tbb::blocked_range<int>(0, nbands, 1), [&](const auto &r) {
-            for (int b = r.begin(); b != r.end(); ++b)
-                for (uint32_t t : in_band[size_t(b)]) {
-                    const TexelTriangle &T = tris[t];
-                    const int y0 = std::max(b * band, int(std::floor(T.y0 - 0.5))),
-                              y1 = std::min({(b + 1) * band - 1, H - 1,
-                                             int(std::ceil(T.y1 - 0.5))}),
-                              x0 = std::max(0, int(std::floor(T.x0 - 0.5))),
-                              x1 = std::min(W - 1, int(std::ceil(T.x1 - 0.5)));
-                    for (int y = y0; y <= y1; ++y)
-                        for (int x = x0; x <= x1; ++x) {
-                            const size_t i = size_t(y) * W + x;
-                            Vec3d bn;
-                            const float d =
-                                float(distance_to(T, {x + 0.5, y + 0.5}, &bn));
-                            if (d == 0 && bn.x > 1e-9 && bn.y > 1e-9 && bn.z > 1e-9 &&
-                                strictly_inside[i] < 255)
-                                ++strictly_inside[i];
-                            if (d <= gutter && d < dist[i]) {
-                                dist[i] = d;
-                                owner[i] = t;
-                            }
-                        }
-                }
-        });
-
-        // --- Each owned texel's look ---
+    out.num_tiles = texels.by_tile.size();
+    for (const auto &[udim, list] : texels.by_tile) {
+        const TexelOwners owners = find_owners(texels.tris, list, W, H, gutter);
         BakedTile tile;
         tile.udim = udim;
-        tile.pixels.assign(n * C, 0.0f);
-        for (size_t i = 0; i < n; ++i)
-            for (int c = 4; c < C; ++c) tile.pixels[i * C + c] = -1;
-        tbb::parallel_for(tbb::blocked_range<int>(0, H, 4), [&](const auto &r) {
-            for (int y = r.begin(); y != r.end(); ++y)
-                for (int x = 0; x < W; ++x) {
-                    const size_t i = size_t(y) * W + x;
-                    if (owner[i] == sim::invalid_id) continue;
-                    const TexelTriangle &T = tris[owner[i]];
-                    const Vec2d q{x + 0.5, y + 0.5};
-                    Vec3d b;
-                    distance_to(T, q, &b);
-                    sim::TriId s = owner[i];
-                    float b1 = float(b.y), b2 = float(b.z);
-                    if (layout.transfer) {
-                        const auto at = layout.transfer->map(s, b1, b2);
-                        s = at.tri;
-                        b1 = at.b1;
-                        b2 = at.b2;
-                    }
-                    if (dist[i] > 0) {
-                        // Walk from the border point by the texel's offset, over the
-                        // surface into whatever triangle lies there.
-                        const Vec2d from = T.p[0] * b.x + T.p[1] * b.y + T.p[2] * b.z;
-                        const Vec2d off = q - from;
-                        const Vec3d d3 = T.jx * off.x + T.jy * off.y;
-                        const sim::CrpsFrame &f = crps.frame(s);
-                        const Vec3d dl = f.rotation * d3;
-                        const Vec2d start = crps.barycentric_to_2d(
-                            s, {1.0 - double(b1) - double(b2), double(b1), double(b2)});
-                        const sim::SurfacePoint end =
-                            sim::walk(crps, {s, start}, {dl.x, dl.z});
-                        const Vec3d be = crps.to_barycentric(end.tri, end.p);
-                        s = end.tri;
-                        b1 = float(be.y);
-                        b2 = float(be.z);
-                    }
-                    shade_texel(pattern, looks, s, b1, b2, T.footprint,
-                                &tile.pixels[i * C]);
-                }
-        });
-        std::vector<uint8_t> covered(n);
-        for (size_t i = 0; i < n; ++i) {
-            covered[i] = tile.pixels[i * C + 3] > 0;
-            out.texels_inside += owner[i] != sim::invalid_id && dist[i] == 0;
-            out.texels_gutter += owner[i] != sim::invalid_id && dist[i] > 0;
-            out.texels_overlapped += strictly_inside[i] >= 2;
-        }
+        shade_tile(pattern, looks, layout, texels.tris, owners, tile.pixels);
+        const std::vector<uint8_t> covered = count_texels(owners, tile.pixels, out);
         fill_empty(tile.pixels, covered, W, H);
         if (on_tile)
             on_tile(std::move(tile));

@@ -59,50 +59,54 @@ struct Adjacency {
     }
 };
 
-}  // namespace
+using CellPairs = std::vector<std::pair<uint32_t, uint32_t>>;
 
-SpotStatistics measure_spot_statistics(const mosaic::MosaicPattern &pattern,
-                                       double resolution) {
-    SpotStatistics s;
+// Every triangle's grid and the nearest cell at each of its vertices.
+struct CellSamples {
+    std::vector<Grid> grids;        // per triangle
+    std::vector<uint32_t> cell_at;  // per grid vertex, `none` off every cell
+};
+
+// Every triangle's grid, of step h = sqrt(A/m) / resolution along its longest side, and
+// the closest-cell search at each grid vertex, triangles in parallel.
+CellSamples sample_cells(const mosaic::MosaicPattern &pattern, double h) {
     const sim::Crps &crps = pattern.surface().crps;
-    const mosaic::CellTable &cells = pattern.cells();
-    const size_t nt = crps.num_triangles(), m = cells.size();
-    s.by_type.assign(pattern.types().size(), 0.0);
-    for (size_t t = 0; t < nt; ++t) s.area += crps.frame(sim::TriId(t)).area;
-    if (m == 0 || nt == 0) return s;
-
-    // --- Grids: step h = sqrt(A/m) / resolution along each triangle's longest side ---
-    const double h = std::sqrt(s.area / double(m)) / std::max(resolution, 1.0);
-    std::vector<Grid> grids(nt);
+    const size_t nt = crps.num_triangles();
+    CellSamples out;
+    out.grids.resize(nt);
     size_t total = 0;
     for (size_t t = 0; t < nt; ++t) {
         const auto &v = crps.frame(sim::TriId(t)).v;
         const double longest =
             std::max({length(v[1] - v[0]), length(v[2] - v[0]), length(v[2] - v[1])});
-        grids[t].n = int(std::clamp(std::ceil(longest / h), 1.0, 4096.0));
-        grids[t].first = total;
-        total += grids[t].size();
+        out.grids[t].n = int(std::clamp(std::ceil(longest / h), 1.0, 4096.0));
+        out.grids[t].first = total;
+        total += out.grids[t].size();
     }
-    s.grid_points = total;
-    std::vector<uint32_t> cell_at(total, none);
+    out.cell_at.assign(total, none);
+    const mosaic::ClosestCellIndex &index = pattern.index();
+    auto look_up_triangle = [&](size_t t) {
+        const Grid &g = out.grids[t];
+        const float inv = 1.0f / float(g.n);
+        for (int j = 0; j <= g.n; ++j)
+            for (int i = 0; i + j <= g.n; ++i)
+                out.cell_at[g.at(i, j)] =
+                    index.find_nearest(sim::TriId(t), float(i) * inv, float(j) * inv)
+                        .index;
+    };
     tbb::parallel_for(tbb::blocked_range<size_t>(0, nt, 16), [&](const auto &range) {
-        for (size_t t = range.begin(); t != range.end(); ++t) {
-            const Grid &g = grids[t];
-            const float inv = 1.0f / float(g.n);
-            for (int j = 0; j <= g.n; ++j)
-                for (int i = 0; i + j <= g.n; ++i)
-                    cell_at[g.at(i, j)] =
-                        pattern.index()
-                            .find_nearest(sim::TriId(t), float(i) * inv, float(j) * inv)
-                            .index;
-        }
+        for (size_t t = range.begin(); t != range.end(); ++t) look_up_triangle(t);
     });
+    return out;
+}
 
-    // --- Cell areas (a third of each grid sub-triangle per corner) and adjacency ---
-    std::vector<double> cell_area(m, 0.0);
-    std::vector<std::pair<uint32_t, uint32_t>> pairs;
-    for (size_t t = 0; t < nt; ++t) {
-        const Grid &g = grids[t];
+// Each cell's area (a third of each grid sub-triangle per corner) and the cell pairs
+// that share a grid edge, sorted and unique.
+void measure_cells(const sim::Crps &crps, const CellSamples &samples,
+                   std::vector<double> &cell_area, CellPairs &pairs) {
+    const std::vector<uint32_t> &cell_at = samples.cell_at;
+    for (size_t t = 0; t < samples.grids.size(); ++t) {
+        const Grid &g = samples.grids[t];
         const double third = crps.frame(sim::TriId(t)).area / (3.0 * g.n * g.n);
         auto add = [&](size_t a, size_t b, size_t c) {
             for (size_t k : {a, b, c})
@@ -122,37 +126,53 @@ SpotStatistics measure_spot_statistics(const mosaic::MosaicPattern &pattern,
     }
     std::sort(pairs.begin(), pairs.end());
     pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
-    for (size_t c = 0; c < m; ++c) s.by_type[cells.type[c]] += cell_area[c] / s.area;
+}
 
-    // --- Spots: connected non-background cells ---
-    const int bg = background_type(pattern.types());
-    auto is_spot = [&](uint32_t c) { return int(cells.type[c]) != bg; };
+// Which cells are spot: every type but the background's.
+struct SpotTypes {
+    const mosaic::CellTable &cells;
+    int background;
+    bool operator()(uint32_t c) const { return int(cells.type[c]) != background; }
+};
+
+// The spots: connected non-background cells, numbered by their first cell.
+struct Spots {
+    std::vector<uint32_t> of_cell;  // per cell, `none` for background and empty cells
+    std::vector<double> area;
+    std::vector<size_t> cells;
+};
+
+Spots find_spots(const SpotTypes &is_spot, const CellPairs &pairs,
+                 const std::vector<double> &cell_area) {
+    const size_t m = cell_area.size();
     sim::DisjointSets sets(m);
     for (const auto &[a, b] : pairs)
         if (is_spot(a) && is_spot(b)) sets.unite(a, b);
-    std::vector<uint32_t> spot_of(m, none);
+    Spots spots;
+    spots.of_cell.assign(m, none);
     std::vector<uint32_t> spot_id_of_root(m, none);
-    std::vector<double> spot_area;
-    std::vector<size_t> spot_cells;
     for (uint32_t c = 0; c < m; ++c) {
         if (!is_spot(c) || cell_area[c] == 0) continue;
         uint32_t &id = spot_id_of_root[sets.find(c)];
         if (id == none) {
-            id = uint32_t(spot_area.size());
-            spot_area.push_back(0);
-            spot_cells.push_back(0);
+            id = uint32_t(spots.area.size());
+            spots.area.push_back(0);
+            spots.cells.push_back(0);
         }
-        spot_of[c] = id;
-        spot_area[id] += cell_area[c];
-        ++spot_cells[id];
+        spots.of_cell[c] = id;
+        spots.area[id] += cell_area[c];
+        ++spots.cells[id];
     }
-    s.spots = spot_area.size();
-    for (size_t n : spot_cells) s.largest_spot_cells = std::max(s.largest_spot_cells, n);
+    return spots;
+}
 
-    // --- Perimeters (Cauchy-Crofton over the three edge families of every grid) ---
-    std::vector<double> perimeter(s.spots, 0.0);
-    for (size_t t = 0; t < nt; ++t) {
-        const Grid &g = grids[t];
+// Each spot's perimeter (Cauchy-Crofton over the three edge families of every grid).
+std::vector<double> spot_perimeters(const sim::Crps &crps, const CellSamples &samples,
+                                    const Spots &spots) {
+    const std::vector<uint32_t> &cell_at = samples.cell_at;
+    std::vector<double> perimeter(spots.area.size(), 0.0);
+    for (size_t t = 0; t < samples.grids.size(); ++t) {
+        const Grid &g = samples.grids[t];
         const sim::CrpsFrame &f = crps.frame(sim::TriId(t));
         const double sides[3] = {length(f.v[1] - f.v[0]), length(f.v[2] - f.v[0]),
                                  length(f.v[2] - f.v[1])};
@@ -162,90 +182,131 @@ SpotStatistics measure_spot_statistics(const mosaic::MosaicPattern &pattern,
         for_each_edge(g, [&](size_t a, size_t b, int k, bool on_border) {
             const uint32_t ca = cell_at[a], cb = cell_at[b];
             if (ca == none || cb == none) return;
-            const uint32_t sa = spot_of[ca], sb = spot_of[cb];
+            const uint32_t sa = spots.of_cell[ca], sb = spots.of_cell[cb];
             if (sa == sb) return;
             const double w = on_border ? 0.5 * weight[k] : weight[k];
             if (sa != none) perimeter[sa] += w;
             if (sb != none) perimeter[sb] += w;
         });
     }
+    return perimeter;
+}
 
-    // --- Spot areas and shapes ---
-    if (s.spots > 0) {
-        double sum = 0, sum2 = 0, circ_sum = 0, circ_weighted = 0, circ_area = 0;
-        size_t with_border = 0;
-        for (size_t k = 0; k < s.spots; ++k) {
-            sum += spot_area[k];
-            sum2 += spot_area[k] * spot_area[k];
-            if (perimeter[k] <= 0) continue;
-            const double c =
-                4 * std::numbers::pi * spot_area[k] / (perimeter[k] * perimeter[k]);
-            circ_sum += c;
-            circ_weighted += c * spot_area[k];
-            circ_area += spot_area[k];
-            ++with_border;
-        }
-        s.spot_area_mean = sum / double(s.spots);
-        s.spot_area_sd = std::sqrt(
-            std::max(0.0, sum2 / double(s.spots) - s.spot_area_mean * s.spot_area_mean));
-        if (with_border > 0) {
-            s.spot_circularity_mean = circ_sum / double(with_border);
-            s.spot_complexity = 1 - circ_weighted / circ_area;
-        }
-        s.spot_areas = spot_area;
-        std::sort(s.spot_areas.begin(), s.spot_areas.end(), std::greater<>());
+// The spots' area mean and spread, circularity and complexity, and areas largest first.
+void summarise_spot_shapes(const std::vector<double> &spot_area,
+                           const std::vector<double> &perimeter, SpotStatistics &s) {
+    double sum = 0, sum2 = 0, circ_sum = 0, circ_weighted = 0, circ_area = 0;
+    size_t with_border = 0;
+    for (size_t k = 0; k < s.spots; ++k) {
+        sum += spot_area[k];
+        sum2 += spot_area[k] * spot_area[k];
+        if (perimeter[k] <= 0) continue;
+        const double c =
+            4 * std::numbers::pi * spot_area[k] / (perimeter[k] * perimeter[k]);
+        circ_sum += c;
+        circ_weighted += c * spot_area[k];
+        circ_area += spot_area[k];
+        ++with_border;
     }
-
-    // --- Spot neighbours: background cells join their nearest spot in hops ---
-    const Adjacency adj(m, pairs);
-    if (s.spots > 1) {
-        std::vector<uint32_t> label = spot_of, queue;
-        for (uint32_t c = 0; c < m; ++c)
-            if (label[c] != none) queue.push_back(c);
-        for (size_t head = 0; head < queue.size(); ++head) {
-            const uint32_t c = queue[head];
-            for (uint32_t k = adj.row[c]; k < adj.row[c + 1]; ++k)
-                if (label[adj.nbr[k]] == none) {
-                    label[adj.nbr[k]] = label[c];
-                    queue.push_back(adj.nbr[k]);
-                }
-        }
-        std::vector<std::pair<uint32_t, uint32_t>> touching;
-        for (const auto &[a, b] : pairs)
-            if (label[a] != none && label[b] != none && label[a] != label[b])
-                touching.emplace_back(std::min(label[a], label[b]),
-                                      std::max(label[a], label[b]));
-        std::sort(touching.begin(), touching.end());
-        touching.erase(std::unique(touching.begin(), touching.end()), touching.end());
-        s.spot_neighbours_mean = 2.0 * double(touching.size()) / double(s.spots);
+    s.spot_area_mean = sum / double(s.spots);
+    s.spot_area_sd = std::sqrt(
+        std::max(0.0, sum2 / double(s.spots) - s.spot_area_mean * s.spot_area_mean));
+    if (with_border > 0) {
+        s.spot_circularity_mean = circ_sum / double(with_border);
+        s.spot_complexity = 1 - circ_weighted / circ_area;
     }
+    s.spot_areas = spot_area;
+    std::sort(s.spot_areas.begin(), s.spot_areas.end(), std::greater<>());
+}
 
-    // --- The background: components, the largest, the share touching a spot ---
-    if (bg >= 0) {
-        sim::DisjointSets bsets(m);
-        for (const auto &[a, b] : pairs)
-            if (!is_spot(a) && !is_spot(b)) bsets.unite(a, b);
-        std::vector<double> component_area(m, 0.0);
-        double background = 0, near = 0;
-        for (uint32_t c = 0; c < m; ++c) {
-            if (is_spot(c) || cell_area[c] == 0) continue;
-            background += cell_area[c];
-            component_area[bsets.find(c)] += cell_area[c];
-            bool touches = false;
-            for (uint32_t k = adj.row[c]; k < adj.row[c + 1] && !touches; ++k)
-                touches = is_spot(adj.nbr[k]);
-            if (touches) near += cell_area[c];
-        }
-        for (double a : component_area)
-            if (a > 0) {
-                ++s.background_components;
-                s.background_largest_share = std::max(s.background_largest_share, a);
+// The mean number of neighbours per spot: background cells join their nearest spot in
+// hops (a multi-source breadth-first search), and two spots whose regions touch are
+// neighbours.
+double spot_neighbours_mean(const Adjacency &adj, const CellPairs &pairs,
+                            const Spots &spots) {
+    std::vector<uint32_t> label = spots.of_cell, queue;
+    const size_t m = label.size();
+    for (uint32_t c = 0; c < m; ++c)
+        if (label[c] != none) queue.push_back(c);
+    for (size_t head = 0; head < queue.size(); ++head) {
+        const uint32_t c = queue[head];
+        for (uint32_t k = adj.row[c]; k < adj.row[c + 1]; ++k)
+            if (label[adj.nbr[k]] == none) {
+                label[adj.nbr[k]] = label[c];
+                queue.push_back(adj.nbr[k]);
             }
-        if (background > 0) {
-            s.background_largest_share /= background;
-            s.background_near_spot = near / background;
-        }
     }
+    std::vector<std::pair<uint32_t, uint32_t>> touching;
+    for (const auto &[a, b] : pairs)
+        if (label[a] != none && label[b] != none && label[a] != label[b])
+            touching.emplace_back(std::min(label[a], label[b]),
+                                  std::max(label[a], label[b]));
+    std::sort(touching.begin(), touching.end());
+    touching.erase(std::unique(touching.begin(), touching.end()), touching.end());
+    return 2.0 * double(touching.size()) / double(spots.area.size());
+}
+
+// The background: its components, the largest one's share, the share touching a spot.
+void measure_background(const SpotTypes &is_spot, const Adjacency &adj,
+                        const CellPairs &pairs, const std::vector<double> &cell_area,
+                        SpotStatistics &s) {
+    const size_t m = cell_area.size();
+    sim::DisjointSets bsets(m);
+    for (const auto &[a, b] : pairs)
+        if (!is_spot(a) && !is_spot(b)) bsets.unite(a, b);
+    std::vector<double> component_area(m, 0.0);
+    double background = 0, near = 0;
+    for (uint32_t c = 0; c < m; ++c) {
+        if (is_spot(c) || cell_area[c] == 0) continue;
+        background += cell_area[c];
+        component_area[bsets.find(c)] += cell_area[c];
+        bool touches = false;
+        for (uint32_t k = adj.row[c]; k < adj.row[c + 1] && !touches; ++k)
+            touches = is_spot(adj.nbr[k]);
+        if (touches) near += cell_area[c];
+    }
+    for (double a : component_area)
+        if (a > 0) {
+            ++s.background_components;
+            s.background_largest_share = std::max(s.background_largest_share, a);
+        }
+    if (background > 0) {
+        s.background_largest_share /= background;
+        s.background_near_spot = near / background;
+    }
+}
+
+}  // namespace
+
+SpotStatistics measure_spot_statistics(const mosaic::MosaicPattern &pattern,
+                                       double resolution) {
+    SpotStatistics s;
+    const sim::Crps &crps = pattern.surface().crps;
+    const mosaic::CellTable &cells = pattern.cells();
+    const size_t nt = crps.num_triangles(), m = cells.size();
+    s.by_type.assign(pattern.types().size(), 0.0);
+    for (size_t t = 0; t < nt; ++t) s.area += crps.frame(sim::TriId(t)).area;
+    if (m == 0 || nt == 0) return s;
+
+    const double h = std::sqrt(s.area / double(m)) / std::max(resolution, 1.0);
+    const CellSamples samples = sample_cells(pattern, h);
+    s.grid_points = samples.cell_at.size();
+
+    std::vector<double> cell_area(m, 0.0);
+    CellPairs pairs;
+    measure_cells(crps, samples, cell_area, pairs);
+    for (size_t c = 0; c < m; ++c) s.by_type[cells.type[c]] += cell_area[c] / s.area;
+
+    const SpotTypes is_spot{cells, background_type(pattern.types())};
+    const Spots spots = find_spots(is_spot, pairs, cell_area);
+    s.spots = spots.area.size();
+    for (size_t n : spots.cells) s.largest_spot_cells = std::max(s.largest_spot_cells, n);
+    if (s.spots > 0)
+        summarise_spot_shapes(spots.area, spot_perimeters(crps, samples, spots), s);
+
+    const Adjacency adj(m, pairs);
+    if (s.spots > 1) s.spot_neighbours_mean = spot_neighbours_mean(adj, pairs, spots);
+    if (is_spot.background >= 0) measure_background(is_spot, adj, pairs, cell_area, s);
     return s;
 }
 
