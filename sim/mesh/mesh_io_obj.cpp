@@ -50,6 +50,41 @@ void check_numbers(const std::vector<std::string_view> &tok, size_t first, size_
     }
 }
 
+// Checks every corner of an `f` line: its form, and that its vertex, texture and normal
+// indices name elements defined so far.
+template <typename Fail>
+void check_face_corners(const std::vector<std::string_view> &tok, int64_t num_v,
+                        int64_t num_vt, int64_t num_vn, const Fail &fail) {
+    for (size_t i = 1; i < tok.size(); ++i) {
+        // Corner forms: v, v/vt, v//vn, v/vt/vn.
+        const std::string_view t = tok[i];
+        std::string_view part[3];
+        size_t parts = 0;
+        for (size_t start = 0;;) {
+            const size_t slash = t.find('/', start);
+            if (parts == 3) fail("malformed face corner '" + std::string(t) + "'");
+            part[parts++] = t.substr(start, slash - start);
+            if (slash == std::string_view::npos) break;
+            start = slash + 1;
+        }
+        const struct {
+            int64_t count;
+            const char *what, *plural;
+        } kinds[3] = {{num_v, "vertex", "vertices"},
+                      {num_vt, "texture", "texture coordinates"},
+                      {num_vn, "normal", "normals"}};
+        for (size_t k = 0; k < parts; ++k) {
+            if (k > 0 && part[k].empty()) continue;  // v//vn, or a trailing '/'
+            bool ok = false;
+            if (resolve_obj_index(part[k], kinds[k].count, &ok) >= 0) continue;
+            if (!ok) fail("malformed face corner '" + std::string(t) + "'");
+            fail(std::string(kinds[k].what) + " index " + std::string(part[k]) +
+                 " out of range (" + std::to_string(kinds[k].count) + " " +
+                 kinds[k].plural + " defined so far)");
+        }
+    }
+}
+
 // What the validating pass learns of the faces, in file order.
 struct ObjScan {
     std::vector<uint32_t> face_corners;
@@ -124,35 +159,7 @@ ObjScan validate_obj(const std::string &path) {
             if (tok.size() < 4)
                 fail("face has " + std::to_string(tok.size() - 1) +
                      " corners (a face needs at least 3)");
-            for (size_t i = 1; i < tok.size(); ++i) {
-                // Corner forms: v, v/vt, v//vn, v/vt/vn.
-                const std::string_view t = tok[i];
-                std::string_view part[3];
-                size_t parts = 0;
-                for (size_t start = 0;;) {
-                    const size_t slash = t.find('/', start);
-                    if (parts == 3)
-                        fail("malformed face corner '" + std::string(t) + "'");
-                    part[parts++] = t.substr(start, slash - start);
-                    if (slash == std::string_view::npos) break;
-                    start = slash + 1;
-                }
-                const struct {
-                    int64_t count;
-                    const char *what, *plural;
-                } kinds[3] = {{num_v, "vertex", "vertices"},
-                              {num_vt, "texture", "texture coordinates"},
-                              {num_vn, "normal", "normals"}};
-                for (size_t k = 0; k < parts; ++k) {
-                    if (k > 0 && part[k].empty()) continue;  // v//vn, or a trailing '/'
-                    bool ok = false;
-                    if (resolve_obj_index(part[k], kinds[k].count, &ok) >= 0) continue;
-                    if (!ok) fail("malformed face corner '" + std::string(t) + "'");
-                    fail(std::string(kinds[k].what) + " index " + std::string(part[k]) +
-                         " out of range (" + std::to_string(kinds[k].count) + " " +
-                         kinds[k].plural + " defined so far)");
-                }
-            }
+            check_face_corners(tok, num_v, num_vt, num_vn, fail);
             face_corners.push_back(static_cast<uint32_t>(tok.size() - 1));
             scan.face_label.push_back(label);
             ++scan.segment_faces.back();
@@ -207,26 +214,164 @@ std::vector<MeshMaterial> obj_materials(const std::string &path, const ObjScan &
     return out;
 }
 
-}  // namespace
+// The names there are, in file order, and which labels the selection keeps (every one
+// when no object is named).
+struct ObjSelection {
+    std::vector<std::string> names;
+    std::vector<char> label_kept;
+};
 
-TriangleMesh read_obj(const std::string &path, MeshReadStats *stats,
-                      const std::string &object) {
-    const ObjScan scan = validate_obj(path);
-    const std::vector<uint32_t> &face_corners = scan.face_corners;
-
-    // The names there are, in file order, and which labels the selection keeps.
+ObjSelection select_object(const std::string &path, const ObjScan &scan,
+                           const std::string &object) {
     std::vector<std::string> all_names;
     for (uint32_t l : scan.face_label)
         all_names.insert(all_names.end(), scan.labels[l].begin(), scan.labels[l].end());
-    const std::vector<std::string> names = unique_names(all_names);
-    std::vector<char> label_kept(scan.labels.size(), object.empty());
+    ObjSelection selection;
+    selection.names = unique_names(all_names);
+    std::vector<char> &label_kept = selection.label_kept;
+    label_kept.assign(scan.labels.size(), object.empty());
     if (!object.empty()) {
         bool found = false;
         for (size_t l = 0; l < scan.labels.size(); ++l)
             for (const std::string &n : scan.labels[l])
                 if (n == object) label_kept[l] = 1, found = true;
-        if (!found) fail_unknown_object(path, object, names);
+        if (!found) fail_unknown_object(path, object, selection.names);
     }
+    return selection;
+}
+
+// Each triangle's source face, in tinyobjloader's shape order: an n-gon fans into n - 2
+// triangles, unless the triangulator dropped degenerate pieces; then shapes stand for
+// segments.
+std::vector<uint32_t> triangle_source_faces(const std::string &path,
+                                            const std::string &object,
+                                            const ObjScan &scan,
+                                            const std::vector<tinyobj::shape_t> &shapes) {
+    const std::vector<uint32_t> &face_corners = scan.face_corners;
+    size_t num_tris = 0;
+    for (const auto &shape : shapes) num_tris += shape.mesh.num_face_vertices.size();
+    std::vector<uint32_t> tri_face;
+    size_t expected = 0;
+    for (uint32_t n : face_corners) expected += n - 2;
+    if (expected == num_tris) {
+        for (uint32_t f = 0; f < face_corners.size(); ++f)
+            for (uint32_t k = 0; k + 2 < face_corners[f]; ++k) tri_face.push_back(f);
+        return tri_face;
+    }
+    std::vector<uint32_t> segment_first;  // first face of each segment with faces
+    uint32_t first = 0;
+    for (uint32_t n : scan.segment_faces) {
+        if (n > 0) segment_first.push_back(first);
+        first += n;
+    }
+    std::vector<const tinyobj::shape_t *> with_faces;
+    for (const auto &shape : shapes)
+        if (!shape.mesh.num_face_vertices.empty()) with_faces.push_back(&shape);
+    if (with_faces.size() != segment_first.size()) {
+        if (!object.empty())
+            throw InputError(path, 0, "",
+                             "cannot tell which triangles belong to object \"" + object +
+                                 "\": triangulating a degenerate polygon dropped it");
+        for (uint32_t t = 0; t < num_tris; ++t) tri_face.push_back(t);
+    } else {
+        // Only the first face of each segment is known: enough for the names.
+        for (size_t s = 0; s < with_faces.size(); ++s)
+            tri_face.insert(tri_face.end(), with_faces[s]->mesh.num_face_vertices.size(),
+                            segment_first[s]);
+    }
+    return tri_face;
+}
+
+// tinyobjloader's triangles, in shape order, and what the selection makes of them.
+struct ObjTriangles {
+    const std::string &path;
+    const std::string &object;
+    const ObjScan &scan;
+    const tinyobj::attrib_t &attrib;
+    const std::vector<tinyobj::shape_t> &shapes;
+    const std::vector<char> &label_kept;
+    const std::vector<uint32_t> &tri_face;  // per triangle
+    size_t nv = 0;                          // vertices read
+    // Per-corner attributes are kept only when every kept corner has them.
+    bool all_normals = false, all_uvs = false;
+
+    bool kept(size_t t) const {
+        const uint32_t f = tri_face[t];
+        return f < scan.face_label.size() ? bool(label_kept[scan.face_label[f]])
+                                          : object.empty();
+    }
+
+    void find_corner_attributes() {
+        all_normals = !attrib.normals.empty();
+        all_uvs = !attrib.texcoords.empty();
+        size_t t = 0;
+        for (const auto &shape : shapes)
+            for (size_t f = 0; f < shape.mesh.num_face_vertices.size(); ++f, ++t) {
+                if (!kept(t)) continue;
+                for (int c = 0; c < 3; ++c) {
+                    const tinyobj::index_t idx = shape.mesh.indices[3 * f + c];
+                    all_normals &= idx.normal_index >= 0;
+                    all_uvs &= idx.texcoord_index >= 0;
+                }
+            }
+    }
+
+    // The kept triangles into mesh, each with its source face and material (an index
+    // below num_materials, or invalid_id), marking the labels read. Returns whether any
+    // triangle has a material.
+    bool append_kept(size_t num_materials, TriangleMesh &mesh,
+                     std::vector<char> &label_read) const {
+        bool any_material = false;
+        size_t t = 0;
+        for (const auto &shape : shapes) {
+            const auto &m = shape.mesh;
+            if (m.indices.size() != 3 * m.num_face_vertices.size())
+                throw InputError(path, 0, "",
+                                 "OBJ triangulation left a face that is not a triangle");
+            for (size_t f = 0; f < m.num_face_vertices.size(); ++f, ++t) {
+                if (!kept(t)) continue;
+                std::array<VertId, 3> tri{};
+                for (int c = 0; c < 3; ++c)
+                    tri[c] = append_corner(m.indices[3 * f + c], mesh);
+                mesh.triangles.push_back(tri);
+                mesh.source_face.push_back(tri_face[t]);
+                const int mat = f < m.material_ids.size() ? m.material_ids[f] : -1;
+                const bool has_mat = mat >= 0 && size_t(mat) < num_materials;
+                mesh.triangle_material.push_back(has_mat ? uint32_t(mat) : invalid_id);
+                any_material |= has_mat;
+                if (tri_face[t] < scan.face_label.size())
+                    label_read[scan.face_label[tri_face[t]]] = 1;
+            }
+        }
+        return any_material;
+    }
+
+    // A corner's normal and uv into mesh, where every corner has them; returns its
+    // vertex.
+    VertId append_corner(const tinyobj::index_t idx, TriangleMesh &mesh) const {
+        // validate_obj() checked every index; this guards against tinyobjloader
+        // resolving one differently from us.
+        if (idx.vertex_index < 0 || size_t(idx.vertex_index) >= nv ||
+            (all_normals && size_t(idx.normal_index) >= attrib.normals.size() / 3) ||
+            (all_uvs && size_t(idx.texcoord_index) >= attrib.texcoords.size() / 2))
+            throw InputError(path, 0, "", "face index out of range");
+        if (all_normals)
+            mesh.corner_normals.push_back({attrib.normals[3 * idx.normal_index],
+                                           attrib.normals[3 * idx.normal_index + 1],
+                                           attrib.normals[3 * idx.normal_index + 2]});
+        if (all_uvs)
+            mesh.corner_uvs.push_back({attrib.texcoords[2 * idx.texcoord_index],
+                                       attrib.texcoords[2 * idx.texcoord_index + 1]});
+        return static_cast<VertId>(idx.vertex_index);
+    }
+};
+
+}  // namespace
+
+TriangleMesh read_obj(const std::string &path, MeshReadStats *stats,
+                      const std::string &object) {
+    const ObjScan scan = validate_obj(path);
+    const ObjSelection selection = select_object(path, scan, object);
 
     tinyobj::ObjReaderConfig config;
     config.triangulate = true;
@@ -245,106 +390,15 @@ TriangleMesh read_obj(const std::string &path, MeshReadStats *stats,
         mesh.positions[v] = {attrib.vertices[3 * v], attrib.vertices[3 * v + 1],
                              attrib.vertices[3 * v + 2]};
 
-    // --- Each triangle's source face: an n-gon fans into n - 2 triangles, unless the
-    //     triangulator dropped degenerate pieces; then shapes stand for segments ---
-    size_t num_tris = 0;
-    for (const auto &shape : shapes) num_tris += shape.mesh.num_face_vertices.size();
-    std::vector<uint32_t> tri_face;
-    size_t expected = 0;
-    for (uint32_t n : face_corners) expected += n - 2;
-    if (expected == num_tris) {
-        for (uint32_t f = 0; f < face_corners.size(); ++f)
-            for (uint32_t k = 0; k + 2 < face_corners[f]; ++k) tri_face.push_back(f);
-    } else {
-        std::vector<uint32_t> segment_first;  // first face of each segment with faces
-        uint32_t first = 0;
-        for (uint32_t n : scan.segment_faces) {
-            if (n > 0) segment_first.push_back(first);
-            first += n;
-        }
-        std::vector<const tinyobj::shape_t *> with_faces;
-        for (const auto &shape : shapes)
-            if (!shape.mesh.num_face_vertices.empty()) with_faces.push_back(&shape);
-        if (with_faces.size() != segment_first.size()) {
-            if (!object.empty())
-                throw InputError(path, 0, "",
-                                 "cannot tell which triangles belong to object \"" +
-                                     object +
-                                     "\": triangulating a degenerate polygon dropped it");
-            for (uint32_t t = 0; t < num_tris; ++t) tri_face.push_back(t);
-        } else {
-            // Only the first face of each segment is known: enough for the names.
-            for (size_t s = 0; s < with_faces.size(); ++s)
-                tri_face.insert(tri_face.end(),
-                                with_faces[s]->mesh.num_face_vertices.size(),
-                                segment_first[s]);
-        }
-    }
-    auto kept = [&](size_t t) {
-        const uint32_t f = tri_face[t];
-        return f < scan.face_label.size() ? bool(label_kept[scan.face_label[f]])
-                                          : object.empty();
-    };
-
-    // Per-corner attributes are kept only when every kept corner has them.
-    bool all_normals = !attrib.normals.empty(), all_uvs = !attrib.texcoords.empty();
-    {
-        size_t t = 0;
-        for (const auto &shape : shapes)
-            for (size_t f = 0; f < shape.mesh.num_face_vertices.size(); ++f, ++t) {
-                if (!kept(t)) continue;
-                for (int c = 0; c < 3; ++c) {
-                    const tinyobj::index_t idx = shape.mesh.indices[3 * f + c];
-                    all_normals &= idx.normal_index >= 0;
-                    all_uvs &= idx.texcoord_index >= 0;
-                }
-            }
-    }
+    const std::vector<uint32_t> tri_face =
+        triangle_source_faces(path, object, scan, shapes);
+    ObjTriangles triangles{path,     object, scan, attrib, shapes, selection.label_kept,
+                           tri_face, nv};
+    triangles.find_corner_attributes();
     const std::vector<MeshMaterial> materials =
         obj_materials(path, scan, reader.GetMaterials());
-    bool any_material = false;
     std::vector<char> label_read(scan.labels.size(), 0);
-    size_t t = 0;
-    for (const auto &shape : shapes) {
-        const auto &m = shape.mesh;
-        if (m.indices.size() != 3 * m.num_face_vertices.size())
-            throw InputError(path, 0, "",
-                             "OBJ triangulation left a face that is not a triangle");
-        for (size_t f = 0; f < m.num_face_vertices.size(); ++f, ++t) {
-            if (!kept(t)) continue;
-            std::array<VertId, 3> tri{};
-            for (int c = 0; c < 3; ++c) {
-                const tinyobj::index_t idx = m.indices[3 * f + c];
-                // validate_obj() checked every index; this guards against tinyobjloader
-                // resolving one differently from us.
-                if (idx.vertex_index < 0 || size_t(idx.vertex_index) >= nv ||
-                    (all_normals &&
-                     size_t(idx.normal_index) >= attrib.normals.size() / 3) ||
-                    (all_uvs &&
-                     size_t(idx.texcoord_index) >= attrib.texcoords.size() / 2))
-                    throw InputError(path, 0, "", "face index out of range");
-                tri[c] = static_cast<VertId>(idx.vertex_index);
-                if (all_normals)
-                    mesh.corner_normals.push_back(
-                        {attrib.normals[3 * idx.normal_index],
-                         attrib.normals[3 * idx.normal_index + 1],
-                         attrib.normals[3 * idx.normal_index + 2]});
-                if (all_uvs)
-                    mesh.corner_uvs.push_back(
-                        {attrib.texcoords[2 * idx.texcoord_index],
-                         attrib.texcoords[2 * idx.texcoord_index + 1]});
-            }
-            mesh.triangles.push_back(tri);
-            mesh.source_face.push_back(tri_face[t]);
-            const int mat = f < m.material_ids.size() ? m.material_ids[f] : -1;
-            const bool has_mat = mat >= 0 && size_t(mat) < materials.size();
-            mesh.triangle_material.push_back(has_mat ? uint32_t(mat) : invalid_id);
-            any_material |= has_mat;
-            if (tri_face[t] < scan.face_label.size())
-                label_read[scan.face_label[tri_face[t]]] = 1;
-        }
-    }
-    if (any_material) {
+    if (triangles.append_kept(materials.size(), mesh, label_read)) {
         mesh.materials = materials;
     } else {
         mesh.triangle_material.clear();
@@ -354,10 +408,11 @@ TriangleMesh read_obj(const std::string &path, MeshReadStats *stats,
                          object.empty() ? std::string("empty mesh: no triangles")
                                         : "object \"" + object + "\" holds no triangles");
     if (stats) {
+        const std::vector<uint32_t> &face_corners = scan.face_corners;
         for (uint32_t f = 0; f < face_corners.size(); ++f)
             stats->polygons_triangulated +=
-                face_corners[f] > 3 && label_kept[scan.face_label[f]];
-        stats->object_names = names;
+                face_corners[f] > 3 && selection.label_kept[scan.face_label[f]];
+        stats->object_names = selection.names;
         stats->pieces_read = size_t(std::count(label_read.begin(), label_read.end(), 1));
     }
     return mesh;
