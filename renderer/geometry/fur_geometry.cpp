@@ -12,6 +12,7 @@
 #include "renderer/fur/comb_field.h"
 #include "renderer/fur/groom_regions.h"
 #include "renderer/geometry/embree_scene.h"
+#include "shader/sdk/rest_mesh.h"
 #include "sim/core/hash.h"
 #include "sim/core/input_error.h"
 
@@ -237,19 +238,16 @@ double object_radius(const WorldMesh &w) {
     return r2 > 0 ? std::sqrt(r2) : 1.0;
 }
 
-// The object's mesh as loaded (rest positions, its own space), with its UVs for texture
-// regions.
-sim::TriangleMesh rest_mesh(const MeshData &m) {
-    sim::TriangleMesh rest;
-    for (uint32_t v = 0; v < m.num_vertices; ++v)
-        rest.positions.push_back({m.rest->positions[3 * v], m.rest->positions[3 * v + 1],
-                                  m.rest->positions[3 * v + 2]});
-    for (uint32_t t = 0; t < m.num_triangles; ++t)
-        rest.triangles.push_back(
-            {m.triangles[3 * t], m.triangles[3 * t + 1], m.triangles[3 * t + 2]});
-    for (size_t k = 0; k + 1 < m.corner_uvs.size(); k += 2)
-        rest.corner_uvs.push_back({m.corner_uvs[k], m.corner_uvs[k + 1]});
-    return rest;
+// The object's mesh as loaded (rest positions, its own space, and its UVs), as a shader
+// plugin sees it: shader::sdk::rest_mesh copies it.
+PelageMeshView rest_view(const MeshData &m) {
+    PelageMeshView view{};
+    view.num_vertices = m.num_vertices;
+    view.num_triangles = m.num_triangles;
+    view.rest_positions = m.rest->positions.data();
+    view.triangles = m.triangles.data();
+    view.corner_uvs = m.corner_uvs.empty() ? nullptr : m.corner_uvs.data();
+    return view;
 }
 
 }  // namespace
@@ -363,7 +361,9 @@ FurGeometry::FurGeometry(const SceneDesc &desc, EmbreeScene &scene,
         // resolved on the skin as a preset's would be: a comb field, the groom's regions.
         std::optional<sim::Surface> rest;
         auto rest_surface = [&]() -> const sim::Surface & {
-            if (!rest) rest = sim::build_surface(rest_mesh(*og.mesh));
+            if (!rest)
+                rest =
+                    sim::build_surface(shader::sdk::rest_mesh(rest_view(*og.mesh), true));
             return *rest;
         };
 

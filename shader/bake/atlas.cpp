@@ -9,6 +9,7 @@
 #include <string>
 
 #include "shader/bake/atlas_charts.h"
+#include "sim/mesh/closest_point.h"
 
 namespace pelage::shader::bake {
 namespace {
@@ -16,21 +17,6 @@ namespace {
 using sim::TriId;
 using sim::Vec2d;
 using Tri2 = std::array<Vec2d, 3>;
-
-// The distance from q to triangle p (0 inside).
-double distance_to_triangle(Vec2d q, const Tri2 &p) {
-    const double s0 = cross(p[1] - p[0], q - p[0]), s1 = cross(p[2] - p[1], q - p[1]),
-                 s2 = cross(p[0] - p[2], q - p[2]);
-    if ((s0 >= 0 && s1 >= 0 && s2 >= 0) || (s0 <= 0 && s1 <= 0 && s2 <= 0)) return 0;
-    double best = 1e300;
-    for (int k = 0; k < 3; ++k) {
-        const Vec2d a = p[k], ab = p[(k + 1) % 3] - a;
-        const double t =
-            std::clamp(dot(q - a, ab) / std::max(dot(ab, ab), 1e-300), 0.0, 1.0);
-        best = std::min(best, length(q - (a + ab * t)));
-    }
-    return best;
-}
 
 // A chart rasterised on the packing grid at one scale and orientation: per row of
 // cells, the runs of cells within `margin` texels of its triangles.
@@ -75,8 +61,8 @@ Mask mask_of(const Chart &c, bool quarter_turn, double scale, double margin, dou
         for (int y = cy0; y <= cy1; ++y)
             for (int x = cx0; x <= cx1; ++x) {
                 uint8_t &cell = on[size_t(y) * m.cols + x];
-                if (!cell &&
-                    distance_to_triangle({(x + 0.5) * cs, (y + 0.5) * cs}, q) <= reach)
+                if (!cell && sim::point_triangle_distance(
+                                 {(x + 0.5) * cs, (y + 0.5) * cs}, q.data()) <= reach)
                     cell = 1;
             }
     }

@@ -24,6 +24,7 @@
 #include "shader/pelage_shader.h"
 #include "shader/sdk/create_guard.h"
 #include "shader/sdk/params.h"
+#include "shader/sdk/rest_mesh.h"
 
 namespace {
 
@@ -279,7 +280,9 @@ void apply_type_looks(const std::string &text, const std::vector<sim::CellType> 
     }
 }
 
-// A stable value in [-1, 1] from a cell id (integer hash, no state).
+// A stable value in [-1, 1] from a cell id (integer hash, no state). Not mix64
+// (sim/core/hash.h): its value scales every cell's colour, so it stays bit-identical to
+// keep rendered pixels, and the shared 64-bit mixer gives other values.
 float id_noise(uint32_t id) {
     uint32_t h = id * 0x9E3779B1u;
     h ^= h >> 16;
@@ -290,7 +293,8 @@ float id_noise(uint32_t id) {
 
 // A stable value in [0, 1) from a hit (its triangle, barycentrics and depth): decides,
 // between the exact and the filtered look, which one a hit in the level of detail's ramp
-// takes (murmur3's finaliser on the mixed bits).
+// takes (murmur3's finaliser on the mixed bits). Not mix64 (sim/core/hash.h): its value
+// picks the look a hit shows, so it stays bit-identical to keep rendered pixels.
 float hit_noise(const PelageHit &hit) {
     uint32_t b1, b2;
     std::memcpy(&b1, &hit.b1, 4);
@@ -316,20 +320,6 @@ void cell_look(const ClonalMosaic &cm, uint32_t cell, CellLook &look) {
     look.founder = look.id;
 }
 
-// The mesh the renderer loaded, before any deformation: the simulation's own surface
-// when the .cells file was grown on it (its hash is over these exact positions).
-sim::TriangleMesh rest_mesh(const PelageMeshView &view) {
-    sim::TriangleMesh mesh;
-    mesh.positions.resize(view.num_vertices);
-    for (uint32_t v = 0; v < view.num_vertices; ++v)
-        mesh.positions[v] = {view.rest_positions[3 * v], view.rest_positions[3 * v + 1],
-                             view.rest_positions[3 * v + 2]};
-    mesh.triangles.resize(view.num_triangles);
-    for (uint32_t t = 0; t < view.num_triangles; ++t)
-        for (int c = 0; c < 3; ++c) mesh.triangles[t][c] = view.triangles[3 * t + c];
-    return mesh;
-}
-
 std::unique_ptr<ClonalMosaic> make(const PelageParamSet &ps) {
     if (!ps.mesh.cells_path)
         throw std::invalid_argument(
@@ -351,7 +341,7 @@ std::unique_ptr<ClonalMosaic> make(const PelageParamSet &ps) {
 
     const std::string mesh_name = ps.mesh.mesh_name ? ps.mesh.mesh_name : "the mesh";
     cm->pattern = shader::clonal_mosaic::cached_pattern(
-        ps.mesh.cells_path, rest_mesh(ps.mesh), mesh_name,
+        ps.mesh.cells_path, shader::sdk::rest_mesh(ps.mesh, false), mesh_name,
         neighbourhood == "geodesic" ? shader::mosaic::Neighbourhood::geodesic
         : neighbourhood == "teo"    ? shader::mosaic::Neighbourhood::unfolding_teo
                                     : shader::mosaic::Neighbourhood::unfolding_edges);

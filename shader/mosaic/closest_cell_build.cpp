@@ -15,6 +15,7 @@
 #include "shader/mosaic/closest_cell.h"
 #include "shader/mosaic/subdivision.h"
 #include "sim/geodesic/windows_by_face.h"
+#include "sim/mesh/closest_point.h"
 
 namespace pelage::shader::mosaic {
 namespace {

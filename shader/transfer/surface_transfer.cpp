@@ -5,7 +5,6 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <unordered_map>
 
 #include "sim/core/input_error.h"
 
@@ -13,101 +12,6 @@ namespace pelage::shader::transfer {
 namespace {
 
 using sim::Vec3d;
-
-}  // namespace
-
-namespace {
-
-// The simulation triangles in a uniform grid of cubes about the mean edge length.
-class TriangleGrid {
-  public:
-    explicit TriangleGrid(const sim::TriangleMesh &m) : m_mesh(&m) {
-        const sim::Bounds3 b = m.bounds();
-        m_lo = b.lo;
-        double edges = 0;
-        for (sim::TriId t = 0; t < m.num_triangles(); ++t)
-            edges += length(m.vertex(t, 1) - m.vertex(t, 0));
-        m_cell = std::max(edges / std::max<size_t>(m.num_triangles(), 1), 1e-12);
-        for (int k = 0; k < 3; ++k)
-            m_n[k] = std::clamp(int((b.hi[k] - b.lo[k]) / m_cell) + 1, 1, 1024);
-        m_cell = std::max({(b.hi.x - b.lo.x) / m_n[0], (b.hi.y - b.lo.y) / m_n[1],
-                           (b.hi.z - b.lo.z) / m_n[2], m_cell * 1e-3});
-        for (sim::TriId t = 0; t < m.num_triangles(); ++t) {
-            Vec3d lo = m.vertex(t, 0), hi = lo;
-            for (int c = 1; c < 3; ++c) {
-                const Vec3d v = m.vertex(t, c);
-                lo = {std::min(lo.x, v.x), std::min(lo.y, v.y), std::min(lo.z, v.z)};
-                hi = {std::max(hi.x, v.x), std::max(hi.y, v.y), std::max(hi.z, v.z)};
-            }
-            const auto a = index_of(lo), z = index_of(hi);
-            for (int i = a[0]; i <= z[0]; ++i)
-                for (int j = a[1]; j <= z[1]; ++j)
-                    for (int k = a[2]; k <= z[2]; ++k) m_cells[key(i, j, k)].push_back(t);
-        }
-    }
-
-    struct Hit {
-        sim::TriId tri;
-        Vec3d p;
-        double distance;
-    };
-    // Searches shells of cubes outwards until no closer triangle can remain. Among
-    // triangles equally close (within `tie`: where sheets of the surface touch or cross)
-    // the one whose plane faces most like `normal` (when given) wins.
-    Hit closest(Vec3d p, Vec3d normal = {0, 0, 0}, double tie = 0) const {
-        Hit best{sim::invalid_id, p, std::numeric_limits<double>::infinity()};
-        double best_facing = -1;
-        const auto c = index_of(p);
-        const int far = std::max({m_n[0], m_n[1], m_n[2]}) + 1;
-        for (int r = 0; r <= far; ++r) {
-            // Every triangle outside the shells searched is at least (r - 1) cells away.
-            if (r > 0 && best.distance + tie < (r - 1) * m_cell) break;
-            for (int i = c[0] - r; i <= c[0] + r; ++i)
-                for (int j = c[1] - r; j <= c[1] + r; ++j)
-                    for (int k = c[2] - r; k <= c[2] + r; ++k) {
-                        if (std::max({std::abs(i - c[0]), std::abs(j - c[1]),
-                                      std::abs(k - c[2])}) != r)
-                            continue;  // the shell only
-                        const auto it = m_cells.find(key(i, j, k));
-                        if (it == m_cells.end()) continue;
-                        for (sim::TriId t : it->second) {
-                            const Vec3d q = sim::closest_point_on_triangle(
-                                p, m_mesh->vertex(t, 0), m_mesh->vertex(t, 1),
-                                m_mesh->vertex(t, 2));
-                            const double d = length(q - p);
-                            const double facing = std::abs(dot(
-                                normalize(m_mesh->face_normal_unnormalized(t)), normal));
-                            const bool closer = d < best.distance - tie;
-                            const bool tied = !closer && d <= best.distance + tie;
-                            if (closer ||
-                                (tied && (facing > best_facing ||
-                                          (facing == best_facing && t < best.tri)))) {
-                                best = {t, q, d};
-                                best_facing = facing;
-                            }
-                        }
-                    }
-        }
-        return best;
-    }
-
-  private:
-    std::array<int, 3> index_of(Vec3d p) const {
-        return {int(std::floor((p.x - m_lo.x) / m_cell)),
-                int(std::floor((p.y - m_lo.y) / m_cell)),
-                int(std::floor((p.z - m_lo.z) / m_cell))};
-    }
-    static uint64_t key(int i, int j, int k) {
-        return (uint64_t(uint32_t(i + (1 << 20))) << 42) ^
-               (uint64_t(uint32_t(j + (1 << 20))) << 21) ^
-               uint64_t(uint32_t(k + (1 << 20)));
-    }
-    const sim::TriangleMesh *m_mesh;
-    Vec3d m_lo;
-    double m_cell = 1;
-    int m_n[3] = {1, 1, 1};
-    std::unordered_map<uint64_t, std::vector<sim::TriId>> m_cells;
-};
 
 std::vector<char> used_vertices(const sim::TriangleMesh &m) {
     std::vector<char> used(m.num_vertices(), 0);
@@ -148,11 +52,13 @@ SurfaceTransfer::SurfaceTransfer(const sim::Surface &simulation,
     m_scale = float(scale);
     auto place = [&](Vec3d p) { return p * scale + shift; };
 
-    const TriangleGrid grid(sm);
-    std::vector<TriangleGrid::Hit> at_vertex(render.num_vertices());
+    const sim::ClosestPointGrid grid(sm);
+    std::vector<sim::MeshPoint> at_vertex(render.num_vertices());
     tbb::parallel_for(size_t(0), render.num_vertices(), [&](size_t v) {
-        at_vertex[v] =
-            r_used[v] ? grid.closest(place(render.positions[v])) : TriangleGrid::Hit{};
+        // No normal, no tie: the closest triangle, ties to the lowest id (closest()
+        // differs only where a triangle has no normal, as the vertices are placed).
+        if (r_used[v])
+            at_vertex[v] = grid.closest_facing(place(render.positions[v]), {}, 0);
     });
     for (const auto &h : at_vertex)
         if (std::isfinite(h.distance))
@@ -169,15 +75,15 @@ SurfaceTransfer::SurfaceTransfer(const sim::Surface &simulation,
     m_placed.resize(render.num_triangles());
     tbb::parallel_for(size_t(0), render.num_triangles(), [&](size_t t) {
         const auto &tri = render.triangles[t];
-        const Vec3d corner[3] = {at_vertex[tri[0]].p, at_vertex[tri[1]].p,
-                                 at_vertex[tri[2]].p};
+        const Vec3d corner[3] = {at_vertex[tri[0]].point, at_vertex[tri[1]].point,
+                                 at_vertex[tri[2]].point};
         const Vec3d centroid =
             (place(render.positions[tri[0]]) + place(render.positions[tri[1]]) +
              place(render.positions[tri[2]])) /
             3.0;
         const Vec3d normal = normalize(render.face_normal_unnormalized(sim::TriId(t)));
         const double tie = 1e-6 * s_diag;
-        sim::TriId candidates[4] = {grid.closest(centroid, normal, tie).tri,
+        sim::TriId candidates[4] = {grid.closest_facing(centroid, normal, tie).tri,
                                     at_vertex[tri[0]].tri, at_vertex[tri[1]].tri,
                                     at_vertex[tri[2]].tri};
         RenderTriangle &out = m_tris[t];

@@ -8,22 +8,20 @@
 
 #include <vector>
 
+#include "sim/mesh/closest_point.h"
 #include "sim/mesh/mesh.h"
 
 namespace pelage::sim {
 
-struct ClosestSource {
-    TriId tri = 0;
-    Vec3d b;  // barycentric coordinates of the closest point in `tri`
-};
-
-// For every corner of `target` (3 per triangle), the closest point of `source`, found
-// through a uniform grid of the source's triangles. Ties go to the lowest triangle id.
-std::vector<ClosestSource> closest_source_points(const TriangleMesh &source,
-                                                 const TriangleMesh &target);
+// For every corner of `target` (3 per triangle), the closest point of `source`
+// (ClosestPointGrid, ranked by point: ties go to the lowest triangle id). Its `bary` is
+// derived again from the point (barycentric_of in corner_transfer.cpp), so the values
+// carried into the simulation keep their exact weights.
+std::vector<MeshPoint> closest_source_points(const TriangleMesh &source,
+                                             const TriangleMesh &target);
 
 // Per-corner values of `source` (3 per triangle) at each target corner.
-std::vector<double> transfer_corner_values(const std::vector<ClosestSource> &map,
+std::vector<double> transfer_corner_values(const std::vector<MeshPoint> &map,
                                            const std::vector<double> &source_values);
 
 }  // namespace pelage::sim

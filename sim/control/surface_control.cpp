@@ -69,7 +69,7 @@ std::vector<double> near_values(const RegionSpec &r, const TriangleMesh &mesh,
             p = {box.lo.x + q[0] * (box.hi.x - box.lo.x),
                  box.lo.y + q[1] * (box.hi.y - box.lo.y),
                  box.lo.z + q[2] * (box.hi.z - box.lo.z)};
-        const ClosestSurfacePoint s = closest_surface_point(mesh, p);
+        const MeshPoint s = closest_surface_point(mesh, p);
         propagation.run(s.tri, crps.to_2d(s.tri, s.point), reach * (1 + 1e-9) + 1e-300,
                         windows);
         std::stable_sort(windows.begin(), windows.end(),
@@ -152,7 +152,7 @@ SurfaceControl::SurfaceControl(const ControlSpec &spec, const TriangleMesh &mesh
     : m_spec(spec), m_crps(&crps) {
     const bool transfer = data_mesh && data_mesh != &mesh;
     const TriangleMesh &data = transfer ? *data_mesh : mesh;
-    std::vector<ClosestSource> map;  // built on first use
+    std::vector<MeshPoint> map;  // built on first use
     auto carried = [&](std::vector<double> values) {
         if (!transfer) return values;
         if (map.empty()) map = closest_source_points(data, mesh);

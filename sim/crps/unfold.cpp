@@ -3,24 +3,10 @@
 #include <algorithm>
 #include <cmath>
 
+#include "sim/mesh/closest_point.h"
+
 namespace pelage::sim {
 namespace {
-
-double point_segment_distance_sq(Vec2d p, Vec2d a, Vec2d b) {
-    const Vec2d ab = b - a;
-    const double len2 = length_squared(ab);
-    const double t = len2 > 0 ? std::clamp(dot(p - a, ab) / len2, 0.0, 1.0) : 0.0;
-    return length_squared(p - (a + ab * t));
-}
-
-bool inside_triangle(Vec2d p, const Vec2d t[3]) {
-    // Orientation-agnostic: p is inside when it is on the same side of all three edges.
-    const double d0 = cross(t[1] - t[0], p - t[0]);
-    const double d1 = cross(t[2] - t[1], p - t[1]);
-    const double d2 = cross(t[0] - t[2], p - t[2]);
-    const bool has_neg = d0 < 0 || d1 < 0 || d2<0, has_pos = d0> 0 || d1 > 0 || d2 > 0;
-    return !(has_neg && has_pos);
-}
 
 bool segments_cross(Vec2d a, Vec2d b, Vec2d c, Vec2d d) {
     const double d1 = cross(b - a, c - a), d2 = cross(b - a, d - a);
@@ -96,13 +82,6 @@ void UnfoldScratch::begin() {
         std::fill(m_stamp.begin(), m_stamp.end(), 0);
         m_generation = 1;
     }
-}
-
-double point_triangle_distance(Vec2d p, const Vec2d t[3]) {
-    if (inside_triangle(p, t)) return 0.0;
-    return std::sqrt(std::min({point_segment_distance_sq(p, t[0], t[1]),
-                               point_segment_distance_sq(p, t[1], t[2]),
-                               point_segment_distance_sq(p, t[2], t[0])}));
 }
 
 // Disjoint convex polygons are closest at a vertex of one of them; overlapping ones have

@@ -62,7 +62,7 @@ void unfold_around_point(const Crps &crps, TriId master, Vec2d q, double radius,
                          UnfoldPaths paths = UnfoldPaths::edges_and_vertices);
 
 // --- 2D distance helpers (exposed for tests and for the shader's pruning) ---
-double point_triangle_distance(Vec2d p, const Vec2d tri[3]);
+// point_triangle_distance is in sim/mesh/closest_point.h.
 double triangle_triangle_distance(const Vec2d a[3], const Vec2d b[3]);
 
 }  // namespace pelage::sim

@@ -165,77 +165,6 @@ std::vector<Vec3d> key_positions(const GrowthSpec &spec, size_t k,
     return out;
 }
 
-std::vector<MeshPoint> closest_points(const TriangleMesh &mesh,
-                                      const std::vector<Vec3d> &points) {
-    const size_t nt = mesh.num_triangles();
-    std::vector<MeshPoint> out(points.size());
-    if (nt == 0) return out;
-    const Bounds3 box = mesh.bounds();
-    // About two triangles per occupied cell: n³ cells for a surface's ~n² coverage.
-    const int n = std::clamp(int(std::ceil(std::sqrt(double(nt)) / 1.5)), 1, 512);
-    const Vec3d size = box.hi - box.lo;
-    const double h = std::max({size.x, size.y, size.z, 1e-300}) / n;
-    const int nx = std::max(1, int(std::ceil(size.x / h))),
-              ny = std::max(1, int(std::ceil(size.y / h))),
-              nz = std::max(1, int(std::ceil(size.z / h)));
-    auto cell_of = [&](double v, double lo, int count) {
-        return std::clamp(int(std::floor((v - lo) / h)), 0, count - 1);
-    };
-    std::vector<std::vector<TriId>> grid(size_t(nx) * ny * nz);
-    for (TriId t = 0; t < nt; ++t) {
-        Bounds3 b;
-        for (int c = 0; c < 3; ++c) b.extend(mesh.vertex(t, c));
-        for (int z = cell_of(b.lo.z, box.lo.z, nz); z <= cell_of(b.hi.z, box.lo.z, nz);
-             ++z)
-            for (int y = cell_of(b.lo.y, box.lo.y, ny);
-                 y <= cell_of(b.hi.y, box.lo.y, ny); ++y)
-                for (int x = cell_of(b.lo.x, box.lo.x, nx);
-                     x <= cell_of(b.hi.x, box.lo.x, nx); ++x)
-                    grid[(size_t(z) * ny + y) * nx + x].push_back(t);
-    }
-    for (size_t i = 0; i < points.size(); ++i) {
-        const Vec3d p = points[i];
-        const int cx = cell_of(p.x, box.lo.x, nx), cy = cell_of(p.y, box.lo.y, ny),
-                  cz = cell_of(p.z, box.lo.z, nz);
-        double best = std::numeric_limits<double>::infinity();
-        MeshPoint found;
-        const int max_ring = std::max({nx, ny, nz});
-        for (int ring = 0; ring <= max_ring; ++ring) {
-            for (int z = cz - ring; z <= cz + ring; ++z)
-                for (int y = cy - ring; y <= cy + ring; ++y)
-                    for (int x = cx - ring; x <= cx + ring; ++x) {
-                        if (std::max({std::abs(x - cx), std::abs(y - cy),
-                                      std::abs(z - cz)}) != ring)
-                            continue;  // the shell only
-                        if (x < 0 || y < 0 || z < 0 || x >= nx || y >= ny || z >= nz)
-                            continue;
-                        for (TriId t : grid[(size_t(z) * ny + y) * nx + x]) {
-                            const Vec3d b =
-                                closest_on_triangle(p, mesh.vertex(t, 0),
-                                                    mesh.vertex(t, 1), mesh.vertex(t, 2))
-                                    .bary;
-                            const Vec3d q = mesh.vertex(t, 0) * b.x +
-                                            mesh.vertex(t, 1) * b.y +
-                                            mesh.vertex(t, 2) * b.z;
-                            const double d = length_squared(q - p);
-                            // Ties go to the lower triangle id: the answer does not
-                            // depend on the order cells are visited in.
-                            if (d < best || (d == best && t < found.tri)) {
-                                best = d;
-                                found = {t, b};
-                            }
-                        }
-                    }
-            // Cells beyond this ring are at least ring·h away from p (p lies in or is
-            // clamped towards the centre cell, which a point outside the box only
-            // brings closer to the grid edge).
-            if (std::isfinite(best) && best <= (ring * h) * (ring * h)) break;
-        }
-        out[i] = found;
-    }
-    return out;
-}
-
 GrowthShape resolve_growth(const GrowthSpec &spec, const TriangleMesh &rest,
                            const TriangleMesh &surface) {
     const bool same = surface.num_vertices() == rest.num_vertices() &&
@@ -264,7 +193,8 @@ GrowthShape resolve_growth(const GrowthSpec &spec, const TriangleMesh &rest,
             continue;
         }
         const std::vector<Vec3d> grown = key_positions(spec, k, rest);
-        if (on_rest.empty()) on_rest = closest_points(rest, surface.positions);
+        if (on_rest.empty())
+            on_rest = closest_points(rest, surface.positions, RankBy::barycentric_blend);
         std::vector<Vec3d> out(surface.num_vertices());
         for (size_t v = 0; v < out.size(); ++v) {
             const MeshPoint &m = on_rest[v];

@@ -76,13 +76,4 @@ std::vector<Vec3d> key_positions(const GrowthSpec &spec, size_t k,
 GrowthShape resolve_growth(const GrowthSpec &spec, const TriangleMesh &rest,
                            const TriangleMesh &surface);
 
-// The closest point of `mesh` to each of `points`, as (triangle, barycentrics): a
-// uniform grid over the triangles, searched ring by ring.
-struct MeshPoint {
-    TriId tri = 0;
-    Vec3d bary;
-};
-std::vector<MeshPoint> closest_points(const TriangleMesh &mesh,
-                                      const std::vector<Vec3d> &points);
-
 }  // namespace pelage::sim

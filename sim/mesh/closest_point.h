@@ -3,6 +3,12 @@
 // (sim/growth) and the rendering of a pattern on another mesh (shader/transfer) use.
 #pragma once
 
+#include <array>
+#include <cstdint>
+#include <limits>
+#include <unordered_map>
+#include <vector>
+
 #include "sim/mesh/mesh.h"
 
 namespace pelage::sim {
@@ -49,15 +55,67 @@ inline Vec3d closest_point_on_triangle(Vec3d p, Vec3d a, Vec3d b, Vec3d c) {
     return closest_on_triangle(p, a, b, c).point;
 }
 
-struct ClosestSurfacePoint {
+// The distance from p to triangle t in the plane, 0 inside (either orientation): the
+// one 2D point-triangle distance, for the unfoldings' pruning (sim/crps), the
+// closest-cell index (shader/mosaic) and the atlas's chart masks (shader/bake).
+double point_triangle_distance(Vec2d p, const Vec2d t[3]);
+
+// The closest point of a mesh to a point in space: the one result type of every search
+// below.
+struct MeshPoint {
     TriId tri = 0;
-    Vec3d point;
-    double distance = 0;
+    Vec3d point;  // the closest point itself
+    Vec3d bary;   // its barycentric coordinates in `tri`
+    double distance = std::numeric_limits<double>::infinity();  // from the query point
 };
 
 // The closest point of a mesh by testing every triangle, for a few points (the
 // landmarks of a "near" region); the lowest-numbered triangle among the closest ones
 // (deterministic).
-ClosestSurfacePoint closest_surface_point(const TriangleMesh &mesh, Vec3d p);
+MeshPoint closest_surface_point(const TriangleMesh &mesh, Vec3d p);
+
+// What a search ranks the triangles by. Where two triangles are equally close (a point
+// outside a convex edge projects onto the edge in both), the two rankings may pick
+// different triangles by rounding, so each caller keeps the one its results were made
+// with: the landmark regions' transfer (sim/control) and the rendering on another mesh
+// (shader/transfer) rank by the closest point, the growth's rest-shape points
+// (sim/growth) by the point their barycentrics blend from the corners.
+enum class RankBy {
+    point,              // length(closest point - p)
+    barycentric_blend,  // length_squared(corners blended by the barycentrics - p)
+};
+
+// The triangles of a mesh in a uniform grid of cubes about the mean edge length (hashed,
+// so an elongated mesh costs only its occupied cells), searched shell by shell outwards
+// until no closer triangle can remain. The mesh must outlive the grid.
+class ClosestPointGrid {
+  public:
+    explicit ClosestPointGrid(const TriangleMesh &mesh);
+
+    // The closest point of the mesh to p; ties go to the lowest triangle id, so the
+    // answer does not depend on the order cells are visited in. An empty mesh gives
+    // tri = invalid_id.
+    MeshPoint closest(Vec3d p, RankBy rank = RankBy::point) const;
+    // Ranked by point; among triangles equally close (within `tie`: where sheets of the
+    // surface touch or cross) the one whose plane faces most like `normal` wins.
+    MeshPoint closest_facing(Vec3d p, Vec3d normal, double tie) const;
+
+  private:
+    template <typename Visit>
+    void search(Vec3d p, const double &reach, Visit &&visit) const;
+    std::array<int, 3> index_of(Vec3d p) const;
+    static uint64_t key(int i, int j, int k);
+
+    const TriangleMesh *m_mesh;
+    Vec3d m_lo;
+    double m_cell = 1;
+    int m_n[3] = {1, 1, 1};
+    std::unordered_map<uint64_t, std::vector<TriId>> m_cells;
+};
+
+// The closest point of `mesh` to each of `points` (ClosestPointGrid::closest).
+std::vector<MeshPoint> closest_points(const TriangleMesh &mesh,
+                                      const std::vector<Vec3d> &points,
+                                      RankBy rank = RankBy::point);
 
 }  // namespace pelage::sim

@@ -9,6 +9,7 @@
 
 #include "sim/core/input_error.h"
 #include "sim/crps/body_length.h"
+#include "sim/mesh/closest_point.h"
 #include "sim/mosaic/anisotropy_field.h"
 #include "sim/mosaic/run_progress.h"
 

@@ -111,7 +111,7 @@ TEST(Regions, NearAgreesWithCgalExactGeodesics) {
         "t.json");
     const SurfaceControl c(p.control, s.mesh, s.crps, "t.json");
     const double L = body_axis(s.crps).length;
-    const ClosestSurfacePoint src = closest_surface_point(s.mesh, {0.1, 0.2, 1.4});
+    const MeshPoint src = closest_surface_point(s.mesh, {0.1, 0.2, 1.4});
     const Vec3d b = s.crps.to_barycentric(src.tri, s.crps.to_2d(src.tri, src.point));
     std::vector<test::SurfaceLocation> targets;
     for (TriId t = 0; t < s.mesh.num_triangles(); ++t)
@@ -584,7 +584,7 @@ TEST(CornerTransfer, ClosestPointsMatchABruteForceSearch) {
     const TriangleMesh fine = make_icosphere(4);
     TriangleMesh coarse =
         make_uv_sphere(9, 13, 1.01);  // another tessellation, off the surface
-    const std::vector<ClosestSource> map = closest_source_points(fine, coarse);
+    const std::vector<MeshPoint> map = closest_source_points(fine, coarse);
     ASSERT_EQ(map.size(), 3 * coarse.num_triangles());
     std::vector<double> height(3 * fine.num_triangles());
     for (TriId t = 0; t < fine.num_triangles(); ++t)
@@ -592,8 +592,8 @@ TEST(CornerTransfer, ClosestPointsMatchABruteForceSearch) {
     const std::vector<double> carried = transfer_corner_values(map, height);
     for (size_t q = 0; q < map.size(); ++q) {
         const Vec3d p = coarse.vertex(TriId(q / 3), int(q % 3));
-        const ClosestSurfacePoint brute = closest_surface_point(fine, p);
-        const Vec3d b = map[q].b;
+        const MeshPoint brute = closest_surface_point(fine, p);
+        const Vec3d b = map[q].bary;
         const Vec3d x = fine.vertex(map[q].tri, 0) * b.x +
                         fine.vertex(map[q].tri, 1) * b.y +
                         fine.vertex(map[q].tri, 2) * b.z;

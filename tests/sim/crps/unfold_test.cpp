@@ -8,6 +8,7 @@
 #include <random>
 
 #include "sim/crps/surface.h"
+#include "sim/mesh/closest_point.h"
 #include "sim/mesh/procedural_mesh.h"
 
 namespace pelage::sim {

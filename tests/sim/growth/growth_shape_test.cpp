@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "sim/core/input_error.h"
+#include "sim/mesh/closest_point.h"
 #include "sim/mesh/mesh_load.h"
 #include "sim/mesh/mesh_write_obj.h"
 #include "sim/mesh/procedural_mesh.h"
@@ -224,7 +225,8 @@ TEST(GrowthShape, ClosestPointsAgainstBruteForce) {
         points.push_back({r * std::cos(a) * std::cos(b), r * std::sin(b),
                           r * std::sin(a) * std::cos(b)});
     }
-    const std::vector<MeshPoint> found = closest_points(m, points);
+    const std::vector<MeshPoint> found =
+        closest_points(m, points, RankBy::barycentric_blend);  // as the growth ranks
     for (size_t i = 0; i < points.size(); ++i) {
         double best = 1e300;
         for (TriId t = 0; t < m.num_triangles(); ++t) {
