@@ -1,5 +1,5 @@
 // Searches the closest-cell index (Teo 2006 §6.2, Fig. 6.2; see closest_cell.h). The
-// index is built in closest_cell_build.cpp.
+// index is built in closest_cell_build.cpp (see closest_cell_build.h).
 #include "shader/mosaic/closest_cell.h"
 
 #include <algorithm>
@@ -30,7 +30,7 @@ constexpr float inf_f = std::numeric_limits<float>::infinity();
     sim::TriId t, Vec2f q, const Block *&end) const {
     if ((m_first_region[t] & 3u) == 1) return blocks_at(t, 0, 0, end);
     // q's barycentric coordinates, by Cramer's rule on q - v0 = b1 e1 + b2 e2.
-    const Frame &r = m_frames[t];
+    const TriangleFrame &r = m_frames[t];
     const float dx = q.x - r.v0x, dy = q.y - r.v0y;
     return blocks_at(t, (dx * r.e2y - dy * r.e2x) * r.inv_det,
                      (r.e1x * dy - r.e1y * dx) * r.inv_det, end);
@@ -135,12 +135,12 @@ const ClosestCellIndex::Block *ClosestCellIndex::scan_lanes(const Block *b,
     return r.stop;
 }
 
-float ClosestCellIndex::BentWindow::distance(Vec2f q) const {
+float BentWindow::distance(Vec2f q) const {
     const float d = sigma + std::sqrt(squared_distance(sx, sy, q));
     return covers(q) ? d : std::numeric_limits<float>::infinity();
 }
 
-bool ClosestCellIndex::BentWindow::covers(Vec2f q) const {
+bool BentWindow::covers(Vec2f q) const {
     if (std::isnan(x0x)) return true;
     const float r0x = x0x - sx, r0y = x0y - sy, r1x = x1x - sx, r1y = x1y - sy;
     const float dx = q.x - sx, dy = q.y - sy;

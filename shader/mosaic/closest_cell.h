@@ -16,8 +16,8 @@
 // d_3 the distance from S's centroid to its third-nearest cell and b_S S's radius,
 // because F3(q) <= |q - c_3| <= d_3 + b_S). Each such cell is stored *already placed in
 // t's frame*, at the position that reproduces its surface distance over the region (see
-// bent_flag): the work Teo does per candidate triangle at every lookup is done once here,
-// so a lookup is a scan of one flat list.
+// bent_flag, cell_block.h): the work Teo does per candidate triangle at every lookup is
+// done once here, so a lookup is a scan of one flat list.
 //
 // Regions. The lists of neighbouring sub-triangles overlap heavily (the same cells at
 // the same positions), so a lookup searches a *region* of t, whose list is the union of
@@ -72,7 +72,6 @@
 #include "shader/mosaic/cell_table.h"
 #include "shader/mosaic/lane_scan.h"
 #include "sim/crps/crps.h"
-#include "sim/crps/unfold.h"
 
 namespace pelage::shader::mosaic {
 
@@ -165,7 +164,7 @@ class ClosestCellIndex {
         float next_d2 = std::numeric_limits<float>::infinity();
         float third_d2 = std::numeric_limits<float>::infinity();
         // A returned cell's distance is not |q - its position| (a path bent round a
-        // pseudo-source vertex, see bent_flag): nearby queries cannot reuse the result.
+        // pseudo-source vertex, cell_block.h): nearby queries cannot reuse the result.
         bool bent = false;
         Nearest() {
             d2.fill(std::numeric_limits<float>::infinity());
@@ -187,21 +186,6 @@ class ClosestCellIndex {
     // it overlaps with the list's).
     ClosestCell find_nearest(sim::TriId t, float b1, float b2) const;
     Nearest<3> find_three_within(sim::TriId t, float b1, float b2, float band) const;
-    // The triangle in its frame, q = v0 + b1 e1 + b2 e2, and 1 / det(e1, e2) for the
-    // barycentric coordinates of a point (blocks_of()).
-    struct alignas(32) Frame {
-        float v0x, v0y, e1x, e1y, e2x, e2y, inv_det;
-        // Local CRPS coordinates of barycentric point (b1, b2).
-        Vec2f point(float b1, float b2) const {
-            return {v0x + b1 * e1x + b2 * e2x, v0y + b1 * e1y + b2 * e2y};
-        }
-    };
-    static_assert(sizeof(Frame) == 32);
-    const Frame &frame(sim::TriId t) const { return m_frames[t]; }
-    // The regions per side of t's lists (1 … 3): a cell's listed position can differ
-    // from one region of t to the next (geodesic neighbourhoods), so results are
-    // comparable within one region only (coherent_lookup.h).
-    uint32_t regions_per_side(sim::TriId t) const { return m_first_region[t] & 3u; }
     // Local CRPS coordinates of barycentric point (b1, b2) of t (what those use).
     Vec2f point(sim::TriId t, float b1, float b2) const {
         return m_frames[t].point(b1, b2);
@@ -216,33 +200,25 @@ class ClosestCellIndex {
     double spacing() const { return m_spacing; }
     const CellTable &cells() const { return *m_cells; }
 
-    // A list entry whose cell's distance over the region is not one straight line
-    // from one position — its path bends round a pseudo-source vertex (σ > 0), or
-    // different parts of the region see the cell through different unfoldings — is
-    // listed at the position of the unfolding that serves most of the region (the source
-    // moved back by σ for a bent path) and carries this flag with the index of its
-    // first window in the bent table: the cell's windows on the triangle, from which the
-    // returned cells' exact distances come (the least σ + |q - s| over the windows
-    // whose wedge holds q). A run of windows starts with one tagged with its cell and
-    // goes on while the tag says `more`: one cache line holds the cell and two windows,
-    // so a bent result costs one more miss, not two.
-    static constexpr uint32_t bent_flag = 0x80000000u;
-    struct alignas(32) BentWindow {
-        static constexpr uint32_t more = 0xffffffffu;
-        float sx, sy, sigma;
-        float x0x, x0y, x1x, x1y;  // the wedge's entry interval; whole face: x0x = NaN
-        uint32_t tag;              // the cell on a run's first window, else `more`
-        float distance(Vec2f q) const;  // +inf when q lies outside the wedge
-        bool covers(Vec2f q) const;
-    };
-    static_assert(sizeof(BentWindow) == 32);
-    // The cell of a list entry, and a bent entry's exact distance from q.
+  private:
+    // --- What the coherent path reads to reuse a search's result (coherent_lookup.h) ---
+    friend class CoherentLookup;
+
+    // The triangle in its frame (cell_block.h), for the barycentric coordinates of a
+    // point (blocks_of()).
+    const TriangleFrame &frame(sim::TriId t) const { return m_frames[t]; }
+    // The regions per side of t's lists (1 … 3): a cell's listed position can differ
+    // from one region of t to the next (geodesic neighbourhoods), so results are
+    // comparable within one region only (coherent_lookup.h).
+    uint32_t regions_per_side(sim::TriId t) const { return m_first_region[t] & 3u; }
+    // The cell of a list entry (bent entries: cell_block.h, bent_flag).
     uint32_t cell_of(uint32_t entry) const {
         return entry == ClosestCell::none || !(entry & bent_flag)
                    ? entry
                    : m_bent_windows[entry & ~bent_flag].tag;
     }
-    // `listed`: the distance from the entry's listed position (used between the windows).
+    // A bent entry's exact distance from q. `listed`: the distance from the entry's
+    // listed position (used between the windows).
     float bent_distance(uint32_t entry, Vec2f q, float listed) const;
     // Bent entries among the results: their cells and exact distances. The order stays
     // the one of the listed positions (the searches agree with one another; where a
@@ -255,12 +231,10 @@ class ClosestCellIndex {
     Nearest<3> find_three_within_listed(sim::TriId t, float b1, float b2,
                                         float band) const;
 
-  private:
+    // --- The searches' internals (closest_cell.cpp) ---
     static constexpr int per_block = CellBlock::size;
 
     using Block = CellBlock;
-
-    struct Built;  // one triangle's list while building
 
     const Block *blocks_of(sim::TriId t, Vec2f q, const Block *&end) const;
     const Block *blocks_at(sim::TriId t, float b1, float b2, const Block *&end) const;
@@ -277,16 +251,13 @@ class ClosestCellIndex {
     template <int K>
     const Block *scan_lanes(const Block *b, const Block *e, Vec2f q, Nearest<K> &n,
                             float *cells_left_d2 = nullptr) const;
-    struct Candidates;  // where build_triangle() finds a triangle's cells
-    // Returns the reach the triangle's lists needed (+inf when fewer than three cells
-    // were found): more than the geodesic radius means the windows were too short.
-    double build_triangle(const sim::Crps &crps, sim::TriId t, Candidates &candidates,
-                          std::array<Built, 2> &out) const;
 
+    // The index, as the build (closest_cell_build.cpp) assembles it from the
+    // triangles' lists.
     const CellTable *m_cells;
     ClosestCellOptions m_options;
     double m_initial_radius = 0, m_max_radius = 0, m_spacing = 0;
-    std::vector<Frame> m_frames;
+    std::vector<TriangleFrame> m_frames;
     // t's regions are g, g + 1, … g + r² - 1 for g = m_first_region[t] >> 2; its low two
     // bits hold r, the regions per side. Region g's blocks are [m_region_block[g],
     // m_region_block[g + 1]). Neither needs t's frame: a hit's (b1, b2) picks the list

@@ -25,9 +25,7 @@ CoherentLookup::Result CoherentLookup::search(const ClosestCellIndex &index,
         m_q = m_frame.point(b1, b2);
         m_cell[0] = n.index[0];
         m_cell[1] = n.second;
-        auto bent = [](uint32_t e) {
-            return e != ClosestCell::none && (e & ClosestCellIndex::bent_flag);
-        };
+        auto bent = [](uint32_t e) { return e != ClosestCell::none && (e & bent_flag); };
         m_bent = bent(m_cell[0]) || bent(m_cell[1]);
         m_id[0] = id[index.cell_of(n.index[0])];
         m_id[1] = n.second != ClosestCell::none ? id[index.cell_of(n.second)] : 0;

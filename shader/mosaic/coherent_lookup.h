@@ -86,8 +86,8 @@ class CoherentLookup {
     uint64_t m_serial = 0;  // 0: nothing to reuse
     sim::TriId m_tri = 0;
     uint32_t m_regions = 1, m_slot = 0;  // the search's region of the triangle
-    ClosestCellIndex::Frame m_frame{};  // the triangle's (a copy: no index read to reuse)
-    Vec2f m_q;                          // the search's query, in the triangle's frame
+    TriangleFrame m_frame{};  // the triangle's (a copy: no index read to reuse)
+    Vec2f m_q;                // the search's query, in the triangle's frame
     const ClosestCellIndex *m_index = nullptr;  // the index of m_serial
     uint32_t m_cell[2]{};  // c1, c2 as list entries (none: no second cell)
     bool m_bent = false;   // either is a bent entry

@@ -135,8 +135,8 @@ TEST(ClosestCell, DenseCellsOnLargeTrianglesGiveTheTrueVoronoiDiagram) {
 // The two layouts (fine regions, or one list per triangle below six spacings across).
 // Geodesic lists stand for a cell by one position per region, and the layouts' regions
 // differ: the same cells except within a hair of a boundary, and distances within the
-// positions' fit (closest_cell_build.cpp: at most 0.1 % over the exact distance); the
-// coarse layout is the smaller.
+// positions' fit (closest_cell_candidates.cpp: at most 0.1 % over the exact distance);
+// the coarse layout is the smaller.
 TEST(ClosestCell, FineAndCoarseRegionsGiveTheSameCells) {
     const sim::Surface s = sim::build_surface(test::sample_mesh("cow.off"));
     const CellTable cells = random_cells(s.crps, 20000, 21);
