@@ -9,10 +9,8 @@
 #include "renderer/bsdf/hair_bsdf.h"
 #include "renderer/core/motion_step.h"
 #include "renderer/core/setup_phase.h"
-#include "renderer/fur/comb_field.h"
-#include "renderer/fur/groom_regions.h"
 #include "renderer/geometry/embree_scene.h"
-#include "shader/sdk/rest_mesh.h"
+#include "renderer/geometry/fur_skin.h"
 #include "sim/core/hash.h"
 #include "sim/core/input_error.h"
 
@@ -187,69 +185,6 @@ unsigned attach(EmbreeScene &scene, FurLayer &layer, RTCGeometryType type,
     return id;
 }
 
-// The object's world-space triangles and shading normals, for growing fur on them.
-struct WorldMesh {
-    std::vector<float> positions, normals;
-};
-// The mesh at motion step `step` (MeshData::later_positions), in world space.
-WorldMesh world_mesh(const ObjectGeometry &og, unsigned step = 0) {
-    const MeshData &m = *og.mesh;
-    const std::vector<float> &P = step == 0 ? m.positions : m.later_positions[step - 1];
-    WorldMesh w;
-    w.positions.assign(P.begin(), P.begin() + 3 * size_t(m.num_vertices));
-    w.normals = step == 0 || m.later_normals.empty() ? m.corner_normals
-                                                     : m.later_normals[step - 1];
-    if (og.baked) return w;
-    for (uint32_t v = 0; v < m.num_vertices; ++v) {
-        const Vec3f p = og.to_world.point(
-            {w.positions[3 * v], w.positions[3 * v + 1], w.positions[3 * v + 2]});
-        w.positions[3 * v] = p.x;
-        w.positions[3 * v + 1] = p.y;
-        w.positions[3 * v + 2] = p.z;
-    }
-    for (size_t i = 0; i + 2 < w.normals.size(); i += 3) {
-        const Vec3f n = normalize(og.normal_to_world.vector(
-            {w.normals[i], w.normals[i + 1], w.normals[i + 2]}));
-        w.normals[i] = n.x;
-        w.normals[i + 1] = n.y;
-        w.normals[i + 2] = n.z;
-    }
-    return w;
-}
-
-// The object's size, which the fur's unset defaults scale with
-// (FurParams::scale_defaults_to): the largest distance of a vertex from the vertices'
-// mean, which does not change as a turntable turns the object.
-double object_radius(const WorldMesh &w) {
-    const size_t n = w.positions.size() / 3;
-    if (n == 0) return 1.0;
-    double mean[3] = {0, 0, 0};
-    for (size_t i = 0; i < 3 * n; ++i) mean[i % 3] += w.positions[i];
-    for (double &m : mean) m /= double(n);
-    double r2 = 0;
-    for (size_t v = 0; v < n; ++v) {
-        double d2 = 0;
-        for (int k = 0; k < 3; ++k) {
-            const double d = w.positions[3 * v + k] - mean[k];
-            d2 += d * d;
-        }
-        r2 = std::max(r2, d2);
-    }
-    return r2 > 0 ? std::sqrt(r2) : 1.0;
-}
-
-// The object's mesh as loaded (rest positions, its own space, and its UVs), as a shader
-// plugin sees it: shader::sdk::rest_mesh copies it.
-PelageMeshView rest_view(const MeshData &m) {
-    PelageMeshView view{};
-    view.num_vertices = m.num_vertices;
-    view.num_triangles = m.num_triangles;
-    view.rest_positions = m.rest->positions.data();
-    view.triangles = m.triangles.data();
-    view.corner_uvs = m.corner_uvs.empty() ? nullptr : m.corner_uvs.data();
-    return view;
-}
-
 }  // namespace
 
 void FurLayer::centre(unsigned prim, float u, float time, Vec3f *c, Vec3f *tangent,
@@ -310,6 +245,53 @@ size_t FurGeometry::num_strands() const {
     return n;
 }
 
+namespace {
+
+// One object's fur: its strands grown on `skin` (and on the skin at each later step of
+// the shutter, for a moving skin), each taking its pigment from the object's material.
+FurLayer grow_layer(const SceneDesc &desc, size_t i, const ObjectGeometry &og,
+                    const FurSkin &skin, const ObjectPigmentLookup &pigment) {
+    const FurParams &params = skin.params();
+    const std::string field = "objects[" + std::to_string(i) + "].fur";
+    const PigmentLookup lookup = [&](const SurfacePoint &s, Vec3f p, Vec3f n) {
+        return pigment(i, s, p, n);
+    };
+    FurLayer layer;
+    layer.object = uint32_t(i);
+    layer.round = params.curve == FurParams::Curve::round;
+    layer.beta_m = params.beta_m;
+    layer.beta_n = params.beta_n;
+    layer.alpha = params.alpha_deg * pi / 180;
+    try {
+        // The strands' HairBsdf only DCHECKs its parameters at each hit, so they are
+        // validated here, once per layer (as scatter_at_strand() builds them; each
+        // strand's σ_a is one grow_fur() keeps finite and >= 0).
+        HairParams hp;
+        hp.beta_m = layer.beta_m;
+        hp.beta_n = layer.beta_n;
+        hp.alpha = layer.alpha;
+        HairBsdf::validate(hp, 0);
+        layer.strands = grow_fur(params, skin.mesh(), lookup);
+    } catch (const std::invalid_argument &e) {
+        throw InputError(desc.path, 0, field, e.what());
+    }
+    // A moving skin: the same strands grown on each later step of the shutter (the
+    // same roots and random numbers, so strand k is the same hair at every step).
+    for (unsigned step = 1; step < og.mesh->motion_steps(); ++step) {
+        const FurSkin moved(skin, og, step);
+        Strands later = grow_fur(params, moved.mesh(), lookup);
+        if (later.points.size() != layer.strands.points.size())
+            throw std::runtime_error(
+                field + ": the fur grew " + std::to_string(later.size()) +
+                " strands at motion step " + std::to_string(step) + " and " +
+                std::to_string(layer.strands.size()) + " at the shutter's opening");
+        layer.later_points.push_back(std::move(later.points));
+    }
+    return layer;
+}
+
+}  // namespace
+
 FurGeometry::FurGeometry(const SceneDesc &desc, EmbreeScene &scene,
                          const ObjectPigmentLookup &pigment) {
     size_t count = 0;
@@ -320,143 +302,13 @@ FurGeometry::FurGeometry(const SceneDesc &desc, EmbreeScene &scene,
     std::optional<SetupPhase> phase(std::in_place, "growing fur");
     for (size_t i = 0; i < desc.objects.size(); ++i) {
         if (!desc.objects[i].fur) continue;
-        // The comb is in object space, so the coat turns with its object (turntables);
-        // gravity stays world −y.
-        FurParams params = *desc.objects[i].fur;
-        {
-            const Vec3f w = desc.objects[i].transform.vector(params.comb_direction);
-            if (length(w) > 0) params.comb_direction = w;
-        }
-        const std::string field = "objects[" + std::to_string(i) + "].fur";
         const ObjectGeometry &og = scene.objects()[i];
-        const WorldMesh wm = world_mesh(og);
-        // A posed skin (a clip, a deformation) carries the coat grown on its rest
-        // shape: the same roots, counted and sized by the rest mesh in this frame's
-        // placement, whatever the pose.
-        const ObjectDesc &od = desc.objects[i];
-        const bool posed_skin = od.clip || !od.deform.empty();
-        WorldMesh rest_world;
-        if (posed_skin) {
-            const MeshData &m = *og.mesh;
-            rest_world.positions.resize(3 * size_t(m.num_vertices));
-            for (uint32_t v = 0; v < m.num_vertices; ++v) {
-                const Vec3f p = od.transform.point({float(m.rest->positions[3 * v]),
-                                                    float(m.rest->positions[3 * v + 1]),
-                                                    float(m.rest->positions[3 * v + 2])});
-                rest_world.positions[3 * v] = p.x;
-                rest_world.positions[3 * v + 1] = p.y;
-                rest_world.positions[3 * v + 2] = p.z;
-            }
-        }
-        params.scale_defaults_to(object_radius(posed_skin ? rest_world : wm));
-        SkinMesh skin;
-        skin.positions = wm.positions.data();
-        if (posed_skin) skin.rest_positions = rest_world.positions.data();
-        skin.triangles = og.mesh->triangles.data();
-        skin.corner_normals = wm.normals.empty() ? nullptr : wm.normals.data();
-        skin.num_vertices = og.mesh->num_vertices;
-        skin.num_triangles = og.mesh->num_triangles;
-
-        // The rest surface (the rendered triangles before any transform), for what is
-        // resolved on the skin as a preset's would be: a comb field, the groom's regions.
-        std::optional<sim::Surface> rest;
-        auto rest_surface = [&]() -> const sim::Surface & {
-            if (!rest)
-                rest =
-                    sim::build_surface(shader::sdk::rest_mesh(rest_view(*og.mesh), true));
-            return *rest;
-        };
-
-        // Comb along a field: a direction per triangle corner, turned with the object
-        // like comb_direction.
-        std::vector<float> comb;
-        if (params.comb == FurParams::Comb::field) {
-            if (params.comb_pattern_field && desc.objects[i].cells.empty())
-                throw InputError(desc.path, 0, field + ".comb",
-                                 "\"field\" combs along the pattern's anisotropy field, "
-                                 "but the object has no \"cells\" (give a field such as "
-                                 "{\"along\": \"body_axis\"} instead)");
-            const sim::FieldSpec spec =
-                params.comb_pattern_field
-                    ? pattern_field(desc.objects[i].cells, field + ".comb")
-                    : params.comb_field;
-            comb = comb_by_corner(spec, rest_surface(), desc.objects[i].fur->comb_towards,
-                                  params.comb_smoothing);
-            // A deformed pose (deform, growth): the comb goes with the skin.
-            const MeshData &m = *og.mesh;
-            bool posed = false;
-            for (size_t k = 0; k < 3 * size_t(m.num_vertices) && !posed; ++k)
-                posed = m.object_positions[k] != float(m.rest->positions[k]);
-            if (posed)
-                carry_to_pose(comb, m.triangles, m.rest->positions.data(),
-                              m.object_positions.data());
-            for (size_t t = 0; t < comb.size(); t += 3) {
-                const Vec3f w =
-                    desc.objects[i].transform.vector({comb[t], comb[t + 1], comb[t + 2]});
-                comb[t] = w.x, comb[t + 1] = w.y, comb[t + 2] = w.z;
-            }
-            skin.comb_by_corner = comb.data();
-        }
-        // The groom's regions: weights at every triangle corner.
-        std::vector<float> regions;
-        if (!params.regions.empty()) {
-            regions = region_corners(params.regions, rest_surface(), desc.path, field);
-            skin.region_corners = regions.data();
-            skin.num_regions = uint32_t(params.regions.region_names.size());
-        }
-
-        const PigmentLookup lookup = [&](const SurfacePoint &s, Vec3f p, Vec3f n) {
-            return pigment(i, s, p, n);
-        };
-
-        FurLayer layer;
-        layer.object = uint32_t(i);
-        layer.round = params.curve == FurParams::Curve::round;
-        layer.beta_m = params.beta_m;
-        layer.beta_n = params.beta_n;
-        layer.alpha = params.alpha_deg * pi / 180;
+        const FurSkin skin(desc, i, og);
         const auto t0 = Clock::now();
-        try {
-            // The strands' HairBsdf only DCHECKs its parameters at each hit, so they are
-            // validated here, once per layer (as scatter_at_strand() builds them; each
-            // strand's σ_a is one grow_fur() keeps finite and >= 0).
-            HairParams hp;
-            hp.beta_m = layer.beta_m;
-            hp.beta_n = layer.beta_n;
-            hp.alpha = layer.alpha;
-            HairBsdf::validate(hp, 0);
-            layer.strands = grow_fur(params, skin, lookup);
-        } catch (const std::invalid_argument &e) {
-            throw InputError(desc.path, 0, field, e.what());
-        }
-        // A moving skin: the same strands grown on each later step of the shutter (the
-        // same roots and random numbers, so strand k is the same hair at every step).
-        const std::vector<double> opening(wm.positions.begin(), wm.positions.end());
-        for (unsigned step = 1; step < og.mesh->motion_steps(); ++step) {
-            const WorldMesh ws = world_mesh(og, step);
-            SkinMesh moved = skin;
-            moved.positions = ws.positions.data();
-            moved.corner_normals = ws.normals.empty() ? nullptr : ws.normals.data();
-            std::vector<float> moved_comb;
-            if (!comb.empty()) {
-                // From the opening's world pose to this step's (comb is in world
-                // space by now).
-                moved_comb = comb;
-                carry_to_pose(moved_comb, og.mesh->triangles, opening.data(),
-                              ws.positions.data());
-                moved.comb_by_corner = moved_comb.data();
-            }
-            Strands later = grow_fur(params, moved, lookup);
-            if (later.points.size() != layer.strands.points.size())
-                throw std::runtime_error(
-                    field + ": the fur grew " + std::to_string(later.size()) +
-                    " strands at motion step " + std::to_string(step) + " and " +
-                    std::to_string(layer.strands.size()) + " at the shutter's opening");
-            layer.later_points.push_back(std::move(later.points));
-        }
+        FurLayer layer = grow_layer(desc, i, og, skin, pigment);
         m_grow_seconds += seconds_since(t0);
         if (offset + layer.strands.size() >= fur_skip_mask)
-            throw InputError(desc.path, 0, field,
+            throw InputError(desc.path, 0, "objects[" + std::to_string(i) + "].fur",
                              "more than " + std::to_string(fur_skip_mask - 1) +
                                  " strands in the scene");
         layer.strand_offset = uint32_t(offset);
@@ -464,20 +316,24 @@ FurGeometry::FurGeometry(const SceneDesc &desc, EmbreeScene &scene,
         if (layer.strands.size() == 0) continue;
         // Sub-pixel strands widened for the scene's camera: a pixel spans
         // 2 tan(fov / 2) / height radians.
-        if (params.min_pixel_width > 0) {
+        if (const float w = skin.params().min_pixel_width; w > 0) {
             const CameraDesc &cam = desc.camera;
             const float pixel = 2 * std::tan(cam.fov_deg * float(pi) / 360) /
                                 float(std::max(desc.film.height, 1));
-            m_widened_points +=
-                widen(layer, cam.position, 0.5f * params.min_pixel_width * pixel);
+            m_widened_points += widen(layer, cam.position, 0.5f * w * pixel);
         }
         m_layers.push_back(std::move(layer));
     }
-
-    // --- Curves into the top-level scene, then rebuild it ---
     phase.reset();
     phase.emplace("building the BVH with the fur");
     const auto t1 = Clock::now();
+    attach_fibres(scene);
+    if (m_widened_points > 0) build_camera_scene(scene, scene_geometries);
+    m_embree_seconds = seconds_since(t1);
+}
+
+// The curves into the top-level scene, which is then rebuilt.
+void FurGeometry::attach_fibres(EmbreeScene &scene) {
     for (size_t li = 0; li < m_layers.size(); ++li) {
         FurLayer &layer = m_layers[li];
         const Strands &s = layer.strands;
@@ -490,49 +346,47 @@ FurGeometry::FurGeometry(const SceneDesc &desc, EmbreeScene &scene,
             m_layer_of_geom.resize(layer.geom_id + 1, -1);
         m_layer_of_geom[layer.geom_id] = int(li);
     }
-    if (!m_layers.empty()) {
-        // Embree's high-quality (spatial split) build costs seconds per 100 k strands
-        // for curves; the medium build is several times faster and traces about as fast.
-        rtcSetSceneBuildQuality(scene.scene(), RTC_BUILD_QUALITY_MEDIUM);
-        // A groom of millions of strands is bound by memory: Embree's compact layout
-        // (curve primitives by index, not copied) about halves the peak for slightly
-        // fewer rays per second (docs/performance.md, "Fur"), so it is taken from
-        // compact_strands strands on.
-        if (num_strands() >= compact_strands)
-            rtcSetSceneFlags(scene.scene(),
-                             rtcGetSceneFlags(scene.scene()) | RTC_SCENE_FLAG_COMPACT);
-        rtcCommitScene(scene.scene());
-        scene.check();
-    }
-    if (m_widened_points > 0) {
-        // The camera scene: the same geometries under the same IDs, each widened layer's
-        // fibres replaced by its widened strands (ribbons facing the ray).
-        RTCScene camera = rtcNewScene(scene.device());
-        try {
-            rtcSetSceneBuildQuality(camera, RTC_BUILD_QUALITY_MEDIUM);
-            for (unsigned id = 0; id < scene_geometries; ++id)
-                rtcAttachGeometryByID(camera, rtcGetGeometry(scene.scene(), id), id);
-            for (FurLayer &layer : m_layers) {
-                if (!layer.widened())
-                    rtcAttachGeometryByID(camera,
-                                          rtcGetGeometry(scene.scene(), layer.geom_id),
-                                          layer.geom_id);
-                else
-                    attach(scene, layer,
-                           layer.round ? RTC_GEOMETRY_TYPE_FLAT_BSPLINE_CURVE
-                                       : RTC_GEOMETRY_TYPE_FLAT_LINEAR_CURVE,
-                           layer.wide_points, layer.later_wide_points, keep_by_opacity,
-                           camera, layer.geom_id);
-            }
-            rtcCommitScene(camera);
-            scene.check();
-        } catch (...) {
-            rtcReleaseScene(camera);
-            throw;
+    if (m_layers.empty()) return;
+    // Embree's high-quality (spatial split) build costs seconds per 100 k strands for
+    // curves; the medium build is several times faster and traces about as fast.
+    rtcSetSceneBuildQuality(scene.scene(), RTC_BUILD_QUALITY_MEDIUM);
+    // A groom of millions of strands is bound by memory: Embree's compact layout
+    // (curve primitives by index, not copied) about halves the peak for slightly fewer
+    // rays per second (docs/performance.md, "Fur"), so it is taken from compact_strands
+    // strands on.
+    if (num_strands() >= compact_strands)
+        rtcSetSceneFlags(scene.scene(),
+                         rtcGetSceneFlags(scene.scene()) | RTC_SCENE_FLAG_COMPACT);
+    rtcCommitScene(scene.scene());
+    scene.check();
+}
+
+// The camera scene: the same geometries under the same IDs, each widened layer's fibres
+// replaced by its widened strands (ribbons facing the ray).
+void FurGeometry::build_camera_scene(EmbreeScene &scene, unsigned scene_geometries) {
+    RTCScene camera = rtcNewScene(scene.device());
+    try {
+        rtcSetSceneBuildQuality(camera, RTC_BUILD_QUALITY_MEDIUM);
+        for (unsigned id = 0; id < scene_geometries; ++id)
+            rtcAttachGeometryByID(camera, rtcGetGeometry(scene.scene(), id), id);
+        for (FurLayer &layer : m_layers) {
+            if (!layer.widened())
+                rtcAttachGeometryByID(
+                    camera, rtcGetGeometry(scene.scene(), layer.geom_id), layer.geom_id);
+            else
+                attach(scene, layer,
+                       layer.round ? RTC_GEOMETRY_TYPE_FLAT_BSPLINE_CURVE
+                                   : RTC_GEOMETRY_TYPE_FLAT_LINEAR_CURVE,
+                       layer.wide_points, layer.later_wide_points, keep_by_opacity,
+                       camera, layer.geom_id);
         }
-        m_camera_scene = camera;
+        rtcCommitScene(camera);
+        scene.check();
+    } catch (...) {
+        rtcReleaseScene(camera);
+        throw;
     }
-    m_embree_seconds = seconds_since(t1);
+    m_camera_scene = camera;
 }
 
 FurGeometry::~FurGeometry() {

@@ -131,6 +131,9 @@ class FurGeometry {
     double embree_seconds() const { return m_embree_seconds; }  // curves + BVH commit
 
   private:
+    void attach_fibres(EmbreeScene &scene);
+    void build_camera_scene(EmbreeScene &scene, unsigned scene_geometries);
+
     std::vector<FurLayer> m_layers;
     std::vector<int> m_layer_of_geom;
     RTCScene m_camera_scene = nullptr;
