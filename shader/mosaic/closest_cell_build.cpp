@@ -17,7 +17,6 @@
 
 #include "shader/mosaic/closest_cell.h"
 #include "sim/geodesic/windows_by_face.h"
-#include "sim/mesh/closest_point.h"
 
 namespace pelage::shader::mosaic {
 namespace {

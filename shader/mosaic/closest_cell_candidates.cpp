@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "shader/mosaic/closest_cell_build.h"
+#include "sim/mesh/closest_point.h"
 
 namespace pelage::shader::mosaic::detail {
 namespace {

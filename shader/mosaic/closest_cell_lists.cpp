@@ -8,6 +8,7 @@
 #include <numeric>
 
 #include "shader/mosaic/closest_cell_build.h"
+#include "sim/mesh/closest_point.h"
 #include "shader/mosaic/subdivision.h"
 
 namespace pelage::shader::mosaic::detail {
