@@ -8,10 +8,10 @@
 #include <string>
 #include <vector>
 
-#include "apps/common/command_suggestion.h"
 #include "apps/common/common.h"
 #include "apps/pelage/version.h"
 #include "sim/core/input_error.h"
+#include "sim/core/spelling.h"
 
 namespace {
 
@@ -36,7 +36,7 @@ int check_command_words(CLI::App &app, int argc, char **argv) {
             if (sub->check_name(word)) next = sub;
         }
         if (!next) {
-            const std::string guess = pelage::renderer::cli::closest_name(word, names);
+            const std::string guess = pelage::sim::closest_name(word, names);
             if (!guess.empty()) {
                 std::fprintf(stderr, "%s: unknown command \"%s\"; did you mean \"%s\"?\n",
                              path.c_str(), word.c_str(), guess.c_str());
@@ -106,6 +106,7 @@ extern "C" __attribute__((visibility("default"))) int pelage_cli_main(int argc,
     add(renderer::cli::add_preview_command);
     add(renderer::cli::add_render_command);
     add(renderer::cli::add_shaders_command);
+    add(renderer::cli::add_fields_command);
     add(renderer::cli::add_compare_command);
     add(renderer::cli::add_cells_command);
     add(renderer::cli::add_lookup_command);

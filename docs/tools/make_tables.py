@@ -1,6 +1,8 @@
 #!/usr/bin/env python3
 """Rewrites the generated tables of docs/performance.md and docs/validation.md from the
-JSON files in docs/data/ (written by docs/tools/run_benchmarks.sh).
+JSON files in docs/data/ (written by docs/tools/run_benchmarks.sh), and the scene file's
+reference tables in docs/guide/scene-format.md from `pelage fields` (the table the
+parser reads by, renderer/scene_file/scene_fields.cpp; $PELAGE or build/bin/pelage).
 
 A generated region is everything between
     <!-- BEGIN generated: NAME -->
@@ -24,7 +26,8 @@ import sys
 DOCS = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 DATA = os.path.join(DOCS, "data")
 FILES = ["performance.md", "validation.md", "guide/presets.md", "guide/growth-and-control.md",
-         "guide/explore.md"]
+         "guide/explore.md", "guide/scene-format.md"]
+PELAGE = os.environ.get("PELAGE", os.path.join(os.path.dirname(DOCS), "build", "bin", "pelage"))
 MARKER = re.compile(
     r"(<!-- BEGIN generated: (?P<name>[\w.-]+) -->\n)(?P<body>.*?)(<!-- END generated: (?P=name) -->)",
     re.S)
@@ -663,6 +666,18 @@ TABLES = {
     "control-measures": t_control_measures, "growth-pipelines": t_growth_pipelines,
     "clip-fox": t_clip_fox, "look-animals": t_look_animals, "explore": t_explore,
 }
+
+
+def t_fields(name):
+    """One of the scene file's reference tables, as `pelage fields NAME` prints it."""
+    import subprocess
+    return subprocess.run([PELAGE, "fields", name], check=True, capture_output=True,
+                          text=True).stdout
+
+
+for _name in ("camera", "film", "lights", "objects", "transform", "material", "integrator",
+              "animation"):
+    TABLES["fields-" + _name] = lambda n=_name: t_fields(n)
 
 
 def regenerate(text, path):

@@ -35,24 +35,18 @@ void add_param_files(const nlohmann::json &v, const std::string &dir,
 }  // namespace
 
 std::vector<std::string> scene_input_files(const SceneDesc &desc) {
+    // The files the scene's input fields name (scene_fields.h), as the parser met them.
     std::vector<std::string> files;
+    for (const SceneDesc::InputFile &in : desc.inputs) files.push_back(in.path);
+    // And what those files name in turn: a growth block's key meshes, the files among a
+    // material's plugin parameters.
     for (const ObjectDesc &obj : desc.objects) {
-        // "zoo.glb#giraffe" reads zoo.glb (the selection is in the scene's text).
-        if (obj.mesh.rfind("procedural:", 0) != 0)
-            files.push_back(sim::parse_mesh_spec(obj.mesh).path);
-        for (const std::string &d : obj.deform)
-            files.push_back(sim::parse_mesh_spec(d).path);
-        if (obj.grow) {
-            files.push_back(obj.grow->preset);
+        if (obj.grow)
             for (const sim::GrowthKey &k : sim::load_growth(obj.grow->preset).keys)
                 if (k.kind == sim::GrowthKey::Kind::mesh)
                     files.push_back(sim::parse_mesh_spec(k.mesh).path);
-        }
-        if (!obj.cells.empty()) files.push_back(obj.cells);
         add_param_files(obj.material.params, desc.dir, &files);
     }
-    for (const LightDesc &light : desc.lights)
-        if (!light.image.empty()) files.push_back(light.image);
     return files;
 }
 

@@ -14,9 +14,11 @@
 
 namespace pelage::renderer {
 
-// The files `desc` reads, in a fixed order: every object's mesh, deformation meshes and
-// cells file, every environment image, and every string in a material's parameters
-// that names an existing file (a texture's image), relative to the scene's folder.
+// The files `desc` reads, in a fixed order: those its input fields name (every field
+// scene_fields.h declares FieldUse::input: meshes, deformation meshes, cells files,
+// preset files, environment images) as the parser met them, then the meshes a growth
+// block's keys name and every string in a material's parameters that names an existing
+// file (a texture's image), relative to the scene's folder.
 std::vector<std::string> scene_input_files(const SceneDesc &desc);
 
 // The settings hash of a render: the scene's text `scene_text` as canonical JSON with the

@@ -6,8 +6,10 @@
 #include <fstream>
 #include <set>
 #include <sstream>
+#include <stdexcept>
 
 #include "renderer/animation/rig.h"
+#include "renderer/scene_file/scene_fields.h"
 #include "renderer/scene_file/scene_fur.h"
 #include "sim/core/input_error.h"
 #include "sim/core/json_fields.h"
@@ -23,11 +25,14 @@ using json =
 using sim::json_type_name;
 
 // One object of the scene file (sim/core/json_fields.h), with paths resolved against the
-// file's folder.
+// file's folder. It reads only the fields scene_fields.h declares for its block, and
+// records the files its input fields name in the scene (SceneDesc::inputs).
 class Reader : public sim::JsonObjectFields {
   public:
-    Reader(const json &j, std::string path, const SceneDesc &scene)
-        : JsonObjectFields(j, std::move(path), scene.path), m_scene(scene) {}
+    Reader(const json &j, std::string path, SceneDesc &scene)
+        : JsonObjectFields(j, path, scene.path),
+          m_scene(scene),
+          m_block(scene_block_of(path)) {}
 
     // A path relative to the scene file, made absolute.
     std::string path(const std::string &key, bool required = false) {
@@ -36,7 +41,10 @@ class Reader : public sim::JsonObjectFields {
             if (has(key)) fail(field(key), "empty path");
             return s;
         }
-        return resolve(s);
+        const std::string resolved = resolve(s);
+        if (scene_field(m_block, key)->use == FieldUse::input)
+            record_input(field(key), resolved);
+        return resolved;
     }
     std::string resolve(const std::string &s) const {
         const fs::path p(s);
@@ -44,19 +52,39 @@ class Reader : public sim::JsonObjectFields {
                                : (fs::path(m_scene.dir) / p).lexically_normal().string();
     }
     // A mesh reference "FILE" or "FILE#OBJECT" (sim/mesh/mesh_objects.h) at `f`: the
-    // file resolved, the object name kept as written (a name may hold "/..").
-    std::string resolve_mesh(const std::string &s, const std::string &f) const {
+    // file resolved (and recorded as an input), the object name kept as written (a name
+    // may hold "/..").
+    std::string resolve_mesh(const std::string &s, const std::string &f) {
         try {
             const sim::MeshSpec spec = sim::parse_mesh_spec(s);
-            return resolve(spec.path) + (spec.object.empty() ? "" : "#" + spec.object);
+            const std::string file = resolve(spec.path);
+            record_input(f, file);
+            return file + (spec.object.empty() ? "" : "#" + spec.object);
         } catch (const InputError &e) {
             fail(f, std::string(e.what()).substr(std::string(e.what()).find(": ") + 2));
         }
     }
-    static const SceneDesc &scene_of(const Reader &r) { return r.m_scene; }
+    // A file the render reads, named at JSON path `f`.
+    void record_input(const std::string &f, const std::string &file) {
+        m_scene.inputs.push_back({f, file});
+    }
+    static SceneDesc &scene_of(const Reader &r) { return r.m_scene; }
+
+  protected:
+    // Every field read is declared: a field missing from the table would be read here
+    // and left out of the documentation and of what --resume trusts.
+    void asked(const std::string &key) const override {
+        if (!scene_field(m_block, key))
+            throw std::logic_error("scene_file.cpp reads " + join(m_block, key) +
+                                   ", which scene_fields.cpp does not declare");
+    }
+    std::vector<std::string> known_keys() const override {
+        return scene_field_keys(m_block);
+    }
 
   private:
-    const SceneDesc &m_scene;
+    SceneDesc &m_scene;
+    std::string m_block;
 };
 
 CameraDesc read_camera(Reader r) {
@@ -307,8 +335,10 @@ PatternDesc read_pattern(Reader &object, const json &v, const std::string &cells
     if (p.preset.empty()) r.fail(r.field("preset"), "empty preset name");
     // A preset file is found next to the scene; a name is one of pelage's presets.
     if (p.preset.find('/') != std::string::npos ||
-        (p.preset.size() > 5 && p.preset.substr(p.preset.size() - 5) == ".json"))
+        (p.preset.size() > 5 && p.preset.substr(p.preset.size() - 5) == ".json")) {
         p.preset = r.resolve(p.preset);
+        r.record_input(r.field("preset"), p.preset);
+    }
     p.seed = r.unsigned_integer("seed", p.seed, 0, UINT64_MAX);
     r.finish();
     return p;
@@ -361,7 +391,10 @@ ObjectDesc read_object(Reader r, size_t index) {
             g.fail(g.field("preset"),
                    "missing: the preset file whose growth block shapes the mesh (the "
                    "pattern's preset when that is a file)");
-        if (own) d.preset = g.resolve(d.preset);
+        if (own) {
+            d.preset = g.resolve(d.preset);
+            g.record_input(g.field("preset"), d.preset);
+        }
         d.from = g.number("from", 0, -1e12, 1e12, true);
         d.to = g.number("to", 0, -1e12, 1e12, true);
         g.finish();
@@ -457,7 +490,7 @@ json parse_json(const std::string &text, const std::string &path) {
 }
 
 // film.layers, film.compression, film.cryptomatte and film.cryptomatte_ranks.
-void read_film_layers(Reader &fr, const SceneDesc &scene, FilmDesc *f) {
+void read_film_layers(Reader &fr, SceneDesc &scene, FilmDesc *f) {
     using LT = FilmDesc::LayerType;
     const LT colour = f->half ? LT::half : LT::single;
     f->albedo = f->normal = colour;
@@ -530,7 +563,7 @@ void read_film_layers(Reader &fr, const SceneDesc &scene, FilmDesc *f) {
     f->cryptomatte_ranks = fr.integer("cryptomatte_ranks", f->cryptomatte_ranks, 1, 16);
 }
 
-FilmDesc read_film(Reader fr, const SceneDesc &scene) {
+FilmDesc read_film(Reader fr, SceneDesc &scene) {
     FilmDesc f;
     f.width = fr.integer("width", f.width, 1, 65536);
     f.height = fr.integer("height", f.height, 1, 65536);

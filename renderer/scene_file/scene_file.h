@@ -195,6 +195,12 @@ struct SceneDesc {
     std::vector<ObjectDesc> objects;
     IntegratorDesc integrator;
     AnimationDesc animation;
+    // The files the scene's input fields name (scene_fields.h), in the order read: the
+    // JSON path of the field and the file (a mesh reference's file, without #OBJECT).
+    struct InputFile {
+        std::string field, path;
+    };
+    std::vector<InputFile> inputs;
 };
 
 // Reads and validates a scene file. Throws pelage::InputError.

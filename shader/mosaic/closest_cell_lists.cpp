@@ -8,8 +8,8 @@
 #include <numeric>
 
 #include "shader/mosaic/closest_cell_build.h"
-#include "sim/mesh/closest_point.h"
 #include "shader/mosaic/subdivision.h"
+#include "sim/mesh/closest_point.h"
 
 namespace pelage::shader::mosaic::detail {
 namespace {

@@ -4,6 +4,7 @@
 #include <sstream>
 
 #include "sim/core/colour_spelling.h"
+#include "sim/core/spelling.h"
 
 namespace pelage::sim {
 
@@ -18,6 +19,7 @@ std::string JsonObjectFields::spelled(const std::string &key) const {
 }
 
 const JsonObjectFields::json *JsonObjectFields::take(const std::string &key) {
+    asked(key);
     m_taken.insert(key);
     if (const std::string other = other_colour_spelling(key); !other.empty())
         m_taken.insert(other);
@@ -122,9 +124,18 @@ Vec3f JsonObjectFields::check_vec3(const json &v, const std::string &f, double l
             float(check_number(v[2], f + "[2]", lo, hi))};
 }
 
+std::vector<std::string> JsonObjectFields::known_keys() const {
+    return {m_taken.begin(), m_taken.end()};
+}
+
 void JsonObjectFields::finish() const {
-    for (auto it = m_j.begin(); it != m_j.end(); ++it)
-        if (!m_taken.count(it.key())) fail(field(it.key()), "unknown field");
+    for (auto it = m_j.begin(); it != m_j.end(); ++it) {
+        if (m_taken.count(it.key())) continue;
+        const std::string guess = closest_name(it.key(), known_keys());
+        fail(field(it.key()), guess.empty()
+                                  ? "unknown field"
+                                  : "unknown field (did you mean \"" + guess + "\"?)");
+    }
 }
 
 }  // namespace pelage::sim

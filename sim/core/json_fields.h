@@ -220,8 +220,19 @@ class JsonObjectFields : public JsonFields {
                         bool open_lo = false) const;
     Vec3f check_vec3(const json &v, const std::string &f, double lo, double hi) const;
 
-    // Rejects every key not taken.
+    // Rejects every key not taken, suggesting the closest of the keys asked for.
     void finish() const;
+
+    virtual ~JsonObjectFields() = default;
+    JsonObjectFields(const JsonObjectFields &) = default;
+    JsonObjectFields(JsonObjectFields &&) = default;
+
+  protected:
+    // Called by take() with every key asked for: a format that declares its fields
+    // (renderer/scene_file/scene_fields.h) refuses here to read an undeclared one.
+    virtual void asked(const std::string &key) const { (void)key; }
+    // The keys an unknown one may be a misspelling of: by default, those asked for.
+    virtual std::vector<std::string> known_keys() const;
 
   private:
     const json &m_j;

@@ -121,8 +121,13 @@ TEST(JsonObjectFields, FieldsAreTypedRangedAndTheRestUnknown) {
     EXPECT_EQ(error_of([&] { f.finish(); }), "");
     JsonObjectFields g(j, "", "s.json");
     g.take("n");
-    // The first unknown key as the file lists it.
-    EXPECT_EQ(error_of([&] { g.finish(); }), "s.json: i: unknown field");
+    // The first unknown key as the file lists it, with the closest key asked for.
+    EXPECT_EQ(error_of([&] { g.finish(); }),
+              "s.json: i: unknown field (did you mean \"n\"?)");
+    JsonObjectFields far(j, "", "s.json");
+    far.take("radius");  // nothing in the file is a misspelling of it
+    EXPECT_EQ(error_of([&] { far.finish(); }).rfind("s.json: ", 0), 0u);
+    EXPECT_EQ(error_of([&] { far.finish(); }).find("did you mean"), std::string::npos);
     const ordered_json three(3);
     EXPECT_EQ(error_of([&] { JsonObjectFields(three, "x", "s.json"); }),
               "s.json: x: expected an object, got an integer");

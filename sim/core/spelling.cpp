@@ -1,8 +1,8 @@
-#include "apps/common/command_suggestion.h"
+#include "sim/core/spelling.h"
 
 #include <algorithm>
 
-namespace pelage::renderer::cli {
+namespace pelage::sim {
 
 size_t edit_distance(const std::string &a, const std::string &b) {
     // d[i][j]: edits from the first i characters of a to the first j of b.
@@ -37,4 +37,4 @@ std::string closest_name(const std::string &typed,
     return best;
 }
 
-}  // namespace pelage::renderer::cli
+}  // namespace pelage::sim

@@ -1,10 +1,10 @@
 // The "did you mean" of a mistyped command: edit distances against values worked by
 // hand, and which names are close enough to suggest.
-#include "apps/common/command_suggestion.h"
+#include "sim/core/spelling.h"
 
 #include <gtest/gtest.h>
 
-namespace pelage::renderer::cli {
+namespace pelage::sim {
 namespace {
 
 TEST(CommandSuggestion, EditDistanceOfKnownPairs) {
@@ -40,4 +40,4 @@ TEST(CommandSuggestion, SuggestsOnlyCloseNames) {
 }
 
 }  // namespace
-}  // namespace pelage::renderer::cli
+}  // namespace pelage::sim

@@ -1,10 +1,10 @@
-// "did you mean": the command name closest to a mistyped one.
+// "did you mean": the name closest to a mistyped one (a command, a JSON key, a preset).
 #pragma once
 
 #include <string>
 #include <vector>
 
-namespace pelage::renderer::cli {
+namespace pelage::sim {
 
 // Edits (insertion, deletion, substitution, swap of two adjacent characters) from `a`
 // to `b`: the optimal string alignment distance (Damerau's 1964 operations, each
@@ -16,4 +16,4 @@ size_t edit_distance(const std::string &a, const std::string &b);
 // The first in `names` on a tie; "" when none is close.
 std::string closest_name(const std::string &typed, const std::vector<std::string> &names);
 
-}  // namespace pelage::renderer::cli
+}  // namespace pelage::sim
