@@ -3,7 +3,8 @@
 #
 # One library per source folder: the folder sim/mesh is the target pelage_sim_mesh
 # (alias pelage::sim::mesh). Dependencies name the folders a folder may use, so an
-# include that points back up the chain (renderer -> shader -> sim) fails to link.
+# include that points back up the chain (renderer -> shader -> pattern -> sim) fails to
+# link.
 # A folder with no sources (headers only) is an INTERFACE library.
 function(pelage_add_library)
     cmake_parse_arguments(ARG "" "" "SOURCES;PUBLIC_DEPS;PRIVATE_DEPS" ${ARGN})

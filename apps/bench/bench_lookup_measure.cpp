@@ -5,9 +5,9 @@
 #include <cmath>
 
 #include "apps/common/common.h"
-#include "shader/mosaic/coherent_lookup.h"
-#include "shader/mosaic/edge_consistency.h"
-#include "shader/mosaic/mosaic_lod.h"
+#include "pattern/mosaic/coherent_lookup.h"
+#include "pattern/mosaic/edge_consistency.h"
+#include "pattern/mosaic/mosaic_lod.h"
 
 namespace pelage::renderer::cli {
 namespace {
@@ -17,8 +17,8 @@ namespace {
 // sums into a local, kept in a register in its loops, and adds it here).
 struct LookupBench {
     const sim::Surface &s;
-    const shader::mosaic::CellTable &cells;
-    const shader::mosaic::ClosestCellIndex &index;
+    const pattern::mosaic::CellTable &cells;
+    const pattern::mosaic::ClosestCellIndex &index;
     const std::vector<LookupQuery> &queries;
     const std::vector<LookupQuery> &coherent;
     uint64_t sink = 0;
@@ -27,16 +27,16 @@ struct LookupBench {
 // Against exact geodesics: the first 20 000 queries.
 nlohmann::json geodesic_agreement(const LookupBench &b, const sim::WindowsByFace &exact) {
     const sim::Surface &s = b.s;
-    const shader::mosaic::CellTable &cells = b.cells;
+    const pattern::mosaic::CellTable &cells = b.cells;
     size_t compared = 0, same = 0, same_colour = 0, impossible = 0;
     double worst = 0;
     for (size_t i = 0; i < std::min<size_t>(b.queries.size(), 20000); ++i) {
         const auto &[t, q] = b.queries[i];
         const sim::Vec2d qd{q.x, q.y};
         const sim::WindowsByFace::Nearest truth = exact.nearest(t, qd);
-        const shader::mosaic::ClosestCell c = b.index.find_nearest(t, q);
+        const pattern::mosaic::ClosestCell c = b.index.find_nearest(t, q);
         if (truth.source == sim::invalid_id ||
-            c.index == shader::mosaic::ClosestCell::none)
+            c.index == pattern::mosaic::ClosestCell::none)
             continue;
         ++compared;
         same += c.index == truth.source;
@@ -59,9 +59,9 @@ nlohmann::json geodesic_agreement(const LookupBench &b, const sim::WindowsByFace
 // F1+F2 in random order (CPU and wall time), with the four-lane scans (lane_scan.h)
 // beside the index's own, F1 only, and F1+F2 in coherent order, into out. Returns the
 // ns per F1+F2 lookup in random order.
-double time_point_lookups(LookupBench &b, shader::mosaic::ClosestCellOptions options,
+double time_point_lookups(LookupBench &b, pattern::mosaic::ClosestCellOptions options,
                           nlohmann::json &out) {
-    const shader::mosaic::ClosestCellIndex &index = b.index;
+    const pattern::mosaic::ClosestCellIndex &index = b.index;
     const std::vector<LookupQuery> &queries = b.queries;
     uint64_t sink = 0;
     const Timer wall;
@@ -74,7 +74,7 @@ double time_point_lookups(LookupBench &b, shader::mosaic::ClosestCellOptions opt
     // The same lookups with the four-lane scans: their time, and that they find the
     // same cells.
     options.wide_lanes = false;
-    const shader::mosaic::ClosestCellIndex narrow(b.s.crps, b.cells, options);
+    const pattern::mosaic::ClosestCellIndex narrow(b.s.crps, b.cells, options);
     uint64_t wide_sink = 0, narrow_sink = 0;
     for (const auto &[t, q] : queries) wide_sink += index.find(t, q).index;
     const CpuTimer four_lanes;
@@ -98,7 +98,7 @@ double time_point_lookups(LookupBench &b, shader::mosaic::ClosestCellOptions opt
 // plugin's camera path), which reuses a proven cell.
 void time_banded_lookups(LookupBench &b, nlohmann::json &out) {
     const sim::Surface &s = b.s;
-    const shader::mosaic::ClosestCellIndex &index = b.index;
+    const pattern::mosaic::ClosestCellIndex &index = b.index;
     double area = 0;
     for (sim::TriId t = 0; t < s.crps.num_triangles(); ++t) area += s.crps.frame(t).area;
     const float band =
@@ -123,7 +123,7 @@ void time_banded_lookups(LookupBench &b, nlohmann::json &out) {
     for (const Step &w : walk)
         sink += index.find_three_within(w.t, w.b1, w.b2, band).index[1];
     out["ns_per_lookup_banded_walk"] = 1e9 * walked.seconds() / walk.size();
-    shader::mosaic::CoherentLookup reuse;
+    pattern::mosaic::CoherentLookup reuse;
     const CpuTimer reused;
     for (const Step &w : walk)
         sink += reuse.find_three_within(index, 1, w.t, w.b1, w.b2, band).index[1];
@@ -138,11 +138,11 @@ void time_banded_lookups(LookupBench &b, nlohmann::json &out) {
 // compares searches.
 double time_filtered_looks(const LookupBench &b) {
     const std::vector<LookupQuery> &queries = b.queries;
-    const shader::mosaic::MosaicLod lod(
+    const pattern::mosaic::MosaicLod lod(
         b.s, b.index,
         [&](uint32_t c) {
             const float v = float(b.cells.type[c]);
-            return shader::mosaic::FilteredLook{{v, 1 - v, 0.5f * v, v, 1 - v}};
+            return pattern::mosaic::FilteredLook{{v, 1 - v, 0.5f * v, v, 1 - v}};
         },
         2);
     std::vector<std::array<float, 2>> bary;  // hits come with barycentrics
@@ -170,9 +170,9 @@ void time_exhaustive(const LookupBench &b, double ns_pruned, nlohmann::json &out
     size_t agree = 0;
     const CpuTimer exhaustive;
     for (size_t i = 0; i < n_ex; ++i) {
-        const shader::mosaic::ClosestCell x =
+        const pattern::mosaic::ClosestCell x =
             b.index.find_exhaustive(queries[i].first, queries[i].second);
-        const shader::mosaic::ClosestCell y =
+        const pattern::mosaic::ClosestCell y =
             b.index.find(queries[i].first, queries[i].second);
         agree += x.index == y.index && x.f2 == y.f2;
     }
@@ -180,8 +180,8 @@ void time_exhaustive(const LookupBench &b, double ns_pruned, nlohmann::json &out
     out["exhaustive_agreement"] = double(agree) / n_ex;
 }
 
-const char *neighbourhood_name(shader::mosaic::Neighbourhood neighbourhood) {
-    using shader::mosaic::Neighbourhood;
+const char *neighbourhood_name(pattern::mosaic::Neighbourhood neighbourhood) {
+    using pattern::mosaic::Neighbourhood;
     return neighbourhood == Neighbourhood::geodesic          ? "geodesic"
            : neighbourhood == Neighbourhood::unfolding_edges ? "unfolding_edges"
                                                              : "unfolding_teo";
@@ -190,21 +190,21 @@ const char *neighbourhood_name(shader::mosaic::Neighbourhood neighbourhood) {
 }  // namespace
 
 nlohmann::json measure_lookups(const sim::Surface &s,
-                               const shader::mosaic::CellTable &cells,
+                               const pattern::mosaic::CellTable &cells,
                                const std::vector<LookupQuery> &queries,
                                const std::vector<LookupQuery> &coherent,
-                               shader::mosaic::Neighbourhood neighbourhood,
+                               pattern::mosaic::Neighbourhood neighbourhood,
                                uint32_t subdivision, const sim::WindowsByFace &exact) {
-    const shader::mosaic::ClosestCellIndex index(s.crps, cells,
-                                                 {neighbourhood, subdivision});
+    const pattern::mosaic::ClosestCellIndex index(s.crps, cells,
+                                                  {neighbourhood, subdivision});
     LookupBench b{s, cells, index, queries, coherent};
     nlohmann::json out = geodesic_agreement(b, exact);
     const double ns = time_point_lookups(b, {neighbourhood, subdivision}, out);
     time_banded_lookups(b, out);
     out["ns_per_lookup_lod"] = time_filtered_looks(b);
     time_exhaustive(b, ns, out);
-    const shader::mosaic::EdgeConsistency edges =
-        shader::mosaic::measure_edge_consistency(s.mesh, s.crps, index);
+    const pattern::mosaic::EdgeConsistency edges =
+        pattern::mosaic::measure_edge_consistency(s.mesh, s.crps, index);
     const auto &stats = index.stats();
     out.update({{"neighbourhood", neighbourhood_name(neighbourhood)},
                 {"build_seconds", stats.build_seconds},

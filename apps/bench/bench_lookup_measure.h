@@ -8,13 +8,13 @@
 #include <utility>
 #include <vector>
 
-#include "shader/mosaic/closest_cell.h"
+#include "pattern/mosaic/closest_cell.h"
 #include "sim/crps/surface.h"
 #include "sim/geodesic/windows_by_face.h"
 
 namespace pelage::renderer::cli {
 
-using LookupQuery = std::pair<sim::TriId, shader::mosaic::Vec2f>;
+using LookupQuery = std::pair<sim::TriId, pattern::mosaic::Vec2f>;
 
 // This thread's CPU seconds: on a shared machine wall time also counts the time other
 // jobs hold the cores, CPU time only the lookups' own (cache contention still shows).
@@ -36,10 +36,10 @@ class CpuTimer {
 // looked up at `queries` (random order) and `coherent` (the same, sorted by triangle),
 // the first 20 000 queries compared with `exact`.
 nlohmann::json measure_lookups(const sim::Surface &s,
-                               const shader::mosaic::CellTable &cells,
+                               const pattern::mosaic::CellTable &cells,
                                const std::vector<LookupQuery> &queries,
                                const std::vector<LookupQuery> &coherent,
-                               shader::mosaic::Neighbourhood neighbourhood,
+                               pattern::mosaic::Neighbourhood neighbourhood,
                                uint32_t subdivision, const sim::WindowsByFace &exact);
 
 }  // namespace pelage::renderer::cli

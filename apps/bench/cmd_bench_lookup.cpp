@@ -39,14 +39,14 @@ struct BenchLookupOptions {
 
 // Area-uniform random cells stand in for a simulated mosaic: same density, and the
 // search does not care how the cells got there. Types alternate.
-shader::mosaic::CellTable random_cells(const sim::Crps &crps, size_t n, uint64_t seed) {
-    std::vector<shader::mosaic::CellOnSurface> list;
+pattern::mosaic::CellTable random_cells(const sim::Crps &crps, size_t n, uint64_t seed) {
+    std::vector<pattern::mosaic::CellOnSurface> list;
     uint32_t id = 0;
     for (const auto &p : sim::sample_surface_uniform(crps, n, seed)) {
         list.push_back({p.tri, p.p.x, p.p.y, id, uint8_t(id % 2)});
         ++id;
     }
-    return shader::mosaic::make_cell_table(crps.num_triangles(), list);
+    return pattern::mosaic::make_cell_table(crps.num_triangles(), list);
 }
 
 // The meshes to measure: the sample meshes unless --mesh names some.
@@ -67,7 +67,7 @@ std::vector<std::string> lookup_meshes(const BenchLookupOptions &o) {
 // The reference: every cell's exact geodesic windows within four mean spacings (far
 // beyond any point's nearest cell at these densities).
 sim::WindowsByFace exact_reference(const sim::Surface &s,
-                                   const shader::mosaic::CellTable &cells) {
+                                   const pattern::mosaic::CellTable &cells) {
     std::vector<sim::SurfacePoint> sources(cells.size());
     for (sim::TriId t = 0; t < s.crps.num_triangles(); ++t)
         for (uint32_t k = cells.row[t]; k < cells.row[t + 1]; ++k)
@@ -84,7 +84,7 @@ sim::WindowsByFace exact_reference(const sim::Surface &s,
 // One mesh's run: the geodesic index's measurements, with the two unfoldings' beside.
 nlohmann::json mesh_run(const std::string &mesh, const BenchLookupOptions &o) {
     const sim::Surface s = sim::build_surface(mesh);
-    const shader::mosaic::CellTable cells = random_cells(s.crps, o.cells, o.seed);
+    const pattern::mosaic::CellTable cells = random_cells(s.crps, o.cells, o.seed);
     std::vector<LookupQuery> queries;
     for (const auto &p : sim::sample_surface_uniform(s.crps, o.queries, o.seed + 1))
         queries.push_back({p.tri, {float(p.p.x), float(p.p.y)}});
@@ -95,7 +95,7 @@ nlohmann::json mesh_run(const std::string &mesh, const BenchLookupOptions &o) {
         coherent.begin(), coherent.end(),
         [](const LookupQuery &a, const LookupQuery &b) { return a.first < b.first; });
     const sim::WindowsByFace exact = exact_reference(s, cells);
-    using shader::mosaic::Neighbourhood;
+    using pattern::mosaic::Neighbourhood;
     nlohmann::json run = measure_lookups(s, cells, queries, coherent,
                                          Neighbourhood::geodesic, o.subdivision, exact);
     run["mesh"] = mesh;
@@ -120,7 +120,7 @@ nlohmann::json density_runs(const std::string &first_mesh, const BenchLookupOpti
         if (level > 0) mesh = sim::subdivide(mesh, sim::Subdivision::midpoint);
         const sim::Surface s = sim::build_surface(mesh);
         const auto cells = random_cells(s.crps, o.cells, o.seed);
-        const shader::mosaic::ClosestCellIndex index(s.crps, cells);
+        const pattern::mosaic::ClosestCellIndex index(s.crps, cells);
         std::vector<LookupQuery> queries;
         for (const auto &p : sim::sample_surface_uniform(
                  s.crps, std::min<size_t>(o.queries, 200000), o.seed + 1))

@@ -7,9 +7,9 @@
 #include "apps/explore/pattern_texture.h"
 #include "apps/explore/preview_surface.h"
 #include "apps/explore/view_mesh.h"
-#include "shader/mosaic/pattern.h"
-#include "shader/statistics/stats_report.h"
-#include "shader/transfer/surface_transfer.h"
+#include "pattern/mosaic/pattern.h"
+#include "pattern/statistics/stats_report.h"
+#include "pattern/transfer/surface_transfer.h"
 #include "sim/cells_io/cells_file.h"
 #include "sim/core/atomic_file.h"
 #include "sim/core/input_error.h"
@@ -217,8 +217,8 @@ const SampleTargets *ExploreSession::targets_on(const sim::Surface &surface,
     auto it = m_targets.find(h);
     if (it == m_targets.end()) {
         if (m_targets.size() >= 4) m_targets.clear();
-        const shader::transfer::SurfaceTransfer transfer(surface, m_input->mesh, name,
-                                                         m_options.mesh);
+        const pattern::transfer::SurfaceTransfer transfer(surface, m_input->mesh, name,
+                                                          m_options.mesh);
         it = m_targets.emplace(h, map_samples(*m_layout, transfer)).first;
     }
     return &it->second;
@@ -314,7 +314,7 @@ void ExploreSession::run_job(const Job &job) {
         sim::write_cells_file(cells_path, grown.data);
         // The finished cells as the renderer finds them: on the input mesh, through the
         // same pattern class (and its surface transfer) `pelage stats --mesh` uses.
-        auto pattern = std::make_shared<const shader::mosaic::MosaicPattern>(
+        auto pattern = std::make_shared<const pattern::mosaic::MosaicPattern>(
             cells_path, m_options.mesh);
         show(pattern->surface().crps, pattern->data(),
              targets_on(pattern->surface(), stage.mesh), stage.name);
@@ -363,7 +363,7 @@ void ExploreSession::measure() {
             m_measure = {};
         }
         const nlohmann::json stats =
-            shader::statistics::stats_report(*m.pattern, m.cells_path, {});
+            pattern::statistics::stats_report(*m.pattern, m.cells_path, {});
         std::lock_guard lock(m_mutex);
         if (m_pending.id != m.job) continue;
         m_state["stats"] = stats;

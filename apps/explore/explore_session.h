@@ -4,7 +4,7 @@
 // fraction of the full run's time), then at full scale, the result `pelage sim` gives for
 // the same preset, seed and mesh. While a stage runs, snapshots of its cells become type
 // textures (pattern_texture.h) every `snapshot_seconds`; when it ends its statistics are
-// measured as `pelage stats --mesh` measures them (shader/statistics/stats_report.h), on
+// measured as `pelage stats --mesh` measures them (pattern/statistics/stats_report.h), on
 // a thread of their own so that the next stage or job starts at once. A newer preset
 // cancels the run in progress at its next step. A change to nothing but
 // the types' look (colours, melanin, names of the whole preset) does not simulate: the
@@ -27,7 +27,7 @@
 #include <vector>
 
 #include "apps/explore/pattern_texture.h"
-#include "shader/mosaic/pattern.h"
+#include "pattern/mosaic/pattern.h"
 #include "sim/crps/surface.h"
 
 namespace pelage::renderer::explore {
@@ -141,7 +141,7 @@ class ExploreSession {
     struct Measure {
         uint64_t job = 0;
         std::string stage;
-        std::shared_ptr<const shader::mosaic::MosaicPattern> pattern;
+        std::shared_ptr<const pattern::mosaic::MosaicPattern> pattern;
         std::string cells_path;
     };
     Measure m_measure;  // the stage to measure next (pattern null: none)

@@ -7,8 +7,8 @@
 #include <numeric>
 #include <stdexcept>
 
-#include "shader/mosaic/cell_table.h"
-#include "shader/mosaic/closest_cell.h"
+#include "pattern/mosaic/cell_table.h"
+#include "pattern/mosaic/closest_cell.h"
 
 namespace pelage::renderer::explore {
 namespace {
@@ -109,7 +109,7 @@ TypeTextureLayout layout_type_texture(const sim::TriangleMesh &mesh, int size) {
 }
 
 SampleTargets map_samples(const TypeTextureLayout &layout,
-                          const shader::transfer::SurfaceTransfer &transfer) {
+                          const pattern::transfer::SurfaceTransfer &transfer) {
     SampleTargets out(layout.texel.size());
     tbb::parallel_for(tbb::blocked_range<size_t>(0, out.size(), 4096),
                       [&](const tbb::blocked_range<size_t> &r) {
@@ -125,30 +125,30 @@ std::vector<uint8_t> type_texture(const TypeTextureLayout &layout, const sim::Cr
                                   const SampleTargets *targets) {
     if (data.num_triangles() != crps.num_triangles())
         throw std::invalid_argument("type_texture: the cells lie on another surface");
-    std::vector<shader::mosaic::CellOnSurface> list;
+    std::vector<pattern::mosaic::CellOnSurface> list;
     list.reserve(data.num_cells());
     for (sim::TriId t = 0; t < data.num_triangles(); ++t)
         for (uint32_t k = data.cell_row[t]; k < data.cell_row[t + 1]; ++k)
             list.push_back({t, data.x[k], data.z[k], data.id[k], data.type[k]});
-    const shader::mosaic::CellTable table =
-        shader::mosaic::make_cell_table(data.num_triangles(), list);
-    const shader::mosaic::ClosestCellIndex index(crps, table);
+    const pattern::mosaic::CellTable table =
+        pattern::mosaic::make_cell_table(data.num_triangles(), list);
+    const pattern::mosaic::ClosestCellIndex index(crps, table);
     std::vector<uint8_t> out(size_t(layout.size) * size_t(layout.size), no_type);
     tbb::parallel_for(
         tbb::blocked_range<size_t>(0, layout.texel.size(), 4096),
         [&](const tbb::blocked_range<size_t> &r) {
             for (size_t i = r.begin(); i < r.end(); ++i) {
-                const shader::transfer::SurfaceTransfer::Target at =
+                const pattern::transfer::SurfaceTransfer::Target at =
                     targets ? (*targets)[i]
-                            : shader::transfer::SurfaceTransfer::Target{
+                            : pattern::transfer::SurfaceTransfer::Target{
                                   layout.tri[i], layout.b1[i], layout.b2[i]};
                 const sim::CrpsFrame &f = crps.frame(at.tri);
                 const sim::Vec2d e1 = f.v[1] - f.v[0], e2 = f.v[2] - f.v[0];
-                const shader::mosaic::Vec2f q{
+                const pattern::mosaic::Vec2f q{
                     float(f.v[0].x + at.b1 * e1.x + at.b2 * e2.x),
                     float(f.v[0].y + at.b1 * e1.y + at.b2 * e2.y)};
-                const shader::mosaic::ClosestCell c = index.find_nearest(at.tri, q);
-                if (c.index != shader::mosaic::ClosestCell::none)
+                const pattern::mosaic::ClosestCell c = index.find_nearest(at.tri, q);
+                if (c.index != pattern::mosaic::ClosestCell::none)
                     out[layout.texel[i]] = table.type[c.index];
             }
         });

@@ -1,6 +1,6 @@
 // The pattern as the explorer's 3D view shows it: a texture of cell types, whose every
 // texel holds the type of the cell nearest its point on the surface, found by the
-// renderer's own closest-cell search (shader/mosaic/closest_cell.h). The page maps types
+// renderer's own closest-cell search (pattern/mosaic/closest_cell.h). The page maps types
 // to colours itself, so restyling a type's colour repaints without a new texture.
 //
 // Layout: each triangle of the simulation surface gets a square tile of k × k texels
@@ -16,7 +16,7 @@
 #include <utility>
 #include <vector>
 
-#include "shader/transfer/surface_transfer.h"
+#include "pattern/transfer/surface_transfer.h"
 #include "sim/cells_io/cells_file.h"
 #include "sim/crps/crps.h"
 #include "sim/mesh/mesh.h"
@@ -44,10 +44,10 @@ TypeTextureLayout layout_type_texture(const sim::TriangleMesh &mesh, int size);
 
 // Where each sample of the layout lies on another surface of the same shape (a
 // simplified or refined copy), as the renderer carries its mesh onto the one the cells
-// were grown on (shader/transfer/surface_transfer.h).
-using SampleTargets = std::vector<shader::transfer::SurfaceTransfer::Target>;
+// were grown on (pattern/transfer/surface_transfer.h).
+using SampleTargets = std::vector<pattern::transfer::SurfaceTransfer::Target>;
 SampleTargets map_samples(const TypeTextureLayout &layout,
-                          const shader::transfer::SurfaceTransfer &transfer);
+                          const pattern::transfer::SurfaceTransfer &transfer);
 
 // Texel value: the type index of the nearest cell (255 outside every triangle, or where
 // no cell is reachable). `cells` lie on `crps`'s triangles: the layout's mesh, or the

@@ -8,8 +8,8 @@
 #include <optional>
 
 #include "apps/common/common.h"
+#include "pattern/bake/bake.h"
 #include "renderer/image/image_output.h"
-#include "shader/bake/bake.h"
 #include "sim/core/input_error.h"
 #include "sim/crps/surface.h"
 #include "sim/mesh/mesh_load.h"
@@ -18,7 +18,7 @@
 namespace pelage::renderer::cli {
 namespace {
 
-namespace cm = shader::bake;
+namespace cm = pattern::bake;
 
 struct BakeOptions {
     std::string cells, mesh, uv_from, output, obj, res = "4096";
@@ -68,7 +68,7 @@ int run(const BakeOptions &o) {
         written.push_back(path);
         tiles.push_back({{"udim", tile.udim}, {"file", path}});
     };
-    const shader::mosaic::MosaicPattern pattern(o.cells, mesh_path);
+    const pattern::mosaic::MosaicPattern pattern(o.cells, mesh_path);
     cm::BakeResult baked;
     std::optional<cm::Atlas> atlas;
     sim::TriangleMesh uv_mesh;

@@ -11,11 +11,11 @@
 
 #include "apps/common/common.h"
 #include "apps/tools/compare.h"
+#include "pattern/bake/bake.h"
 #include "renderer/image/contact_sheet.h"
 #include "renderer/image/image_output.h"
 #include "renderer/job/scene_patterns.h"
 #include "renderer/plugins/plugin_loader.h"
-#include "shader/bake/bake.h"
 #include "sim/core/input_error.h"
 #include "sim/mesh/mesh_write_obj.h"
 
@@ -68,13 +68,13 @@ void bake_atlas_for_texture(const renderer::SceneDesc &desc, int res, TempDir &d
                fmt::format("pelage_compare_{}", getpid());
     std::filesystem::create_directories(dir.path);
     const Timer timer;
-    const shader::mosaic::MosaicPattern pattern(subject->cells, subject->mesh);
-    const shader::bake::BakedAtlas baked = shader::bake::bake_atlas(pattern, res, res);
+    const pattern::mosaic::MosaicPattern pattern(subject->cells, subject->mesh);
+    const pattern::bake::BakedAtlas baked = pattern::bake::bake_atlas(pattern, res, res);
     co.texture_file = (dir.path / "atlas.exr").string();
     co.texture_mesh = (dir.path / "atlas.obj").string();
     co.texels_per_unit = float(baked.atlas.texels_per_unit);
     renderer::write_exr(co.texture_file, res, res, baked.image.tiles.at(0).pixels,
-                        shader::bake::BakeResult::channel_names(), false, {});
+                        pattern::bake::BakeResult::channel_names(), false, {});
     std::vector<sim::Vec2d> uvs;
     for (sim::TriId t = 0; t < pattern.num_triangles(); ++t)
         for (int c = 0; c < 3; ++c) uvs.push_back(baked.atlas.uv(t, c));

@@ -13,7 +13,7 @@
 #include <sstream>
 
 #include "apps/common/common.h"
-#include "shader/mosaic/pattern.h"
+#include "pattern/mosaic/pattern.h"
 #include "sim/core/input_error.h"
 #include "sim/core/text_lines.h"
 
@@ -27,7 +27,7 @@ struct LookupOptions {
 
 int run(const LookupOptions &o) {
     const Timer load;
-    const shader::mosaic::MosaicPattern pattern(o.cells, o.mesh);
+    const pattern::mosaic::MosaicPattern pattern(o.cells, o.mesh);
     const double seconds_load = load.seconds();
     std::ifstream in(o.points, std::ios::binary);
     if (!in) throw InputError(o.points, 0, "", "cannot open file");
@@ -73,11 +73,11 @@ int run(const LookupOptions &o) {
     double sum = 0, max = 0;
     for (const Query &q : queries) {
         // As the renderer: carried onto the simulation surface when the mesh is another.
-        shader::transfer::SurfaceTransfer::Target at{q.face, q.b1, q.b2};
+        pattern::transfer::SurfaceTransfer::Target at{q.face, q.b1, q.b2};
         if (pattern.transfer()) at = pattern.transfer()->map(q.face, q.b1, q.b2);
-        const shader::mosaic::ClosestCell c =
+        const pattern::mosaic::ClosestCell c =
             pattern.index().find_nearest(at.tri, at.b1, at.b2);
-        if (c.index == shader::mosaic::ClosestCell::none) {
+        if (c.index == pattern::mosaic::ClosestCell::none) {
             std::printf("none none inf\n");
             continue;
         }
@@ -87,7 +87,7 @@ int run(const LookupOptions &o) {
         sum += c.f1;
         max = std::max(max, double(c.f1));
     }
-    const shader::mosaic::ClosestCellStats &ix = pattern.index().stats();
+    const pattern::mosaic::ClosestCellStats &ix = pattern.index().stats();
     o.stats_json.write(
         {{"cells", o.cells},
          {"mesh", o.mesh},

@@ -2,8 +2,8 @@
 // JSON keys are a contract. Counts (sim/cells_io/pattern_stats.h): cells_by_type,
 // spot_fraction. The look as the renderer shows it, measured through the closest-cell
 // search on the surface the cells were grown on (the one the file carries, or --mesh):
-// the area each type covers (shader/statistics/area_fractions.h): area_fraction_by_type,
-// spot_fraction_by_area, area_samples; the spots (shader/statistics/spot_statistics.h,
+// the area each type covers (pattern/statistics/area_fractions.h): area_fraction_by_type,
+// spot_fraction_by_area, area_samples; the spots (pattern/statistics/spot_statistics.h,
 // pelage's one definition of a spot): spot_count, spot_area_mean, spot_area_sd,
 // spot_area_share_mean, spot_area_quantiles, largest_spot_cells, spot_neighbours_mean,
 // spot_circularity_mean, spot_complexity, background_components,
@@ -12,15 +12,15 @@
 // (sim/cells_io/stripe_alignment.h): stripe_alignment_median, stripe_alignment_q1,
 // stripe_alignment_q3 (degrees), stripe_alignment_samples, stripe_coherence_median; and,
 // with --mesh when the preset has neural-crest masks, mask_adherence
-// (shader/statistics/mask_adherence.h).
+// (pattern/statistics/mask_adherence.h).
 #include <fmt/core.h>
 
 #include <cstdio>
 #include <iostream>
 
 #include "apps/common/common.h"
-#include "shader/statistics/mask_adherence.h"
-#include "shader/statistics/stats_report.h"
+#include "pattern/statistics/mask_adherence.h"
+#include "pattern/statistics/stats_report.h"
 #include "sim/cells_io/cells_file.h"
 #include "sim/cells_io/pattern_stats.h"
 #include "sim/core/input_error.h"
@@ -41,9 +41,9 @@ struct StatsOptions {
 };
 
 // The mask adherence keys, one object per mask.
-nlohmann::json to_json(const std::vector<shader::statistics::MaskAdherence> &a) {
+nlohmann::json to_json(const std::vector<pattern::statistics::MaskAdherence> &a) {
     nlohmann::json j = nlohmann::json::array();
-    for (const shader::statistics::MaskAdherence &m : a)
+    for (const pattern::statistics::MaskAdherence &m : a)
         j.push_back({{"type", m.type},
                      {m.only_in ? "only_in" : "not_in", m.region},
                      {"otherwise", m.otherwise},
@@ -55,15 +55,16 @@ nlohmann::json to_json(const std::vector<shader::statistics::MaskAdherence> &a) 
 
 // The pattern on --mesh when given (its shape is checked), else on the file's own
 // surface.
-shader::mosaic::MosaicPattern load_pattern(const StatsOptions &o) {
-    if (o.mesh.empty()) return shader::mosaic::MosaicPattern(o.file);
-    return shader::mosaic::MosaicPattern(o.file, o.mesh);
+pattern::mosaic::MosaicPattern load_pattern(const StatsOptions &o) {
+    if (o.mesh.empty()) return pattern::mosaic::MosaicPattern(o.file);
+    return pattern::mosaic::MosaicPattern(o.file, o.mesh);
 }
 
 // Adds mask_adherence when the preset (given, else the file's) has neural-crest masks;
 // the masks' attributes and UVs come from the mesh file.
 void add_mask_adherence(const StatsOptions &o,
-                        const shader::mosaic::MosaicPattern &pattern, nlohmann::json *j) {
+                        const pattern::mosaic::MosaicPattern &pattern,
+                        nlohmann::json *j) {
     // The preset given, else the one the file was grown from.
     std::string preset_file = o.preset;
     const sim::Preset preset = [&] {
@@ -76,18 +77,18 @@ void add_mask_adherence(const StatsOptions &o,
         return sim::parse_preset(params["preset"].dump(), o.file);
     }();
     if (!preset.control.masks.empty())
-        (*j)["mask_adherence"] = to_json(shader::statistics::measure_mask_adherence(
+        (*j)["mask_adherence"] = to_json(pattern::statistics::measure_mask_adherence(
             pattern, o.mesh, preset, preset_file, o.area_samples, o.seed));
 }
 
 int run_stats(const StatsOptions &o) {
-    const shader::mosaic::MosaicPattern pattern = load_pattern(o);
+    const pattern::mosaic::MosaicPattern pattern = load_pattern(o);
     const sim::CellsData &data = pattern.data();
     const sim::PatternStats s = sim::compute_pattern_stats(data);
     nlohmann::json by_type = nlohmann::json::object();
     for (const auto &[name, n] : s.cells_by_type) by_type[name] = n;
     std::string warning;
-    nlohmann::json j = shader::statistics::stats_report(
+    nlohmann::json j = pattern::statistics::stats_report(
         pattern, o.file, {o.area_samples, o.grid_resolution, o.seed}, &warning);
     if (!warning.empty()) std::fprintf(stderr, "pelage stats: %s\n", warning.c_str());
     if (!o.mesh.empty()) add_mask_adherence(o, pattern, &j);

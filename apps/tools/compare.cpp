@@ -10,11 +10,11 @@
 #include <memory>
 #include <random>
 
+#include "pattern/statistics/spot_statistics.h"
 #include "renderer/image/film.h"
 #include "renderer/integrator/render.h"
 #include "renderer/plugins/plugin_loader.h"
 #include "renderer/scene/scene.h"
-#include "shader/statistics/spot_statistics.h"
 #include "sim/cells_io/cells_file.h"
 #include "sim/core/input_error.h"
 #include "sim/mesh/mesh_load.h"
@@ -162,9 +162,9 @@ nlohmann::json matched_baseline_params(const PelageShaderPlugin &plugin,
     const BaselineModel model = baseline_model(plugin);
     if (model == BaselineModel::none) return nlohmann::json::object();
     // The spots as the renderer shows them, on the surface the file carries.
-    const shader::mosaic::MosaicPattern pattern(cells_path);
-    const shader::statistics::SpotStatistics stats =
-        shader::statistics::measure_spot_statistics(pattern);
+    const pattern::mosaic::MosaicPattern pattern(cells_path);
+    const pattern::statistics::SpotStatistics stats =
+        pattern::statistics::measure_spot_statistics(pattern);
     const sim::CellsData &data = pattern.data();
     // Spot type: F when present, else the darkest; base: B when present, else the most
     // common other type.

@@ -17,10 +17,10 @@
 #include <string>
 #include <vector>
 
+#include "pattern/mosaic/coherent_lookup.h"
+#include "pattern/mosaic/mosaic_lod.h"
+#include "pattern/mosaic/pattern.h"
 #include "shader/clonal_mosaic/pattern_cache.h"
-#include "shader/mosaic/coherent_lookup.h"
-#include "shader/mosaic/mosaic_lod.h"
-#include "shader/mosaic/pattern.h"
 #include "shader/pelage_shader.h"
 #include "shader/sdk/create_guard.h"
 #include "shader/sdk/params.h"
@@ -53,15 +53,15 @@ struct CellLook {
 
 struct ClonalMosaic {
     // Shared by every instance of this file on this mesh (pattern_cache.h).
-    std::shared_ptr<const shader::mosaic::MosaicPattern> pattern;
-    const shader::mosaic::CellTable *cells_ptr = nullptr;
-    const shader::mosaic::ClosestCellIndex *index = nullptr;
+    std::shared_ptr<const pattern::mosaic::MosaicPattern> pattern;
+    const pattern::mosaic::CellTable *cells_ptr = nullptr;
+    const pattern::mosaic::ClosestCellIndex *index = nullptr;
     // Rendering another mesh of the simulation surface's shape: hits are carried onto it
     // (surface_transfer.h); null when the render mesh is the simulation's own.
-    const shader::transfer::SurfaceTransfer *transfer = nullptr;
+    const pattern::transfer::SurfaceTransfer *transfer = nullptr;
     std::vector<TypeLook> types;
-    std::vector<CellLook> looks;                     // per cell, CellTable order
-    std::unique_ptr<shader::mosaic::MosaicLod> lod;  // null: lod = 0
+    std::vector<CellLook> looks;                      // per cell, CellTable order
+    std::unique_ptr<pattern::mosaic::MosaicLod> lod;  // null: lod = 0
     float jitter = 0, edge_width = 0;
     bool antialias = true, coherence = true;
     // shade()'s fast path for camera hits: their footprints up to this width see the
@@ -83,7 +83,7 @@ std::atomic<uint64_t> instances_created{0};
 // a static TLS surplus for them (rtld.optional_static_tls, 512 bytes by default; this
 // object is ~100), and loading fails cleanly, not silently, if it ever ran out.
 [[gnu::tls_model(
-    "initial-exec")]] thread_local shader::mosaic::CoherentLookup coherent_lookup;
+    "initial-exec")]] thread_local pattern::mosaic::CoherentLookup coherent_lookup;
 
 const PelageParamSpec params[] = {
     {"jitter",
@@ -342,9 +342,9 @@ std::unique_ptr<ClonalMosaic> make(const PelageParamSet &ps) {
     const std::string mesh_name = ps.mesh.mesh_name ? ps.mesh.mesh_name : "the mesh";
     cm->pattern = shader::clonal_mosaic::cached_pattern(
         ps.mesh.cells_path, shader::sdk::rest_mesh(ps.mesh, false), mesh_name,
-        neighbourhood == "geodesic" ? shader::mosaic::Neighbourhood::geodesic
-        : neighbourhood == "teo"    ? shader::mosaic::Neighbourhood::unfolding_teo
-                                    : shader::mosaic::Neighbourhood::unfolding_edges);
+        neighbourhood == "geodesic" ? pattern::mosaic::Neighbourhood::geodesic
+        : neighbourhood == "teo"    ? pattern::mosaic::Neighbourhood::unfolding_teo
+                                    : pattern::mosaic::Neighbourhood::unfolding_edges);
     cm->transfer = cm->pattern->transfer();
     if (cm->transfer) {
         char message[1024];
@@ -402,14 +402,14 @@ std::unique_ptr<ClonalMosaic> make(const PelageParamSet &ps) {
         cm->matte_bits |= 1u << matte_lineage;
     }
     if (p.get_bool("lod"))
-        cm->lod = std::make_unique<shader::mosaic::MosaicLod>(
+        cm->lod = std::make_unique<pattern::mosaic::MosaicLod>(
             *cm->pattern,
             [&](uint32_t cell) {
                 const CellLook &look = cm->looks[cell];
                 const TypeLook &type = cm->types[look.type];
-                return shader::mosaic::FilteredLook{{look.rgb[0], look.rgb[1],
-                                                     look.rgb[2], type.eumelanin,
-                                                     type.pheomelanin}};
+                return pattern::mosaic::FilteredLook{{look.rgb[0], look.rgb[1],
+                                                      look.rgb[2], type.eumelanin,
+                                                      type.pheomelanin}};
             },
             cm->types.size());
     cm->num_triangles = uint32_t(cm->cells_ptr->num_triangles());
@@ -445,13 +445,13 @@ void shade_as(const ClonalMosaic &cm, const CellLook &cell, float f1, PelageShad
 // (F1 = F2 = F3), zero once a cell is 2w farther than the nearest. Continuous everywhere
 // except where four cells lie within 2w of each other's distance.
 inline void shade_blend(const ClonalMosaic &cm,
-                        const shader::mosaic::CoherentLookup::Result &n, float w,
+                        const pattern::mosaic::CoherentLookup::Result &n, float w,
                         PelageShade *out) {
     const float f1 = std::sqrt(n.d2[0]);
     const CellLook &nearest = cm.looks[n.index[0]];
     // No other cell within 2w (most hits): the blend is the nearest cell's look exactly
     // (weight 1, total 1), so skip the arithmetic.
-    if (n.index[1] == shader::mosaic::ClosestCell::none) {
+    if (n.index[1] == pattern::mosaic::ClosestCell::none) {
         shade_as(cm, nearest, f1, out);
         return;
     }
@@ -461,7 +461,7 @@ inline void shade_blend(const ClonalMosaic &cm,
     // nearest cell's 0 · inf a NaN.)
     const float inv_width = 1 / std::max(2 * w, std::numeric_limits<float>::min());
     float rgb[3] = {0, 0, 0}, eu = 0, pheo = 0, total = 0;
-    for (int i = 0; i < 3 && n.index[i] != shader::mosaic::ClosestCell::none; ++i) {
+    for (int i = 0; i < 3 && n.index[i] != pattern::mosaic::ClosestCell::none; ++i) {
         const float x = std::min((std::sqrt(n.d2[i]) - f1) * inv_width, 1.0f);
         const float weight = 1 - x * x * (3 - 2 * x);
         if (weight <= 0) break;
@@ -483,16 +483,16 @@ inline void shade_blend(const ClonalMosaic &cm,
 // `tried`: this thread's CoherentLookup when shade()'s fast path already found its
 // reuse impossible (null otherwise).
 void shade_cells(const ClonalMosaic &cm, const PelageHit *hit, PelageShade *out,
-                 shader::mosaic::CoherentLookup *tried) {
+                 pattern::mosaic::CoherentLookup *tried) {
     // Boundaries are blended over w: the user's soft width, or at least the footprint.
     // Antialiasing matters for what the camera sees; indirect bounces average over wide
     // footprints anyway, so they take the cheaper nearest-cell path.
     const float w =
         std::max(cm.edge_width, cm.antialias && hit->depth == 0 ? hit->footprint : 0.0f);
     if (w <= 0) {
-        const shader::mosaic::ClosestCell c =
+        const pattern::mosaic::ClosestCell c =
             cm.index->find_nearest(hit->primitive_id, hit->b1, hit->b2);
-        if (c.index == shader::mosaic::ClosestCell::none)
+        if (c.index == pattern::mosaic::ClosestCell::none)
             return;  // a component without cells
         shade_as(cm, cm.looks[c.index], c.f1, out);
         return;
@@ -506,7 +506,7 @@ void shade_cells(const ClonalMosaic &cm, const PelageHit *hit, PelageShade *out,
                        ? tried->search(*cm.index, cm.serial, t, hit->b1, hit->b2, band)
                        : coherent_lookup.find_three_within(*cm.index, cm.serial, t,
                                                            hit->b1, hit->b2, band);
-    if (n.index[0] == shader::mosaic::ClosestCell::none) return;
+    if (n.index[0] == pattern::mosaic::ClosestCell::none) return;
     shade_blend(cm, n, w, out);
 }
 
@@ -521,7 +521,7 @@ void shade_cells(const ClonalMosaic &cm, const PelageHit *hit, PelageShade *out,
 // frame and with few instructions.
 [[gnu::noinline]] void shade_any(const ClonalMosaic &cm, const PelageHit *hit,
                                  PelageShade *out,
-                                 shader::mosaic::CoherentLookup *tried) {
+                                 pattern::mosaic::CoherentLookup *tried) {
     const uint32_t t = hit->primitive_id;
     if (t >= cm.num_triangles) return;  // defaults stay
     const float weight = cm.lod ? cm.lod->weight(t, hit->footprint) : 0.0f;
@@ -534,9 +534,9 @@ void shade_cells(const ClonalMosaic &cm, const PelageHit *hit, PelageShade *out,
         if (type.roughness >= 0) out->roughness = type.roughness;
         if (type.ior > 0) out->ior = type.ior;
         if (hit->depth == 0) {
-            const shader::mosaic::ClosestCell c =
+            const pattern::mosaic::ClosestCell c =
                 cm.index->find_nearest(t, hit->b1, hit->b2);
-            if (c.index != shader::mosaic::ClosestCell::none) {
+            if (c.index != pattern::mosaic::ClosestCell::none) {
                 const CellLook &cell = cm.looks[c.index];
                 out->aov[0] = cell.aov_id;
                 out->aov[1] = cm.types[cell.type].aov_type;
@@ -549,7 +549,7 @@ void shade_cells(const ClonalMosaic &cm, const PelageHit *hit, PelageShade *out,
                 out->matte_written = cm.matte_bits;
             }
         }
-        const shader::mosaic::FilteredLook f = cm.lod->at(t, hit->b1, hit->b2);
+        const pattern::mosaic::FilteredLook f = cm.lod->at(t, hit->b1, hit->b2);
         for (int k = 0; k < 3; ++k) out->albedo[k] = f.v[k];
         out->eumelanin = f.v[3];
         out->pheomelanin = f.v[4];
@@ -579,9 +579,9 @@ void shade(const void *self, const PelageHit *render_hit, PelageShade *out) {
         t < cm.num_triangles) {
         const float w = std::max(cm.edge_width, hit->footprint);
         if (w > 0) {
-            shader::mosaic::CoherentLookup &coherent =
+            pattern::mosaic::CoherentLookup &coherent =
                 coherent_lookup;  // one TLS look-up
-            shader::mosaic::CoherentLookup::Result n;
+            pattern::mosaic::CoherentLookup::Result n;
             if (coherent.reuse(cm.serial, t, hit->b1, hit->b2, 2 * w, n)) {
                 shade_blend(cm, n, w, out);
                 return;

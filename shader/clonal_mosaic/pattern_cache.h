@@ -8,7 +8,7 @@
 #include <memory>
 #include <string>
 
-#include "shader/mosaic/pattern.h"
+#include "pattern/mosaic/pattern.h"
 
 namespace pelage::shader::clonal_mosaic {
 
@@ -16,8 +16,8 @@ namespace pelage::shader::clonal_mosaic {
 // the one an instance alive or one of the last few made holds when the file (path,
 // size, modification time), the mesh (its content hash) and the neighbourhood are the
 // same, else a new one. Thread-safe.
-std::shared_ptr<const mosaic::MosaicPattern> cached_pattern(
+std::shared_ptr<const pattern::mosaic::MosaicPattern> cached_pattern(
     const std::string &cells_path, sim::TriangleMesh rest, const std::string &mesh_name,
-    mosaic::Neighbourhood neighbourhood);
+    pattern::mosaic::Neighbourhood neighbourhood);
 
 }  // namespace pelage::shader::clonal_mosaic

@@ -1,7 +1,7 @@
 // Counts of a Clonal Mosaic (Walter thesis §3.5): cells by type and the spot fraction
 // F/(F+B) (Walter's "spot area", computed from counts: 100·F/(F+B) reproduces every
 // value he lists). Spots themselves are measured on the surface as the renderer shows
-// them, through the closest-cell search (shader/statistics/spot_statistics.h): one
+// them, through the closest-cell search (pattern/statistics/spot_statistics.h): one
 // definition for `pelage stats`, the renderer and the baselines.
 #pragma once
 

@@ -1,6 +1,6 @@
 // The closest point of a triangle, and of a whole mesh, to a point in space: the one
 // implementation the landmark regions (sim/control), the growth's rest-shape points
-// (sim/growth) and the rendering of a pattern on another mesh (shader/transfer) use.
+// (sim/growth) and the rendering of a pattern on another mesh (pattern/transfer) use.
 #pragma once
 
 #include <array>
@@ -57,7 +57,7 @@ inline Vec3d closest_point_on_triangle(Vec3d p, Vec3d a, Vec3d b, Vec3d c) {
 
 // The distance from p to triangle t in the plane, 0 inside (either orientation): the
 // one 2D point-triangle distance, for the unfoldings' pruning (sim/crps), the
-// closest-cell index (shader/mosaic) and the atlas's chart masks (shader/bake).
+// closest-cell index (pattern/mosaic) and the atlas's chart masks (pattern/bake).
 double point_triangle_distance(Vec2d p, const Vec2d t[3]);
 
 // The closest point of a mesh to a point in space: the one result type of every search
@@ -78,7 +78,7 @@ MeshPoint closest_surface_point(const TriangleMesh &mesh, Vec3d p);
 // outside a convex edge projects onto the edge in both), the two rankings may pick
 // different triangles by rounding, so each caller keeps the one its results were made
 // with: the landmark regions' transfer (sim/control) and the rendering on another mesh
-// (shader/transfer) rank by the closest point, the growth's rest-shape points
+// (pattern/transfer) rank by the closest point, the growth's rest-shape points
 // (sim/growth) by the point their barycentrics blend from the corners.
 enum class RankBy {
     point,              // length(closest point - p)

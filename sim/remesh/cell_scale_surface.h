@@ -10,7 +10,7 @@
 // Edges shorter than s are collapsed (about 2 triangles per cell where the shape
 // allows), and no collapse may move a vertex farther than max_deviation_fraction of the
 // bounding-box diagonal nor a tenth of s from the input, so the pattern transfers back
-// to the input (shader/transfer/surface_transfer.h) well inside its 2 % tolerance.
+// to the input (pattern/transfer/surface_transfer.h) well inside its 2 % tolerance.
 //
 // The collapse threshold is the edge at which the estimate comes down to
 // max_neighbourhood_entries, at least s (at most max_cells_per_triangle cells per

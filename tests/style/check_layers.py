@@ -1,9 +1,9 @@
 #!/usr/bin/env python3
 """The layering, checked from the includes (CTest `style.layers`).
 
-Data flows one way: sim -> shader -> renderer -> apps (docs/design.md). Within a layer,
-its CMakeLists.txt adds the folders in the order of the chain (add_subdirectory, or the
-renderer's folder list), each using only those before it. An include of a folder that
+Data flows one way: sim -> pattern -> shader -> renderer -> apps (docs/design.md). Within
+a layer, its CMakeLists.txt adds the folders in the order of the chain (add_subdirectory,
+or the renderer's folder list), each using only those before it. An include of a folder that
 comes later, or of a later layer, points up the chain: the linker catches it only when
 the include needs a symbol, so this catches it when it is written.
 
@@ -13,7 +13,7 @@ import re
 import sys
 from pathlib import Path
 
-LAYERS = ["sim", "shader", "renderer", "apps"]
+LAYERS = ["sim", "pattern", "shader", "renderer", "apps"]
 SOURCE = re.compile(r".*\.(h|hpp|c|cpp)$")
 INCLUDE = re.compile(r'^\s*#\s*include\s+"([^"]+)"', re.M)
 

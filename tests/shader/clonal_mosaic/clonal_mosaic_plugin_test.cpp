@@ -8,10 +8,10 @@
 #include <filesystem>
 #include <random>
 
+#include "pattern/mosaic/closest_cell.h"
+#include "pattern/mosaic/mosaic_lod.h"
 #include "renderer/core/install_layout.h"
 #include "renderer/plugins/plugin_loader.h"
-#include "shader/mosaic/closest_cell.h"
-#include "shader/mosaic/mosaic_lod.h"
 #include "sim/cells_io/cells_file.h"
 #include "sim/crps/surface.h"
 #include "tests/shader/clonal_mosaic/mosaic_plugin_instance.h"
@@ -31,12 +31,12 @@ struct Instance : MosaicPluginInstance {
 
 // The cells of a .cells file as the search's table: the reference the plugin is checked
 // against, built without the plugin.
-shader::mosaic::CellTable table_of(const sim::CellsData &data) {
-    std::vector<shader::mosaic::CellOnSurface> list;
+pattern::mosaic::CellTable table_of(const sim::CellsData &data) {
+    std::vector<pattern::mosaic::CellOnSurface> list;
     for (sim::TriId t = 0; t < data.num_triangles(); ++t)
         for (uint32_t k = data.cell_row[t]; k < data.cell_row[t + 1]; ++k)
             list.push_back({t, data.x[k], data.z[k], data.id[k], data.type[k]});
-    return shader::mosaic::make_cell_table(data.num_triangles(), list);
+    return pattern::mosaic::make_cell_table(data.num_triangles(), list);
 }
 
 // ABI 3: the plugin builds its surface from the renderer's mesh view; the mesh file is
@@ -68,8 +68,8 @@ TEST(ClonalMosaicPlugin, ColourAndAovsAreTheNearestCellsType) {
     // The reference: the same search built directly from the .cells file.
     const sim::CellsData data = sim::read_cells_file(cells);
     const sim::Surface s = sim::build_surface(mesh_spec);
-    const shader::mosaic::CellTable table = table_of(data);
-    const shader::mosaic::ClosestCellIndex index(s.crps, table);
+    const pattern::mosaic::CellTable table = table_of(data);
+    const pattern::mosaic::ClosestCellIndex index(s.crps, table);
 
     std::mt19937 rng(1);
     std::uniform_real_distribution<float> u(0, 1);
@@ -82,7 +82,7 @@ TEST(ClonalMosaicPlugin, ColourAndAovsAreTheNearestCellsType) {
         }
         const PelageShade sh = inst.shade(prim, b1, b2);
         const sim::Vec2d q = s.crps.barycentric_to_2d(prim, {1 - b1 - b2, b1, b2});
-        const shader::mosaic::ClosestCell c =
+        const pattern::mosaic::ClosestCell c =
             index.find_nearest(prim, {float(q.x), float(q.y)});
         ASSERT_EQ(sh.aov_written, 1u);
         ASSERT_EQ(uint32_t(sh.aov[0]), table.id[c.index]);
@@ -110,8 +110,8 @@ TEST(ClonalMosaicPlugin, SoftEdgeColourIsTheBlendOfTheCellsWithinTheBand) {
 
     const sim::CellsData data = sim::read_cells_file(cells);
     const sim::Surface s = sim::build_surface(mesh_spec);
-    const shader::mosaic::CellTable table = table_of(data);
-    const shader::mosaic::ClosestCellIndex index(s.crps, table);
+    const pattern::mosaic::CellTable table = table_of(data);
+    const pattern::mosaic::ClosestCellIndex index(s.crps, table);
 
     std::mt19937 rng(4);
     std::uniform_real_distribution<float> u(0, 1);
@@ -125,10 +125,10 @@ TEST(ClonalMosaicPlugin, SoftEdgeColourIsTheBlendOfTheCellsWithinTheBand) {
         }
         const PelageShade soft = inst.shade(prim, b1, b2);
         const auto near = index.find_three_within(prim, b1, b2, 2 * w);
-        ASSERT_NE(near.index[0], shader::mosaic::ClosestCell::none);
+        ASSERT_NE(near.index[0], pattern::mosaic::ClosestCell::none);
         ASSERT_EQ(uint32_t(soft.aov[0]), table.id[near.index[0]]);
         ASSERT_EQ(soft.aov[2], std::sqrt(near.d2[0]));
-        if (near.index[1] == shader::mosaic::ClosestCell::none) {
+        if (near.index[1] == pattern::mosaic::ClosestCell::none) {
             // Exactly the hard-edged colour: same nearest cell, same jittered look.
             const PelageShade h = hard.shade(prim, b1, b2);
             for (int k = 0; k < 3; ++k) ASSERT_EQ(soft.albedo[k], h.albedo[k]);
@@ -140,7 +140,7 @@ TEST(ClonalMosaicPlugin, SoftEdgeColourIsTheBlendOfTheCellsWithinTheBand) {
         // cell's centre is coloured by that cell alone).
         const float f1 = std::sqrt(near.d2[0]);
         float rgb[3] = {0, 0, 0}, total = 0;
-        for (int i = 0; i < 3 && near.index[i] != shader::mosaic::ClosestCell::none;
+        for (int i = 0; i < 3 && near.index[i] != pattern::mosaic::ClosestCell::none;
              ++i) {
             const float x = std::min((std::sqrt(near.d2[i]) - f1) / (2 * w), 1.0f);
             const float weight = 1 - x * x * (3 - 2 * x);
@@ -385,12 +385,12 @@ TEST(ClonalMosaicPlugin, WideFootprintsSeeTheFilteredLook) {
     const std::string cells = simulate_two_type_cells(tmp, mesh_spec, 600);
     const Instance inst({}, cells.c_str()), off({{"lod", 0}}, cells.c_str());
     ASSERT_NE(inst.self, nullptr) << inst.error;
-    const shader::mosaic::MosaicPattern pattern(cells, mesh_spec);
-    const shader::mosaic::MosaicLod lod(
+    const pattern::mosaic::MosaicPattern pattern(cells, mesh_spec);
+    const pattern::mosaic::MosaicLod lod(
         pattern,
         [&](uint32_t c) {
             const sim::CellType &t = pattern.types()[pattern.cells().type[c]];
-            return shader::mosaic::FilteredLook{
+            return pattern::mosaic::FilteredLook{
                 {t.colour[0], t.colour[1], t.colour[2], t.eumelanin, t.pheomelanin}};
         },
         pattern.types().size());
@@ -415,7 +415,7 @@ TEST(ClonalMosaicPlugin, WideFootprintsSeeTheFilteredLook) {
         const PelageShade fine = inst.shade(prim, b1, b2, small, depth);
         ASSERT_EQ(std::memcmp(&exact, &fine, sizeof(PelageShade)), 0);
 
-        const shader::mosaic::FilteredLook f = lod.at(prim, b1, b2);
+        const pattern::mosaic::FilteredLook f = lod.at(prim, b1, b2);
         const PelageShade wide = inst.shade(prim, b1, b2, large, depth);
         for (int k = 0; k < 3; ++k) ASSERT_EQ(wide.albedo[k], f.v[k]);
         ASSERT_EQ(wide.eumelanin, f.v[3]);

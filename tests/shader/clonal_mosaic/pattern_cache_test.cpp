@@ -15,8 +15,8 @@
 namespace pelage::test {
 namespace {
 
+using pattern::mosaic::Neighbourhood;
 using shader::clonal_mosaic::cached_pattern;
-using shader::mosaic::Neighbourhood;
 
 TEST(PatternCache, OneFileOnOneMeshIsBuiltOnce) {
     TempDir tmp;

@@ -1,0 +1,52 @@
+#include "pattern/mosaic/pattern.h"
+
+namespace pelage::pattern::mosaic {
+
+MosaicPattern::MosaicPattern(const std::string &cells_path, const std::string &mesh_path,
+                             Neighbourhood neighbourhood)
+    // The same loader as `pelage sim` and the renderer: for the mesh the cells were grown
+    // on, identical triangles, so a hit's primitive id is the .cells triangle.
+    : MosaicPattern(cells_path, sim::load_mesh(mesh_path), mesh_path, neighbourhood) {}
+
+MosaicPattern::MosaicPattern(const std::string &cells_path, sim::TriangleMesh render,
+                             const std::string &render_name, Neighbourhood neighbourhood)
+    : m_data(sim::read_cells_file(cells_path)) {
+    if (m_data.num_triangles() == render.num_triangles() &&
+        m_data.mesh_hash == sim::mesh_hash(render)) {
+        m_surface = std::make_unique<sim::Surface>(sim::build_surface(std::move(render)));
+    } else {
+        m_surface = std::make_unique<sim::Surface>(
+            sim::build_surface(sim::surface_mesh(m_data, cells_path)));
+        m_transfer = std::make_unique<transfer::SurfaceTransfer>(*m_surface, render,
+                                                                 cells_path, render_name);
+    }
+    index_cells(neighbourhood);
+}
+
+MosaicPattern::MosaicPattern(const std::string &cells_path, Neighbourhood neighbourhood)
+    : m_data(sim::read_cells_file(cells_path)) {
+    m_surface = std::make_unique<sim::Surface>(
+        sim::build_surface(sim::surface_mesh(m_data, cells_path)));
+    index_cells(neighbourhood);
+}
+
+void MosaicPattern::index_cells(Neighbourhood neighbourhood) {
+    std::vector<CellOnSurface> list;
+    list.reserve(m_data.num_cells());
+    for (sim::TriId t = 0; t < m_data.num_triangles(); ++t)
+        for (uint32_t k = m_data.cell_row[t]; k < m_data.cell_row[t + 1]; ++k)
+            list.push_back({t, m_data.x[k], m_data.z[k], m_data.id[k], m_data.type[k]});
+    m_cells = make_cell_table(m_data.num_triangles(), list);
+    m_index = std::make_unique<ClosestCellIndex>(m_surface->crps, m_cells,
+                                                 ClosestCellOptions{neighbourhood});
+    m_tri.resize(6 * m_data.num_triangles());
+    for (sim::TriId t = 0; t < m_data.num_triangles(); ++t) {
+        const sim::CrpsFrame &f = m_surface->crps.frame(t);
+        const sim::Vec2d e1 = f.v[1] - f.v[0], e2 = f.v[2] - f.v[0];
+        const float v[6] = {float(f.v[0].x), float(f.v[0].y), float(e1.x),
+                            float(e1.y),     float(e2.x),     float(e2.y)};
+        std::copy(v, v + 6, &m_tri[6 * t]);
+    }
+}
+
+}  // namespace pelage::pattern::mosaic
