@@ -16,6 +16,7 @@
 #include "sim/mesh/mesh_write_obj.h"
 #include "sim/mosaic/cm_simulation.h"
 #include "sim/mosaic/preset.h"
+#include "sim/run/cells_data.h"
 #include "sim/run/grow_cells.h"
 
 namespace pelage::renderer::explore {
@@ -116,7 +117,7 @@ uint64_t ExploreSession::submit(const std::string &preset_json, uint64_t seed) {
             nlohmann::json params = nlohmann::json::parse(data.params_json);
             params["preset"] = nlohmann::json::parse(preset.json_text);
             data.params_json = params.dump();
-            data.types = preset.types.types();
+            data.types = sim::cells_file_types(preset.types);
             sim::write_cells_file(m_result.cells_path, data);
             write_file_atomically(m_result.preset_path,
                                   [&](std::ostream &out) { out << preset_json; });
@@ -333,7 +334,7 @@ void ExploreSession::run_job(const Job &job) {
                     nlohmann::json params = nlohmann::json::parse(data.params_json);
                     params["preset"] = nlohmann::json::parse(now.json_text);
                     data.params_json = params.dump();
-                    data.types = now.types.types();
+                    data.types = sim::cells_file_types(now.types);
                     sim::write_cells_file(cells_path, data);
                 }
                 write_file_atomically(preset_path,

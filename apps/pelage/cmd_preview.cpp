@@ -1,12 +1,12 @@
 // `pelage preview FILE.cells -o out.png`: a quick orthographic, flat-shaded view of the
 // mesh stored in a .cells file with its cells as coloured dots (a debugging view, not
-// the renderer; sim/cells_io/cells_preview.h).
+// the renderer; sim/cells_report/cells_preview.h).
 #include <cmath>
 
 #include "apps/common/common.h"
 #include "renderer/image/image_output.h"
 #include "sim/cells_io/cells_file.h"
-#include "sim/cells_io/cells_preview.h"
+#include "sim/cells_report/cells_preview.h"
 #include "sim/core/input_error.h"
 
 namespace pelage::renderer::cli {

@@ -13,7 +13,7 @@
 #include "apps/common/common.h"
 #include "renderer/job/scene_patterns.h"
 #include "sim/cells_io/cells_file.h"
-#include "sim/cells_io/pattern_stats.h"
+#include "sim/cells_report/pattern_stats.h"
 #include "sim/core/input_error.h"
 #include "sim/mosaic/preset.h"
 

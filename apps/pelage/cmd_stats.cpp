@@ -1,5 +1,5 @@
 // `pelage stats FILE.cells [--mesh MESH] [--json]`: pattern statistics of a .cells file.
-// JSON keys are a contract. Counts (sim/cells_io/pattern_stats.h): cells_by_type,
+// JSON keys are a contract. Counts (sim/cells_report/pattern_stats.h): cells_by_type,
 // spot_fraction. The look as the renderer shows it, measured through the closest-cell
 // search on the surface the cells were grown on (the one the file carries, or --mesh):
 // the area each type covers (pattern/statistics/area_fractions.h): area_fraction_by_type,
@@ -9,7 +9,7 @@
 // spot_circularity_mean, spot_complexity, background_components,
 // background_largest_share, background_near_spot, grid_resolution; for cells grown with
 // anisotropy, how their F/B boundaries follow its field
-// (sim/cells_io/stripe_alignment.h): stripe_alignment_median, stripe_alignment_q1,
+// (sim/cells_report/stripe_alignment.h): stripe_alignment_median, stripe_alignment_q1,
 // stripe_alignment_q3 (degrees), stripe_alignment_samples, stripe_coherence_median; and,
 // with --mesh when the preset has neural-crest masks, mask_adherence
 // (pattern/statistics/mask_adherence.h).
@@ -22,7 +22,7 @@
 #include "pattern/statistics/mask_adherence.h"
 #include "pattern/statistics/stats_report.h"
 #include "sim/cells_io/cells_file.h"
-#include "sim/cells_io/pattern_stats.h"
+#include "sim/cells_report/pattern_stats.h"
 #include "sim/core/input_error.h"
 #include "sim/crps/surface.h"
 #include "sim/mosaic/preset.h"

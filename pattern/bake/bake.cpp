@@ -38,7 +38,7 @@ Looks looks_of(const mosaic::MosaicPattern &pattern) {
     l.id.resize(cells.size());
     l.founder.resize(cells.size());
     for (size_t k = 0; k < cells.size(); ++k) {
-        const sim::CellType &t = pattern.types()[cells.type[k]];
+        const sim::CellsFileType &t = pattern.types()[cells.type[k]];
         for (int c = 0; c < 3; ++c) l.rgb[k][c] = std::clamp(t.colour[c], 0.0f, 1.0f);
         l.type[k] = float(cells.type[k]);
         l.id[k] = float(cells.id[k]);  // exact below 2^24 cells

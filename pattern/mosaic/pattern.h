@@ -46,7 +46,7 @@ class MosaicPattern {
     }
     const ClosestCellIndex &index() const { return *m_index; }
     const CellTable &cells() const { return m_cells; }
-    const std::vector<sim::CellType> &types() const { return m_data.types; }
+    const std::vector<sim::CellsFileType> &types() const { return m_data.types; }
     const sim::CellsData &data() const { return m_data; }
     const sim::Surface &surface() const { return *m_surface; }  // the simulation's
 

@@ -40,7 +40,7 @@ void for_each_edge(const Grid &g, F &&f) {
         }
 }
 
-int background_type(const std::vector<sim::CellType> &types) {
+int background_type(const std::vector<sim::CellsFileType> &types) {
     for (size_t k = 0; k < types.size(); ++k)
         if (types[k].name == "B") return int(k);
     return types.size() > 1 ? 1 : -1;

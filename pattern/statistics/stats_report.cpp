@@ -2,8 +2,8 @@
 
 #include "pattern/statistics/area_fractions.h"
 #include "pattern/statistics/spot_statistics.h"
-#include "sim/cells_io/pattern_stats.h"
-#include "sim/cells_io/stripe_alignment.h"
+#include "sim/cells_report/pattern_stats.h"
+#include "sim/cells_report/stripe_alignment.h"
 #include "sim/core/input_error.h"
 #include "sim/crps/surface.h"
 #include "sim/mosaic/anisotropy_field.h"

@@ -7,7 +7,6 @@
 
 #include "sim/cells_io/cells_file.h"
 #include "sim/core/input_error.h"
-#include "sim/mosaic/preset.h"
 
 namespace pelage::renderer {
 
@@ -174,20 +173,30 @@ void carry_to_pose(std::vector<float> &by_corner, const std::vector<uint32_t> &t
 sim::FieldSpec pattern_field(const std::string &cells_path, const std::string &field) {
     const sim::CellsData data = sim::read_cells_file(cells_path);
     const nlohmann::json params = nlohmann::json::parse(data.params_json, nullptr, false);
-    if (!params.is_object() || !params.contains("preset"))
+    // The simulation records the preset's field, null when it has none (sim/run/
+    // cells_data.h); a file without the key was written by an older pelage.
+    if (!params.is_object() || !params.contains("anisotropy_field"))
         throw InputError(cells_path, 0, field,
                          "\"field\" combs along the pattern's anisotropy field, but this "
-                         ".cells file records no preset");
-    const sim::Preset preset = sim::parse_preset(params["preset"].dump(), cells_path);
-    if (preset.params.anisotropy_field.kind == sim::FieldSpec::Kind::none)
-        throw InputError(
-            cells_path, 0, field,
-            "\"field\" combs along the pattern's anisotropy field, but preset "
-            "\"" +
-                preset.name +
-                "\" has none (give the field itself, e.g. {\"along\": "
-                "\"body_axis\"})");
-    return preset.params.anisotropy_field;
+                         ".cells file does not record it (written by an older pelage: "
+                         "grow the pattern again with `pelage sim`)");
+    const nlohmann::json &node = params["anisotropy_field"];
+    const sim::FieldSpec spec =
+        node.is_null() ? sim::FieldSpec()
+                       : sim::parse_field_spec(node, "anisotropy_field", cells_path);
+    if (spec.kind == sim::FieldSpec::Kind::none) {
+        std::string preset;
+        if (params.contains("preset") && params["preset"].is_object() &&
+            params["preset"].contains("name") && params["preset"]["name"].is_string())
+            preset = params["preset"]["name"].get<std::string>();
+        throw InputError(cells_path, 0, field,
+                         "\"field\" combs along the pattern's anisotropy field, but "
+                         "preset \"" +
+                             preset +
+                             "\" has none (give the field itself, e.g. {\"along\": "
+                             "\"body_axis\"})");
+    }
+    return spec;
 }
 
 }  // namespace pelage::renderer

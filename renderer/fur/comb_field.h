@@ -36,8 +36,10 @@ std::vector<float> comb_by_corner(const sim::FieldSpec &spec, const sim::Surface
 void carry_to_pose(std::vector<float> &by_corner, const std::vector<uint32_t> &triangles,
                    const double *rest, const float *posed);
 
-// The anisotropy field of the preset a .cells file records. Throws pelage::InputError
-// naming `cells_path` and `field` when the file has no preset or its preset no field.
+// The anisotropy field of the preset a .cells file was grown from, as the file records
+// it (its params' "anisotropy_field", read by sim/field alone). Throws
+// pelage::InputError naming `cells_path` and `field` when the file does not record it
+// (an older pelage's) or its preset has no field.
 sim::FieldSpec pattern_field(const std::string &cells_path, const std::string &field);
 
 }  // namespace pelage::renderer

@@ -169,7 +169,7 @@ const char *const matte_names[] = {"type", "cell", "lineage", nullptr};
 // std::invalid_argument naming the parameter and the problem.
 template <typename Set>
 void parse_per_type(const char *param, const std::string &spec, float lo, float hi,
-                    const std::vector<sim::CellType> &types, Set set) {
+                    const std::vector<sim::CellsFileType> &types, Set set) {
     std::stringstream ss(spec);
     std::string item;
     while (std::getline(ss, item, ',')) {
@@ -206,7 +206,8 @@ float ior_of_f0(float f0) {
 
 // The "types" parameter: each named type's look replaced, key by key. Throws
 // std::invalid_argument naming the field ("types.F.colour[1]") and the problem.
-void apply_type_looks(const std::string &text, const std::vector<sim::CellType> &types,
+void apply_type_looks(const std::string &text,
+                      const std::vector<sim::CellsFileType> &types,
                       std::vector<TypeLook> &looks, std::vector<bool> &set_roughness,
                       std::vector<bool> &set_specular) {
     if (text.empty()) return;
@@ -366,9 +367,9 @@ std::unique_ptr<ClonalMosaic> make(const PelageParamSet &ps) {
             " triangles, the pattern's " + std::to_string(render_triangles));
     cm->cells_ptr = &cm->pattern->cells();
     cm->index = &cm->pattern->index();
-    const std::vector<sim::CellType> &types = cm->pattern->types();
+    const std::vector<sim::CellsFileType> &types = cm->pattern->types();
     for (size_t k = 0; k < types.size(); ++k) {
-        const sim::CellType &t = types[k];
+        const sim::CellsFileType &t = types[k];
         cm->types.push_back({{t.colour[0], t.colour[1], t.colour[2]},
                              t.eumelanin,
                              t.pheomelanin,

@@ -113,47 +113,6 @@ uint64_t mesh_hash(const TriangleMesh &mesh) {
                  mesh.triangles.size() * sizeof(mesh.triangles[0]), h);
 }
 
-CellsData make_cells_data(const TriangleMesh &mesh, const Crps &crps,
-                          const CellTypes &types, const Cells &cells,
-                          const std::string &params_json, uint64_t seed) {
-    CellsData d;
-    d.mesh_hash = mesh_hash(mesh);
-    d.seed = seed;
-    d.params_json = params_json;
-    d.types = types.types();
-    const size_t nt = crps.num_triangles();
-    d.frames.reserve(nt);
-    for (TriId t = 0; t < nt; ++t) d.frames.push_back(crps.frame(t));
-    const Topology &topo = crps.topology();
-    d.nbr_row = topo.nbr_row;
-    d.nbr = topo.nbr;
-    d.to_master.reserve(topo.nbr.size());
-    for (TriId t = 0; t < nt; ++t)
-        for (const RigidMap2 &F : crps.to_master(t)) d.to_master.push_back(F);
-    // Cells sorted by (triangle, id): buckets hold ids in history order, so sort each.
-    d.cell_row.assign(nt + 1, 0);
-    const size_t n = cells.size();
-    d.x.reserve(n);
-    d.z.reserve(n);
-    d.type.reserve(n);
-    d.id.reserve(n);
-    d.founder.reserve(n);
-    std::vector<CellId> ids;
-    for (TriId t = 0; t < nt; ++t) {
-        ids = cells.on(t);
-        std::sort(ids.begin(), ids.end());
-        for (CellId c : ids) {
-            d.x.push_back(cells.pos(c).x);
-            d.z.push_back(cells.pos(c).y);
-            d.type.push_back(cells.type(c));
-            d.id.push_back(c);
-            d.founder.push_back(cells.founder(c));
-        }
-        d.cell_row[t + 1] = static_cast<uint32_t>(d.x.size());
-    }
-    return d;
-}
-
 std::vector<uint8_t> serialize_cells(const CellsData &d) {
     Writer w;
     w.bytes().insert(w.bytes().end(), magic, magic + 8);
@@ -170,7 +129,7 @@ std::vector<uint8_t> serialize_cells(const CellsData &d) {
     w.put<uint64_t>(0);  // reserved
     // --- payload ---
     w.put_bytes(d.params_json);
-    for (const CellType &t : d.types) {
+    for (const CellsFileType &t : d.types) {
         w.put<uint32_t>(static_cast<uint32_t>(t.name.size()));
         w.put_bytes(t.name);
         for (float c : t.colour) w.put<float>(c);
@@ -239,7 +198,7 @@ CellsData parse_cells(const std::vector<uint8_t> &b, const std::string &name) {
     const uint64_t params_bytes = r.get<uint64_t>("params_bytes");
     const uint64_t payload = r.get<uint64_t>("payload_bytes");
     r.get<uint64_t>("reserved");
-    if (num_types < 1 || num_types > max_cell_types)
+    if (num_types < 1 || num_types > cells_file_max_types)
         r.fail("num_types", "must be 1 to 8");
     if (nt < 1 || nt > max_triangles) r.fail("num_triangles", "out of range");
     if (nc >= max_cells) r.fail("num_cells", "out of range");
@@ -264,7 +223,7 @@ CellsData parse_cells(const std::vector<uint8_t> &b, const std::string &name) {
     p.seek(header_bytes);
     d.params_json = p.get_string(params_bytes, "params");
     for (uint32_t i = 0; i < num_types; ++i) {
-        CellType t;
+        CellsFileType t;
         const uint32_t len = p.get<uint32_t>("types.name");
         if (len < 1 || len > 64)
             p.fail("types[" + std::to_string(i) + "].name", "bad length");

@@ -1,6 +1,8 @@
-// The .cells file: what `pelage sim` writes and the shader, `pelage stats` and `pelage
-// preview` read. Self-contained: it carries the CRPS frames and neighbour maps, so tools
-// need no mesh, and the mesh identity, so a renderer refuses cells made for another mesh.
+// The .cells file: what `pelage sim` writes (sim/run/cells_data.h packs a run's cells)
+// and the shader, the fur, `pelage stats` and `pelage preview` read. Self-contained: it
+// carries the CRPS frames and neighbour maps, so tools need no mesh, and the mesh
+// identity, so a renderer refuses cells made for another mesh. A leaf library: core and
+// the CRPS only, so a reader links none of the simulation.
 //
 // Layout, version 2, all little-endian, no padding:
 //   fixed header (80 bytes)
@@ -9,7 +11,8 @@
 //     u64 num_maps               u64 seed               u64 params_bytes
 //     u64 payload_bytes          u64 reserved (0)
 //   payload (payload_bytes)
-//     params: params_bytes of UTF-8 JSON (the preset and run options)
+//     params: params_bytes of UTF-8 JSON (the preset and run options; the preset's
+//         anisotropy field as "anisotropy_field", null when it has none, for the fur)
 //     type table, per type: u32 name_bytes, name, f32 colour[3] (linear RGB),
 //         f32 eumelanin, f32 pheomelanin, f64 division_time (inf = never),
 //         f64 initial_probability
@@ -27,23 +30,35 @@
 // then the structure (monotone rows, indices in range); any failure is an InputError.
 #pragma once
 
+#include <array>
 #include <cstdint>
+#include <limits>
 #include <string>
 #include <vector>
 
 #include "sim/crps/crps.h"
-#include "sim/mosaic/cell_types.h"
-#include "sim/mosaic/cells.h"
 
 namespace pelage::sim {
 
 inline constexpr uint32_t cells_file_version = 2;
+inline constexpr uint32_t cells_file_max_types = 8;
+
+// A row of the type table: what the file stores of a cell type (the simulation's
+// sim::CellType, sim/mosaic/cell_types.h, is converted by sim/run/cells_data.h).
+struct CellsFileType {
+    std::string name;
+    std::array<float, 3> colour{0.5f, 0.5f, 0.5f};  // linear RGB
+    float eumelanin = 0, pheomelanin = 0;           // for the fur shader
+    // The mean time between divisions; inf = never.
+    double division_time = std::numeric_limits<double>::infinity();
+    double initial_probability = 0;
+};
 
 struct CellsData {
     uint64_t mesh_hash = 0;
     uint64_t seed = 0;
     std::string params_json;
-    std::vector<CellType> types;
+    std::vector<CellsFileType> types;
     std::vector<CrpsFrame> frames;
     std::vector<uint32_t> nbr_row;
     std::vector<TriId> nbr;
@@ -62,10 +77,6 @@ struct CellsData {
 
 // Identity of a mesh: FNV-1a 64 over the triangle count, positions and indices.
 uint64_t mesh_hash(const TriangleMesh &mesh);
-
-CellsData make_cells_data(const TriangleMesh &mesh, const Crps &crps,
-                          const CellTypes &types, const Cells &cells,
-                          const std::string &params_json, uint64_t seed);
 
 std::vector<uint8_t> serialize_cells(const CellsData &data);
 // `name` is used in error messages.

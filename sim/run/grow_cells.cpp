@@ -18,6 +18,7 @@
 #include "sim/mesh/mesh_objects.h"
 #include "sim/mosaic/growing_surface.h"
 #include "sim/mosaic/preset.h"
+#include "sim/run/cells_data.h"
 #include "sim/run/setup_step.h"
 #include "sim/run/simulation_surface.h"
 
@@ -163,6 +164,8 @@ GrownCells grow_cells(const GrowRequest &r) {
         {"initial_cells", g.stats.initial_cells},
         {"relax", g.preset.params.relax == sim::RelaxMode::local ? "local" : "global"},
     };
+    // What the fur's `"comb": "field"` needs of the pattern travels in the file.
+    g.params["anisotropy_field"] = recorded_anisotropy_field(g.params["preset"]);
     if (const nlohmann::json h = growth_mesh_hashes(g.preset); !h.empty())
         g.params["growth_meshes_xxh3"] = h;  // absent without mesh keys: files unchanged
     nlohmann::json surface_json = {{"input_triangles", g.cell_scale.input_triangles},
@@ -220,6 +223,9 @@ bool cells_match(const std::string &path, const GrowRequest &r, std::string *why
     if (r.initial_cells > 0 &&
         params.value("initial_cells", uint64_t(0)) != r.initial_cells)
         return differs("grown from another cell count");
+    // The same cells, but the fur's "comb": "field" reads the field the file records.
+    if (!params.contains("anisotropy_field"))
+        return differs("written by an older pelage (no anisotropy field recorded)");
     return true;
 }
 

@@ -61,8 +61,9 @@ struct GrownCells {
 GrownCells grow_cells(const GrowRequest &request);
 
 // Whether the .cells file at `path` was grown from `request`'s preset (same content),
-// seed and mesh (same file content), so growing again would give the same file. `why`
-// says what differs (or that the file is missing or unreadable).
+// seed and mesh (same file content), so growing again would give the same cells, and
+// records what this pelage's readers take from it (the anisotropy field). `why` says
+// what differs (or that the file is missing or unreadable).
 bool cells_match(const std::string &path, const GrowRequest &request, std::string *why);
 
 }  // namespace pelage::sim

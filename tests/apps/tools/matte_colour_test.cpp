@@ -31,8 +31,8 @@ TEST(MatteColour, EachTypeShowsItsAlbedoInAWhiteFurnace) {
     const auto colours = renderer::mean_colour_by_matte(exr, "type");
     ASSERT_EQ(colours.size(), data.types.size());
     for (const renderer::MatteColour &c : colours) {
-        const sim::CellType *type = nullptr;
-        for (const sim::CellType &t : data.types)
+        const sim::CellsFileType *type = nullptr;
+        for (const sim::CellsFileType &t : data.types)
             if (t.name == c.name) type = &t;
         ASSERT_NE(type, nullptr) << c.name;
         EXPECT_GT(c.pixels, 100u) << c.name;

@@ -18,7 +18,7 @@ const std::string mesh_spec = "procedural:icosphere:2";  // 320 triangles
 
 pattern::mosaic::FilteredLook type_look(const pattern::mosaic::MosaicPattern &p,
                                         uint32_t cell) {
-    const sim::CellType &t = p.types()[p.cells().type[cell]];
+    const sim::CellsFileType &t = p.types()[p.cells().type[cell]];
     return {{t.colour[0], t.colour[1], t.colour[2], t.eumelanin, t.pheomelanin}};
 }
 

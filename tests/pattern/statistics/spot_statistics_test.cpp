@@ -11,6 +11,7 @@
 
 #include "sim/cells_io/cells_file.h"
 #include "sim/crps/surface.h"
+#include "sim/run/cells_data.h"
 #include "tests/test_paths.h"
 
 namespace pelage::test {

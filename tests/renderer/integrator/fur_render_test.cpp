@@ -5,10 +5,12 @@
 
 #include <array>
 #include <cmath>
+#include <nlohmann/json.hpp>
 #include <set>
 
 #include "renderer/bsdf/hair_pigments.h"
 #include "renderer/geometry/embree_ray.h"
+#include "sim/cells_io/cells_file.h"
 #include "sim/core/input_error.h"
 #include "sim/mesh/mesh_write_obj.h"
 #include "sim/mesh/procedural_mesh.h"
@@ -594,6 +596,10 @@ TEST(FurComb, FieldFollowsThePatternsAnisotropyField) {
                          nullptr, &err),
               0)
         << err;
+    // The field travels in the file, as the preset gave it.
+    EXPECT_EQ(nlohmann::json::parse(sim::read_cells_file(cells).params_json)
+                  .at("anisotropy_field"),
+              nlohmann::json::parse(R"({"around": "body_axis"})"));
     const renderer::Scene s = c.scene(R"("field")", cells, plugins);
     const renderer::Strands &strands = s.fur()->layers().at(0).strands;
     ASSERT_GT(strands.size(), 500u);
@@ -607,6 +613,22 @@ TEST(FurComb, FieldFollowsThePatternsAnisotropyField) {
         ADD_FAILURE() << "a pattern without a field was accepted";
     } catch (const InputError &e) {
         EXPECT_NE(std::string(e.what()).find("has none"), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find("fur.comb"), std::string::npos) << e.what();
+    }
+
+    // A file from before the field was recorded: grow it again.
+    sim::CellsData old = sim::read_cells_file(cells);
+    nlohmann::json params = nlohmann::json::parse(old.params_json);
+    params.erase("anisotropy_field");
+    old.params_json = params.dump();
+    const std::string older = c.tmp.file("older.cells");
+    sim::write_cells_file(older, old);
+    try {
+        c.scene(R"("field")", older, plugins);
+        ADD_FAILURE() << "a file without the recorded field was accepted";
+    } catch (const InputError &e) {
+        EXPECT_NE(std::string(e.what()).find("pelage sim"), std::string::npos)
+            << e.what();
         EXPECT_NE(std::string(e.what()).find("fur.comb"), std::string::npos) << e.what();
     }
 }

@@ -86,7 +86,7 @@ TEST(ClonalMosaicPlugin, ColourAndAovsAreTheNearestCellsType) {
             index.find_nearest(prim, {float(q.x), float(q.y)});
         ASSERT_EQ(sh.aov_written, 1u);
         ASSERT_EQ(uint32_t(sh.aov[0]), table.id[c.index]);
-        const sim::CellType &type = data.types[table.type[c.index]];
+        const sim::CellsFileType &type = data.types[table.type[c.index]];
         ASSERT_EQ(sh.aov[1], float(table.type[c.index]));
         ASSERT_EQ(sh.cell_type, int32_t(table.type[c.index]));
         for (int k = 0; k < 3; ++k) ASSERT_FLOAT_EQ(sh.albedo[k], type.colour[k]);
@@ -389,7 +389,7 @@ TEST(ClonalMosaicPlugin, WideFootprintsSeeTheFilteredLook) {
     const pattern::mosaic::MosaicLod lod(
         pattern,
         [&](uint32_t c) {
-            const sim::CellType &t = pattern.types()[pattern.cells().type[c]];
+            const sim::CellsFileType &t = pattern.types()[pattern.cells().type[c]];
             return pattern::mosaic::FilteredLook{
                 {t.colour[0], t.colour[1], t.colour[2], t.eumelanin, t.pheomelanin}};
         },

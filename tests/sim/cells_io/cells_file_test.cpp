@@ -11,6 +11,7 @@
 #include "sim/crps/surface.h"
 #include "sim/mosaic/cm_simulation.h"
 #include "sim/mosaic/preset.h"
+#include "sim/run/cells_data.h"
 #include "tests/sim/sim_test_util.h"
 #include "tests/test_paths.h"
 

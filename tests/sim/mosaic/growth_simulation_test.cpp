@@ -13,6 +13,7 @@
 #include "sim/mosaic/cm_simulation.h"
 #include "sim/mosaic/growing_surface.h"
 #include "sim/mosaic/preset.h"
+#include "sim/run/cells_data.h"
 #include "tests/sim/mosaic/growth_test_util.h"
 
 namespace pelage::sim {

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <fstream>
+#include <nlohmann/json.hpp>
 #include <string>
 
 #include "sim/cells_io/cells_file.h"
@@ -57,6 +58,26 @@ TEST(CellsMatch, OneObjectOfAnEditedFileIsGrownAgain) {
     tmp.write("pair.obj", two_objects(0.25));
     EXPECT_FALSE(sim::cells_match(cells, r, &why));
     EXPECT_EQ(why, "grown on another mesh");
+}
+
+// A file an older pelage wrote, without the anisotropy field the fur reads: grown again.
+TEST(CellsMatch, AFileWithoutTheRecordedFieldIsGrownAgain) {
+    TempDir tmp;
+    sim::GrowRequest r;
+    r.mesh = tmp.write("pair.obj", two_objects(0)) + "#a";
+    r.preset = two_type_preset(tmp, 12);
+    r.simplify = false;
+    const std::string cells = tmp.file("a.cells");
+    sim::CellsData data = sim::grow_cells(r).data;
+    nlohmann::json params = nlohmann::json::parse(data.params_json);
+    ASSERT_TRUE(params.contains("anisotropy_field"));
+    EXPECT_TRUE(params["anisotropy_field"].is_null());  // the preset has none
+    params.erase("anisotropy_field");
+    data.params_json = params.dump();
+    sim::write_cells_file(cells, data);
+    std::string why;
+    EXPECT_FALSE(sim::cells_match(cells, r, &why));
+    EXPECT_NE(why.find("older pelage"), std::string::npos) << why;
 }
 
 TEST(CellsMatch, AMeshReferenceIsHashedByContent) {

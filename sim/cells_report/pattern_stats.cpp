@@ -1,4 +1,4 @@
-#include "sim/cells_io/pattern_stats.h"
+#include "sim/cells_report/pattern_stats.h"
 
 namespace pelage::sim {
 

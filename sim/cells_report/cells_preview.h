@@ -2,6 +2,7 @@
 // orthographic projection, with every cell drawn as a dot of its type's colour.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <vector>
 

@@ -1,4 +1,4 @@
-#include "sim/cells_io/cells_preview.h"
+#include "sim/cells_report/cells_preview.h"
 
 #include <algorithm>
 #include <cmath>

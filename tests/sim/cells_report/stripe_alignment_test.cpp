@@ -1,7 +1,7 @@
-// The stripe alignment measure (sim/cells_io/stripe_alignment.h) on synthetic stripes of
-// known direction: straight stripes on a plane against fields at known angles, and
+// The stripe alignment measure (sim/cells_report/stripe_alignment.h) on synthetic stripes
+// of known direction: straight stripes on a plane against fields at known angles, and
 // latitude bands on a sphere against the circles about its axis and the meridians.
-#include "sim/cells_io/stripe_alignment.h"
+#include "sim/cells_report/stripe_alignment.h"
 
 #include <gtest/gtest.h>
 
@@ -11,6 +11,7 @@
 #include "sim/field/field_spec.h"
 #include "sim/field/vector_heat.h"
 #include "sim/mesh/procedural_mesh.h"
+#include "sim/run/cells_data.h"
 
 namespace pelage::sim {
 namespace {

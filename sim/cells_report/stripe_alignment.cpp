@@ -1,4 +1,4 @@
-#include "sim/cells_io/stripe_alignment.h"
+#include "sim/cells_report/stripe_alignment.h"
 
 #include <algorithm>
 #include <cmath>
