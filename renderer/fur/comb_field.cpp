@@ -171,8 +171,8 @@ void carry_to_pose(std::vector<float> &by_corner, const std::vector<uint32_t> &t
 }
 
 sim::FieldSpec pattern_field(const std::string &cells_path, const std::string &field) {
-    const sim::CellsData data = sim::read_cells_file(cells_path);
-    const nlohmann::json params = nlohmann::json::parse(data.params_json, nullptr, false);
+    const nlohmann::json params =
+        nlohmann::json::parse(sim::read_cells_params(cells_path), nullptr, false);
     // The simulation records the preset's field, null when it has none (sim/run/
     // cells_data.h); a file without the key was written by an older pelage.
     if (!params.is_object() || !params.contains("anisotropy_field"))

@@ -318,6 +318,35 @@ CellsData read_cells_file(const std::string &path) {
     return parse_cells(bytes, path);
 }
 
+std::string read_cells_params(const std::string &path) {
+    std::ifstream in(path, std::ios::binary | std::ios::ate);
+    if (!in) throw InputError(path, 0, "", "cannot open .cells file");
+    const std::streamoff size = in.tellg();
+    std::vector<uint8_t> head(header_bytes);
+    in.seekg(0);
+    if (size < std::streamoff(header_bytes + 8) ||
+        !in.read(reinterpret_cast<char *>(head.data()), std::streamsize(header_bytes)))
+        throw InputError(path, 0, "header", "truncated: not a .cells file");
+    if (std::memcmp(head.data(), magic, 8) != 0)
+        throw InputError(path, 0, "magic", "not a .cells file");
+    Reader r(head, head.size(), path);
+    r.seek(8);
+    const uint32_t version = r.get<uint32_t>("version");
+    if (version != cells_file_version && version != 1)
+        r.fail("version", "unsupported version " + std::to_string(version) +
+                              " (this build reads " + std::to_string(cells_file_version) +
+                              ")");
+    r.seek(56);  // past num_types, mesh_hash, the three counts and the seed
+    const uint64_t params_bytes = r.get<uint64_t>("params_bytes");
+    if (params_bytes > max_params_bytes ||
+        params_bytes > uint64_t(size) - header_bytes - 8)
+        r.fail("params_bytes", "out of range");
+    std::string params(size_t(params_bytes), '\0');
+    if (!in.read(params.data(), std::streamsize(params_bytes)))
+        throw InputError(path, 0, "params", "read failed");
+    return params;
+}
+
 TriangleMesh surface_mesh(const CellsData &data, const std::string &path) {
     TriangleMesh corners;
     corners.positions.reserve(3 * data.num_triangles());

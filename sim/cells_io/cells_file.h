@@ -84,6 +84,11 @@ CellsData parse_cells(const std::vector<uint8_t> &bytes, const std::string &name
 
 void write_cells_file(const std::string &path, const CellsData &data);  // atomic
 CellsData read_cells_file(const std::string &path);                     // one bulk read
+// The params JSON alone (the preset and run options the cells were grown with), read
+// from the header and the bytes after it: what deciding whether a file is stale, or
+// recovering the field it was grown with, needs. The checksum is the whole file's, so it
+// is checked when the cells are read.
+std::string read_cells_params(const std::string &path);
 // The surface the cells were grown on, rebuilt from the file's frames (each reference
 // triangle carried back to 3D; corners welded as pelage welds a loaded mesh): the same
 // triangles in the same order, so the cells' frames are its CRPS frames.

@@ -201,7 +201,7 @@ bool cells_match(const std::string &path, const GrowRequest &r, std::string *why
     if (!probe) return differs("no file");
     nlohmann::json params;
     try {
-        params = nlohmann::json::parse(sim::read_cells_file(path).params_json);
+        params = nlohmann::json::parse(sim::read_cells_params(path));
     } catch (const std::exception &) {
         return differs("unreadable");
     }

@@ -59,6 +59,41 @@ TEST(CellsFile, RoundTripIsBitExact) {
         }
 }
 
+// The params alone, read from the header and the bytes after it, are the whole file's
+// params; a file that is not a .cells file, or whose header claims more params than it
+// holds, is refused.
+TEST(CellsFile, ParamsAloneAreTheFilesParams) {
+    const Surface s = build_surface("procedural:sphere:6x6");
+    const CellsData d = small_cells(s);
+    test::TempDir tmp;
+    write_cells_file(tmp.file("a.cells"), d);
+    EXPECT_EQ(read_cells_params(tmp.file("a.cells")), d.params_json);
+    ASSERT_GT(d.params_json.size(), 100u);
+    const std::vector<uint8_t> good = serialize_cells(d);
+    auto write = [&](const std::vector<uint8_t> &b) {
+        std::ofstream(tmp.file("b.cells"), std::ios::binary)
+            .write(reinterpret_cast<const char *>(b.data()), std::streamsize(b.size()));
+        return tmp.file("b.cells");
+    };
+    auto refused = [&](const std::vector<uint8_t> &b) {
+        try {
+            read_cells_params(write(b));
+        } catch (const InputError &) {
+            return true;
+        }
+        return false;
+    };
+    EXPECT_TRUE(refused(std::vector<uint8_t>(good.begin(), good.begin() + 60)));
+    auto not_cells = good;
+    not_cells[0] = 'X';
+    EXPECT_TRUE(refused(not_cells));
+    auto too_long = good;
+    const uint64_t claimed = good.size();
+    std::memcpy(too_long.data() + 56, &claimed, 8);  // params_bytes
+    EXPECT_TRUE(refused(too_long));
+    EXPECT_THROW(read_cells_params(tmp.file("missing.cells")), InputError);
+}
+
 // FNV-1a 64 as the file format defines its checksum (cells_file.h).
 uint64_t fnv1a_64(const uint8_t *p, size_t n) {
     uint64_t h = 0xcbf29ce484222325ull;
