@@ -1,6 +1,6 @@
 // `pelage fields [TABLE]`: the scene file's reference tables, printed from the table the
 // parser reads by (renderer/scene_file/scene_fields.h), as Markdown: the same text as
-// docs/guide/scene-format.md, which a test keeps equal to it.
+// docs/guide/scene-format.md and fur.md, which a test keeps equal to it.
 #include <cstdio>
 #include <memory>
 #include <string>
@@ -46,11 +46,12 @@ int run(const FieldsOptions &o) {
 
 Runner add_fields_command(CLI::App &app) {
     auto o = std::make_shared<FieldsOptions>();
-    CLI::App *sub = app.add_subcommand(
-        "fields", "Print the scene file's fields (docs/guide/scene-format.md's tables)");
+    CLI::App *sub = app.add_subcommand("fields",
+                                       "Print the scene file's fields (the tables of "
+                                       "docs/guide/scene-format.md, fur.md)");
     sub->add_option("table", o->table,
                     "Only this table: camera, film, lights, objects, transform, "
-                    "material, integrator or animation");
+                    "material, integrator, animation or fur");
     return [o] { return run(*o); };
 }
 

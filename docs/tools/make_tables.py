@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Rewrites the generated tables of docs/performance.md and docs/validation.md from the
 JSON files in docs/data/ (written by docs/tools/run_benchmarks.sh), and the scene file's
-reference tables in docs/guide/scene-format.md from `pelage fields` (the table the
+reference tables in docs/guide/scene-format.md and fur.md from `pelage fields` (the table the
 parser reads by, renderer/scene_file/scene_fields.cpp; $PELAGE or build/bin/pelage).
 
 A generated region is everything between
@@ -26,7 +26,7 @@ import sys
 DOCS = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 DATA = os.path.join(DOCS, "data")
 FILES = ["performance.md", "validation.md", "guide/presets.md", "guide/growth-and-control.md",
-         "guide/explore.md", "guide/scene-format.md"]
+         "guide/explore.md", "guide/scene-format.md", "guide/fur.md"]
 PELAGE = os.environ.get("PELAGE", os.path.join(os.path.dirname(DOCS), "build", "bin", "pelage"))
 MARKER = re.compile(
     r"(<!-- BEGIN generated: (?P<name>[\w.-]+) -->\n)(?P<body>.*?)(<!-- END generated: (?P=name) -->)",
@@ -676,7 +676,7 @@ def t_fields(name):
 
 
 for _name in ("camera", "film", "lights", "objects", "transform", "material", "integrator",
-              "animation"):
+              "animation", "fur"):
     TABLES["fields-" + _name] = lambda n=_name: t_fields(n)
 
 

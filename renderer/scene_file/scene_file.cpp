@@ -25,14 +25,13 @@ using json =
 using sim::json_type_name;
 
 // One object of the scene file (sim/core/json_fields.h), with paths resolved against the
-// file's folder. It reads only the fields scene_fields.h declares for its block, and
-// records the files its input fields name in the scene (SceneDesc::inputs).
-class Reader : public sim::JsonObjectFields {
+// file's folder. It reads only the fields scene_fields.h declares for its block
+// (DeclaredFields), and records the files its input fields name in the scene
+// (SceneDesc::inputs).
+class Reader : public DeclaredFields {
   public:
     Reader(const json &j, std::string path, SceneDesc &scene)
-        : JsonObjectFields(j, path, scene.path),
-          m_scene(scene),
-          m_block(scene_block_of(path)) {}
+        : DeclaredFields(j, std::move(path), scene.path), m_scene(scene) {}
 
     // A path relative to the scene file, made absolute.
     std::string path(const std::string &key, bool required = false) {
@@ -42,8 +41,7 @@ class Reader : public sim::JsonObjectFields {
             return s;
         }
         const std::string resolved = resolve(s);
-        if (scene_field(m_block, key)->use == FieldUse::input)
-            record_input(field(key), resolved);
+        if (use(key) == FieldUse::input) record_input(field(key), resolved);
         return resolved;
     }
     std::string resolve(const std::string &s) const {
@@ -70,21 +68,8 @@ class Reader : public sim::JsonObjectFields {
     }
     static SceneDesc &scene_of(const Reader &r) { return r.m_scene; }
 
-  protected:
-    // Every field read is declared: a field missing from the table would be read here
-    // and left out of the documentation and of what --resume trusts.
-    void asked(const std::string &key) const override {
-        if (!scene_field(m_block, key))
-            throw std::logic_error("scene_file.cpp reads " + join(m_block, key) +
-                                   ", which scene_fields.cpp does not declare");
-    }
-    std::vector<std::string> known_keys() const override {
-        return scene_field_keys(m_block);
-    }
-
   private:
     SceneDesc &m_scene;
-    std::string m_block;
 };
 
 CameraDesc read_camera(Reader r) {

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "renderer/scene_file/scene_fields.h"
 #include "sim/control/control_parse.h"
 #include "sim/core/input_error.h"
 #include "sim/core/json_fields.h"
@@ -168,7 +169,7 @@ FurParams::Pigment colour_by_region(const JsonObjectFields &r, const json &v,
 
 FurParams read_fur(const json &j, const std::string &field,
                    const std::string &scene_path) {
-    JsonObjectFields r(j, field, scene_path);
+    DeclaredFields r(j, field, scene_path);
     FurParams p;
     using F = FurParams;
     for (const auto &[key, bit] :
