@@ -691,6 +691,17 @@ constexpr SceneField fields[] = {
     {"objects.animation", "loop"},
     {"objects.animation", "start"},
     {"animation", "turntable"},
+    {"film", "filter"},
+    // A groom's values per cell type (docs/guide/fur.md, "A groom by cell type and body
+    // region").
+    {"objects.fur", "root_radius_by_type"},
+    {"objects.fur", "tip_radius_by_type"},
+    {"objects.fur", "comb_angle_by_type"},
+    {"objects.fur", "curl_radius_by_type"},
+    {"objects.fur", "curl_turns_by_type"},
+    {"objects.fur", "clump_by_type"},
+    {"objects.fur", "beta_m_by_type"},
+    {"objects.fur", "beta_n_by_type"},
 };
 
 // Where each reference table is, and its columns.
