@@ -175,19 +175,29 @@ std::vector<uint8_t> serialize_cells(const CellsData &d) {
     return std::move(w.bytes());
 }
 
-CellsData parse_cells(const std::vector<uint8_t> &b, const std::string &name) {
-    // --- Header, and sizes against the file size before anything is allocated ---
-    if (b.size() < header_bytes + 8)
-        throw InputError(name, 0, "header", "truncated: not a .cells file");
-    if (std::memcmp(b.data(), magic, 8) != 0)
-        throw InputError(name, 0, "magic", "not a .cells file");
-    Reader r(b, b.size(), name);
+namespace {
+
+// The magic and the version, the first 12 bytes of a file at least `header_bytes` long;
+// `r` reads on after them.
+uint32_t read_version(Reader &r, const std::vector<uint8_t> &b) {
+    if (std::memcmp(b.data(), magic, 8) != 0) r.fail("magic", "not a .cells file");
     r.seek(8);
     const uint32_t version = r.get<uint32_t>("version");
     if (version != cells_file_version && version != 1)
         r.fail("version", "unsupported version " + std::to_string(version) +
                               " (this build reads " + std::to_string(cells_file_version) +
                               ")");
+    return version;
+}
+
+}  // namespace
+
+CellsData parse_cells(const std::vector<uint8_t> &b, const std::string &name) {
+    // --- Header, and sizes against the file size before anything is allocated ---
+    if (b.size() < header_bytes + 8)
+        throw InputError(name, 0, "header", "truncated: not a .cells file");
+    Reader r(b, b.size(), name);
+    const uint32_t version = read_version(r, b);
     CellsData d;
     const uint32_t num_types = r.get<uint32_t>("num_types");
     d.mesh_hash = r.get<uint64_t>("mesh_hash");
@@ -327,15 +337,8 @@ std::string read_cells_params(const std::string &path) {
     if (size < std::streamoff(header_bytes + 8) ||
         !in.read(reinterpret_cast<char *>(head.data()), std::streamsize(header_bytes)))
         throw InputError(path, 0, "header", "truncated: not a .cells file");
-    if (std::memcmp(head.data(), magic, 8) != 0)
-        throw InputError(path, 0, "magic", "not a .cells file");
     Reader r(head, head.size(), path);
-    r.seek(8);
-    const uint32_t version = r.get<uint32_t>("version");
-    if (version != cells_file_version && version != 1)
-        r.fail("version", "unsupported version " + std::to_string(version) +
-                              " (this build reads " + std::to_string(cells_file_version) +
-                              ")");
+    read_version(r, head);
     r.seek(56);  // past num_types, mesh_hash, the three counts and the seed
     const uint64_t params_bytes = r.get<uint64_t>("params_bytes");
     if (params_bytes > max_params_bytes ||
