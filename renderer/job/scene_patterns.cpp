@@ -41,12 +41,15 @@ sim::GrownCells grow_cells_shown(sim::GrowRequest r, const std::string &label,
 void grow_scene_patterns(const SceneDesc &scene,
                          const std::function<void(const std::string &)> &note,
                          bool show) {
-    for (const ObjectDesc &o : scene.objects) {
+    for (size_t i = 0; i < scene.objects.size(); ++i) {
+        const ObjectDesc &o = scene.objects[i];
         if (!o.pattern) continue;
         sim::GrowRequest request;
         request.mesh = o.mesh;
         request.preset = o.pattern->preset;
         request.preset_dir = find_data("scenes/presets");
+        request.preset_file = scene.path;
+        request.preset_field = "objects[" + std::to_string(i) + "].pattern.preset";
         request.seed = o.pattern->seed;
         std::string why;
         if (sim::cells_match(o.cells, request, &why)) continue;

@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "renderer/animation/rig.h"
+#include "renderer/image/frame_pattern.h"
 #include "renderer/job/frame_list.h"
 #include "renderer/look/look_objects.h"
 #include "sim/core/input_error.h"
@@ -171,7 +172,15 @@ LookPlan plan_look(const LookRequest &o,
     framing.long_axis = clip.rest_long_axis;
     setup.framing = frame_points(points, framing);
     setup.up = o.up;
-    const std::string stem = output.stem().string();
+    // A frame token before the extension (fox.####.exr, fox.%04d.exr) names the frames
+    // as `pelage render -o` takes it; the pattern, the scene and the preview are named
+    // after the text before it.
+    std::string stem = output.stem().string(), token;
+    if (const size_t dot = stem.rfind('.');
+        dot != std::string::npos && has_frame_token(stem.substr(dot + 1))) {
+        token = stem.substr(dot);
+        stem.resize(dot);
+    }
     setup.mesh = mesh_reference(grown_on, dir);
     if (!objects.animal.empty()) {
         setup.object_name = objects.animal;
@@ -179,11 +188,13 @@ LookPlan plan_look(const LookRequest &o,
     }
     setup.cells = stem + ".cells";
     setup.output = output.filename().string();
-    setup.preview = stem + "_preview.png";
+    setup.preview = stem + "_preview" + token + ".png";
     if (!o.clip.empty()) {
         // One image per frame: the frame number before the extension.
-        setup.output = stem + ".####.exr";
-        setup.preview = stem + "_preview.####.png";
+        if (token.empty()) {
+            setup.output = stem + ".####.exr";
+            setup.preview = stem + "_preview.####.png";
+        }
         setup.clip = o.clip;
         setup.frames = std::max(clip.frames.back(), clip.last_frame) + 1;
         setup.fps = o.fps;

@@ -12,6 +12,7 @@
 #include "sim/core/colour_spelling.h"
 #include "sim/core/input_error.h"
 #include "sim/core/json_fields.h"
+#include "sim/core/spelling.h"
 
 namespace pelage::sim {
 
@@ -363,27 +364,35 @@ Preset load_preset_file(const std::string &path) {
     return parse_preset(ss.str(), path);
 }
 
-Preset load_preset(const std::string &name_or_path, const std::string &presets_dir) {
+std::vector<std::string> preset_names(const std::string &presets_dir) {
+    std::vector<std::string> names;
+    std::error_code ec;
+    for (const auto &e : std::filesystem::directory_iterator(presets_dir, ec))
+        if (e.path().extension() == ".json") names.push_back(e.path().stem().string());
+    std::sort(names.begin(), names.end());
+    return names;
+}
+
+Preset load_preset(const std::string &name_or_path, const std::string &presets_dir,
+                   const std::string &file, const std::string &field) {
     const bool is_path = name_or_path.find('/') != std::string::npos ||
                          (name_or_path.size() > 5 && name_or_path.ends_with(".json"));
     if (is_path) return load_preset_file(name_or_path);
-    const std::filesystem::path file =
+    const std::filesystem::path path =
         std::filesystem::path(presets_dir) / (name_or_path + ".json");
-    if (!std::filesystem::exists(file)) {
-        std::vector<std::string> names;
-        std::error_code ec;
-        for (const auto &e : std::filesystem::directory_iterator(presets_dir, ec))
-            if (e.path().extension() == ".json")
-                names.push_back(e.path().stem().string());
-        std::sort(names.begin(), names.end());
+    if (!std::filesystem::exists(path)) {
+        const std::vector<std::string> names = preset_names(presets_dir);
         std::string list;
         for (const auto &n : names) list += (list.empty() ? "" : ", ") + n;
-        throw InputError("", 0, "--preset",
-                         "unknown preset '" + name_or_path + "' (available: " +
-                             (list.empty() ? "none found in " + presets_dir : list) +
-                             ")");
+        const std::string guess = closest_name(name_or_path, names);
+        throw InputError(
+            file, 0, field,
+            "unknown preset '" + name_or_path + "'" +
+                (guess.empty() ? "" : " (did you mean '" + guess + "'?)") +
+                "; available: " + (list.empty() ? "none found in " + presets_dir : list) +
+                " (`pelage presets` describes them)");
     }
-    return load_preset_file(file.string());
+    return load_preset_file(path.string());
 }
 
 }  // namespace pelage::sim

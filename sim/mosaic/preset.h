@@ -5,6 +5,7 @@
 
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "sim/control/control_spec.h"
 #include "sim/growth/growth_spec.h"
@@ -30,7 +31,12 @@ Preset parse_preset(const std::string &json_text, const std::string &file);
 Preset load_preset_file(const std::string &path);
 
 // A preset by name ("giraffe-reticulata" → presets_dir/giraffe-reticulata.json) or by
-// path (anything ending in .json or containing '/'). Unknown names list what exists.
-Preset load_preset(const std::string &name_or_path, const std::string &presets_dir);
+// path (anything ending in .json or containing '/'). An unknown name is an InputError at
+// `field` of `file` ("--preset" on the command line; "objects[0].pattern.preset" of a
+// scene) naming the closest shipped preset and listing them all.
+Preset load_preset(const std::string &name_or_path, const std::string &presets_dir,
+                   const std::string &file = "", const std::string &field = "--preset");
+// The shipped presets' names (presets_dir/NAME.json), sorted.
+std::vector<std::string> preset_names(const std::string &presets_dir);
 
 }  // namespace pelage::sim

@@ -37,7 +37,8 @@ nlohmann::json growth_mesh_hashes(const sim::Preset &preset) {
 }
 
 sim::Preset read_preset(const GrowRequest &r) {
-    sim::Preset preset = sim::load_preset(r.preset, r.preset_dir);
+    sim::Preset preset =
+        sim::load_preset(r.preset, r.preset_dir, r.preset_file, r.preset_field);
     if (r.relax == "local")
         preset.params.relax = sim::RelaxMode::local;
     else if (r.relax == "global")

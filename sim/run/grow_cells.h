@@ -22,6 +22,9 @@ struct GrowRequest {
     std::string mesh;        // a mesh file or a "procedural:..." spec
     std::string preset;      // a preset name (of `preset_dir`) or a preset file
     std::string preset_dir;  // the shipped presets' folder
+    // Where `preset` was given, for an unknown name's error: the file ("" for the
+    // command line) and its field ("--preset", "objects[0].pattern.preset").
+    std::string preset_file, preset_field = "--preset";
     uint64_t seed = 1;
     uint64_t initial_cells = 0;  // > 0 overrides the preset's count
     std::string relax;           // "", "local" or "global" (overrides the preset)

@@ -173,5 +173,27 @@ TEST(ClipFramesCli, AFrameOfARunIsTheFrameRenderedAlone) {
     }
 }
 
+// A frame token in `look -o` names the frames as `render -o` takes it: the frames are
+// numbered in its place and its style, and the pattern, the scene and the previews are
+// named after the text before it (not "fox.####.cells").
+TEST(ClipFramesCli, LookHonoursTheFrameTokenOfItsOutput) {
+    TempDir tmp;
+    const std::string mesh = tmp.write("strip.gltf", skinned_strip());
+    std::string err;
+    for (const std::string &name : {std::string("a.####.exr"), std::string("b.%03d.exr")})
+        ASSERT_EQ(run_pelage("look " + mesh + " --clip bend --frames 0-1 --res 32x18 " +
+                                 "--spp 1 -q -o " + tmp.file(name),
+                             nullptr, &err),
+                  0)
+            << name << ": " << err;
+    for (const char *f : {"a.0000.exr", "a.0001.exr", "a.cells", "a.json",
+                          "a_preview.0000.png", "a_preview.0001.png", "b.000.exr",
+                          "b.001.exr", "b.cells", "b.json", "b_preview.000.png"})
+        EXPECT_TRUE(std::ifstream(tmp.file(f)).good()) << f << " missing";
+    for (const char *f : {"a.####.0000.exr", "a.####.cells", "a.####.json",
+                          "b.%03d.0000.exr", "b.%03d.cells"})
+        EXPECT_FALSE(std::ifstream(tmp.file(f)).good()) << f << " written";
+}
+
 }  // namespace
 }  // namespace pelage::test

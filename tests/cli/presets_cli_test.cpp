@@ -1,0 +1,67 @@
+// `pelage presets` lists every shipped preset (the files of scenes/presets, listed here
+// on their own) with the file's own description and source; a mistyped name is exit 2
+// naming the closest preset, on the command line and at its JSON path in a scene.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <set>
+#include <string>
+
+#include "tests/test_paths.h"
+
+namespace pelage::test {
+namespace {
+
+TEST(PresetsCli, ListsEveryShippedPresetWithItsOwnDescription) {
+    std::set<std::string> files;
+    const std::string dir = std::string(PELAGE_SOURCE_DIR) + "/scenes/presets";
+    for (const auto &e : std::filesystem::directory_iterator(dir))
+        if (e.path().extension() == ".json") files.insert(e.path().stem().string());
+    ASSERT_GE(files.size(), 20u);
+    std::string out, err;
+    ASSERT_EQ(run_pelage("presets --json", &out, &err), 0) << err;
+    const nlohmann::json j = nlohmann::json::parse(out);
+    std::set<std::string> listed;
+    for (const nlohmann::json &p : j["presets"]) {
+        const std::string name = p["name"];
+        listed.insert(name);
+        std::ifstream in(dir + "/" + name + ".json");
+        const nlohmann::json file = nlohmann::json::parse(in);
+        EXPECT_EQ(p["description"], file["description"]) << name;
+        EXPECT_EQ(p["source"], file.value("source", "")) << name;
+        EXPECT_FALSE(p["description"].get<std::string>().empty()) << name;
+    }
+    EXPECT_EQ(listed, files);
+    // The text form names each one on a line of its own.
+    ASSERT_EQ(run_pelage("presets", &out, &err), 0) << err;
+    for (const std::string &name : files)
+        EXPECT_NE(out.find("\n" + name + "\n"), std::string::npos) << name;
+}
+
+TEST(PresetsCli, AMistypedNameNamesTheClosestPresetWhereItWasGiven) {
+    std::string out, err;
+    EXPECT_EQ(run_pelage("presets girafe-reticulata", &out, &err), 2);
+    EXPECT_NE(err.find("--preset: unknown preset 'girafe-reticulata' (did you mean "
+                       "'giraffe-reticulata'?)"),
+              std::string::npos)
+        << err;
+    TempDir tmp;
+    const std::string scene = tmp.write("s.json", R"({
+        "camera": {},
+        "objects": [{"mesh": "procedural:sphere:8x8", "cells": "s.cells",
+                     "pattern": {"preset": "zebar"},
+                     "material": {"shader": "clonal_mosaic"}}]
+    })");
+    EXPECT_EQ(run_pelage("render " + scene + " -q -o " + tmp.file("s.exr"), &out, &err),
+              2);
+    EXPECT_NE(err.find(scene + ": objects[0].pattern.preset: unknown preset 'zebar' "
+                               "(did you mean 'zebra'?)"),
+              std::string::npos)
+        << err;
+    EXPECT_FALSE(std::filesystem::exists(tmp.file("s.exr")));
+}
+
+}  // namespace
+}  // namespace pelage::test
