@@ -40,7 +40,8 @@ int run(const PresetsOptions &o) {
     const std::string dir = data_path("scenes/presets");
     std::vector<std::string> names = sim::preset_names(dir);
     if (!o.name.empty()) {
-        sim::load_preset(o.name, dir);  // an unknown name: the error lists them
+        sim::load_preset(o.name, dir, "",
+                         "NAME");  // an unknown name: the error lists them
         names = {o.name};
     }
     std::vector<PresetText> presets;

@@ -37,17 +37,25 @@ TEST(PresetsCli, ListsEveryShippedPresetWithItsOwnDescription) {
     // The text form names each one on a line of its own.
     ASSERT_EQ(run_pelage("presets", &out, &err), 0) << err;
     for (const std::string &name : files)
-        EXPECT_NE(out.find("\n" + name + "\n"), std::string::npos) << name;
+        EXPECT_NE(("\n" + out).find("\n" + name + "\n"), std::string::npos) << name;
 }
 
 TEST(PresetsCli, AMistypedNameNamesTheClosestPresetWhereItWasGiven) {
     std::string out, err;
     EXPECT_EQ(run_pelage("presets girafe-reticulata", &out, &err), 2);
-    EXPECT_NE(err.find("--preset: unknown preset 'girafe-reticulata' (did you mean "
+    EXPECT_NE(err.find("NAME: unknown preset 'girafe-reticulata' (did you mean "
                        "'giraffe-reticulata'?)"),
               std::string::npos)
         << err;
     TempDir tmp;
+    EXPECT_EQ(run_pelage("sim --mesh procedural:sphere:8x8 --preset teo-leapard -q -o " +
+                             tmp.file("x.cells"),
+                         &out, &err),
+              2);
+    EXPECT_NE(err.find("--preset: unknown preset 'teo-leapard' (did you mean "
+                       "'teo-leopard'?)"),
+              std::string::npos)
+        << err;
     const std::string scene = tmp.write("s.json", R"({
         "camera": {},
         "objects": [{"mesh": "procedural:sphere:8x8", "cells": "s.cells",
