@@ -29,6 +29,7 @@ Runner add_render_command(CLI::App &app);
 Runner add_shaders_command(CLI::App &app);
 Runner add_fields_command(CLI::App &app);
 Runner add_presets_command(CLI::App &app);
+Runner add_info_command(CLI::App &app);
 Runner add_compare_command(CLI::App &app);
 Runner add_cells_command(CLI::App &app);
 Runner add_lookup_command(CLI::App &app);

@@ -108,6 +108,7 @@ extern "C" __attribute__((visibility("default"))) int pelage_cli_main(int argc,
     add(renderer::cli::add_shaders_command);
     add(renderer::cli::add_fields_command);
     add(renderer::cli::add_presets_command);
+    add(renderer::cli::add_info_command);
     add(renderer::cli::add_compare_command);
     add(renderer::cli::add_cells_command);
     add(renderer::cli::add_lookup_command);

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <memory>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -28,6 +29,18 @@ bool Rig::skinned() const {
     for (const RigData::Piece &p : m->pieces)
         if (!p.bones.empty()) return true;
     return false;
+}
+
+size_t Rig::num_bones() const {
+    std::set<int> joints;
+    for (const RigData::Piece &p : m->pieces)
+        for (const RigData::Bone &b : p.bones) joints.insert(b.node);
+    return joints.size();
+}
+size_t Rig::num_morph_targets() const {
+    size_t n = 0;
+    for (const RigData::Piece &p : m->pieces) n += p.targets.size();
+    return n;
 }
 
 int Rig::clip(const std::string &name, const std::string &field) const {

@@ -31,7 +31,13 @@ class Rig {
     // takes it). Throws pelage::InputError naming the file: unreadable, not a format
     // with animation (OFF, PLY, OBJ, procedural meshes), no clips, a bone naming no node,
     // a skinned vertex whose weights do not sum to 1.
-    static Rig read(const std::string &mesh_ref);
+    // With Clips::optional a file without clips is no error (its rig poses nothing):
+    // what listing a file's contents needs (`pelage info`).
+    enum class Clips { required, optional };
+    static Rig read(const std::string &mesh_ref, Clips clips = Clips::required);
+    // Whether the reference's format can carry a rig at all: files read through assimp,
+    // not OFF, PLY, OBJ or procedural meshes.
+    static bool format_has_animation(const std::string &mesh_ref);
 
     const std::string &path() const;
     // The clips' names in file order (assimp's names: glTF's animation names).
@@ -45,6 +51,8 @@ class Rig {
     bool moves_mesh(int clip) const;
     size_t num_vertices() const;  // read_assimp()'s vertex count for the same reference
     bool skinned() const;
+    size_t num_bones() const;          // the distinct joint nodes of its skins
+    size_t num_morph_targets() const;  // summed over its meshes
 
     // Every vertex at `seconds` into `clip`: the rig's numbering, object space of the
     // file. Throws InputError naming the file and the clip when a position is not

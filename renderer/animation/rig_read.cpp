@@ -36,11 +36,15 @@ std::string lower_extension(const std::string &path) {
     return e;
 }
 
+bool has_animation_format(const std::string &mesh_ref, const std::string &ext) {
+    return mesh_ref.rfind("procedural:", 0) != 0 && ext != "off" && ext != "ply" &&
+           ext != "obj" && sim::is_mesh_extension(ext);
+}
+
 // The format check before any reading: only files read through assimp carry animation.
 void check_has_animation(const std::string &mesh_ref, const std::string &path,
                          const std::string &ext) {
-    if (mesh_ref.rfind("procedural:", 0) == 0 || ext == "off" || ext == "ply" ||
-        ext == "obj" || !sim::is_mesh_extension(ext))
+    if (!has_animation_format(mesh_ref, ext))
         throw InputError(path, 0, "",
                          "has no animation: skins, morph targets and clips come from "
                          "files read through assimp (glTF, FBX, Collada, ...)");
@@ -265,7 +269,6 @@ void RigReader::read_clips(const aiScene &scene, RigData &d) const {
         d.clip_names.push_back(clip.name);
         d.clips.push_back(std::move(clip));
     }
-    if (d.clips.empty()) throw InputError(path, 0, "", "the file has no animation clips");
 }
 
 // A clip, its keys in seconds.
@@ -311,7 +314,12 @@ void note_renormalised(const RigReader &reader) {
 
 }  // namespace
 
-Rig Rig::read(const std::string &mesh_ref) {
+bool Rig::format_has_animation(const std::string &mesh_ref) {
+    return has_animation_format(mesh_ref,
+                                lower_extension(sim::parse_mesh_spec(mesh_ref).path));
+}
+
+Rig Rig::read(const std::string &mesh_ref, Clips clips) {
     const sim::MeshSpec spec = sim::parse_mesh_spec(mesh_ref);
     const std::string &path = spec.path;
     const std::string ext = lower_extension(path);
@@ -330,6 +338,8 @@ Rig Rig::read(const std::string &mesh_ref) {
 
     reader.read_pieces(scene, walk, spec.object, *d);
     reader.read_clips(scene, *d);
+    if (d->clips.empty() && clips == Clips::required)
+        throw InputError(path, 0, "", "the file has no animation clips");
     note_renormalised(reader);
     return Rig(std::move(d));
 }
