@@ -52,7 +52,15 @@ void grow_scene_patterns(const SceneDesc &scene,
         request.preset_field = "objects[" + std::to_string(i) + "].pattern.preset";
         request.seed = o.pattern->seed;
         std::string why;
-        if (sim::cells_match(o.cells, request, &why)) continue;
+        if (sim::cells_match(o.cells, request, &why)) {
+            // Said, so that a user who expects a new coat knows why none was grown.
+            if (note)
+                note(
+                    fmt::format("{}: grown from the same mesh, preset and seed; reused "
+                                "(delete it to grow the pattern again)",
+                                o.cells));
+            continue;
+        }
         if (note)
             note(fmt::format("{}: {}, growing {} (seed {}) on {}", o.cells, why,
                              o.pattern->preset, o.pattern->seed, o.mesh));

@@ -18,7 +18,8 @@ sim::GrownCells grow_cells_shown(sim::GrowRequest request, const std::string &la
 
 // Grows every object's "pattern" whose cells file is missing or was grown otherwise
 // (sim::cells_match), writing the file atomically. `note` (when set) is told why and
-// what it took; with `show`, the growth draws its set-up steps and bar on a terminal.
+// what it took, or that a file was reused; with `show`, the growth draws its set-up
+// steps and bar on a terminal.
 void grow_scene_patterns(const SceneDesc &scene,
                          const std::function<void(const std::string &)> &note, bool show);
 // The same, the notes on stderr unless `quiet` (stdout may carry a command's JSON).

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <map>
 #include <nlohmann/json.hpp>
 #include <sstream>
@@ -237,6 +238,48 @@ TEST(LookCli, PlaysAClipFramedOnEveryPose) {
     EXPECT_EQ(run_pelage("look " + mesh + " --frames 0-3 -o " + out, nullptr, &err), 2);
     EXPECT_NE(err.find("--clip"), std::string::npos) << err;
     EXPECT_TRUE(fs::is_empty(bad.path()));
+}
+
+// The file's bytes, "" when it cannot be read.
+std::string file_bytes(const std::string &path) {
+    std::ifstream in(path, std::ios::binary);
+    return std::string(std::istreambuf_iterator<char>(in), {});
+}
+
+TEST(LookCli, ASecondLookReusesItsCellsAndAChangedRecipeGrowsThemAgain) {
+    TempDir tmp;
+    const std::string preset = two_type_preset(tmp, 300);
+    const std::string look = "look procedural:sphere:12x12 --res 32x18 --spp 1 -o " +
+                             tmp.file("ball.exr") + " --preset " + preset;
+    const std::string cells = tmp.file("ball.cells");
+    std::string out, err;
+    ASSERT_EQ(run_pelage(look, &out, &err), 0) << err;
+    EXPECT_NE(err.find("ball.cells: no file, growing"), std::string::npos) << err;
+    const std::string first = file_bytes(cells);
+    ASSERT_FALSE(first.empty());
+    const auto first_time = fs::last_write_time(cells);
+
+    // The same mesh, preset and seed: the file is used as it is, and the user is told.
+    ASSERT_EQ(run_pelage(look, &out, &err), 0) << err;
+    EXPECT_EQ(err.find("growing"), std::string::npos) << err;
+    EXPECT_NE(err.find("ball.cells: grown from the same mesh, preset and seed; reused"),
+              std::string::npos)
+        << err;
+    EXPECT_EQ(fs::last_write_time(cells), first_time);
+    EXPECT_EQ(file_bytes(cells), first);
+
+    // Another seed, then another preset (by content): grown again, saying which.
+    ASSERT_EQ(run_pelage(look + " --seed 2", &out, &err), 0) << err;
+    EXPECT_NE(err.find("ball.cells: grown with another seed, growing"), std::string::npos)
+        << err;
+    const std::string reseeded = file_bytes(cells);
+    EXPECT_NE(reseeded, first);
+    two_type_preset(tmp, 200);
+    ASSERT_EQ(run_pelage(look + " --seed 2", &out, &err), 0) << err;
+    EXPECT_NE(err.find("ball.cells: grown from another preset, growing"),
+              std::string::npos)
+        << err;
+    EXPECT_NE(file_bytes(cells), reseeded);
 }
 
 TEST(LookCli, BadInputWritesNothing) {
