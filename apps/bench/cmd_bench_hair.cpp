@@ -123,8 +123,9 @@ Runner add_bench_hair(CLI::App &bench) {
     sub->add_option("--theta-steps", o->theta_steps,
                     "Quadrature steps in θ_i; φ_i gets twice as many (default 512)")
         ->check(CLI::Range(16, 8192));
-    sub->add_option("--seed", o->seed,
-                    "Seed of the furnace set and the timing inputs (default 6)");
+    sub->add_option("--sampler-seed", o->seed,
+                    "Seed of the sampled furnace set and timing inputs (default 6)");
+    refuse_pattern_seed(*sub, "--sampler-seed");
     o->out.add_to(*sub);
     return [o] { return run(*o); };
 }

@@ -174,7 +174,9 @@ Runner add_bench_lookup(CLI::App &bench) {
         ->check(CLI::Range(size_t(1), size_t(100000000)));
     sub->add_option("--queries", o->queries, "Random surface points to look up")
         ->check(CLI::Range(size_t(1), size_t(1000000000)));
-    sub->add_option("--seed", o->seed, "Seed of the cells and queries");
+    sub->add_option("--points-seed", o->seed,
+                    "Seed of the random cells and query points");
+    refuse_pattern_seed(*sub, "--points-seed");
     sub->add_option("--subdivision", o->subdivision,
                     "Search regions per triangle side, at most (1-3)")
         ->check(CLI::Range(1, 3));

@@ -30,6 +30,19 @@ void QuietOption::add_to(CLI::App &app) {
                  "No progress and no summary (errors and warnings are still printed)");
 }
 
+void refuse_pattern_seed(CLI::App &app, const std::string &instead) {
+    app.add_option_function<std::string>(
+           "--seed",
+           [instead](const std::string &) {
+               throw CLI::ValidationError(
+                   "--seed",
+                   "is the pattern's seed (sim, look, explore); this "
+                   "command's seed is " +
+                       instead);
+           })
+        ->group("");  // hidden from --help
+}
+
 bool QuietOption::progress() const {
     return !quiet && renderer::Progress::stderr_is_tty();
 }

@@ -56,6 +56,13 @@ struct QuietOption {
     bool progress() const;
 };
 
+// --seed is the pattern's seed on every command that grows one (sim, look, explore,
+// bench sim, bench fur-colour). A command whose seed is another one's, its sampler's
+// (--sampler-seed) or its random points' (--points-seed), refuses --seed as the command
+// line is read, naming the option it takes instead, so that an old script is told and
+// not silently rendered with another meaning.
+void refuse_pattern_seed(CLI::App &app, const std::string &instead);
+
 // --stats-json FILE: what the command measured, as one JSON object written atomically.
 // Its keys are each command's contract (listed at the top of its cmd_*.cpp). A FILE in a
 // missing folder is refused when the command line is read, before any work.

@@ -182,7 +182,9 @@ Runner add_compare_command(CLI::App &app) {
     sub->add_option("--res", o->res, "Resolution WIDTHxHEIGHT (overrides the scene)");
     sub->add_option("--spp", o->spp, "Samples per pixel (overrides the scene)")
         ->check(CLI::Range(1, 1 << 20));
-    sub->add_option("--seed", o->seed, "Sampler seed, the same for every shader");
+    sub->add_option("--sampler-seed", o->seed,
+                    "Seed of the sampler, the same for every shader");
+    refuse_pattern_seed(*sub, "--sampler-seed");
     sub->add_option("--lookups", o->lookups, "Surface points timed per shader")
         ->check(CLI::Range(size_t(1), size_t(100000000)));
     sub->add_option("--repeat", o->repeat,

@@ -128,7 +128,8 @@ Runner add_crps_command(CLI::App &app) {
         ->required();
     o->stats_json.add_to(*sub, "the summary");
     o->quiet.add_to(*sub);
-    sub->add_option("--seed", o->seed, "Seed of the random validation points");
+    sub->add_option("--points-seed", o->seed, "Seed of the random validation points");
+    refuse_pattern_seed(*sub, "--points-seed");
     o->threads.add_to(*sub);
     return [o] { return run_crps(*o); };
 }

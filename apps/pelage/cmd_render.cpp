@@ -67,8 +67,10 @@ Runner add_render_command(CLI::App &app) {
     sub->add_option("--res", o->res,
                     "Resolution WIDTHxHEIGHT (overrides film.width/height)");
     sub->add_option(
-        "--seed", o->seed,
-        "Random seed; the same seed gives the same image at any thread count");
+        "--sampler-seed", o->seed,
+        "Seed of the sampler; the same seed gives the same image at any thread count "
+        "(a pattern's seed is the scene's pattern.seed)");
+    refuse_pattern_seed(*sub, "--sampler-seed");
     sub->add_option("--preview", o->preview,
                     "Also write a PNG/JPEG preview through OpenColorIO");
     sub->add_option("--view", o->view,

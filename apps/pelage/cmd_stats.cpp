@@ -170,7 +170,8 @@ Runner add_stats_command(CLI::App &app) {
                     "Grid steps per cell spacing for the spot statistics")
         ->capture_default_str()
         ->check(CLI::Range(1.0, 64.0));
-    sub->add_option("--seed", o->seed, "Seed of the surface points")
+    refuse_pattern_seed(*sub, "--points-seed");
+    sub->add_option("--points-seed", o->seed, "Seed of the random surface points")
         ->capture_default_str();
     o->stats_json.add_to(*sub, "the statistics");
     o->quiet.add_to(*sub);

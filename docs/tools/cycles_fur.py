@@ -121,7 +121,7 @@ class Renderers:
         path = os.path.join(self.work, "pelage.json")
         with open(path, "w", encoding="utf-8") as f:
             json.dump(scene, f, indent=1)
-        return run_cpu([self.args.pelage, "render", path, "--spp", str(spp), "--seed",
+        return run_cpu([self.args.pelage, "render", path, "--spp", str(spp), "--sampler-seed",
                         str(seed), "--threads", str(self.args.threads), "-q", "-o", out],
                        self.log)
 

@@ -145,6 +145,52 @@ TEST(CliVocabulary, PreviewResIsWidthXHeightOrTheLongerSide) {
     EXPECT_NE(err.find("--direction"), std::string::npos) << err;
 }
 
+// --seed is the pattern's seed wherever it is taken; the sampler's is --sampler-seed and
+// the random points' --points-seed, and a command of those refuses --seed by name.
+TEST(CliVocabulary, SeedIsThePatternsSeedAndOtherSeedsHaveTheirOwnNames) {
+    TempDir tmp;
+    const std::string scene = tmp.write("s.json", tiny_scene());
+    std::string out, err;
+    for (const char *seed : {"3", "4"})
+        ASSERT_EQ(run_pelage("render " + scene + " -q --sampler-seed " + seed + " -o " +
+                                 tmp.file(std::string("r") + seed + ".exr"),
+                             &out, &err),
+                  0)
+            << err;
+    // The sampler's seed reaches the sampler: 2 spp of another sequence is another
+    // image.
+    EXPECT_NE(pixels(tmp.file("r3.exr")), pixels(tmp.file("r4.exr")));
+
+    const std::string cells = simulate_two_type_cells(tmp, "procedural:sphere:8x8", 60);
+    struct Refused {
+        std::string command, args, instead;
+    };
+    const Refused refused[] = {
+        {"render", scene + " -q -o " + tmp.file("x.exr"), "--sampler-seed"},
+        {"compare", scene + " -q --shaders worley --lookups 10 --res 8x6",
+         "--sampler-seed"},
+        {"stats", cells + " -q", "--points-seed"},
+        {"crps", "--mesh procedural:sphere:8x8 -q", "--points-seed"},
+        {"bench lookup", "--mesh procedural:sphere:8x8 -q", "--points-seed"},
+        {"bench hair", "--configs 1 --theta-steps 16 -q", "--sampler-seed"}};
+    for (const Refused &r : refused) {
+        EXPECT_EQ(run_pelage(r.command + " " + r.args + " --seed 3", &out, &err), 2)
+            << r.command;
+        EXPECT_NE(err.find("--seed: is the pattern's seed"), std::string::npos)
+            << r.command << ": " << err;
+        EXPECT_NE(err.find("this command's seed is " + r.instead), std::string::npos)
+            << r.command << ": " << err;
+        // Hidden from the help, which shows the option to use.
+        ASSERT_EQ(run_pelage(r.command + " --help", &out, &err), 0) << r.command;
+        EXPECT_EQ(out.find("--seed "), std::string::npos) << r.command << ":\n" << out;
+        EXPECT_NE(out.find(r.instead), std::string::npos) << r.command << ":\n" << out;
+    }
+    EXPECT_FALSE(std::filesystem::exists(tmp.file("x.exr")));
+    // Where a pattern is grown, --seed is its seed.
+    ASSERT_EQ(run_pelage("sim --help", &out, &err), 0);
+    EXPECT_NE(out.find("--seed "), std::string::npos) << out;
+}
+
 TEST(CliVocabulary, QuietLeavesStandardOutputEmpty) {
     TempDir tmp;
     const std::string scene = tmp.write("s.json", tiny_scene());

@@ -202,7 +202,8 @@ TEST(FarmCli, ResumeSkipsOnlyFramesOfTheSameSettings) {
     // Another spp, then also another resolution, seed and mesh: every frame again,
     // saying why; then skipped again.
     std::string args;
-    for (const std::string change : {" --spp 4", " --res 12x12", " --seed 3", "mesh"}) {
+    for (const std::string change :
+         {" --spp 4", " --res 12x12", " --sampler-seed 3", "mesh"}) {
         if (change == "mesh")
             tmp.write("quad.obj", quad_obj(0.5f));
         else

@@ -59,10 +59,10 @@ TEST(RenderCli, StatsJsonHasTheContractKeys) {
 TEST(RenderCli, OneAndTwoThreadsGiveBitIdenticalExrs) {
     TempDir tmp;
     const std::string scene = tmp.write("s.json", small_scene);
-    ASSERT_EQ(run_pelage("render " + scene + " -q --threads 1 --seed 3 -o " +
+    ASSERT_EQ(run_pelage("render " + scene + " -q --threads 1 --sampler-seed 3 -o " +
                          tmp.file("a.exr")),
               0);
-    ASSERT_EQ(run_pelage("render " + scene + " -q --threads 2 --seed 3 -o " +
+    ASSERT_EQ(run_pelage("render " + scene + " -q --threads 2 --sampler-seed 3 -o " +
                          tmp.file("b.exr")),
               0);
     const auto a = read_pixels(tmp.file("a.exr")), b = read_pixels(tmp.file("b.exr"));

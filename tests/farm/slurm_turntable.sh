@@ -364,7 +364,7 @@ stage_turntable() {
 
     # The same frames outside Slurm, in one run with every core: the same bytes.
     "$pelage" render "$SCENE" --frames "$array" --threads "$(nproc)" -q \
-        --seed 1 --spp "$SPP" --res "$RES" -o "$work/local/cow.####.exr"
+        --sampler-seed 1 --spp "$SPP" --res "$RES" -o "$work/local/cow.####.exr"
     for ((k = 0; k < nframes; ++k)); do
         cmp "$(frame "$OUT" $k)" "$(frame "$work/local" $k)" ||
             fail "frame $k rendered by Slurm differs from the local render"
@@ -403,7 +403,7 @@ stage_tiles() {
 
     # The same still outside Slurm, whole, with every core; its preview (film.preview)
     # goes to the test's folder, not next to the scene.
-    "$pelage" render "$scene" --threads "$(nproc)" -q --seed 1 --spp "$still_spp" \
+    "$pelage" render "$scene" --threads "$(nproc)" -q --sampler-seed 1 --spp "$still_spp" \
         --res "$still_res" --preview "$work/local/still.png" -o "$work/local/still.exr"
     cmp "$still" "$work/local/still.exr" ||
         fail "the still merged from Slurm's tiles differs from a whole local render"
