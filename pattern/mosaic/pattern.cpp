@@ -1,6 +1,30 @@
 #include "pattern/mosaic/pattern.h"
 
+#include "sim/mesh/mesh_clean.h"
+
 namespace pelage::pattern::mosaic {
+namespace {
+
+// Whether `render` is the surface `grown` triangle by triangle: as many triangles, each
+// corner within round-off of the other's, 1e-7 of the size (the distance under which
+// the mesh loader welds vertices into one, sim/mesh/mesh_clean.h). How the corners
+// share vertices may differ (the renderer unwelds the rest pose of a skinned file so
+// that seams can move apart; a file may store each triangle's corners on their own),
+// and the positions differ in their last bits (the .cells file keeps each triangle's
+// frame, not its vertices): the pattern's triangle t is then the render's triangle t
+// and its barycentric points are the same points, so no transfer is needed.
+bool same_surface(const sim::TriangleMesh &render, const sim::TriangleMesh &grown) {
+    if (render.num_triangles() != grown.num_triangles()) return false;
+    const double tolerance =
+        sim::MeshCleanOptions{}.weld_relative * grown.bounds().diagonal();
+    for (sim::TriId t = 0; t < grown.num_triangles(); ++t)
+        for (int c = 0; c < 3; ++c)
+            if (!(length(render.vertex(t, c) - grown.vertex(t, c)) <= tolerance))
+                return false;
+    return true;
+}
+
+}  // namespace
 
 MosaicPattern::MosaicPattern(const std::string &cells_path, const std::string &mesh_path,
                              Neighbourhood neighbourhood)
@@ -15,10 +39,12 @@ MosaicPattern::MosaicPattern(const std::string &cells_path, sim::TriangleMesh re
         m_data.mesh_hash == sim::mesh_hash(render)) {
         m_surface = std::make_unique<sim::Surface>(sim::build_surface(std::move(render)));
     } else {
-        m_surface = std::make_unique<sim::Surface>(
-            sim::build_surface(sim::surface_mesh(m_data, cells_path)));
-        m_transfer = std::make_unique<transfer::SurfaceTransfer>(*m_surface, render,
-                                                                 cells_path, render_name);
+        sim::TriangleMesh grown = sim::surface_mesh(m_data, cells_path);
+        const bool same = same_surface(render, grown);
+        m_surface = std::make_unique<sim::Surface>(sim::build_surface(std::move(grown)));
+        if (!same)
+            m_transfer = std::make_unique<transfer::SurfaceTransfer>(
+                *m_surface, render, cells_path, render_name);
     }
     index_cells(neighbourhood);
 }

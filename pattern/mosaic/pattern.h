@@ -1,8 +1,10 @@
 // A simulated mosaic ready for lookups: the .cells file, the surface it was grown on and
 // the closest-cell index. The mesh given is the one rendered: when it is the one the
-// cells were grown on (its hash), lookups take its triangles directly; when it is
-// another mesh of the same shape, the simulation surface is rebuilt from the file and
-// transfer() carries the render mesh's points onto it (surface_transfer.h). The
+// cells were grown on (its hash), or the same triangles in the same order with their
+// corners within round-off of the file's (its vertices shared otherwise, as in a rig's
+// unwelded rest pose), lookups take its triangles directly; when it is another mesh of
+// the same shape, the simulation surface is rebuilt from the file and transfer()
+// carries the render mesh's points onto it (surface_transfer.h). The
 // clonal_mosaic plugin (and through it the colour under every fur root), `pelage
 // lookup` and `pelage bake` all go through this one class, so every tool sees exactly
 // the renderer's pattern.

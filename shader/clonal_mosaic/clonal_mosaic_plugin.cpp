@@ -352,7 +352,7 @@ std::unique_ptr<ClonalMosaic> make(const PelageParamSet &ps) {
         std::snprintf(message, sizeof message,
                       "clonal_mosaic: %s was grown on another mesh of this shape (%zu "
                       "triangles%s); it is rendered on %s (%zu triangles) through the "
-                      "closest points of that surface, at most %.2f %% of its size away",
+                      "closest points of that surface, at most %.2g %% of its size away",
                       ps.mesh.cells_path, cm->pattern->num_triangles(),
                       cm->transfer->similarity_applied() ? ", another size or place" : "",
                       mesh_name.c_str(), cm->transfer->num_render_triangles(),

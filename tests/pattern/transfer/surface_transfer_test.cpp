@@ -85,6 +85,41 @@ TEST(SurfaceTransfer, TheSameSurfaceSplitAtItsMidpointsShowsTheSamePattern) {
     std::printf("midpoint-subdivided cow: %.4f of points show the cow's colour\n", a);
 }
 
+// The cow's own triangles, each with three corners of its own (as the renderer unwelds
+// a skinned file's rest pose) and moved by round-off: the same surface, so no transfer
+// (and no "grown on another mesh" note); every point shows what the cow's own lookup
+// shows at that triangle and point. One vertex moved by 0.5 % is another surface.
+TEST(SurfaceTransfer, TheSameTrianglesUnweldedAndRoundedNeedNoTransfer) {
+    Grown g;
+    ASSERT_EQ(g.on_cow->transfer(), nullptr);
+    const sim::Surface &cow = g.on_cow->surface();
+    sim::TriangleMesh soup;
+    for (sim::TriId t = 0; t < cow.mesh.num_triangles(); ++t) {
+        const sim::VertId first = sim::VertId(soup.positions.size());
+        for (int c = 0; c < 3; ++c)
+            soup.positions.push_back(cow.mesh.vertex(t, c) * (1 + 1e-13 * (c + 1)));
+        soup.triangles.push_back({first, first + 1, first + 2});
+    }
+    const mosaic::MosaicPattern pattern(g.cells, soup, "soup");
+    EXPECT_EQ(pattern.transfer(), nullptr);
+    ASSERT_EQ(pattern.num_triangles(), cow.mesh.num_triangles());
+    const size_t n = 20000;
+    size_t same = 0;
+    for (const auto &s : sim::sample_surface_uniform(cow.crps, n, 9)) {
+        const sim::Vec3d b = cow.crps.to_barycentric(s.tri, s.p);
+        const mosaic::ClosestCell c =
+            pattern.index().find_nearest(s.tri, float(b.y), float(b.z));
+        same += pattern.cells().type[c.index] ==
+                g.type_on_cow(s.tri, cow.crps.to_3d(s.tri, s.p));
+    }
+    EXPECT_GE(double(same) / double(n), 0.999);
+
+    sim::TriangleMesh moved = cow.mesh;
+    moved.positions[0].x += 0.005 * cow.mesh.bounds().diagonal();
+    const mosaic::MosaicPattern elsewhere(g.cells, moved, "moved");
+    EXPECT_NE(elsewhere.transfer(), nullptr);
+}
+
 // The other way round: a pattern grown on a refined copy of a low-poly mesh
 // (sim/remesh/cell_scale_surface.h) rendered on the mesh itself. Each render triangle
 // spans 64 simulation triangles; every point of it is carried to the same 3D point.
