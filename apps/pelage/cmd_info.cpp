@@ -150,15 +150,17 @@ std::string rig_text(const MeshCounts &c) {
 void print_text(const FileInfo &info) {
     size_t width = std::string("whole file").size();
     for (const MeshCounts &c : info.objects) width = std::max(width, c.name.size());
+    // The skin column only for a format that carries one.
+    const bool rigged = info.total.bones.has_value();
     auto row = [&](const std::string &name, const MeshCounts &c) {
-        fmt::print("  {:<{}} {:>10} {:>10} {:>10} {:>14} {:>18}  {}\n", name, width,
+        fmt::print("  {:<{}} {:>10} {:>10} {:>10} {:>14} {:>18}{}\n", name, width,
                    c.triangles, c.vertices, c.components, c.boundary_edges,
-                   c.nonmanifold_edges, rig_text(c));
+                   c.nonmanifold_edges, rigged ? "  " + rig_text(c) : "");
     };
     fmt::print("{}\n", info.file);
-    fmt::print("  {:<{}} {:>10} {:>10} {:>10} {:>14} {:>18}  {}\n", "object", width,
+    fmt::print("  {:<{}} {:>10} {:>10} {:>10} {:>14} {:>18}{}\n", "object", width,
                "triangles", "vertices", "components", "boundary edges",
-               "non-manifold edges", info.total.bones ? "skin, morph targets" : "");
+               "non-manifold edges", rigged ? "  skin, morph targets" : "");
     for (const MeshCounts &c : info.objects) row(c.name, c);
     row(info.objects.empty() ? "the mesh" : "whole file", info.total);
     if (!info.more.empty()) {
@@ -169,7 +171,7 @@ void print_text(const FileInfo &info) {
     if (!info.objects.empty())
         fmt::print("  (select an object with {}#NAME)\n", info.file);
     if (info.clips.empty()) {
-        if (info.total.bones) fmt::print("  no animation clips\n");
+        if (rigged) fmt::print("  no animation clips\n");
         return;
     }
     fmt::print("  clips (look --clip NAME):\n");
