@@ -20,6 +20,7 @@
 
 #include "renderer/geometry/embree_scene.h"
 #include "renderer/scene_file/scene_file.h"
+#include "renderer/scene_frame/scene_frame.h"
 #include "sim/cells_io/cells_file.h"
 #include "tests/renderer/animation/armature_tube.h"
 #include "tests/test_paths.h"
@@ -124,20 +125,44 @@ TEST(SkinnedLookCli, AClipFrameShowsEachCellInItsTypesColour) {
     const std::string mesh = tmp.write("tube.gltf", armature_tube(48, 40));
     std::string err;
     ASSERT_EQ(run_pelage("look " + mesh + " --preset " + two_type_preset(tmp, 400) +
-                             " --clip Sway --frames 0 --res 96x96 --spp 4 -o " +
+                             " --clip Sway --frames 12 --res 96x96 --spp 4 -o " +
                              tmp.file("tube.exr"),
                          nullptr, &err),
               0)
         << err;
-    // The case of the dense character: the pattern grown on a simplified copy.
+    // Frame 12: the spine turned 15°. The case of the dense character: the pattern grown
+    // on a simplified copy.
     EXPECT_NE(err.find("was grown on another mesh"), std::string::npos) << err;
+    // The footprints' conversion at that pose: below y = 0.5 (the hips' alone, rigid)
+    // every posed length is 100 rest lengths, as in the default pose; where the skin
+    // bends, about as many.
+    {
+        const renderer::SceneDesc desc = renderer::scene_at_frame(
+            renderer::load_scene_file(tmp.file("tube.json")), 12);
+        const renderer::EmbreeScene scene(desc);
+        const renderer::MeshData &m = *scene.objects()[0].mesh;
+        ASSERT_EQ(m.to_rest_length.size(), size_t(m.num_triangles));
+        int rigid = 0;
+        for (uint32_t t = 0; t < m.num_triangles; ++t) {
+            bool low = true;
+            for (int c = 0; c < 3; ++c)
+                low &= m.object_positions[3 * m.triangles[3 * t + c] + 1] < 0.49f;
+            const float k = m.to_rest_length[t];
+            if (low) {
+                ++rigid;
+                ASSERT_NEAR(k, 0.01f, 1e-5f) << "triangle " << t;
+            }
+            ASSERT_TRUE(k > 0.009f && k < 0.011f) << "triangle " << t << ": " << k;
+        }
+        EXPECT_GT(rigid, 1000);
+    }
     // The cells' own colours, without the per-cell jitter: a cell of type k is exactly
     // type k's colour, so a pixel inside one type's region is too.
     nlohmann::json scene;
     std::ifstream(tmp.file("tube.json")) >> scene;
     scene["objects"][0]["material"]["params"]["jitter"] = 0;
     std::ofstream(tmp.file("flat.json")) << scene.dump(2);
-    ASSERT_EQ(run_pelage("render " + tmp.file("flat.json") + " --frames 0 -q -o " +
+    ASSERT_EQ(run_pelage("render " + tmp.file("flat.json") + " --frames 12 -q -o " +
                              tmp.file("flat.####.exr"),
                          nullptr, &err),
               0)
@@ -145,7 +170,7 @@ TEST(SkinnedLookCli, AClipFrameShowsEachCellInItsTypesColour) {
     const sim::CellsData cells = sim::read_cells_file(tmp.file("tube.cells"));
     ASSERT_EQ(cells.types.size(), 2u);
     int w = 0, h = 0;
-    const std::string exr = tmp.file("flat.0000.exr");
+    const std::string exr = tmp.file("flat.0012.exr");
     const std::vector<float> id = channel(exr, "id.object", &w, &h),
                              type = channel(exr, "shader.cell_type", &w, &h),
                              r = channel(exr, "albedo.R", &w, &h),
