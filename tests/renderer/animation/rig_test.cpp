@@ -152,6 +152,28 @@ TEST(Rig, PosesAStillOfAnArmatureExportAsTheGltfSpecificationDoes) {
                 1e-6);
 }
 
+TEST(Rig, FileNormalsUnderATransformedNodeTurnWithTheSkinOnce) {
+    // The file's normals as read went through the armature's turn; a pose starts from
+    // the file's own, so at the clip's start (the default pose) they point out of the
+    // tube again, not turned a second time.
+    test::TempDir tmp;
+    const std::string path = tmp.write("tube.gltf", test::armature_tube(12, 6));
+    const Rig rig = Rig::read(path);
+    sim::MeshLoadReport report;
+    sim::TriangleMesh mesh = sim::load_mesh(path, &report);
+    ASSERT_FALSE(mesh.corner_normals.empty());
+    unweld(report, &mesh);
+    pose_mesh(rig, rig.clip("Sway"), 0, &mesh);
+    double worst = 1;
+    for (size_t t = 0; t < mesh.num_triangles(); ++t)
+        for (int c = 0; c < 3; ++c) {
+            const sim::Vec3d p = mesh.vertex(sim::TriId(t), c);
+            const sim::Vec3d n = mesh.corner_normals[3 * t + size_t(c)];
+            worst = std::min(worst, (n.x * p.x + n.z * p.z) / std::hypot(p.x, p.z));
+        }
+    EXPECT_GT(worst, 0.9999);
+}
+
 TEST(Rig, NamesTheFileAndItsClipsInErrors) {
     test::TempDir tmp;
     const std::string path = tmp.write("strip.gltf", skinned_strip());
