@@ -120,8 +120,10 @@ typedef struct PelageHit {
     float uv[2];  /* interpolated uv, (0, 0) unless has_uv */
     uint32_t has_uv;
     float footprint;   /* approximate ray footprint width at the hit, in the object's own
-                          units (those of its mesh file: the scene's divided by the
-                          object's scale), widened at rough bounces
+                          units (those of its mesh as loaded from its file, the rest
+                          positions: the scene's divided by the object's scale and by
+                          the pose's stretch of the triangle, when a clip or a skin's
+                          default pose moves it), widened at rough bounces
                           (renderer/core/ray_cone.h) */
     uint32_t depth;    /* path vertex index, 0 for camera rays */
     uint32_t reserved; /* zero */

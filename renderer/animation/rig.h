@@ -27,17 +27,23 @@ struct RigData;  // renderer/animation/rig_data.h
 
 class Rig {
   public:
+    // Whether a file without clips is an error: a clip is asked for, or only the
+    // default pose of a skinned file is.
+    enum class Clips { required, optional };
     // Reads the rig of `mesh_ref` ("file.glb" or "file.glb#object", as sim::load_mesh
     // takes it). Throws pelage::InputError naming the file: unreadable, not a format
-    // with animation (OFF, PLY, OBJ, procedural meshes), no clips, a bone naming no node,
-    // a skinned vertex whose weights do not sum to 1.
-    // With Clips::optional a file without clips is no error (its rig poses nothing):
-    // what listing a file's contents needs (`pelage info`).
-    enum class Clips { required, optional };
+    // with animation (OFF, PLY, OBJ, procedural meshes), no clips (when required), a
+    // bone naming no node, a skinned vertex whose weights do not sum to 1.
+    // With Clips::optional a file without clips is no error: listing a file's contents
+    // (`pelage info`) and a still's default pose need it.
     static Rig read(const std::string &mesh_ref, Clips clips = Clips::required);
     // Whether the reference's format can carry a rig at all: files read through assimp,
     // not OFF, PLY, OBJ or procedural meshes.
     static bool format_has_animation(const std::string &mesh_ref);
+
+    // The clip index of the default pose: every node at its own transform, no channel
+    // (what glTF viewers show of a file without playing a clip).
+    static constexpr int default_pose = -1;
 
     const std::string &path() const;
     // The clips' names in file order (assimp's names: glTF's animation names).
@@ -54,12 +60,14 @@ class Rig {
     size_t num_bones() const;          // the distinct joint nodes of its skins
     size_t num_morph_targets() const;  // summed over its meshes
 
-    // Every vertex at `seconds` into `clip`: the rig's numbering, object space of the
-    // file. Throws InputError naming the file and the clip when a position is not
-    // finite.
+    // Every vertex at `seconds` into `clip` (or in the default pose): the rig's
+    // numbering, object space of the file. Throws InputError naming the file and the
+    // clip when a position is not finite.
     // With `normal_matrices`, also each vertex's normal transform at the time: the
     // cofactor matrix (det · A^−T, sign kept positive) of the linear part of the map its
-    // morphed rest position goes through, row-major; normals follow it, up to length.
+    // morphed rest position goes through, after the inverse of its node's transform in
+    // the file, row-major; normals as sim::read_assimp gives them (through that
+    // transform) follow it, up to length.
     std::vector<sim::Vec3d> pose(
         int clip, double seconds,
         std::vector<std::array<double, 9>> *normal_matrices = nullptr) const;
@@ -82,6 +90,23 @@ void unweld(const sim::MeshLoadReport &report, sim::TriangleMesh *mesh);
 // An unwelded mesh of the rig's own reference posed at `seconds` into `clip`; its corner
 // normals, if any, go with the skin (morph targets' own normal changes are not read).
 void pose_mesh(const Rig &rig, int clip, double seconds, sim::TriangleMesh *mesh);
+
+// A still of a skinned file as glTF viewers show it (glTF 2.0 §3.7.3: a skinned mesh's
+// node transform is ignored; its joints' global transforms times their inverse bind
+// matrices place it): `mesh`, loaded by sim::load_mesh with `report`, moved to the rig's
+// default pose, each welded vertex as the vertex it was read as
+// (MeshCleanStats::source_vertex). Its vertices, triangles and their order stay, so a
+// pattern grown on the mesh as loaded lies on it unchanged; its corner normals, if any,
+// go with the skin.
+void pose_default(const Rig &rig, const sim::MeshLoadReport &report,
+                  sim::TriangleMesh *mesh);
+
+// Per triangle of `posed`, a pose of `rest` (the same triangles), the factor that turns
+// lengths on the posed surface into the rest surface's: sqrt(rest area / posed area),
+// 1 where either is degenerate. A ray footprint measured on a posed mesh is in these
+// units once multiplied (PelageHit::footprint is in the pattern's own units).
+std::vector<float> rest_length_ratios(const std::vector<double> &rest_xyz,
+                                      const sim::TriangleMesh &posed);
 
 // A clip's time at a scene time: `seconds` as given, wrapped into [0, duration) when
 // `loop`, held at the clip's ends otherwise.

@@ -50,9 +50,13 @@ struct RigData {
         int node = -1;
         std::vector<sim::Vec3d> vertices;  // mesh space
         std::vector<std::vector<sim::Vec3d>>
-            targets;                            // morph targets, absolute positions
-        std::vector<double> target_weights;     // their weights without a channel
-        std::vector<Bone> bones;                // empty: placed by the node
+            targets;                         // morph targets, absolute positions
+        std::vector<double> target_weights;  // their weights without a channel
+        std::vector<Bone> bones;             // empty: placed by the node
+        // The inverse of the linear part of the node's global transform in the file:
+        // normals as read_assimp() gives them (through that transform) back to mesh
+        // space, where a pose's map starts.
+        Transform read_inverse;
         std::vector<uint32_t> influence_begin;  // per vertex + 1, into influences
         std::vector<Influence> influences;      // weights normalised to sum 1
     };

@@ -97,7 +97,11 @@ Transform Trs::matrix() const {
 std::vector<Vec3d> Rig::pose(int clip_index, double seconds,
                              std::vector<std::array<double, 9>> *normal_matrices) const {
     const RigData &d = *m;
-    const RigData::Clip &clip = d.clips.at(size_t(clip_index));
+    // The default pose is a clip without channels: the nodes stay where the file puts
+    // them, the morph weights at the mesh's own.
+    static const RigData::Clip no_channels{"the default pose", 0, {}, {}};
+    const RigData::Clip &clip =
+        clip_index == default_pose ? no_channels : d.clips.at(size_t(clip_index));
     // --- Every node's local transform at the time, then the global ones ---
     std::vector<Transform> global(d.nodes.size());
     for (size_t n = 0; n < d.nodes.size(); ++n) global[n] = d.nodes[n].rest;
@@ -159,23 +163,28 @@ std::vector<Vec3d> Rig::pose(int clip_index, double seconds,
             }
             const Vec3d posed = apply(m, x);
             if (normal_matrices) {
+                // From the normal as read (through the node's transform in the file) to
+                // the posed one.
+                const Transform a = m * p.read_inverse;
                 std::array<double, 9> n;
-                const double sign = m.determinant() < 0 ? -1.0 : 1.0;
+                const double sign = a.determinant() < 0 ? -1.0 : 1.0;
                 for (int r = 0; r < 3; ++r)
                     for (int c = 0; c < 3; ++c) {
                         const int r1 = (r + 1) % 3, r2 = (r + 2) % 3;
                         const int c1 = (c + 1) % 3, c2 = (c + 2) % 3;
-                        n[size_t(3 * r + c)] = sign * (m.a[r1][c1] * m.a[r2][c2] -
-                                                       m.a[r1][c2] * m.a[r2][c1]);
+                        n[size_t(3 * r + c)] = sign * (a.a[r1][c1] * a.a[r2][c2] -
+                                                       a.a[r1][c2] * a.a[r2][c1]);
                     }
                 normal_matrices->push_back(n);
             }
             if (!is_finite(posed))
-                throw InputError(d.path, 0, "",
-                                 "clip \"" + clip.name + "\" at " +
-                                     std::to_string(seconds) + " s: vertex " +
-                                     std::to_string(out.size()) +
-                                     " has a non-finite position");
+                throw InputError(
+                    d.path, 0, "",
+                    (clip_index == default_pose ? clip.name
+                                                : "clip \"" + clip.name + "\" at " +
+                                                      std::to_string(seconds) + " s") +
+                        ": vertex " + std::to_string(out.size()) +
+                        " has a non-finite position");
             out.push_back(posed);
         }
     }
@@ -194,21 +203,65 @@ void unweld(const sim::MeshLoadReport &report, sim::TriangleMesh *mesh) {
     mesh->vertex_attributes.clear();  // per welded vertex: they do not follow
 }
 
+namespace {
+
+// Corner normal `cn` turned by a vertex's normal transform (Rig::pose), unit length.
+void turn_normal(const std::array<double, 9> &n, Vec3d *cn) {
+    const Vec3d r{n[0] * cn->x + n[1] * cn->y + n[2] * cn->z,
+                  n[3] * cn->x + n[4] * cn->y + n[5] * cn->z,
+                  n[6] * cn->x + n[7] * cn->y + n[8] * cn->z};
+    const double len = length(r);
+    if (len > 0) *cn = r / len;
+}
+
+}  // namespace
+
+void pose_default(const Rig &rig, const sim::MeshLoadReport &report,
+                  sim::TriangleMesh *mesh) {
+    std::vector<std::array<double, 9>> normal_matrices;
+    const std::vector<Vec3d> posed = rig.pose(
+        Rig::default_pose, 0, mesh->corner_normals.empty() ? nullptr : &normal_matrices);
+    const std::vector<sim::VertId> &source = report.clean.source_vertex;
+    PELAGE_CHECK(posed.size() == report.raw_vertices &&
+                 source.size() == mesh->num_vertices());
+    for (size_t v = 0; v < source.size(); ++v) mesh->positions[v] = posed.at(source[v]);
+    // Each corner's normal goes with the vertex it was read as, as in a clip.
+    const auto &corners = report.clean.source_corners;
+    for (size_t t = 0; t < mesh->num_triangles() && !mesh->corner_normals.empty(); ++t)
+        for (int c = 0; c < 3; ++c)
+            turn_normal(normal_matrices.at(corners.at(t)[size_t(c)]),
+                        &mesh->corner_normals[3 * t + size_t(c)]);
+}
+
+std::vector<float> rest_length_ratios(const std::vector<double> &rest_xyz,
+                                      const sim::TriangleMesh &posed) {
+    PELAGE_CHECK(rest_xyz.size() == 3 * posed.num_vertices());
+    auto rest = [&](sim::VertId v) {
+        return Vec3d{rest_xyz[3 * size_t(v)], rest_xyz[3 * size_t(v) + 1],
+                     rest_xyz[3 * size_t(v) + 2]};
+    };
+    std::vector<float> out(posed.num_triangles(), 1.0f);
+    for (size_t t = 0; t < out.size(); ++t) {
+        const auto &tri = posed.triangles[t];
+        const double rest_area =
+            length(cross(rest(tri[1]) - rest(tri[0]), rest(tri[2]) - rest(tri[0])));
+        const double posed_area = length(posed.face_normal_unnormalized(sim::TriId(t)));
+        const double ratio = std::sqrt(rest_area / posed_area);
+        if (rest_area > 0 && posed_area > 0 && std::isfinite(ratio))
+            out[t] = float(ratio);
+    }
+    return out;
+}
+
 void pose_mesh(const Rig &rig, int clip, double seconds, sim::TriangleMesh *mesh) {
     std::vector<std::array<double, 9>> normal_matrices;
     std::vector<Vec3d> posed = rig.pose(clip, seconds, &normal_matrices);
     PELAGE_CHECK(posed.size() == mesh->num_vertices());
     mesh->positions = std::move(posed);
     for (size_t t = 0; t < mesh->num_triangles() && !mesh->corner_normals.empty(); ++t)
-        for (int c = 0; c < 3; ++c) {
-            const std::array<double, 9> &n = normal_matrices[mesh->triangles[t][c]];
-            Vec3d &cn = mesh->corner_normals[3 * t + size_t(c)];
-            const Vec3d r{n[0] * cn.x + n[1] * cn.y + n[2] * cn.z,
-                          n[3] * cn.x + n[4] * cn.y + n[5] * cn.z,
-                          n[6] * cn.x + n[7] * cn.y + n[8] * cn.z};
-            const double len = length(r);
-            if (len > 0) cn = r / len;
-        }
+        for (int c = 0; c < 3; ++c)
+            turn_normal(normal_matrices[mesh->triangles[t][c]],
+                        &mesh->corner_normals[3 * t + size_t(c)]);
 }
 
 }  // namespace pelage::renderer

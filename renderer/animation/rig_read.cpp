@@ -159,11 +159,11 @@ struct RigReader {
     void read_nodes(const aiNode &root, RigData &d);
     void read_pieces(const aiScene &scene, const sim::assimp_walk::SceneWalk &walk,
                      const std::string &object, RigData &d);
-    RigData::Piece read_piece(const aiMesh &m, unsigned mesh, const aiNode *node);
+    RigData::Piece read_piece(const aiMesh &m, const sim::assimp_walk::Instance &in);
     void read_skin(const aiMesh &m, const std::string &label, RigData::Piece &p);
     void normalise_weights(const std::vector<std::vector<RigData::Influence>> &per_vertex,
                            const std::string &label, RigData::Piece &p);
-    void read_clips(const aiScene &scene, RigData &d) const;
+    void read_clips(const aiScene &scene, RigData &d, Rig::Clips clips) const;
     RigData::Clip read_clip(const aiAnimation &anim, unsigned a) const;
 };
 
@@ -180,7 +180,7 @@ void RigReader::read_pieces(const aiScene &scene, const sim::assimp_walk::SceneW
     for (const sim::assimp_walk::Instance &in : walk.instances()) {
         const aiMesh &m = *scene.mMeshes[in.mesh];
         if (!(m.mPrimitiveTypes & aiPrimitiveType_TRIANGLE)) continue;
-        RigData::Piece p = read_piece(m, in.mesh, in.node);
+        RigData::Piece p = read_piece(m, in);
         d.num_vertices += p.vertices.size();
         d.pieces.push_back(std::move(p));
     }
@@ -191,12 +191,29 @@ void RigReader::read_pieces(const aiScene &scene, const sim::assimp_walk::SceneW
                 " holds no triangles");
 }
 
-RigData::Piece RigReader::read_piece(const aiMesh &m, unsigned mesh, const aiNode *node) {
+// The inverse of a transform's linear part (its cofactors over its determinant), the
+// identity when it has none: a degenerate node leaves no normals to recover anyway.
+Transform linear_inverse(const Transform &x) {
+    Transform inv;
+    const double det = x.determinant();
+    if (!(std::abs(det) > 0) || !std::isfinite(det)) return inv;
+    for (int r = 0; r < 3; ++r)
+        for (int c = 0; c < 3; ++c) {
+            const int r1 = (r + 1) % 3, r2 = (r + 2) % 3;
+            const int c1 = (c + 1) % 3, c2 = (c + 2) % 3;
+            inv.a[c][r] = (x.a[r1][c1] * x.a[r2][c2] - x.a[r1][c2] * x.a[r2][c1]) / det;
+        }
+    return inv;
+}
+
+RigData::Piece RigReader::read_piece(const aiMesh &m,
+                                     const sim::assimp_walk::Instance &in) {
     const std::string label =
-        "mesh " + std::to_string(mesh) +
+        "mesh " + std::to_string(in.mesh) +
         (m.mName.length > 0 ? " (\"" + name_of(m.mName) + "\")" : std::string());
     RigData::Piece p;
-    p.node = node_index.at(node);
+    p.node = node_index.at(in.node);
+    p.read_inverse = linear_inverse(in.transform);
     p.vertices.reserve(m.mNumVertices);
     for (unsigned v = 0; v < m.mNumVertices; ++v)
         p.vertices.push_back(vec(m.mVertices[v]));
@@ -263,12 +280,14 @@ void RigReader::normalise_weights(
     }
 }
 
-void RigReader::read_clips(const aiScene &scene, RigData &d) const {
+void RigReader::read_clips(const aiScene &scene, RigData &d, Rig::Clips clips) const {
     for (unsigned a = 0; a < scene.mNumAnimations; ++a) {
         RigData::Clip clip = read_clip(*scene.mAnimations[a], a);
         d.clip_names.push_back(clip.name);
         d.clips.push_back(std::move(clip));
     }
+    if (d.clips.empty() && clips == Rig::Clips::required)
+        throw InputError(path, 0, "", "the file has no animation clips");
 }
 
 // A clip, its keys in seconds.
@@ -337,9 +356,7 @@ Rig Rig::read(const std::string &mesh_ref, Clips clips) {
         sim::fail_unknown_object(path, spec.object, walk.names());
 
     reader.read_pieces(scene, walk, spec.object, *d);
-    reader.read_clips(scene, *d);
-    if (d->clips.empty() && clips == Clips::required)
-        throw InputError(path, 0, "", "the file has no animation clips");
+    reader.read_clips(scene, *d, clips);
     note_renormalised(reader);
     return Rig(std::move(d));
 }

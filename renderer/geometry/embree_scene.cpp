@@ -66,16 +66,21 @@ std::shared_ptr<MeshData> load_mesh_data(const ObjectDesc &o,
                 " (objects[" + std::to_string(index) + "].mesh in " + scene_path + ")");
     }
     // A clip poses each corner as the vertex it was read as: welding is undone first,
-    // so the rest positions below are per read vertex too.
+    // so the rest positions below are per read vertex too. A skinned file without a
+    // clip is shown in its default pose (glTF 2.0 §3.7.3), welded as loaded: the
+    // pattern grown on that mesh lies on it unchanged. A deformation or growth shape
+    // applies to the mesh as loaded.
     std::optional<Rig> rig;
+    const bool default_pose = !o.clip && report.read.skinned_pieces > 0 &&
+                              !(!o.deform_mesh.empty() && o.deform_weight > 0) && !o.grow;
     // Smooth normals average over the welded vertices (the surface's own), also when
     // the corners are posed apart.
     std::vector<std::array<sim::VertId, 3>> welded = mesh.triangles;
     size_t num_welded = mesh.num_vertices();
     const auto pose_start = std::chrono::steady_clock::now();
-    if (o.clip) {
-        rig = Rig::read(o.mesh);
-        unweld(report, &mesh);
+    if (o.clip || default_pose) {
+        rig = Rig::read(o.mesh, o.clip ? Rig::Clips::required : Rig::Clips::optional);
+        if (o.clip) unweld(report, &mesh);
         // Shading normals are made on the rest surface and go with the skin (recomputed
         // on a pose, averages across a crease that the pose folds point into the body).
         if (o.normals == ObjectDesc::Normals::flat)
@@ -94,7 +99,14 @@ std::shared_ptr<MeshData> load_mesh_data(const ObjectDesc &o,
                    "objects[" + std::to_string(index) + "].deform");
     // Motion blur: the later steps of the shutter, each posed from the rest.
     std::vector<std::vector<float>> later_positions, later_normals;
-    if (rig) {
+    std::vector<float> to_rest_length;
+    if (rig && default_pose) {
+        pose_default(*rig, report, &mesh);
+        to_rest_length = rest_length_ratios(rest->positions, mesh);
+        *pose_seconds +=
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - pose_start)
+                .count();
+    } else if (rig) {
         const int clip = rig->clip(o.clip->name);
         for (size_t k = 1; k < o.clip_motion_seconds.size(); ++k) {
             sim::TriangleMesh step = mesh;
@@ -104,6 +116,9 @@ std::shared_ptr<MeshData> load_mesh_data(const ObjectDesc &o,
                 later_normals.push_back(float_positions(step.corner_normals));
         }
         pose_mesh(*rig, clip, o.clip_seconds, &mesh);
+        // The shutter's opening pose stands for the others: a step of the shutter
+        // stretches the skin far less than the pose does from the rest.
+        to_rest_length = rest_length_ratios(rest->positions, mesh);
         // A pose that holds through the shutter (a clip past its end, a pause) is still:
         // its rays need no time.
         const std::vector<float> opening = float_positions(mesh.positions);
@@ -129,6 +144,7 @@ std::shared_ptr<MeshData> load_mesh_data(const ObjectDesc &o,
     m->num_vertices = uint32_t(mesh.num_vertices());
     m->num_triangles = uint32_t(mesh.num_triangles());
     m->object_positions = float_positions(mesh.positions);
+    m->to_rest_length = std::move(to_rest_length);
     m->triangles.resize(size_t(m->num_triangles) * 3);
     for (size_t t = 0; t < mesh.num_triangles(); ++t)
         for (int c = 0; c < 3; ++c) m->triangles[3 * t + c] = mesh.triangles[t][c];

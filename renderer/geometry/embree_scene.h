@@ -34,6 +34,11 @@ struct MeshData {
     std::vector<float> corner_normals;    // 9 per triangle, or empty (flat shading)
     std::vector<float> corner_uvs;        // 6 per triangle, or empty
     std::vector<float> object_positions;  // untransformed copy for plugins (same layout)
+    // Per triangle, posed lengths to the rest mesh's (rest_length_ratios(),
+    // renderer/animation/rig.h) when a clip or a skin's default pose moved the mesh, so
+    // footprints reach plugins in the pattern's units (PelageHit::footprint); empty when
+    // the mesh is as loaded.
+    std::vector<float> to_rest_length;
     // Motion blur (ObjectDesc::clip_motion_seconds): positions and corner normals at the
     // shutter's later steps 1 .. n − 1, step 0 being `positions` and `corner_normals`;
     // the surface moves linearly from step to step. Empty: the mesh does not move.

@@ -355,7 +355,10 @@ template <typename Instr>
         ph.uv[1] = U[1] * sv.b0 + U[3] * sv.b1 + U[5] * sv.b2;
         ph.has_uv = 1;
     }
-    ph.footprint = sv.footprint * og.to_object_length;
+    // In the pattern's units: the object's scale undone, then the pose's stretch of
+    // this triangle from the rest mesh (a skin's 0.01 armature scale is 100×).
+    ph.footprint = sv.footprint * og.to_object_length *
+                   (mesh.to_rest_length.empty() ? 1.0f : mesh.to_rest_length[sv.prim]);
     ph.depth = uint32_t(depth);
     PelageShade sh = pelage_default_shade();
     instr.shade(m_scene.materials()[sv.object], ph, sh, stats);

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 #include "renderer/animation/rig.h"
 #include "renderer/image/frame_pattern.h"
@@ -32,8 +33,17 @@ void add_corners(const sim::TriangleMesh &m, std::vector<Vec3f> *points) {
                                float(m.positions[v].z)});
 }
 
+// The mesh as a still shows it: a skinned file in its default pose (renderer/animation/
+// rig.h pose_default), anything else as loaded.
+sim::TriangleMesh still_mesh(const Rig *rig, const sim::MeshLoadReport &report,
+                             sim::TriangleMesh mesh) {
+    if (report.read.skinned_pieces > 0 && rig) pose_default(*rig, report, &mesh);
+    return mesh;
+}
+
 // A clip's frames and poses: the frames asked for (by default the whole clip once), the
-// rest pose's size and long axis, and every pose's corners for the camera.
+// rest pose's size and long axis (the default pose's: a skin's bind space may lie in
+// other units and axes), and every pose's corners for the camera.
 struct ClipPoses {
     std::vector<int> frames;
     int last_frame = 0;  // the last frame any range reaches
@@ -59,7 +69,7 @@ ClipPoses pose_clip(const LookRequest &o, const std::string &grown_on,
     if (c.frames.empty())
         for (int f = 0; f < std::max(1, int(std::ceil(duration * o.fps - 1e-9))); ++f)
             c.frames.push_back(f);
-    add_corners(mesh, points);
+    add_corners(still_mesh(&rig, report, mesh), points);
     FramingRequest rest_request;
     rest_request.up = o.up;
     const Framing rest_framing = frame_points(*points, rest_request);
@@ -161,7 +171,11 @@ LookPlan plan_look(const LookRequest &o,
             throw InputError("", 0, "--frames", "needs --clip (the animation to play)");
         if (o.shutter > 0)
             throw InputError("", 0, "--shutter", "needs --clip (the animation to blur)");
-        add_corners(mesh, &points);
+        // The camera frames what the still shows.
+        std::optional<Rig> rig;
+        if (report.read.skinned_pieces > 0)
+            rig = Rig::read(grown_on, Rig::Clips::optional);
+        add_corners(still_mesh(rig ? &*rig : nullptr, report, mesh), &points);
     }
 
     LookPlan plan;

@@ -18,6 +18,10 @@ struct MeshReadStats {
     // of them when no object is selected (OBJ groups, assimp mesh instances).
     std::vector<std::string> object_names;
     size_t pieces_read = 0;
+    // Of those, the pieces skinned to bones: glTF 2.0 §3.7.3 places them by their joints
+    // and ignores their node's transform, which the positions read here carry; the
+    // renderer poses them (renderer/animation/rig.h).
+    size_t skinned_pieces = 0;
 };
 
 // Dispatches on the extension (.off, .ply, .obj, or one assimp imports; any case).

@@ -167,11 +167,12 @@ TriangleMesh read_assimp(const std::string &path, MeshReadStats *stats,
     std::vector<uint32_t> face_offset(scene->mNumMeshes + 1, 0);
     for (unsigned m = 0; m < scene->mNumMeshes; ++m)
         face_offset[m + 1] = face_offset[m] + scene->mMeshes[m]->mNumFaces;
-    size_t pieces = 0;
+    size_t pieces = 0, skinned = 0;
     for (const Instance &in : walk.instances()) {
         const aiMesh &m = *scene->mMeshes[in.mesh];
         if (!(m.mPrimitiveTypes & aiPrimitiveType_TRIANGLE)) continue;
         ++pieces;
+        skinned += m.mNumBones > 0;
         const std::string mesh_label =
             "mesh " + std::to_string(in.mesh) +
             (m.mName.length > 0 ? " (\"" + name_of(m.mName) + "\")" : std::string());
@@ -231,6 +232,7 @@ TriangleMesh read_assimp(const std::string &path, MeshReadStats *stats,
     if (stats) {
         stats->object_names = walk.names();
         stats->pieces_read = pieces;
+        stats->skinned_pieces = skinned;
     }
     return out;
 }

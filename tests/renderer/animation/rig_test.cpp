@@ -16,6 +16,7 @@
 #include "renderer/scene_frame/scene_frame.h"
 #include "sim/core/input_error.h"
 #include "sim/mesh/mesh_load.h"
+#include "tests/renderer/animation/armature_tube.h"
 #include "tests/renderer/animation/gltf_reference.h"
 #include "tests/renderer/animation/skinned_strip.h"
 #include "tests/test_paths.h"
@@ -112,6 +113,65 @@ TEST(Rig, PosesTheKhronosFoxAsTheGltfSpecificationDoes) {
     for (double f : {0.0, 0.13, 0.37, 0.5, 0.81, 0.99})
         EXPECT_LT(worst_error(fox, rig, clip, f * d, ref, ref_clip), 1e-5)
             << "t = " << f * d;
+}
+
+TEST(Rig, PosesAStillOfAnArmatureExportAsTheGltfSpecificationDoes) {
+    // The tube's mesh node sits under a 0.01-scaled, turned armature; without clips the
+    // rig still reads (Clips::optional), and the default pose puts the welded mesh
+    // where the reference puts the file's triangles at rest: upright, 1.5 tall, not
+    // through the mesh node's transform.
+    test::TempDir tmp;
+    json doc = json::parse(test::armature_tube(12, 6));
+    doc.erase("animations");
+    const std::string path = tmp.write("tube.gltf", doc.dump());
+    EXPECT_THROW(Rig::read(path), InputError);  // a clip asked of a file without any
+    const Rig rig = Rig::read(path, Rig::Clips::optional);
+    EXPECT_TRUE(rig.skinned());
+    EXPECT_TRUE(rig.clip_names().empty());
+    sim::MeshLoadReport report;
+    sim::TriangleMesh mesh = sim::load_mesh(path, &report);
+    EXPECT_EQ(report.read.skinned_pieces, 1u);
+    EXPECT_LT(mesh.bounds().diagonal(), 0.05);  // as read: 1/100 of the size
+    const size_t vertices = mesh.num_vertices(), triangles = mesh.num_triangles();
+    pose_default(rig, report, &mesh);
+    EXPECT_EQ(mesh.num_vertices(), vertices);  // welded as loaded
+    ASSERT_EQ(mesh.num_triangles(), triangles);
+    const auto expected = GltfReference(path).triangles(-1, 0);
+    double worst = 0;
+    for (size_t t = 0; t < mesh.num_triangles(); ++t) {
+        const auto &e = expected.at(mesh.source_face[t]);
+        for (int c = 0; c < 3; ++c) {
+            const sim::Vec3d p = mesh.vertex(sim::TriId(t), c);
+            worst =
+                std::max(worst, length(p - sim::Vec3d{e[size_t(c)][0], e[size_t(c)][1],
+                                                      e[size_t(c)][2]}));
+        }
+    }
+    EXPECT_LT(worst, 1e-5);  // the file's floats
+    EXPECT_NEAR(mesh.bounds().hi.y - mesh.bounds().lo.y, test::armature_tube_height,
+                1e-6);
+}
+
+TEST(Rig, FileNormalsUnderATransformedNodeTurnWithTheSkinOnce) {
+    // The file's normals as read went through the armature's turn; a pose starts from
+    // the file's own, so at the clip's start (the default pose) they point out of the
+    // tube again, not turned a second time.
+    test::TempDir tmp;
+    const std::string path = tmp.write("tube.gltf", test::armature_tube(12, 6));
+    const Rig rig = Rig::read(path);
+    sim::MeshLoadReport report;
+    sim::TriangleMesh mesh = sim::load_mesh(path, &report);
+    ASSERT_FALSE(mesh.corner_normals.empty());
+    unweld(report, &mesh);
+    pose_mesh(rig, rig.clip("Sway"), 0, &mesh);
+    double worst = 1;
+    for (size_t t = 0; t < mesh.num_triangles(); ++t)
+        for (int c = 0; c < 3; ++c) {
+            const sim::Vec3d p = mesh.vertex(sim::TriId(t), c);
+            const sim::Vec3d n = mesh.corner_normals[3 * t + size_t(c)];
+            worst = std::min(worst, (n.x * p.x + n.z * p.z) / std::hypot(p.x, p.z));
+        }
+    EXPECT_GT(worst, 0.9999);
 }
 
 TEST(Rig, NamesTheFileAndItsClipsInErrors) {
