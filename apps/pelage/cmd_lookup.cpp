@@ -72,9 +72,10 @@ int run(const LookupOptions &o) {
     size_t found = 0;
     double sum = 0, max = 0;
     for (const Query &q : queries) {
-        // As the renderer: carried onto the simulation surface when the mesh is another.
-        pattern::transfer::SurfaceTransfer::Target at{q.face, q.b1, q.b2};
-        if (pattern.transfer()) at = pattern.transfer()->map(q.face, q.b1, q.b2);
+        // As the renderer: carried onto the simulation surface when the mesh is another,
+        // and onto its cell-bearing part from a piece without cells.
+        const pattern::transfer::SurfaceTransfer::Target at =
+            pattern.locate(q.face, q.b1, q.b2);
         const pattern::mosaic::ClosestCell c =
             pattern.index().find_nearest(at.tri, at.b1, at.b2);
         if (c.index == pattern::mosaic::ClosestCell::none) {
@@ -106,7 +107,15 @@ int run(const LookupOptions &o) {
             ix.geodesic_radius / std::max(pattern.index().spacing(), 1e-300)},
            {"windows", ix.geodesic_windows},
            {"windows_settled", ix.geodesic_work},
-           {"window_bytes", ix.geodesic_bytes}}}});
+           {"window_bytes", ix.geodesic_bytes}}},
+         // Pieces of the simulation surface without cells of their own
+         // (pattern/transfer/cell_cover.h).
+         {"cover",
+          {{"carried_triangles", pattern.cover().report().carried_triangles},
+           {"carried_pieces", pattern.cover().report().carried_pieces},
+           {"pieces", pattern.cover().report().pieces},
+           {"carried_area_share", pattern.cover().report().carried_area_share},
+           {"without_cell_share", pattern.cover().report().without_cell_share}}}});
     return 0;
 }
 

@@ -52,6 +52,13 @@ Looks looks_of(const mosaic::MosaicPattern &pattern) {
 // the nearest three cells within F1 + 2w, weighted 1 - smoothstep(0, 2w, F_i - F1).
 void shade_texel(const mosaic::MosaicPattern &pattern, const Looks &looks, sim::TriId tri,
                  float b1, float b2, float w, float *px) {
+    if (pattern.cover().carries(tri)) {
+        // A piece without cells of its own shows the closest cell-bearing surface's.
+        const auto at = pattern.cover().map(tri, b1, b2);
+        tri = at.tri;
+        b1 = at.b1;
+        b2 = at.b2;
+    }
     const auto n = pattern.index().find_three_within(tri, b1, b2, 2 * w);
     if (n.index[0] == mosaic::ClosestCell::none) return;  // a component without cells
     const float f1 = std::sqrt(n.d2[0]);

@@ -195,6 +195,17 @@ class ClosestCellIndex {
     // is not in t's list. For diagnostics (cracks).
     float distance_to_cell(sim::TriId t, Vec2f q, uint32_t cell) const;
 
+    // Whether every region of t lists a cell. False on a component of the surface that
+    // holds no cell (a piece of a triangle soup smaller than the cells): every search on
+    // t then returns none (pattern/transfer/cell_cover.h carries such triangles to the
+    // closest cell-bearing surface).
+    bool reaches_cells(sim::TriId t) const {
+        const uint32_t first = m_first_region[t], r = first & 3u, g = first >> 2;
+        for (uint32_t k = 0; k < r * r; ++k)
+            if (m_region_block[g + k] == m_region_block[g + k + 1]) return false;
+        return true;
+    }
+
     const ClosestCellStats &stats() const { return m_stats; }
     // The mean cell spacing, sqrt(area / cells): the unit of the reach.
     double spacing() const { return m_spacing; }

@@ -73,6 +73,10 @@ void MosaicPattern::index_cells(Neighbourhood neighbourhood) {
                             float(e1.y),     float(e2.x),     float(e2.y)};
         std::copy(v, v + 6, &m_tri[6 * t]);
     }
+    std::vector<char> reaches(m_data.num_triangles());
+    for (sim::TriId t = 0; t < m_data.num_triangles(); ++t)
+        reaches[t] = m_index->reaches_cells(t);
+    m_cover = std::make_unique<transfer::CellCover>(*m_surface, reaches);
 }
 
 }  // namespace pelage::pattern::mosaic

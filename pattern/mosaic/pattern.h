@@ -8,6 +8,10 @@
 // clonal_mosaic plugin (and through it the colour under every fur root), `pelage
 // lookup` and `pelage bake` all go through this one class, so every tool sees exactly
 // the renderer's pattern.
+//
+// Every point has a cell: simulation triangles on a component that holds none (the
+// pieces of a triangle soup) are carried to the closest cell-bearing surface
+// (cell_cover.h); locate() composes that with the transfer, and cover() reports it.
 #pragma once
 
 #include <memory>
@@ -15,6 +19,7 @@
 #include <vector>
 
 #include "pattern/mosaic/closest_cell.h"
+#include "pattern/transfer/cell_cover.h"
 #include "pattern/transfer/surface_transfer.h"
 #include "sim/cells_io/cells_file.h"
 #include "sim/crps/surface.h"
@@ -41,6 +46,19 @@ class MosaicPattern {
     size_t num_triangles() const { return m_cells.num_triangles(); }
     // The map from the render mesh to the simulation surface; null when they are one.
     const transfer::SurfaceTransfer *transfer() const { return m_transfer.get(); }
+    // Carries the simulation triangles that reach no cell to ones that do; inactive
+    // (nothing carried) on a surface whose every component holds cells.
+    const transfer::CellCover &cover() const { return *m_cover; }
+    // The simulation triangle and barycentric point whose nearest cell colours point
+    // (b1, b2) of render triangle t: through the transfer, then the cover. A t beyond
+    // the render mesh's triangles is returned as it is.
+    transfer::SurfaceTransfer::Target locate(uint32_t t, float b1, float b2) const {
+        transfer::SurfaceTransfer::Target at{t, b1, b2};
+        if (m_transfer && t < m_transfer->num_render_triangles())
+            at = m_transfer->map(t, b1, b2);
+        if (m_cover->carries(at.tri)) at = m_cover->map(at.tri, at.b1, at.b2);
+        return at;
+    }
     // Local CRPS coordinates of barycentric point (b1, b2) of triangle t.
     Vec2f point(sim::TriId t, float b1, float b2) const {
         const float *f = &m_tri[6 * size_t(t)];
@@ -61,6 +79,7 @@ class MosaicPattern {
     CellTable m_cells;
     std::unique_ptr<ClosestCellIndex> m_index;
     std::unique_ptr<transfer::SurfaceTransfer> m_transfer;
+    std::unique_ptr<transfer::CellCover> m_cover;
     std::vector<float>
         m_tri;  // per triangle: v0 (2), e1 (2), e2 (2), local CRPS coordinates
 };

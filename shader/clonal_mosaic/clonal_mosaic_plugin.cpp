@@ -59,6 +59,9 @@ struct ClonalMosaic {
     // Rendering another mesh of the simulation surface's shape: hits are carried onto it
     // (surface_transfer.h); null when the render mesh is the simulation's own.
     const pattern::transfer::SurfaceTransfer *transfer = nullptr;
+    // Simulation triangles that reach no cell (pieces of a triangle soup) carried to the
+    // closest cell-bearing surface (cell_cover.h); null when there are none.
+    const pattern::transfer::CellCover *cover = nullptr;
     std::vector<TypeLook> types;
     std::vector<CellLook> looks;                      // per cell, CellTable order
     std::unique_ptr<pattern::mosaic::MosaicLod> lod;  // null: lod = 0
@@ -321,6 +324,41 @@ void cell_look(const ClonalMosaic &cm, uint32_t cell, CellLook &look) {
     look.founder = look.id;
 }
 
+// Pieces of the surface with no cell of their own are shown the closest cells
+// (cell_cover.h); the user is told when that is a visible part of the object: over 1 %
+// of its area, or over 0.1 % in a hundred pieces or more (a triangle soup, whose legs
+// would otherwise be patchworks of borrowed cells). A clean animal's eyes or claws, a
+// few small parts, stay quiet. No cells anywhere is always said.
+void warn_uncovered(const pattern::transfer::CellCoverReport &r, const char *cells_path,
+                    const std::string &mesh_name, const PelageParamSet &ps) {
+    char message[1024];
+    if (r.without_cell_share > 0) {
+        std::snprintf(message, sizeof message,
+                      "clonal_mosaic: %s holds no cell that any triangle of %s reaches: "
+                      "the object renders in the material's colour (shader.cell_id -1); "
+                      "grow it again with more cells (pelage sim --initial-cells)",
+                      cells_path, mesh_name.c_str());
+        ps.warn(ps.warn_context, message);
+        return;
+    }
+    constexpr size_t soup_pieces = 100;
+    const bool soup = r.carried_pieces >= soup_pieces;
+    if (!(r.carried_area_share > 0.01 || (soup && r.carried_area_share > 1e-3))) return;
+    std::snprintf(
+        message, sizeof message,
+        "clonal_mosaic: %.2f %% of the area of %s (%zu of its %zu pieces, %zu triangles) "
+        "holds no cell of its own and shows the cells of the closest surface that does, "
+        "up to %.2f %% of the mesh's size away; %s",
+        100 * r.carried_area_share, mesh_name.c_str(), r.carried_pieces, r.pieces,
+        r.carried_triangles, 100 * r.max_carry_distance,
+        soup ? "the mesh looks like a triangle soup: weld it (Blender: Mesh > Clean Up > "
+               "Merge by Distance) and grow the cells again for a pattern that runs "
+               "across the pieces"
+             : "those pieces are smaller than the cells: give them a material of their "
+               "own, or grow more cells (pelage sim --initial-cells)");
+    ps.warn(ps.warn_context, message);
+}
+
 std::unique_ptr<ClonalMosaic> make(const PelageParamSet &ps) {
     if (!ps.mesh.cells_path)
         throw std::invalid_argument(
@@ -359,6 +397,8 @@ std::unique_ptr<ClonalMosaic> make(const PelageParamSet &ps) {
                       100 * cm->transfer->max_deviation());
         ps.warn(ps.warn_context, message);
     }
+    warn_uncovered(cm->pattern->cover().report(), ps.mesh.cells_path, mesh_name, ps);
+    if (cm->pattern->cover().active()) cm->cover = &cm->pattern->cover();
     const size_t render_triangles = cm->transfer ? cm->transfer->num_render_triangles()
                                                  : cm->pattern->num_triangles();
     if (render_triangles != ps.mesh.num_triangles)
@@ -570,6 +610,14 @@ void shade(const void *self, const PelageHit *render_hit, PelageShade *out) {
         carried.b1 = at.b1;
         carried.b2 = at.b2;
         carried.footprint *= cm.transfer->scale();
+        hit = &carried;
+    }
+    if (cm.cover && cm.cover->carries(hit->primitive_id)) {
+        if (hit != &carried) carried = *render_hit;
+        const auto at = cm.cover->map(hit->primitive_id, hit->b1, hit->b2);
+        carried.primitive_id = at.tri;
+        carried.b1 = at.b1;
+        carried.b2 = at.b2;
         hit = &carried;
     }
     // Camera hits with a footprint that sees the exact pattern (most calls): when the

@@ -12,15 +12,15 @@ namespace {
 
 // Welds vertices on a uniform grid of cell size eps: a vertex joins the lowest-index
 // representative found within eps in its own or the 26 neighbouring cells, so the result
-// does not depend on hash-table order.
-std::vector<VertId> weld_vertices(const std::vector<Vec3d> &p, Vec3d origin, double eps,
+// does not depend on hash-table order. Vertices no triangle uses stay as they are.
+std::vector<VertId> weld_vertices(const std::vector<Vec3d> &p,
+                                  const std::vector<char> &used, Vec3d origin, double eps,
                                   size_t *num_welded) {
     std::vector<VertId> rep(p.size());
-    if (!(eps > 0)) {
-        std::iota(rep.begin(), rep.end(), 0);
-        return rep;
-    }
-    // Relative to the box corner, cell indices stay below 1/weld_relative: no overflow.
+    std::iota(rep.begin(), rep.end(), 0);
+    if (!(eps > 0)) return rep;
+    // Relative to the corner of the used vertices' box, their cell indices stay below
+    // 1/weld_relative: no overflow.
     auto cell_of = [&](Vec3d q) {
         q = q - origin;
         return std::array<int64_t, 3>{static_cast<int64_t>(std::floor(q.x / eps)),
@@ -37,6 +37,7 @@ std::vector<VertId> weld_vertices(const std::vector<Vec3d> &p, Vec3d origin, dou
     grid.reserve(p.size());
     size_t welded = 0;
     for (VertId v = 0; v < p.size(); ++v) {
+        if (!used[v]) continue;
         const auto c = cell_of(p[v]);
         VertId best = v;
         for (int dx = -1; dx <= 1; ++dx)
@@ -66,11 +67,21 @@ TriangleMesh clean_mesh(const TriangleMesh &in, const std::string &source_path,
     MeshCleanStats local;
     MeshCleanStats &st = stats ? *stats : local;
     st = {};
-    const Bounds3 box = in.bounds();
+    // The tolerances are relative to the size of what the triangles use: a reader may
+    // keep every vertex of a file for one of its objects (FILE#NAME), and a small animal
+    // of a large scene must not be welded at the scene's scale.
+    std::vector<char> in_use(in.positions.size(), 0);
+    Bounds3 box;
+    for (const auto &tri : in.triangles)
+        for (VertId v : tri)
+            if (v < in_use.size() && !in_use[v]) {
+                in_use[v] = 1;
+                box.extend(in.positions[v]);
+            }
     const double diag = box.diagonal();
 
     const std::vector<VertId> rep = weld_vertices(
-        in.positions, box.lo, opt.weld_relative * diag, &st.vertices_welded);
+        in.positions, in_use, box.lo, opt.weld_relative * diag, &st.vertices_welded);
     // Compact the surviving vertices, keeping their file order.
     std::vector<VertId> new_index(in.positions.size(), invalid_id);
     TriangleMesh out;

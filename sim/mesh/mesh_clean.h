@@ -11,7 +11,15 @@ namespace pelage::sim {
 
 struct MeshCleanOptions {
     // Vertices closer than weld_relative * (bounding-box diagonal) become one vertex.
-    double weld_relative = 1e-7;
+    // Store meshes exported piece by piece (a triangle soup: every face or island with
+    // its own copies of its vertices) carry copies that differ by the rounding of each
+    // piece's float transform, about 1e-7 of the coordinates and so up to ~1e-6 of the
+    // diagonal: 1e-5 stitches them with a margin of ten. It stays far below any
+    // modelled gap: the mean edge of a 100 000-triangle animal is about 4e-3 of the
+    // diagonal, and lips, eyelids or toes apart at rest by less than a hundredth of an
+    // edge would not read as apart in any render (what touches at rest and parts in a
+    // pose keeps its own motion through MeshCleanStats::source_corners).
+    double weld_relative = 1e-5;
     // Triangles with area below area_relative * diagonal^2 are degenerate.
     double area_relative = 1e-14;
 };

@@ -10,10 +10,12 @@
 
 #include "pattern/mosaic/closest_cell.h"
 #include "pattern/mosaic/mosaic_lod.h"
+#include "pattern/mosaic/pattern.h"
 #include "renderer/core/install_layout.h"
 #include "renderer/plugins/plugin_loader.h"
 #include "sim/cells_io/cells_file.h"
 #include "sim/crps/surface.h"
+#include "tests/pattern/transfer/triangle_soup.h"
 #include "tests/shader/clonal_mosaic/mosaic_plugin_instance.h"
 #include "tests/test_paths.h"
 
@@ -461,6 +463,48 @@ TEST(ClonalMosaicPlugin, WideFootprintsSeeTheFilteredLook) {
     const double fraction = double(filtered_in_ramp) / (filtered_in_ramp + exact_in_ramp);
     EXPECT_NEAR(ramp_weight / 2000, 0.3, 1e-3);
     EXPECT_NEAR(fraction, 0.3, 0.06) << filtered_in_ramp << " / " << exact_in_ramp;
+}
+
+// A triangle soup (pieces offset by 1e-4 of the diagonal, too small for a cell each):
+// every hit is coloured by a cell, hard-edged or blended, and creating the instance
+// warns with the share of the area that borrows its cells and what to do.
+TEST(ClonalMosaicPlugin, EveryHitOnATriangleSoupHasACellAndTheSoupIsNamed) {
+    TempDir tmp;
+    const TriangleSoup soup =
+        make_triangle_soup(sim::load_mesh(mesh_spec), 1e-4, 3e-5, 57);
+    const std::string mesh = tmp.file("soup.off");
+    write_off_exact(mesh, soup.mesh);
+    const std::string cells = tmp.file("soup.cells");
+    std::string err;
+    ASSERT_EQ(run_pelage("sim --mesh " + mesh + " --preset " + two_type_preset(tmp, 300) +
+                             " -o " + cells + " --surface input",
+                         nullptr, &err),
+              0)
+        << err;
+    const pattern::mosaic::MosaicPattern pattern(cells, mesh);
+    const pattern::transfer::CellCoverReport &r = pattern.cover().report();
+    ASSERT_GT(r.carried_pieces, 100u);
+
+    testing::internal::CaptureStderr();
+    const Instance hard({{"antialias", 0}}, cells.c_str(), mesh);
+    const std::string warned = testing::internal::GetCapturedStderr();
+    ASSERT_NE(hard.self, nullptr) << hard.error;
+    const Instance soft({{"edge_width", 0.01}}, cells.c_str(), mesh);
+    ASSERT_NE(soft.self, nullptr) << soft.error;
+    char share[64];
+    std::snprintf(share, sizeof share, "%.2f %% of the area of ",
+                  100 * r.carried_area_share);
+    EXPECT_NE(warned.find(std::string(share) + mesh), std::string::npos) << warned;
+    EXPECT_NE(warned.find("triangle soup"), std::string::npos) << warned;
+    EXPECT_NE(warned.find("Merge by Distance"), std::string::npos) << warned;
+
+    size_t grey = 0;
+    for (uint32_t prim = 0; prim < hard.mesh.num_triangles(); ++prim)
+        for (const Instance *inst : {&hard, &soft}) {
+            const PelageShade sh = inst->shade(prim, 0.3f, 0.3f);
+            grey += sh.aov_written != 1 || sh.cell_type < 0;
+        }
+    EXPECT_EQ(grey, 0u) << "hits without a cell";
 }
 
 }  // namespace

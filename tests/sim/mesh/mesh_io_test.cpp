@@ -70,6 +70,23 @@ TEST(MeshIo, DuplicateVerticesAreWeldedRelativeToTheBox) {
     EXPECT_EQ(m.triangles[1][2], 2u);
 }
 
+// The weld is relative to what the triangles use: a file's reader may keep every vertex
+// of a scene for one of its objects, and a unit quad must not be welded at the scale of
+// a vertex 1e8 away (10 units at 1e-7 of that box's diagonal: the quad would vanish).
+// Copies of a corner 2e-6 apart (an export's rounding) are welded at 1e-5 of the quad's.
+TEST(MeshIo, TheWeldIsRelativeToTheVerticesTrianglesUse) {
+    TempDir tmp;
+    const auto p = tmp.write("far.off",
+                             "OFF\n6 2 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n1e8 0 0\n"
+                             "1.000002 1 0\n3 0 1 2\n3 0 5 3\n");
+    MeshLoadReport r;
+    const TriangleMesh m = load_mesh(p, &r);
+    EXPECT_EQ(m.num_triangles(), 2u);
+    EXPECT_EQ(r.clean.vertices_welded, 1u);  // vertex 5 into vertex 2
+    EXPECT_EQ(m.triangles[1][1], m.triangles[0][2]);
+    EXPECT_EQ(r.clean.unused_vertices, 1u);  // the far one, kept
+}
+
 TEST(MeshIo, DegenerateTrianglesAreDroppedAndCounted) {
     TempDir tmp;
     const auto p = tmp.write("d.off",
