@@ -129,6 +129,22 @@ state.redraw = redraw;
 window.addEventListener('resize', redraw);
 redraw();
 
+// The whole mesh in view: its bounding sphere fits the narrower of the two fields of
+// view (the vertical one, or the horizontal one of a tall canvas), with 5 % to spare,
+// seen from the front right and a little above.
+function fitView(s) {
+  resize();
+  const half = camera.fov / 2 * Math.PI / 180;
+  const narrow = Math.min(half, Math.atan(Math.tan(half) * camera.aspect));
+  const distance = 1.05 * s.radius / Math.sin(narrow);
+  const dir = new THREE.Vector3(1.6, 0.6, 2.6).normalize();
+  controls.target.copy(s.center);
+  camera.position.copy(s.center).addScaledVector(dir, distance);
+  camera.near = s.radius / 100;
+  camera.far = distance + s.radius * 100;
+  camera.updateProjectionMatrix();
+}
+
 async function loadMesh() {
   const r = await fetch('api/mesh');
   if (!r.ok) return;
@@ -146,13 +162,7 @@ async function loadMesh() {
   if (mesh) { scene.remove(mesh); mesh.geometry.dispose(); }
   mesh = new THREE.Mesh(g, material);
   scene.add(mesh);
-  const s = g.boundingSphere;
-  controls.target.copy(s.center);
-  camera.position.set(s.center.x + 1.6 * s.radius, s.center.y + 0.6 * s.radius,
-                      s.center.z + 2.6 * s.radius);
-  camera.near = s.radius / 100;
-  camera.far = s.radius * 100;
-  camera.updateProjectionMatrix();
+  fitView(g.boundingSphere);
   state.meshVersion = version;
   redraw();
 }
