@@ -16,6 +16,7 @@
 #include "apps/explore/explore_server.h"
 #include "apps/explore/explore_session.h"
 #include "renderer/camera/auto_frame.h"
+#include "renderer/camera/body_facing.h"
 #include "renderer/job/render_job.h"
 #include "renderer/look/look_scene.h"
 #include "sim/core/atomic_file.h"
@@ -63,9 +64,17 @@ LookSetup explore_setup(const explore::ExploreSession &session) {
     std::vector<Vec3f> points;
     for (const auto &p : m.positions)
         points.push_back({float(p.x), float(p.y), float(p.z)});
+    std::vector<std::array<uint32_t, 3>> triangles;
+    for (const auto &t : m.triangles)
+        triangles.push_back({uint32_t(t[0]), uint32_t(t[1]), uint32_t(t[2])});
     FramingRequest request;
     request.up = {0, 1, 0};
     request.aspect = 16.0f / 9.0f;
+    // Turned to the head, as `pelage look` is (body_facing.h).
+    const BodyFacing facing =
+        body_facing(points, triangles, request.up, format_front(session.mesh()));
+    request.long_axis = facing.long_axis;
+    request.side_axis = facing.side_axis;
     LookSetup s;
     s.framing = frame_points(points, request);
     s.object_name = "animal";

@@ -9,9 +9,15 @@ namespace {
 
 constexpr float deg = 3.14159265358979f / 180;
 
-// The dominant direction of the points projected on the plane ⟂ up (2-D principal
-// component), or any horizontal direction when they have none.
-Vec3f long_horizontal_axis(const std::vector<Vec3f> &points, Vec3f up, Vec3f center) {
+}  // namespace
+
+Vec3f long_horizontal_axis(const std::vector<Vec3f> &points, Vec3f up) {
+    Vec3f lo{1e30f, 1e30f, 1e30f}, hi{-1e30f, -1e30f, -1e30f};
+    for (const Vec3f &p : points) {
+        lo = {std::min(lo.x, p.x), std::min(lo.y, p.y), std::min(lo.z, p.z)};
+        hi = {std::max(hi.x, p.x), std::max(hi.y, p.y), std::max(hi.z, p.z)};
+    }
+    const Vec3f center = (lo + hi) * 0.5f;
     const Frame f = Frame::from_z(up);
     double sxx = 0, sxy = 0, syy = 0;
     for (const Vec3f &p : points) {
@@ -24,8 +30,6 @@ Vec3f long_horizontal_axis(const std::vector<Vec3f> &points, Vec3f up, Vec3f cen
     const double angle = 0.5 * std::atan2(2 * sxy, sxx - syy);
     return normalize(f.s * float(std::cos(angle)) + f.t * float(std::sin(angle)));
 }
-
-}  // namespace
 
 Framing frame_points(const std::vector<Vec3f> &points, const FramingRequest &rq) {
     if (points.empty()) throw std::invalid_argument("no points to frame");
@@ -48,9 +52,10 @@ Framing frame_points(const std::vector<Vec3f> &points, const FramingRequest &rq)
     // A single point (or a speck) still gets a camera at a sensible distance.
     fr.radius = std::max(fr.radius, 1e-6f * std::max(1.0f, length(fr.center)));
     const Vec3f given = rq.long_axis - up * dot(rq.long_axis, up);  // horizontal part
-    fr.long_axis = length(given) > 0 ? normalize(given)
-                                     : long_horizontal_axis(points, up, fr.center);
+    fr.long_axis =
+        length(given) > 0 ? normalize(given) : long_horizontal_axis(points, up);
     fr.side_axis = normalize(cross(up, fr.long_axis));
+    if (dot(rq.side_axis, fr.side_axis) < 0) fr.side_axis = -fr.side_axis;
 
     const float az = rq.azimuth_deg * deg, el = rq.elevation_deg * deg;
     fr.view = normalize((fr.side_axis * std::cos(az) + fr.long_axis * std::sin(az)) *

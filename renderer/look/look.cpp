@@ -7,6 +7,7 @@
 #include <optional>
 
 #include "renderer/animation/rig.h"
+#include "renderer/camera/body_facing.h"
 #include "renderer/image/frame_pattern.h"
 #include "renderer/job/frame_list.h"
 #include "renderer/look/look_objects.h"
@@ -41,14 +42,26 @@ sim::TriangleMesh still_mesh(const Rig *rig, const sim::MeshLoadReport &report,
     return mesh;
 }
 
+// Which way the animal faces (body_facing.h), from the mesh a still shows: for a clip
+// too, so every frame is seen from the side the still is, turned to the head.
+BodyFacing mesh_facing(const sim::TriangleMesh &m, const std::string &path, Vec3f up) {
+    std::vector<Vec3f> positions;
+    positions.reserve(m.positions.size());
+    for (const sim::Vec3d &p : m.positions)
+        positions.push_back({float(p.x), float(p.y), float(p.z)});
+    std::vector<std::array<uint32_t, 3>> triangles;
+    triangles.reserve(m.triangles.size());
+    for (const auto &t : m.triangles)
+        triangles.push_back({uint32_t(t[0]), uint32_t(t[1]), uint32_t(t[2])});
+    return body_facing(positions, triangles, up, format_front(path));
+}
+
 // A clip's frames and poses: the frames asked for (by default the whole clip once), the
-// rest pose's size and long axis (the default pose's: a skin's bind space may lie in
-// other units and axes), and every pose's corners for the camera.
+// rest pose's size, and every pose's corners for the camera.
 struct ClipPoses {
     std::vector<int> frames;
     int last_frame = 0;  // the last frame any range reaches
     float rest_radius = 0;
-    Vec3f rest_long_axis{0, 0, 0};
 };
 
 ClipPoses pose_clip(const LookRequest &o, const std::string &grown_on,
@@ -74,7 +87,6 @@ ClipPoses pose_clip(const LookRequest &o, const std::string &grown_on,
     rest_request.up = o.up;
     const Framing rest_framing = frame_points(*points, rest_request);
     c.rest_radius = rest_framing.radius;
-    c.rest_long_axis = rest_framing.long_axis;
     points->clear();
     unweld(report, &mesh);
     for (int f : c.frames) {
@@ -162,6 +174,11 @@ LookPlan plan_look(const LookRequest &o,
         objects.animal.empty() ? o.mesh : spec.path + "#" + objects.animal;
     sim::MeshLoadReport report;
     const sim::TriangleMesh mesh = sim::load_mesh(grown_on, &report);
+    // What a still shows, and what the facing is judged on: a skinned file in its
+    // default pose (its bind space may lie in other units and axes).
+    std::optional<Rig> rig;
+    if (report.read.skinned_pieces > 0) rig = Rig::read(grown_on, Rig::Clips::optional);
+    const sim::TriangleMesh shown = still_mesh(rig ? &*rig : nullptr, report, mesh);
     std::vector<Vec3f> points;
     ClipPoses clip;
     if (!o.clip.empty()) {
@@ -171,11 +188,7 @@ LookPlan plan_look(const LookRequest &o,
             throw InputError("", 0, "--frames", "needs --clip (the animation to play)");
         if (o.shutter > 0)
             throw InputError("", 0, "--shutter", "needs --clip (the animation to blur)");
-        // The camera frames what the still shows.
-        std::optional<Rig> rig;
-        if (report.read.skinned_pieces > 0)
-            rig = Rig::read(grown_on, Rig::Clips::optional);
-        add_corners(still_mesh(rig ? &*rig : nullptr, report, mesh), &points);
+        add_corners(shown, &points);  // the camera frames what the still shows
     }
 
     LookPlan plan;
@@ -183,7 +196,9 @@ LookPlan plan_look(const LookRequest &o,
     FramingRequest framing;
     framing.up = o.up;
     framing.aspect = float(o.width) / float(o.height);
-    framing.long_axis = clip.rest_long_axis;
+    const BodyFacing facing = mesh_facing(shown, procedural ? "" : spec.path, o.up);
+    framing.long_axis = facing.long_axis;
+    framing.side_axis = facing.side_axis;
     setup.framing = frame_points(points, framing);
     setup.up = o.up;
     // A frame token before the extension (fox.####.exr, fox.%04d.exr) names the frames

@@ -61,10 +61,11 @@ json ground_object(const LookSetup &s) {
 // stripes' field), in the sense of the ground and a little along the body, and jitters
 // less than loose hair would (4° against 12°: a groom that follows a field is a tidy
 // one, and two 12° jitters would hide the field between neighbours); without a field
-// it lies towards the ground and a little along the body.
+// it lies towards the ground and a little along the body, towards the tail (the
+// framing's long axis points to the head, body_facing.h), as an animal's coat lies.
 json fur_block(const LookSetup &s) {
     const double k = (s.body_radius > 0 ? s.body_radius : s.framing.radius) / 0.608;
-    const Vec3f comb = -s.up + s.framing.long_axis * 0.3f;
+    const Vec3f comb = -s.up - s.framing.long_axis * 0.3f;
     json fur = {{"density", round6(300000 / (k * k))},
                 {"density_by_type", {1.2, 1.0}},
                 {"length", round6(0.012 * k)},
@@ -98,9 +99,7 @@ json look_scene(const LookSetup &s) {
                    {"material",
                     {{"shader", "clonal_mosaic"},
                      {"params", {{"jitter", 0.15}}},
-                     {"bsdf", "coated"},
-                     {"roughness", 0.45},
-                     {"ior", 1.5}}}};
+                     {"bsdf", "lambert"}}}};
     if (!s.clip.empty()) animal["animation"] = {{"clip", s.clip}};
     if (s.fur) animal["fur"] = fur_block(s);
     json objects = json::array({animal});

@@ -71,6 +71,10 @@ TEST(LookCli, FramesMeshesOfAnyUnitsAndWritesAReusableScene) {
         for (const char *ext : {".exr", ".json", ".cells", "_preview.png"})
             EXPECT_TRUE(fs::exists(tmp.file(name + ext))) << name << ext;
         expect_framed(out, name);
+        // A matte skin, not a plastic coat (docs/guide/look.md#the-skin).
+        const auto scene = nlohmann::json::parse(std::ifstream(tmp.file(name + ".json")));
+        EXPECT_EQ(scene["objects"][0]["material"].value("bsdf", ""), "lambert") << name;
+        EXPECT_FALSE(scene["objects"][0]["material"].contains("roughness")) << name;
 
         // The scene names its cells and outputs relative to itself: copied with its
         // cells elsewhere, it renders from any working folder without growing again.

@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """`pelage explore` driven in headless Chromium (issue 37's page test): the page shows the
-pattern on the mesh; dragging the repulsion radius (w_r) re-simulates, and the new pattern
+pattern on the mesh, the whole mesh in view; dragging the repulsion radius (w_r) re-simulates, and the new pattern
 and its statistics appear; restyling the types' colours repaints without simulating, and
 the canvas then shows both colours; Save writes a preset that `pelage sim` grows into
 the same bytes, and a scene that `pelage render` renders from those cells without growing
@@ -36,6 +36,20 @@ for (let i = 0; i < d.length; i += 4) {
 return [red, blue, d.length / 4];
 """
 
+# The largest |NDC| coordinate of the mesh's vertices in the page's camera (1: the canvas
+# border).
+FARTHEST_VERTEX = """
+const p = window.pelage, cam = p.controls.object;
+cam.updateMatrixWorld();
+const pos = p.mesh.geometry.attributes.position, v = cam.position.clone();
+let most = 0;
+for (let i = 0; i < pos.count; ++i) {
+  v.fromBufferAttribute(pos, i).project(cam);
+  most = Math.max(most, Math.abs(v.x), Math.abs(v.y));
+}
+return most;
+"""
+
 
 def check(condition, message):
     if not condition:
@@ -53,6 +67,13 @@ def main(pelage):
         first = b.wait("const s = window.pelage.status; return s && s.result_ready && "
                        "window.pelage.textureVersion > 0 ? s : null", 90, "the first pattern")
         job0, stats0 = first["job"], first["stats"]
+        # The view starts with the whole mesh in it, framed as `pelage look` frames it:
+        # through the camera three.js draws with, every vertex projects inside the canvas
+        # less an 8 % margin, and one on that border.
+        most = b.js(FARTHEST_VERTEX)
+        print(f"start view: farthest vertex at {most:.3f} of the half-canvas")
+        check(0.85 < most < 0.93,
+              f"the start view puts its farthest vertex at {most:.3f} of the half-canvas")
         w_r = first["preset"]["simulation"]["w_r"]
 
         # Drag the repulsion radius: the slider's input events, as a mouse sends them.

@@ -129,6 +129,31 @@ state.redraw = redraw;
 window.addEventListener('resize', redraw);
 redraw();
 
+// The whole mesh in view, as `pelage look` frames it: seen from the front right and a
+// little above, the camera as near as leaves 8 % of the canvas's half-size free around
+// every vertex. A vertex q (from the target) at depth d − q·dir fits when
+// |q·right| ≤ 0.92 tanH (d − q·dir), and likewise upwards: the nearest such d, closed form.
+function fitView(g) {
+  resize();
+  const s = g.boundingSphere;
+  const dir = new THREE.Vector3(1.6, 0.6, 2.6).normalize();
+  const right = new THREE.Vector3().crossVectors(camera.up, dir).normalize();
+  const up = new THREE.Vector3().crossVectors(dir, right);
+  const tanV = 0.92 * Math.tan(camera.fov / 2 * Math.PI / 180), tanH = tanV * camera.aspect;
+  const pos = g.attributes.position, q = new THREE.Vector3();
+  let distance = 1.05 * s.radius;  // outside the mesh, whatever its shape
+  for (let i = 0; i < pos.count; ++i) {
+    q.fromBufferAttribute(pos, i).sub(s.center);
+    distance = Math.max(distance, q.dot(dir) + Math.max(Math.abs(q.dot(right)) / tanH,
+                                                        Math.abs(q.dot(up)) / tanV));
+  }
+  controls.target.copy(s.center);
+  camera.position.copy(s.center).addScaledVector(dir, distance);
+  camera.near = s.radius / 100;
+  camera.far = distance + s.radius * 100;
+  camera.updateProjectionMatrix();
+}
+
 async function loadMesh() {
   const r = await fetch('api/mesh');
   if (!r.ok) return;
@@ -146,13 +171,8 @@ async function loadMesh() {
   if (mesh) { scene.remove(mesh); mesh.geometry.dispose(); }
   mesh = new THREE.Mesh(g, material);
   scene.add(mesh);
-  const s = g.boundingSphere;
-  controls.target.copy(s.center);
-  camera.position.set(s.center.x + 1.6 * s.radius, s.center.y + 0.6 * s.radius,
-                      s.center.z + 2.6 * s.radius);
-  camera.near = s.radius / 100;
-  camera.far = s.radius * 100;
-  camera.updateProjectionMatrix();
+  fitView(g);
+  state.mesh = mesh;  // for tests
   state.meshVersion = version;
   redraw();
 }
