@@ -285,8 +285,11 @@ void check_type_name(const Reader &r, const ordered_json &base_types,
 // `child` extends the preset `child.extends` of the same folder: the base's document
 // with the child's name, words, colours and melanins, without the base's "published"
 // figures (they describe the base's runs and are checked there) and without "extends".
-// The base may not itself extend another preset.
-std::string extended_text(const Reader &r, const ordered_json &child) {
+// The base may not itself extend another preset. It is looked for beside the child,
+// then in `presets_dir` (the shipped presets), so a user's file can extend a shipped
+// preset from any folder.
+std::string extended_text(const Reader &r, const ordered_json &child,
+                          const std::string &presets_dir) {
     r.check_keys(child, "", extends_keys);
     if (!child.contains("name")) r.fail("name", "missing");
     const ordered_json &e = child["extends"];
@@ -294,13 +297,18 @@ std::string extended_text(const Reader &r, const ordered_json &child) {
     const std::string base = e.get<std::string>();
     if (base.empty() || base.find('/') != std::string::npos ||
         base.find('\\') != std::string::npos || base.ends_with(".json"))
-        r.fail("extends", "'" + base +
-                              "': expected the name of a preset in the same folder "
-                              "(no path, no .json)");
-    const std::filesystem::path path =
+        r.fail("extends",
+               "'" + base + "': expected the name of a preset (no path, no .json)");
+    std::filesystem::path path =
         std::filesystem::path(r.file()).parent_path() / (base + ".json");
+    if (!std::filesystem::exists(path) && !presets_dir.empty() &&
+        std::filesystem::exists(std::filesystem::path(presets_dir) / (base + ".json")))
+        path = std::filesystem::path(presets_dir) / (base + ".json");
     std::ifstream in(path, std::ios::binary);
-    if (!in) r.fail("extends", "'" + base + "': no preset " + path.string());
+    if (!in)
+        r.fail("extends",
+               "'" + base + "': no preset " + path.string() +
+                   (presets_dir.empty() ? std::string() : " nor in " + presets_dir));
     std::ostringstream ss;
     ss << in.rdbuf();
     ordered_json doc;
@@ -373,14 +381,16 @@ std::string extended_text(const Reader &r, const ordered_json &child) {
 
 }  // namespace
 
-Preset parse_preset(const std::string &text, const std::string &file) {
+Preset parse_preset(const std::string &text, const std::string &file,
+                    const std::string &presets_dir) {
     const Reader r(file);
     json j = parse_json(text, file);
     if (j.is_object() && j.contains("extends")) {
         const std::string base =
             j["extends"].is_string() ? j["extends"].get<std::string>() : "";
         // The merged document is checked as any preset, its errors named in this file.
-        Preset p = parse_preset(extended_text(r, ordered_json::parse(text)), file);
+        Preset p =
+            parse_preset(extended_text(r, ordered_json::parse(text), presets_dir), file);
         p.extends = base;
         return p;
     }
@@ -480,12 +490,12 @@ Preset parse_preset(const std::string &text, const std::string &file) {
     return preset;
 }
 
-Preset load_preset_file(const std::string &path) {
+Preset load_preset_file(const std::string &path, const std::string &presets_dir) {
     std::ifstream in(path, std::ios::binary);
     if (!in) throw InputError(path, 0, "", "cannot open preset file");
     std::ostringstream ss;
     ss << in.rdbuf();
-    return parse_preset(ss.str(), path);
+    return parse_preset(ss.str(), path, presets_dir);
 }
 
 std::vector<std::string> preset_names(const std::string &presets_dir) {
@@ -501,7 +511,7 @@ Preset load_preset(const std::string &name_or_path, const std::string &presets_d
                    const std::string &file, const std::string &field) {
     const bool is_path = name_or_path.find('/') != std::string::npos ||
                          (name_or_path.size() > 5 && name_or_path.ends_with(".json"));
-    if (is_path) return load_preset_file(name_or_path);
+    if (is_path) return load_preset_file(name_or_path, presets_dir);
     const std::filesystem::path path =
         std::filesystem::path(presets_dir) / (name_or_path + ".json");
     if (!std::filesystem::exists(path)) {
@@ -516,7 +526,7 @@ Preset load_preset(const std::string &name_or_path, const std::string &presets_d
                 "; available: " + (list.empty() ? "none found in " + presets_dir : list) +
                 " (`pelage presets` describes them)");
     }
-    return load_preset_file(path.string());
+    return load_preset_file(path.string(), presets_dir);
 }
 
 }  // namespace pelage::sim

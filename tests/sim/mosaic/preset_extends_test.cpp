@@ -108,7 +108,7 @@ TEST(PresetExtends, RefusesWhatItCannotTakeNamingTheField) {
         {R"({"name": "c", "extends": "bass", "colours": {"B": [1, 1, 1]}})",
          "extends: 'bass': no preset"},
         {R"({"name": "c", "extends": "../base", "colours": {"B": [1, 1, 1]}})",
-         "extends: '../base': expected the name of a preset in the same folder"},
+         "extends: '../base': expected the name of a preset (no path, no .json)"},
         {R"({"name": "c", "extends": 3, "colours": {"B": [1, 1, 1]}})",
          "extends: expected the name of a preset"},
         {R"({"extends": "base", "colours": {"B": [1, 1, 1]}})", "name: missing"},
@@ -121,6 +121,28 @@ TEST(PresetExtends, RefusesWhatItCannotTakeNamingTheField) {
         EXPECT_NE(msg.find(path), std::string::npos) << msg;
         EXPECT_NE(msg.find(c.message), std::string::npos) << c.json << "\n" << msg;
     }
+}
+
+TEST(PresetExtends, AFileElsewhereExtendsAShippedPreset) {
+    test::TempDir shipped, mine;
+    shipped.write("base.json", base_json);
+    const std::string child = mine.write(
+        "mine.json",
+        R"({"name": "mine", "extends": "base", "colours": {"F": [0.1, 0.05, 0.02]}})");
+    const std::string dir = shipped.path().string();
+    EXPECT_FLOAT_EQ(load_preset_file(child, dir).types[0].colour[1], 0.05f);
+    // As `--preset mine.json` reads it, with the shipped folder to fall back on.
+    EXPECT_FLOAT_EQ(load_preset(child, dir).types[0].colour[0], 0.1f);
+    // Without it the base is looked for beside the file only.
+    const std::string msg = what(child);
+    EXPECT_NE(msg.find("extends: 'base': no preset " + mine.file("base.json")),
+              std::string::npos)
+        << msg;
+    // One beside the file comes first.
+    mine.write("base.json", std::string(base_json).replace(
+                                std::string(base_json).find("0.62, 0.36, 0.11"), 16,
+                                "0.30, 0.36, 0.11"));
+    EXPECT_FLOAT_EQ(load_preset_file(child, dir).types[1].colour[0], 0.30f);
 }
 
 TEST(PresetExtends, ShippedAliasesKeepTheirBaseCellsAndChangeItsColours) {
