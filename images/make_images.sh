@@ -144,6 +144,9 @@ echo '{' >"$tmp/gallery.json"
 first=1
 for preset in scenes/presets/*.json; do
     name=$(basename "$preset" .json)
+    # A preset that "extends" another grows its base's cells: its tile would repeat it.
+    python3 -c 'import json,sys; sys.exit(1 if "extends" in json.load(open(sys.argv[1])) else 0)' \
+        "$preset" || continue
     cells=$(python3 -c 'import json,sys; p=json.load(open(sys.argv[1])); s=p["simulation"]
 f=next(t for t in p["types"] if t["name"]=="F") if any(t["name"]=="F" for t in p["types"]) else p["types"][0]
 ip=f["initial_probability"]; ip=ip["default"] if isinstance(ip, dict) else ip

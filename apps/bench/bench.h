@@ -21,6 +21,7 @@ Runner add_bench_render(CLI::App &bench);
 Runner add_bench_hair(CLI::App &bench);
 Runner add_bench_fur(CLI::App &bench);
 Runner add_bench_fur_colour(CLI::App &bench);
+Runner add_bench_preset_colour(CLI::App &bench);
 Runner add_bench_fur_comb(CLI::App &bench);
 Runner add_bench_noise(CLI::App &bench);
 

@@ -33,6 +33,7 @@ Runner add_bench_command(CLI::App &app) {
     add(add_bench_hair);
     add(add_bench_fur);
     add(add_bench_fur_colour);
+    add(add_bench_preset_colour);
     add(add_bench_fur_comb);
     add(add_bench_noise);
     return [children] {

@@ -48,6 +48,9 @@ std::vector<std::pair<std::string, std::string>> shipped_presets() {
         try {
             const sim::Preset p = sim::parse_preset(text, e.path().string());
             if (p.growth && p.growth->has_mesh_keys()) continue;
+            // The page edits and sends back whole presets: one that extends another is
+            // sent merged, as the base's document with its own colours.
+            if (!p.extends.empty()) text = p.json_text;
         } catch (const InputError &) {
             continue;
         }

@@ -1,5 +1,6 @@
-// `pelage presets [NAME]`: the shipped presets, each with its description and source
-// (the preset file's own "description" and "source"), or one preset's notes too.
+// `pelage presets [NAME]`: the shipped presets, each with its animal, description and
+// source (the preset file's own "animal", "description" and "source"; the preset it
+// extends, if any), or one preset's notes too.
 #include <cstdio>
 #include <fstream>
 #include <iostream>
@@ -20,20 +21,22 @@ struct PresetsOptions {
     bool json = false;
 };
 
-// A preset file's own words: its description, source and notes ("" where it has none).
+// A preset file's own words: its animal, description, source and notes ("" where it has
+// none), and the preset it extends.
 struct PresetText {
-    std::string name, description, source, notes;
+    std::string name, animal, description, source, notes, extends;
 };
 
 PresetText preset_text(const std::string &dir, const std::string &name) {
     // Parsed as a preset first, so a broken one is an error naming it, not a blank row.
-    sim::load_preset(name, dir);
+    const sim::Preset preset = sim::load_preset(name, dir);
     std::ifstream in(dir + "/" + name + ".json");
     const nlohmann::json j = nlohmann::json::parse(in, nullptr, false);
     auto text = [&](const char *key) {
         return j.contains(key) && j[key].is_string() ? j[key].get<std::string>() : "";
     };
-    return {name, text("description"), text("source"), text("notes")};
+    return {name,           text("animal"), text("description"),
+            text("source"), text("notes"),  preset.extends};
 }
 
 int run(const PresetsOptions &o) {
@@ -50,6 +53,8 @@ int run(const PresetsOptions &o) {
         nlohmann::json j = {{"folder", dir}, {"presets", nlohmann::json::array()}};
         for (const PresetText &p : presets)
             j["presets"].push_back({{"name", p.name},
+                                    {"animal", p.animal},
+                                    {"extends", p.extends},
                                     {"description", p.description},
                                     {"source", p.source},
                                     {"notes", p.notes}});
@@ -57,7 +62,12 @@ int run(const PresetsOptions &o) {
         return 0;
     }
     for (const PresetText &p : presets) {
-        std::printf("%s\n  %s\n", p.name.c_str(), p.description.c_str());
+        std::printf("%s\n", p.name.c_str());
+        if (!p.animal.empty()) std::printf("  animal: %s\n", p.animal.c_str());
+        std::printf("  %s\n", p.description.c_str());
+        if (!p.extends.empty())
+            std::printf("  extends: %s (its cells, with these colours)\n",
+                        p.extends.c_str());
         if (!p.source.empty()) std::printf("  source: %s\n", p.source.c_str());
         if (!o.name.empty() && !p.notes.empty())
             std::printf("  notes: %s\n", p.notes.c_str());
@@ -70,7 +80,8 @@ int run(const PresetsOptions &o) {
 Runner add_presets_command(CLI::App &app) {
     auto o = std::make_shared<PresetsOptions>();
     CLI::App *sub = app.add_subcommand(
-        "presets", "List the shipped presets with their descriptions and sources");
+        "presets",
+        "List the shipped presets with their animals, descriptions and sources");
     sub->add_option("name", o->name, "Show only this preset, with its notes");
     sub->add_flag("--json", o->json, "Print JSON instead of text");
     return [o] { return run(*o); };

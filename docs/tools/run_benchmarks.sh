@@ -58,6 +58,8 @@ run bench_fur     "$pelage" bench fur --strands 20000 100000 2500000 10000000 --
                       -q --stats-json "$out/bench_fur.json"
 run fur_colour    "$pelage" bench fur-colour --res 320x180 --spp 32 --slab-spp 128 -q \
                       --stats-json "$out/fur_colour.json"
+# Each animal preset's colours as `look` shows them (docs/guide/presets.md).
+run preset_colour "$pelage" bench preset-colour -q --stats-json "$out/preset_colour.json"
 run fur_comb      "$pelage" bench fur-comb -q --stats-json "$out/fur_comb.json" \
                       --fur-keys '{"comb_angle": 20, "comb_jitter": 4, "gravity": 0.2, "clump": 0.2}'
 # Noise against a converged reference, cached in build/noise_refs (keyed by the binary

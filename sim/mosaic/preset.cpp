@@ -249,28 +249,162 @@ SimParams parse_plain_sim(const Reader &r, const json &s, const ControlSpec &con
     return o;
 }
 
-}  // namespace
-
-Preset parse_preset(const std::string &text, const std::string &file) {
-    const Reader r(file);
-    json j;
+json parse_json(const std::string &text, const std::string &file) {
     try {
-        j = json::parse(text);
+        return json::parse(text);
     } catch (const json::exception &e) {
         // parse_error, and out_of_range for a number such as 1e400 that overflows a
         // double.
         throw InputError(file, 0, "", std::string("not valid JSON: ") + e.what());
     }
+}
+
+// The keys a preset that extends another may give: its own words and colours; the
+// cells' dynamics, regions and masks are the base's.
+const std::set<std::string> extends_keys = {"name",        "extends",  "animal",
+                                            "description", "source",   "notes",
+                                            "colours",     "melanins", "colors"};
+
+// A type name of the base, or an InputError at `path` naming the closest one.
+void check_type_name(const Reader &r, const ordered_json &base_types,
+                     const std::string &name, const std::string &path,
+                     const std::string &base) {
+    std::vector<std::string> names;
+    for (const auto &t : base_types)
+        if (t.is_object() && t.contains("name") && t["name"].is_string())
+            names.push_back(t["name"].get<std::string>());
+    if (std::find(names.begin(), names.end(), name) != names.end()) return;
+    const std::string guess = closest_name(name, names);
+    std::string list;
+    for (const auto &n : names) list += (list.empty() ? "" : ", ") + n;
+    r.fail(path, "'" + name + "' is not a type of '" + base + "'" +
+                     (guess.empty() ? "" : " (did you mean '" + guess + "'?)") +
+                     "; its types: " + list);
+}
+
+// `child` extends the preset `child.extends` of the same folder: the base's document
+// with the child's name, words, colours and melanins, without the base's "published"
+// figures (they describe the base's runs and are checked there) and without "extends".
+// The base may not itself extend another preset. It is looked for beside the child,
+// then in `presets_dir` (the shipped presets), so a user's file can extend a shipped
+// preset from any folder.
+std::string extended_text(const Reader &r, const ordered_json &child,
+                          const std::string &presets_dir) {
+    r.check_keys(child, "", extends_keys);
+    if (!child.contains("name")) r.fail("name", "missing");
+    const ordered_json &e = child["extends"];
+    if (!e.is_string()) r.fail("extends", "expected the name of a preset");
+    const std::string base = e.get<std::string>();
+    if (base.empty() || base.find('/') != std::string::npos ||
+        base.find('\\') != std::string::npos || base.ends_with(".json"))
+        r.fail("extends",
+               "'" + base + "': expected the name of a preset (no path, no .json)");
+    std::filesystem::path path =
+        std::filesystem::path(r.file()).parent_path() / (base + ".json");
+    if (!std::filesystem::exists(path) && !presets_dir.empty() &&
+        std::filesystem::exists(std::filesystem::path(presets_dir) / (base + ".json")))
+        path = std::filesystem::path(presets_dir) / (base + ".json");
+    std::ifstream in(path, std::ios::binary);
+    if (!in)
+        r.fail("extends",
+               "'" + base + "': no preset " + path.string() +
+                   (presets_dir.empty() ? std::string() : " nor in " + presets_dir));
+    std::ostringstream ss;
+    ss << in.rdbuf();
+    ordered_json doc;
+    try {
+        doc = ordered_json::parse(ss.str());
+    } catch (const json::exception &x) {
+        throw InputError(path.string(), 0, "",
+                         std::string("not valid JSON: ") + x.what());
+    }
+    if (!doc.is_object() || !doc.contains("types") || !doc["types"].is_array())
+        throw InputError(path.string(), 0, "types", "missing");
+    if (doc.contains("extends"))
+        r.fail("extends",
+               "'" + base + "' itself extends '" +
+                   (doc["extends"].is_string() ? doc["extends"].get<std::string>()
+                                               : std::string("?")) +
+                   "': extend a preset that gives its own types");
+    for (const char *key : {"name", "animal", "description", "source", "notes"})
+        if (child.contains(key)) {
+            if (!child[key].is_string()) r.fail(key, "expected a string");
+            doc[key] = child[key];
+        }
+    doc.erase("published");
+    const std::string ckey = spelling_in(child, "colours", r.file(), "colours");
+    if (!child.contains(ckey) && !child.contains("melanins"))
+        r.fail("colours",
+               "missing: a preset that extends another gives its own colours "
+               "{\"TYPE\": [r, g, b], ...}");
+    auto type_at = [&](const std::string &name) -> ordered_json & {
+        for (auto &t : doc["types"])
+            if (t.is_object() && t.contains("name") && t["name"] == name) return t;
+        return doc["types"][0];  // not reached: check_type_name throws first
+    };
+    if (child.contains(ckey)) {
+        const ordered_json &c = child[ckey];
+        if (!c.is_object() || c.empty())
+            r.fail(ckey, "expected an object {\"TYPE\": [r, g, b], ...}");
+        for (const auto &[name, rgb] : c.items()) {
+            const std::string at = ckey + "." + name;
+            check_type_name(r, doc["types"], name, at, base);
+            const auto v = r.numbers(rgb, at, 3);
+            for (double x : v)
+                if (x < 0) r.fail(at, "components must be >= 0 (linear RGB)");
+            ordered_json &t = type_at(name);
+            t.erase("color");
+            t["colour"] = rgb;
+        }
+    }
+    if (child.contains("melanins")) {
+        const ordered_json &m = child["melanins"];
+        if (!m.is_object() || m.empty())
+            r.fail(
+                "melanins",
+                "expected an object {\"TYPE\": {\"eumelanin\": e, \"pheomelanin\": p}}");
+        for (const auto &[name, v] : m.items()) {
+            const std::string at = "melanins." + name;
+            check_type_name(r, doc["types"], name, at, base);
+            r.check_keys(v, at, {"eumelanin", "pheomelanin"});
+            ordered_json &t = type_at(name);
+            for (const char *k : {"eumelanin", "pheomelanin"})
+                if (v.contains(k)) {
+                    if (r.number(v[k], at + "." + k) < 0)
+                        r.fail(at + "." + k, "must be >= 0");
+                    t[k] = v[k];
+                }
+        }
+    }
+    return doc.dump();
+}
+
+}  // namespace
+
+Preset parse_preset(const std::string &text, const std::string &file,
+                    const std::string &presets_dir) {
+    const Reader r(file);
+    json j = parse_json(text, file);
+    if (j.is_object() && j.contains("extends")) {
+        const std::string base =
+            j["extends"].is_string() ? j["extends"].get<std::string>() : "";
+        // The merged document is checked as any preset, its errors named in this file.
+        Preset p =
+            parse_preset(extended_text(r, ordered_json::parse(text), presets_dir), file);
+        p.extends = base;
+        return p;
+    }
     r.check_keys(j, "",
                  {"name", "description", "source", "types", "mutation", "adhesion",
                   "repulsiveness", "simulation", "published", "regions", "masks", "notes",
-                  "growth"});
+                  "growth", "animal"});
     // The same document with objects in their listed order, for the control blocks.
     const ordered_json oj = ordered_json::parse(text);
     Preset preset;
     if (oj.contains("regions")) parse_regions(oj["regions"], file, &preset.control);
     preset.name = r.string(j, "", "name", "", true);
     preset.description = r.string(j, "", "description", "");
+    preset.animal = r.string(j, "", "animal", "");
 
     // --- Types ---
     if (!j.contains("types")) r.fail("types", "missing");
@@ -356,12 +490,12 @@ Preset parse_preset(const std::string &text, const std::string &file) {
     return preset;
 }
 
-Preset load_preset_file(const std::string &path) {
+Preset load_preset_file(const std::string &path, const std::string &presets_dir) {
     std::ifstream in(path, std::ios::binary);
     if (!in) throw InputError(path, 0, "", "cannot open preset file");
     std::ostringstream ss;
     ss << in.rdbuf();
-    return parse_preset(ss.str(), path);
+    return parse_preset(ss.str(), path, presets_dir);
 }
 
 std::vector<std::string> preset_names(const std::string &presets_dir) {
@@ -377,7 +511,7 @@ Preset load_preset(const std::string &name_or_path, const std::string &presets_d
                    const std::string &file, const std::string &field) {
     const bool is_path = name_or_path.find('/') != std::string::npos ||
                          (name_or_path.size() > 5 && name_or_path.ends_with(".json"));
-    if (is_path) return load_preset_file(name_or_path);
+    if (is_path) return load_preset_file(name_or_path, presets_dir);
     const std::filesystem::path path =
         std::filesystem::path(presets_dir) / (name_or_path + ".json");
     if (!std::filesystem::exists(path)) {
@@ -392,7 +526,7 @@ Preset load_preset(const std::string &name_or_path, const std::string &presets_d
                 "; available: " + (list.empty() ? "none found in " + presets_dir : list) +
                 " (`pelage presets` describes them)");
     }
-    return load_preset_file(path.string());
+    return load_preset_file(path.string(), presets_dir);
 }
 
 }  // namespace pelage::sim

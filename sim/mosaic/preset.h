@@ -15,6 +15,8 @@ namespace pelage::sim {
 
 struct Preset {
     std::string name, description;
+    std::string animal;   // the animal it is drawn from ("snow leopard (Panthera uncia)")
+    std::string extends;  // the base preset's name when it extends one, else ""
     CellTypes types;
     SimParams params;
     // Regions, masks and local parameters (Queiroz & Walter §V); SimParams and the types
@@ -25,10 +27,14 @@ struct Preset {
 };
 
 // Parses a preset from JSON text; `file` names the source in InputError messages, which
-// carry the JSON path of the offending field (e.g. "types[1].colour").
-Preset parse_preset(const std::string &json_text, const std::string &file);
+// carry the JSON path of the offending field (e.g. "types[1].colour"). A preset with
+// "extends": "NAME" is NAME.json of `file`'s folder (else of `presets_dir`) with this
+// one's name, animal, description, source, notes, "colours" and "melanins" by type name
+// (docs/guide/presets.md#extending-a-preset).
+Preset parse_preset(const std::string &json_text, const std::string &file,
+                    const std::string &presets_dir = "");
 // Reads and parses a preset file; InputError when missing or malformed.
-Preset load_preset_file(const std::string &path);
+Preset load_preset_file(const std::string &path, const std::string &presets_dir = "");
 
 // A preset by name ("giraffe-reticulata" → presets_dir/giraffe-reticulata.json) or by
 // path (anything ending in .json or containing '/'). An unknown name is an InputError at

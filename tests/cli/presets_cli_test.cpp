@@ -1,6 +1,7 @@
 // `pelage presets` lists every shipped preset (the files of scenes/presets, listed here
-// on their own) with the file's own description and source; a mistyped name is exit 2
-// naming the closest preset, on the command line and at its JSON path in a scene.
+// on their own) with the file's own animal, description and source, and the animals of
+// issue 57 each have one; a mistyped name is exit 2 naming the closest preset, on the
+// command line and at its JSON path in a scene.
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -31,13 +32,35 @@ TEST(PresetsCli, ListsEveryShippedPresetWithItsOwnDescription) {
         const nlohmann::json file = nlohmann::json::parse(in);
         EXPECT_EQ(p["description"], file["description"]) << name;
         EXPECT_EQ(p["source"], file.value("source", "")) << name;
+        EXPECT_EQ(p["animal"], file.value("animal", "")) << name;
+        EXPECT_EQ(p["extends"], file.value("extends", "")) << name;
         EXPECT_FALSE(p["description"].get<std::string>().empty()) << name;
     }
     EXPECT_EQ(listed, files);
+    // Issue 57's animals each have a preset naming its animal and its colours' source.
+    for (const char *animal :
+         {"leopard", "snow-leopard", "cheetah", "jaguar", "serval", "ocelot", "puma",
+          "lion", "tiger", "zebra", "plains-zebra", "giraffe-reticulata",
+          "giraffe-tippelskirchi", "giraffe-rothschildi", "holstein-cow"}) {
+        bool found = false;
+        for (const nlohmann::json &p : j["presets"])
+            if (p["name"] == animal) {
+                found = true;
+                EXPECT_FALSE(p["animal"].get<std::string>().empty()) << animal;
+                EXPECT_FALSE(p["source"].get<std::string>().empty()) << animal;
+            }
+        EXPECT_TRUE(found) << animal;
+    }
     // The text form names each one on a line of its own.
     ASSERT_EQ(run_pelage("presets", &out, &err), 0) << err;
     for (const std::string &name : files)
         EXPECT_NE(("\n" + out).find("\n" + name + "\n"), std::string::npos) << name;
+    EXPECT_NE(out.find("\nsnow-leopard\n  animal: snow leopard (Panthera uncia)\n"),
+              std::string::npos)
+        << out;
+    EXPECT_NE(out.find("  extends: teo-leopard (its cells, with these colours)\n"),
+              std::string::npos)
+        << out;
 }
 
 TEST(PresetsCli, AMistypedNameNamesTheClosestPresetWhereItWasGiven) {

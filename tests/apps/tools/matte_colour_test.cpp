@@ -5,6 +5,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
+#include "renderer/image/cryptomatte_read.h"
 #include "sim/cells_io/cells_file.h"
 #include "sim/core/input_error.h"
 #include "tests/test_paths.h"
@@ -48,6 +51,35 @@ TEST(MatteColour, EachTypeShowsItsAlbedoInAWhiteFurnace) {
     EXPECT_THROW(renderer::mean_colour_by_matte(exr, "clone_of_nothing"), InputError);
     EXPECT_THROW(renderer::mean_colour_by_matte(tmp.file("none.exr"), "type"),
                  InputError);
+}
+
+// The interior of a matte, counted by hand: a 4x3 block of full coverage in a 7x5
+// frame, one pixel of it at 0.98, and a covered column along the frame's right edge.
+TEST(MatteColour, TheInteriorKeepsPixelsWhoseNeighboursAreCoveredToo) {
+    renderer::Matte m;
+    m.width = 7;
+    m.height = 5;
+    m.alpha.assign(35, 0.f);
+    auto at = [&](int x, int y) { return size_t(y * 7 + x); };
+    for (int y = 1; y <= 3; ++y)
+        for (int x = 1; x <= 4; ++x) m.alpha[at(x, y)] = 1.f;
+    m.alpha[at(1, 1)] = 0.98f;                            // below min_coverage
+    for (int y = 0; y < 5; ++y) m.alpha[at(6, y)] = 1.f;  // the right edge
+    auto count = [](const std::vector<uint8_t> &v) {
+        return std::count(v.begin(), v.end(), 1);
+    };
+    const auto e0 = renderer::matte_interior(m, 0.99f, 0);
+    EXPECT_EQ(count(e0), 11 + 5);
+    EXPECT_EQ(e0[at(1, 1)], 0);
+    // Erode 1: of the block's inner pixels (2, 2) and (3, 2), only (3, 2) has its eight
+    // neighbours covered ((2, 2) touches (1, 1)); the edge column has pixels beyond the
+    // frame, which count as uncovered.
+    const auto e1 = renderer::matte_interior(m, 0.99f, 1);
+    EXPECT_EQ(count(e1), 1);
+    EXPECT_EQ(e1[at(3, 2)], 1);
+    // Erode 2 leaves nothing; a lower threshold takes (1, 1) back.
+    EXPECT_EQ(count(renderer::matte_interior(m, 0.99f, 2)), 0);
+    EXPECT_EQ(count(renderer::matte_interior(m, 0.95f, 0)), 12 + 5);
 }
 
 }  // namespace
