@@ -310,8 +310,14 @@ void summarise_spot_shapes(const std::vector<double> &spot_area,
         s.spot_circularity_mean = circ_sum / double(with_border);
         s.spot_complexity = 1 - circ_weighted / circ_area;
     }
-    s.spot_areas = spot_area;
-    std::sort(s.spot_areas.begin(), s.spot_areas.end(), std::greater<>());
+    std::vector<size_t> order(s.spots);
+    std::iota(order.begin(), order.end(), size_t(0));
+    std::stable_sort(order.begin(), order.end(),
+                     [&](size_t a, size_t b) { return spot_area[a] > spot_area[b]; });
+    for (size_t k : order) {
+        s.spot_areas.push_back(spot_area[k]);
+        s.spot_perimeters.push_back(perimeter[k]);
+    }
 }
 
 // The mean number of neighbours per spot: background cells join their nearest spot in
