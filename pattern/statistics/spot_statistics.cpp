@@ -287,7 +287,8 @@ std::vector<double> spot_perimeters(const mosaic::MosaicPattern &pattern,
     return perimeter;
 }
 
-// The spots' area mean and spread, circularity and complexity, and areas largest first.
+// The spots' area mean and spread, circularity and complexity, and their areas and
+// perimeters, largest area first.
 void summarise_spot_shapes(const std::vector<double> &spot_area,
                            const std::vector<double> &perimeter, SpotStatistics &s) {
     double sum = 0, sum2 = 0, circ_sum = 0, circ_weighted = 0, circ_area = 0;

@@ -12,8 +12,9 @@
 // its side's end, and the crossing is found again), and the crossings of each
 // sub-triangle are joined by a chord. The chords follow the border to second order in the
 // grid step whatever the triangles' shape: a disc, an ellipse or a spherical cap is
-// measured within 0.5 % at resolution 6, on two triangles, on slivers 20 times longer
-// than wide or on a sphere (tests/pattern/statistics/spot_perimeter_test.cpp). Counting
+// measured within 1 % at resolution 6 (0.5 % once it is 30 cells across), on two
+// triangles, on slivers 20 times longer than wide or on a sphere
+// (tests/pattern/statistics/spot_perimeter_test.cpp). Counting
 // crossings of the grid's three edge families (Cauchy-Crofton) instead is exact only for
 // families evenly spread in direction: on a sliver triangle all three run nearly along
 // it, borders along it go uncounted, and an ellipse's perimeter came out 19 % short.
@@ -30,8 +31,8 @@
 //     holds in the plane, not on a curved or closed surface. A spherical cap of angular
 //     radius theta has 2 / (1 + cos theta) (1.06 at 0.5 rad, 4.9 at 2.2 rad); a spot
 //     round a leg or tail (a band: area 2 pi r h, border two loops 4 pi r) has h / (2 r),
-//     and one capping a horn or an ear more again. Such spots are measured right and
-//     still exceed 1, and the complexity can then be negative.
+//     and one capping a horn, an ear or the muzzle above 1 too. Such spots are measured
+//     right and still exceed 1, and the complexity can then be negative.
 //   * the background's connectivity: its connected components, the area share of the
 //     largest, and the share of its area in cells that touch a spot (1 for a thin
 //     network between spots, small for spots on a wide background).

@@ -122,6 +122,7 @@ TEST(SpotStatistics, CoarserGridsAgreeOnASimulatedMosaic) {
     // Deterministic at any thread count: the look-ups are written to fixed slots.
     const auto again = pattern::statistics::measure_spot_statistics(pattern, 6);
     EXPECT_EQ(again.spot_areas, coarse.spot_areas);
+    EXPECT_EQ(again.spot_perimeters, coarse.spot_perimeters);
 }
 
 }  // namespace
