@@ -4,6 +4,7 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <numbers>
 #include <numeric>
@@ -27,16 +28,14 @@ struct Grid {
     size_t size() const { return size_t(n + 1) * size_t(n + 2) / 2; }
 };
 
-// Calls f(a, b, family, on_border) for every grid edge: family 0 runs along e1 = v1 − v0,
-// 1 along e2 = v2 − v0, 2 along v2 − v1; on_border marks edges on the triangle's sides,
-// which the neighbouring triangle's grid covers too.
+// Calls f(a, b) for every grid edge (along v1 − v0, along v2 − v0 and along v2 − v1).
 template <typename F>
 void for_each_edge(const Grid &g, F &&f) {
     for (int j = 0; j < g.n; ++j)
         for (int i = 0; i + j < g.n; ++i) {
-            f(g.at(i, j), g.at(i + 1, j), 0, j == 0);
-            f(g.at(i, j), g.at(i, j + 1), 1, i == 0);
-            f(g.at(i + 1, j), g.at(i, j + 1), 2, i + j == g.n - 1);
+            f(g.at(i, j), g.at(i + 1, j));
+            f(g.at(i, j), g.at(i, j + 1));
+            f(g.at(i + 1, j), g.at(i, j + 1));
         }
 }
 
@@ -118,7 +117,7 @@ void measure_cells(const sim::Crps &crps, const CellSamples &samples,
                 if (i + j < g.n - 1)
                     add(g.at(i + 1, j), g.at(i + 1, j + 1), g.at(i, j + 1));
             }
-        for_each_edge(g, [&](size_t a, size_t b, int, bool) {
+        for_each_edge(g, [&](size_t a, size_t b) {
             const uint32_t ca = cell_at[a], cb = cell_at[b];
             if (ca != cb && ca != none && cb != none)
                 pairs.emplace_back(std::min(ca, cb), std::max(ca, cb));
@@ -166,33 +165,130 @@ Spots find_spots(const SpotTypes &is_spot, const CellPairs &pairs,
     return spots;
 }
 
-// Each spot's perimeter (Cauchy-Crofton over the three edge families of every grid).
-std::vector<double> spot_perimeters(const sim::Crps &crps, const CellSamples &samples,
-                                    const Spots &spots) {
-    const std::vector<uint32_t> &cell_at = samples.cell_at;
-    std::vector<double> perimeter(spots.area.size(), 0.0);
-    for (size_t t = 0; t < samples.grids.size(); ++t) {
-        const Grid &g = samples.grids[t];
-        const sim::CrpsFrame &f = crps.frame(sim::TriId(t));
-        const double sides[3] = {length(f.v[1] - f.v[0]), length(f.v[2] - f.v[0]),
-                                 length(f.v[2] - f.v[1])};
-        double weight[3];  // pi d_k / 6: a third of the family's estimate per crossing
-        for (int k = 0; k < 3; ++k)
-            weight[k] = std::numbers::pi * (2 * f.area / (sides[k] * g.n)) / 6.0;
-        for_each_edge(g, [&](size_t a, size_t b, int k, bool on_border) {
-            const uint32_t ca = cell_at[a], cb = cell_at[b];
-            if (ca == none || cb == none) return;
-            const uint32_t sa = spots.of_cell[ca], sb = spots.of_cell[cb];
-            if (sa == sb) return;
-            const double w = on_border ? 0.5 * weight[k] : weight[k];
-            if (sa != none) perimeter[sa] += w;
-            if (sb != none) perimeter[sb] += w;
-        });
+// A corner of a grid sub-triangle: its point in the triangle's frame, its cell and the
+// spot of that cell (`none`: background).
+struct Corner {
+    double x, y;
+    uint32_t cell, spot;
+};
+
+double distance(double ax, double ay, double bx, double by) {
+    return std::hypot(bx - ax, by - ay);
+}
+
+// Where the border between the cells of a and b crosses segment ab: the zero of
+// f(x) = d(x, a.cell) − d(x, b.cell), which is ≤ 0 at a and ≥ 0 at b, taken linear
+// between them (the midpoint when either cell is missing from the triangle's list).
+Corner bisector_crossing(const mosaic::ClosestCellIndex &index, sim::TriId t,
+                         const Corner &a, const Corner &b) {
+    const mosaic::Vec2f pa{float(a.x), float(a.y)}, pb{float(b.x), float(b.y)};
+    const double fa = double(index.distance_to_cell(t, pa, a.cell)) -
+                      double(index.distance_to_cell(t, pa, b.cell));
+    const double fb = double(index.distance_to_cell(t, pb, a.cell)) -
+                      double(index.distance_to_cell(t, pb, b.cell));
+    double s = 0.5;
+    if (std::isfinite(fa) && std::isfinite(fb) && fb - fa > 0)
+        s = std::clamp(-fa / (fb - fa), 0.0, 1.0);
+    return {a.x + s * (b.x - a.x), a.y + s * (b.y - a.y), none, none};
+}
+
+// Where the spot border crosses side ab of a grid sub-triangle (a and b in different
+// spots). The bisector of a's and b's cells is the border only when no third cell
+// comes between them, which near every corner of a cell one does (a segment from a cell
+// to the one past its neighbour crosses their bisector off the border, at up to half a
+// grid step from it). So the cell nearest the bisector's crossing replaces the end of
+// its spot, and the crossing is taken again on the shorter segment, until the crossing
+// lies between the two ends' own cells.
+std::pair<double, double> crossing(const mosaic::ClosestCellIndex &index,
+                                   const std::vector<uint32_t> &spot_of_cell,
+                                   sim::TriId t, Corner a, Corner b) {
+    Corner x = bisector_crossing(index, t, a, b);
+    for (int step = 0; step < 4; ++step) {
+        const uint32_t c =
+            index.find_nearest(t, mosaic::Vec2f{float(x.x), float(x.y)}).index;
+        if (c == none || c == a.cell || c == b.cell) break;
+        const uint32_t spot = spot_of_cell[c];
+        if (spot != a.spot && spot != b.spot) break;
+        (spot == a.spot ? a : b) = {x.x, x.y, c, spot};
+        x = bisector_crossing(index, t, a, b);
     }
+    return {x.x, x.y};
+}
+
+// The spot border inside one grid sub-triangle, as (spot, length) pairs appended to
+// `out`: the chord between its crossings of the sides whose corners lie in different
+// spots (two sides; three where three spots meet, joined through their crossings'
+// mean). The crossings are on the border, so the chords are the border's to second
+// order in the grid step whatever the sub-triangle's shape.
+void border_in(const mosaic::ClosestCellIndex &index,
+               const std::vector<uint32_t> &spot_of_cell, sim::TriId t,
+               const std::array<Corner, 3> &c,
+               std::vector<std::pair<uint32_t, double>> &out) {
+    std::array<std::pair<double, double>, 3> at;  // on side k: corners k and k + 1
+    std::array<bool, 3> crossed{};
+    int sides = 0;
+    for (int k = 0; k < 3; ++k) {
+        const Corner &a = c[k], &b = c[(k + 1) % 3];
+        crossed[k] = a.spot != b.spot;
+        if (crossed[k]) at[k] = crossing(index, spot_of_cell, t, a, b), ++sides;
+    }
+    if (sides == 0) return;
+    auto add = [&](int k, double length) {
+        const uint32_t sa = c[k].spot, sb = c[(k + 1) % 3].spot;
+        if (sa != none) out.emplace_back(sa, length);
+        if (sb != none) out.emplace_back(sb, length);
+    };
+    if (sides == 3) {
+        const double jx = (at[0].first + at[1].first + at[2].first) / 3;
+        const double jy = (at[0].second + at[1].second + at[2].second) / 3;
+        for (int k = 0; k < 3; ++k) add(k, distance(at[k].first, at[k].second, jx, jy));
+        return;
+    }
+    // One corner is alone in its spot: the chord joins the crossings of its two sides.
+    const int k = crossed[0] ? 0 : 1, l = crossed[2] ? 2 : 1;
+    add(k, distance(at[k].first, at[k].second, at[l].first, at[l].second));
+}
+
+// Each spot's perimeter: the length of its border traced through every triangle's grid
+// (border_in), triangles in parallel and summed in triangle order.
+std::vector<double> spot_perimeters(const mosaic::MosaicPattern &pattern,
+                                    const CellSamples &samples, const Spots &spots) {
+    const mosaic::ClosestCellIndex &index = pattern.index();
+    const std::vector<uint32_t> &cell_at = samples.cell_at;
+    const size_t nt = samples.grids.size();
+    std::vector<std::vector<std::pair<uint32_t, double>>> pieces(nt);
+    auto trace_triangle = [&](size_t t) {
+        const Grid &g = samples.grids[t];
+        const float inv = 1.0f / float(g.n);
+        auto corner = [&](int i, int j) {
+            const mosaic::Vec2f p =
+                index.point(sim::TriId(t), float(i) * inv, float(j) * inv);
+            const uint32_t cell = cell_at[g.at(i, j)];
+            return Corner{p.x, p.y, cell, cell == none ? none : spots.of_cell[cell]};
+        };
+        auto sub_triangle = [&](const std::array<Corner, 3> &c) {
+            if (c[0].cell == none || c[1].cell == none || c[2].cell == none) return;
+            border_in(index, spots.of_cell, sim::TriId(t), c, pieces[t]);
+        };
+        for (int j = 0; j < g.n; ++j)
+            for (int i = 0; i + j < g.n; ++i) {
+                sub_triangle({corner(i, j), corner(i + 1, j), corner(i, j + 1)});
+                if (i + j < g.n - 1)
+                    sub_triangle(
+                        {corner(i + 1, j), corner(i + 1, j + 1), corner(i, j + 1)});
+            }
+    };
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, nt, 16), [&](const auto &range) {
+        for (size_t t = range.begin(); t != range.end(); ++t) trace_triangle(t);
+    });
+    std::vector<double> perimeter(spots.area.size(), 0.0);
+    for (const auto &p : pieces)
+        for (const auto &[spot, length] : p) perimeter[spot] += length;
     return perimeter;
 }
 
-// The spots' area mean and spread, circularity and complexity, and areas largest first.
+// The spots' area mean and spread, circularity and complexity, and their areas and
+// perimeters, largest area first.
 void summarise_spot_shapes(const std::vector<double> &spot_area,
                            const std::vector<double> &perimeter, SpotStatistics &s) {
     double sum = 0, sum2 = 0, circ_sum = 0, circ_weighted = 0, circ_area = 0;
@@ -215,8 +311,14 @@ void summarise_spot_shapes(const std::vector<double> &spot_area,
         s.spot_circularity_mean = circ_sum / double(with_border);
         s.spot_complexity = 1 - circ_weighted / circ_area;
     }
-    s.spot_areas = spot_area;
-    std::sort(s.spot_areas.begin(), s.spot_areas.end(), std::greater<>());
+    std::vector<size_t> order(s.spots);
+    std::iota(order.begin(), order.end(), size_t(0));
+    std::stable_sort(order.begin(), order.end(),
+                     [&](size_t a, size_t b) { return spot_area[a] > spot_area[b]; });
+    for (size_t k : order) {
+        s.spot_areas.push_back(spot_area[k]);
+        s.spot_perimeters.push_back(perimeter[k]);
+    }
 }
 
 // The mean number of neighbours per spot: background cells join their nearest spot in
@@ -302,7 +404,7 @@ SpotStatistics measure_spot_statistics(const mosaic::MosaicPattern &pattern,
     s.spots = spots.area.size();
     for (size_t n : spots.cells) s.largest_spot_cells = std::max(s.largest_spot_cells, n);
     if (s.spots > 0)
-        summarise_spot_shapes(spots.area, spot_perimeters(crps, samples, spots), s);
+        summarise_spot_shapes(spots.area, spot_perimeters(pattern, samples, spots), s);
 
     const Adjacency adj(m, pairs);
     if (s.spots > 1) s.spot_neighbours_mean = spot_neighbours_mean(adj, pairs, spots);

@@ -68,15 +68,17 @@ TEST(SpotStatistics, TwoOppositeSquaresOnTheOctahedralTiling) {
     EXPECT_NEAR(s.spot_area_mean, s.area / 6, 0.003 * s.area);
     EXPECT_NEAR(s.spot_area_sd, 0, 0.003 * s.area);
     // A spherical square: area 4 pi / 6, perimeter 4 acos(1/3) (areas are taken
-    // relative to the polyhedron's, whose chords shorten the arcs by under 1 %). Three
-    // line families estimate one straight border's length within -9 %..+5 % depending on
-    // its direction (unbiased over directions); circularity goes with 1 / P^2, so it
-    // lies within [1 / 1.05², 1 / 0.91²] of the truth for these four straight borders.
+    // relative to the polyhedron's, whose chords shorten the arcs by under 1 %). The
+    // traced border is measured within 0.3 % of the arcs; circularity goes with 1 / P^2,
+    // so within 1.5 % of the perimeter it lies in [1 / 1.015², 1 / 0.985²] of the truth.
     const double perimeter = 4 * std::acos(1.0 / 3.0);
     const double circularity =
         4 * std::numbers::pi * (s.area / 6) / (perimeter * perimeter);
-    EXPECT_GE(s.spot_circularity_mean, circularity / (1.05 * 1.05));
-    EXPECT_LE(s.spot_circularity_mean, circularity / (0.91 * 0.91));
+    ASSERT_EQ(s.spot_perimeters.size(), 2u);
+    EXPECT_NEAR(s.spot_perimeters[0], perimeter, 0.015 * perimeter);
+    EXPECT_NEAR(s.spot_perimeters[1], perimeter, 0.015 * perimeter);
+    EXPECT_GE(s.spot_circularity_mean, circularity / (1.015 * 1.015));
+    EXPECT_LE(s.spot_circularity_mean, circularity / (0.985 * 0.985));
     EXPECT_NEAR(s.spot_complexity, 1 - s.spot_circularity_mean, 1e-12);  // equal areas
     EXPECT_DOUBLE_EQ(s.spot_neighbours_mean, 1.0);  // the two squares face each other
     EXPECT_EQ(s.background_components, 1u);
@@ -102,8 +104,9 @@ TEST(SpotStatistics, AdjacentSpotCellsMakeOneSpotAndSeparatedBackgroundSplits) {
     const double perimeter = 8 * std::acos(1.0 / 3.0);
     const double circularity =
         4 * std::numbers::pi * (s.area * 2 / 3) / (perimeter * perimeter);
-    EXPECT_GE(s.spot_circularity_mean, circularity / (1.05 * 1.05));
-    EXPECT_LE(s.spot_circularity_mean, circularity / (0.91 * 0.91));
+    EXPECT_NEAR(s.spot_perimeters.at(0), perimeter, 0.015 * perimeter);
+    EXPECT_GE(s.spot_circularity_mean, circularity / (1.015 * 1.015));
+    EXPECT_LE(s.spot_circularity_mean, circularity / (0.985 * 0.985));
 }
 
 TEST(SpotStatistics, CoarserGridsAgreeOnASimulatedMosaic) {
@@ -119,6 +122,7 @@ TEST(SpotStatistics, CoarserGridsAgreeOnASimulatedMosaic) {
     // Deterministic at any thread count: the look-ups are written to fixed slots.
     const auto again = pattern::statistics::measure_spot_statistics(pattern, 6);
     EXPECT_EQ(again.spot_areas, coarse.spot_areas);
+    EXPECT_EQ(again.spot_perimeters, coarse.spot_perimeters);
 }
 
 }  // namespace
