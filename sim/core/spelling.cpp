@@ -1,6 +1,7 @@
 #include "sim/core/spelling.h"
 
 #include <algorithm>
+#include <cctype>
 
 namespace pelage::sim {
 
@@ -24,6 +25,13 @@ size_t edit_distance(const std::string &a, const std::string &b) {
 
 std::string closest_name(const std::string &typed,
                          const std::vector<std::string> &names) {
+    // A name that differs only in case is what was meant ('b' for 'B', not 'F').
+    auto folded = [](std::string s) {
+        for (char &c : s) c = char(std::tolower(static_cast<unsigned char>(c)));
+        return s;
+    };
+    for (const std::string &name : names)
+        if (name != typed && folded(name) == folded(typed)) return name;
     std::string best;
     size_t best_distance = 0;
     for (const std::string &name : names) {

@@ -318,14 +318,15 @@ std::string extended_text(const Reader &r, const ordered_json &child,
         throw InputError(path.string(), 0, "",
                          std::string("not valid JSON: ") + x.what());
     }
-    if (!doc.is_object() || !doc.contains("types") || !doc["types"].is_array())
-        throw InputError(path.string(), 0, "types", "missing");
-    if (doc.contains("extends"))
+    // A base that extends another is named as such before its own (absent) types.
+    if (doc.is_object() && doc.contains("extends"))
         r.fail("extends",
                "'" + base + "' itself extends '" +
                    (doc["extends"].is_string() ? doc["extends"].get<std::string>()
                                                : std::string("?")) +
                    "': extend a preset that gives its own types");
+    if (!doc.is_object() || !doc.contains("types") || !doc["types"].is_array())
+        throw InputError(path.string(), 0, "types", "missing");
     for (const char *key : {"name", "animal", "description", "source", "notes"})
         if (child.contains(key)) {
             if (!child[key].is_string()) r.fail(key, "expected a string");

@@ -198,7 +198,10 @@ TEST(SkinnedLookCli, AClipFrameShowsEachCellInItsTypesColour) {
             const double d = std::max({std::abs(r[i] - want[0]), std::abs(g[i] - want[1]),
                                        std::abs(b[i] - want[2])});
             worst = std::max(worst, d);
-            off += d > 1e-3;
+            // A cell boundary's blend over the footprint can leave a tail of the other
+            // type's colour of a few thousandths (seen: 0.0011); the filtered look this
+            // test is about is off by tenths (0.44 before the footprints' fix).
+            off += d > 5e-3;
         }
     ASSERT_GE(inside, 100) << "too few pixels inside one type's region";
     EXPECT_EQ(off, 0) << off << " of " << inside << " pixels inside one type are off "
