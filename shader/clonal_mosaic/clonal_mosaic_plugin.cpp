@@ -387,14 +387,26 @@ std::unique_ptr<ClonalMosaic> make(const PelageParamSet &ps) {
     cm->transfer = cm->pattern->transfer();
     if (cm->transfer) {
         char message[1024];
-        std::snprintf(message, sizeof message,
-                      "clonal_mosaic: %s was grown on another mesh of this shape (%zu "
-                      "triangles%s); it is rendered on %s (%zu triangles) through the "
-                      "closest points of that surface, at most %.2g %% of its size away",
-                      ps.mesh.cells_path, cm->pattern->num_triangles(),
-                      cm->transfer->similarity_applied() ? ", another size or place" : "",
-                      mesh_name.c_str(), cm->transfer->num_render_triangles(),
-                      100 * cm->transfer->max_deviation());
+        // A low-poly mesh is grown on a copy split at its edge midpoints (the same
+        // surface: sim/remesh/cell_scale_surface.h), which is no news of another mesh.
+        if (!cm->transfer->similarity_applied() && cm->transfer->max_deviation() < 1e-6)
+            std::snprintf(message, sizeof message,
+                          "clonal_mosaic: %s was grown on %s triangulated otherwise (%zu "
+                          "triangles, here %zu): the same surface, every point in its "
+                          "own cell",
+                          ps.mesh.cells_path, mesh_name.c_str(),
+                          cm->pattern->num_triangles(),
+                          cm->transfer->num_render_triangles());
+        else
+            std::snprintf(
+                message, sizeof message,
+                "clonal_mosaic: %s was grown on another mesh of this shape (%zu "
+                "triangles%s); it is rendered on %s (%zu triangles) through the "
+                "closest points of that surface, at most %.2g %% of its size away",
+                ps.mesh.cells_path, cm->pattern->num_triangles(),
+                cm->transfer->similarity_applied() ? ", another size or place" : "",
+                mesh_name.c_str(), cm->transfer->num_render_triangles(),
+                100 * cm->transfer->max_deviation());
         ps.warn(ps.warn_context, message);
     }
     warn_uncovered(cm->pattern->cover().report(), ps.mesh.cells_path, mesh_name, ps);
