@@ -29,9 +29,10 @@ void print_summary(const std::string &mesh, const sim::Surface &s,
     fmt::print("  triangles          {:>10}   (read {}, degenerate dropped {})\n",
                s.mesh.num_triangles(), s.load.raw_triangles,
                s.load.clean.degenerate_dropped);
-    fmt::print("  vertices           {:>10}   (read {}, welded {}, unused {})\n",
-               s.mesh.num_vertices(), s.load.raw_vertices, s.load.clean.vertices_welded,
-               s.load.clean.unused_vertices);
+    fmt::print(
+        "  vertices           {:>10}   (read {}, welded {}, stitched {}, unused {})\n",
+        s.mesh.num_vertices(), s.load.raw_vertices, s.load.clean.vertices_welded,
+        s.load.clean.vertices_stitched, s.load.clean.unused_vertices);
     fmt::print(
         "  edges              {:>10}   (boundary {}, non-manifold {}, non-orientable "
         "{})\n",
@@ -93,6 +94,7 @@ int run_crps(const CrpsOptions &o) {
             {"faces_reoriented", topo.faces_reoriented},
             {"degenerate_dropped", s.load.clean.degenerate_dropped},
             {"vertices_welded", s.load.clean.vertices_welded},
+            {"vertices_stitched", s.load.clean.vertices_stitched},
             {"polygons_triangulated", s.load.read.polygons_triangulated},
             {"primary_maps", primary},
             {"secondary_maps", secondary},

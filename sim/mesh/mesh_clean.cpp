@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numeric>
 #include <unordered_map>
 
@@ -60,6 +61,102 @@ std::vector<VertId> weld_vertices(const std::vector<Vec3d> &p,
     return rep;
 }
 
+struct DisjointSets {
+    std::vector<VertId> parent;
+    explicit DisjointSets(size_t n) : parent(n) {
+        std::iota(parent.begin(), parent.end(), 0);
+    }
+    VertId find(VertId v) {
+        while (parent[v] != v) v = parent[v] = parent[parent[v]];
+        return v;
+    }
+    void join(VertId a, VertId b) {
+        a = find(a);
+        b = find(b);
+        if (a != b) parent[std::max(a, b)] = std::min(a, b);
+    }
+};
+
+// Stitches an asset store's triangle soup: a boundary vertex (on an edge only one
+// triangle holds) joins the lowest-index boundary vertex of *another* piece within
+// stitch_relative of the diagonal and within a third of either's shortest edge, so
+// that no edge of either piece collapses and a piece's own holes and slits stay open.
+// Pieces cut apart by an exporter whose copies moved apart by more than the weld allows
+// (per-part rounding, a slight offset per part) become one surface again, and the
+// pattern grows across them. `rep` (after the weld) is updated in place.
+size_t stitch_pieces(const TriangleMesh &in, const std::vector<char> &used, Vec3d origin,
+                     double eps, std::vector<VertId> *rep) {
+    if (!(eps > 0)) return 0;
+    const std::vector<Vec3d> &p = in.positions;
+    std::vector<VertId> &r = *rep;
+    // Edges of the welded mesh and how many triangles hold each; pieces by triangles.
+    std::unordered_map<uint64_t, int> edge_count;
+    DisjointSets pieces(p.size());
+    std::vector<double> shortest(p.size(), std::numeric_limits<double>::infinity());
+    auto edge_key = [](VertId a, VertId b) {
+        return uint64_t(std::min(a, b)) << 32 | uint64_t(std::max(a, b));
+    };
+    for (const auto &tri : in.triangles) {
+        const std::array<VertId, 3> t = {r[tri[0]], r[tri[1]], r[tri[2]]};
+        for (int c = 0; c < 3; ++c) {
+            const VertId a = t[c], b = t[(c + 1) % 3];
+            if (a == b) continue;
+            ++edge_count[edge_key(a, b)];
+            pieces.join(a, b);
+            const double l = length(p[a] - p[b]);
+            shortest[a] = std::min(shortest[a], l);
+            shortest[b] = std::min(shortest[b], l);
+        }
+    }
+    std::vector<char> boundary(p.size(), 0);
+    for (const auto &[key, count] : edge_count)
+        if (count == 1) boundary[key >> 32] = boundary[key & 0xffffffffu] = 1;
+    std::vector<VertId> piece_of(p.size());
+    for (VertId v = 0; v < p.size(); ++v) piece_of[v] = pieces.find(v);
+    // The same grid as the weld's, over boundary vertices only.
+    std::unordered_map<uint64_t, std::vector<VertId>> grid;
+    auto cell_of = [&](Vec3d q) {
+        q = q - origin;
+        return std::array<int64_t, 3>{static_cast<int64_t>(std::floor(q.x / eps)),
+                                      static_cast<int64_t>(std::floor(q.y / eps)),
+                                      static_cast<int64_t>(std::floor(q.z / eps))};
+    };
+    auto key_of = [](int64_t x, int64_t y, int64_t z) {
+        uint64_t h = static_cast<uint64_t>(x) * 0x9E3779B97F4A7C15ull;
+        h ^= static_cast<uint64_t>(y) * 0xC2B2AE3D27D4EB4Full + (h << 6) + (h >> 2);
+        h ^= static_cast<uint64_t>(z) * 0x165667B19E3779F9ull + (h << 6) + (h >> 2);
+        return h;
+    };
+    std::vector<VertId> target(p.size());
+    std::iota(target.begin(), target.end(), 0);
+    size_t stitched = 0;
+    for (VertId v = 0; v < p.size(); ++v) {
+        if (!used[v] || r[v] != v || !boundary[v]) continue;
+        const auto c = cell_of(p[v]);
+        VertId best = v;
+        for (int dx = -1; dx <= 1; ++dx)
+            for (int dy = -1; dy <= 1; ++dy)
+                for (int dz = -1; dz <= 1; ++dz) {
+                    auto it = grid.find(key_of(c[0] + dx, c[1] + dy, c[2] + dz));
+                    if (it == grid.end()) continue;
+                    for (VertId u : it->second) {
+                        if (u >= best || piece_of[u] == piece_of[v]) continue;
+                        const double reach =
+                            std::min({eps, shortest[u] / 3, shortest[v] / 3});
+                        if (length_squared(p[u] - p[v]) <= reach * reach) best = u;
+                    }
+                }
+        if (best == v) {
+            grid[key_of(c[0], c[1], c[2])].push_back(v);
+        } else {
+            target[v] = best;
+            ++stitched;
+        }
+    }
+    for (VertId v = 0; v < p.size(); ++v) r[v] = target[r[v]];
+    return stitched;
+}
+
 }  // namespace
 
 TriangleMesh clean_mesh(const TriangleMesh &in, const std::string &source_path,
@@ -80,8 +177,10 @@ TriangleMesh clean_mesh(const TriangleMesh &in, const std::string &source_path,
             }
     const double diag = box.diagonal();
 
-    const std::vector<VertId> rep = weld_vertices(
+    std::vector<VertId> rep = weld_vertices(
         in.positions, in_use, box.lo, opt.weld_relative * diag, &st.vertices_welded);
+    st.vertices_stitched =
+        stitch_pieces(in, in_use, box.lo, opt.stitch_relative * diag, &rep);
     // Compact the surviving vertices, keeping their file order.
     std::vector<VertId> new_index(in.positions.size(), invalid_id);
     TriangleMesh out;

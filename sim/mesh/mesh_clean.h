@@ -20,12 +20,17 @@ struct MeshCleanOptions {
     // edge would not read as apart in any render (what touches at rest and parts in a
     // pose keeps its own motion through MeshCleanStats::source_corners).
     double weld_relative = 1e-5;
+    // Boundary vertices of different pieces closer than stitch_relative * diagonal (and
+    // than a third of their shortest edges) become one: a triangle soup's pieces, cut
+    // apart with copies that moved slightly, join again (mesh_clean.cpp stitch_pieces).
+    double stitch_relative = 1e-3;
     // Triangles with area below area_relative * diagonal^2 are degenerate.
     double area_relative = 1e-14;
 };
 
 struct MeshCleanStats {
     size_t vertices_welded = 0;     // vertices merged into another
+    size_t vertices_stitched = 0;   // boundary vertices joined to another piece's
     size_t degenerate_dropped = 0;  // zero-area triangles removed
     size_t unused_vertices = 0;     // vertices no triangle references (kept, harmless)
     // For each output vertex, the input vertex it is (the lowest index of a welded

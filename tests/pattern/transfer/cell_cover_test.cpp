@@ -57,11 +57,11 @@ sim::Vec3d point_of(const sim::Crps &crps, sim::TriId t, float b1, float b2) {
                       crps.barycentric_to_2d(t, {1.0 - b1 - b2, double(b1), double(b2)}));
 }
 
-// Pieces offset by 1e-4 of the diagonal (ten times the weld, pieces sharing a vertex at
-// least 3e-5 apart): the loader keeps every piece apart, as on the store meshes with
-// thousands of components.
+// Pieces offset by 2e-3 of the diagonal (pieces sharing a vertex at least 1.5e-3
+// apart, beyond the stitch's 1e-3): the loader keeps every piece apart, as on the store
+// meshes with thousands of components.
 TEST(CellCover, EveryPointOfASoupFindsACellNearItsClosestCellBearingPoint) {
-    GrownSoup g(1e-4, 3e-5);
+    GrownSoup g(2e-3, 1.5e-3);
     const mosaic::MosaicPattern pattern(g.cells, g.mesh);
     ASSERT_EQ(pattern.transfer(), nullptr) << "the pattern was grown on another surface";
     ASSERT_EQ(pattern.num_triangles(), g.soup.mesh.num_triangles())
@@ -178,6 +178,24 @@ TEST(CellCover, ASoupWhoseCopiesLieWithinTheWeldIsStitched) {
     const auto stats = nlohmann::json::parse(std::ifstream(json));
     EXPECT_EQ(stats["components"].get<size_t>(), 1 + g.soup.floating);
     EXPECT_GT(stats["vertices_welded"].get<size_t>(), 0u);
+}
+
+// Pieces offset by 1e-4 of the diagonal (ten times the weld, pieces sharing a vertex at
+// least 3e-5 apart): their boundaries are stitched (mesh_clean.h stitch_relative), so
+// the pattern grows across them as on one surface and no piece borrows cells.
+TEST(CellCover, ASoupSlightlyApartIsStitchedAlongItsCuts) {
+    GrownSoup g(1e-4, 3e-5);
+    sim::MeshLoadReport load;
+    const sim::TriangleMesh stitched = sim::load_mesh(g.mesh, &load);
+    EXPECT_EQ(load.clean.vertices_welded, 0u);  // every copy is beyond the weld
+    EXPECT_GT(load.clean.vertices_stitched, 0u);
+    ASSERT_EQ(stitched.num_triangles(), g.soup.mesh.num_triangles());  // none collapsed
+    const sim::Surface s = sim::build_surface(stitched);
+    EXPECT_EQ(s.crps.topology().num_components, 1 + g.soup.floating);
+    // The source sphere is closed: stitched, only the floating triangles' edges (one
+    // triangle each) are open, and no edge is shared by three.
+    EXPECT_EQ(s.crps.topology().boundary_edges, 3 * g.soup.floating);
+    EXPECT_EQ(s.crps.topology().nonmanifold_edges, 0u);
 }
 
 // A surface with no cells anywhere carries nothing: every point reports none, and the

@@ -465,13 +465,14 @@ TEST(ClonalMosaicPlugin, WideFootprintsSeeTheFilteredLook) {
     EXPECT_NEAR(fraction, 0.3, 0.06) << filtered_in_ramp << " / " << exact_in_ramp;
 }
 
-// A triangle soup (pieces offset by 1e-4 of the diagonal, too small for a cell each):
+// A triangle soup (pieces offset by 2e-3 of the diagonal, beyond the stitch, too small
+// for a cell each):
 // every hit is coloured by a cell, hard-edged or blended, and creating the instance
 // warns with the share of the area that borrows its cells and what to do.
 TEST(ClonalMosaicPlugin, EveryHitOnATriangleSoupHasACellAndTheSoupIsNamed) {
     TempDir tmp;
     const TriangleSoup soup =
-        make_triangle_soup(sim::load_mesh(mesh_spec), 1e-4, 3e-5, 57);
+        make_triangle_soup(sim::load_mesh(mesh_spec), 2e-3, 1.5e-3, 57);
     const std::string mesh = tmp.file("soup.off");
     write_off_exact(mesh, soup.mesh);
     const std::string cells = tmp.file("soup.cells");
