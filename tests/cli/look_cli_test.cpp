@@ -189,8 +189,7 @@ TEST(LookCli, PlaysAClipFramedOnEveryPose) {
         << err;
     // The pattern grown on a finer copy of the strip says so once, not once per frame.
     size_t notes = 0;
-    for (size_t at = 0;
-         (at = err.find("was grown on ", at)) != std::string::npos; ++at)
+    for (size_t at = 0; (at = err.find("was grown on ", at)) != std::string::npos; ++at)
         ++notes;
     EXPECT_EQ(notes, 1u) << err;
     for (const std::string f : {"0000", "0012", "0024"}) {
