@@ -11,6 +11,21 @@
 namespace pelage::sim {
 namespace {
 
+// A point's cell on a uniform grid of cell size eps from `origin`, and the cell's hash
+// key (the weld's and the stitch's grids).
+std::array<int64_t, 3> grid_cell(Vec3d q, Vec3d origin, double eps) {
+    q = q - origin;
+    return {static_cast<int64_t>(std::floor(q.x / eps)),
+            static_cast<int64_t>(std::floor(q.y / eps)),
+            static_cast<int64_t>(std::floor(q.z / eps))};
+}
+uint64_t key_of(int64_t x, int64_t y, int64_t z) {
+    uint64_t h = static_cast<uint64_t>(x) * 0x9E3779B97F4A7C15ull;
+    h ^= static_cast<uint64_t>(y) * 0xC2B2AE3D27D4EB4Full + (h << 6) + (h >> 2);
+    h ^= static_cast<uint64_t>(z) * 0x165667B19E3779F9ull + (h << 6) + (h >> 2);
+    return h;
+}
+
 // Welds vertices on a uniform grid of cell size eps: a vertex joins the lowest-index
 // representative found within eps in its own or the 26 neighbouring cells, so the result
 // does not depend on hash-table order. Vertices no triangle uses stay as they are.
@@ -22,18 +37,7 @@ std::vector<VertId> weld_vertices(const std::vector<Vec3d> &p,
     if (!(eps > 0)) return rep;
     // Relative to the corner of the used vertices' box, their cell indices stay below
     // 1/weld_relative: no overflow.
-    auto cell_of = [&](Vec3d q) {
-        q = q - origin;
-        return std::array<int64_t, 3>{static_cast<int64_t>(std::floor(q.x / eps)),
-                                      static_cast<int64_t>(std::floor(q.y / eps)),
-                                      static_cast<int64_t>(std::floor(q.z / eps))};
-    };
-    auto key_of = [](int64_t x, int64_t y, int64_t z) {
-        uint64_t h = static_cast<uint64_t>(x) * 0x9E3779B97F4A7C15ull;
-        h ^= static_cast<uint64_t>(y) * 0xC2B2AE3D27D4EB4Full + (h << 6) + (h >> 2);
-        h ^= static_cast<uint64_t>(z) * 0x165667B19E3779F9ull + (h << 6) + (h >> 2);
-        return h;
-    };
+    auto cell_of = [&](Vec3d q) { return grid_cell(q, origin, eps); };
     std::unordered_map<uint64_t, std::vector<VertId>> grid;
     grid.reserve(p.size());
     size_t welded = 0;
@@ -115,18 +119,7 @@ size_t stitch_pieces(const TriangleMesh &in, const std::vector<char> &used, Vec3
     for (VertId v = 0; v < p.size(); ++v) piece_of[v] = pieces.find(v);
     // The same grid as the weld's, over boundary vertices only.
     std::unordered_map<uint64_t, std::vector<VertId>> grid;
-    auto cell_of = [&](Vec3d q) {
-        q = q - origin;
-        return std::array<int64_t, 3>{static_cast<int64_t>(std::floor(q.x / eps)),
-                                      static_cast<int64_t>(std::floor(q.y / eps)),
-                                      static_cast<int64_t>(std::floor(q.z / eps))};
-    };
-    auto key_of = [](int64_t x, int64_t y, int64_t z) {
-        uint64_t h = static_cast<uint64_t>(x) * 0x9E3779B97F4A7C15ull;
-        h ^= static_cast<uint64_t>(y) * 0xC2B2AE3D27D4EB4Full + (h << 6) + (h >> 2);
-        h ^= static_cast<uint64_t>(z) * 0x165667B19E3779F9ull + (h << 6) + (h >> 2);
-        return h;
-    };
+    auto cell_of = [&](Vec3d q) { return grid_cell(q, origin, eps); };
     std::vector<VertId> target(p.size());
     std::iota(target.begin(), target.end(), 0);
     size_t stitched = 0;
