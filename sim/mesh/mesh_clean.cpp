@@ -6,6 +6,7 @@
 #include <numeric>
 #include <unordered_map>
 
+#include "sim/core/disjoint_sets.h"
 #include "sim/core/input_error.h"
 
 namespace pelage::sim {
@@ -65,22 +66,6 @@ std::vector<VertId> weld_vertices(const std::vector<Vec3d> &p,
     return rep;
 }
 
-struct DisjointSets {
-    std::vector<VertId> parent;
-    explicit DisjointSets(size_t n) : parent(n) {
-        std::iota(parent.begin(), parent.end(), 0);
-    }
-    VertId find(VertId v) {
-        while (parent[v] != v) v = parent[v] = parent[parent[v]];
-        return v;
-    }
-    void join(VertId a, VertId b) {
-        a = find(a);
-        b = find(b);
-        if (a != b) parent[std::max(a, b)] = std::min(a, b);
-    }
-};
-
 // Stitches an asset store's triangle soup: a boundary vertex (on an edge only one
 // triangle holds) joins the lowest-index boundary vertex of *another* piece within
 // stitch_relative of the diagonal and within a third of either's shortest edge, so
@@ -106,7 +91,7 @@ size_t stitch_pieces(const TriangleMesh &in, const std::vector<char> &used, Vec3
             const VertId a = t[c], b = t[(c + 1) % 3];
             if (a == b) continue;
             ++edge_count[edge_key(a, b)];
-            pieces.join(a, b);
+            pieces.unite(a, b);
             const double l = length(p[a] - p[b]);
             shortest[a] = std::min(shortest[a], l);
             shortest[b] = std::min(shortest[b], l);
