@@ -20,6 +20,15 @@
 // seeds), reference_mean_rgb} (an output contract). mean_rgb against reference_mean_rgb
 // (the same pixels) is a converged run's bias against another build's or setting's
 // --reference.
+//
+// With --denoise, every run is also denoised (renderer/denoise) and measured the same
+// way: each run gains `denoised: {seconds, mse, rmse, fireflies, mean_rgb, mse_ratio}`
+// and each by_spp entry `denoised: {seconds, mse, mse_ratio, time_mse}` — mse_ratio is
+// the noisy MSE over the denoised one, the denoiser's gain; time_mse counts the render
+// and the denoise. On a pattern with a cell_type AOV (the clonal_mosaic shader) they also
+// gain `type_edges: {halo_pixels, max_bias, types: [{type, bias, interior_pixels,
+// error_by_distance}]}` (apps/tools/type_edge_metrics.h), the noisy image's beside it
+// as `noisy_type_edges`, with the types of a 1-spp render's sample 0.
 
 #include <cstdlib>
 #include <cstring>
@@ -30,7 +39,9 @@
 
 #include "apps/bench/bench.h"
 #include "apps/tools/noise_metrics.h"
+#include "apps/tools/type_edge_metrics.h"
 #include "renderer/core/install_layout.h"
+#include "renderer/denoise/denoise.h"
 #include "renderer/integrator/render.h"
 #include "renderer/job/input_hash.h"
 #include "renderer/job/scene_patterns.h"
@@ -50,6 +61,7 @@ struct BenchNoiseOptions {
     std::string scene, res = "640x360", cache, reference;
     std::vector<int> spp{16, 64, 256};
     int seeds = 2, reference_spp = 4096;
+    bool denoise = false;
     uint64_t reference_seed = 999983;
     ThreadOption threads;
     BenchOutput out;
@@ -119,7 +131,11 @@ void write_reference(const std::string &path, int width, int height,
 
 struct TimedRender {
     std::vector<float> pixels;
-    double seconds, cpu_seconds;
+    double seconds = 0, cpu_seconds = 0;
+    // With film.denoise: the denoised image (`stride` floats per pixel, the noisy
+    // coverage) and the denoiser's wall and CPU seconds.
+    std::vector<float> denoised;
+    double denoise_seconds = 0, denoise_cpu_seconds = 0;
 };
 
 TimedRender timed_render(const Scene &scene, uint64_t seed) {
@@ -128,7 +144,21 @@ TimedRender timed_render(const Scene &scene, uint64_t seed) {
     const double cpu0 = process_cpu_seconds();
     const RenderResult r = render(scene, ro);
     const double cpu = process_cpu_seconds() - cpu0;
-    return {rgba(*r.film), r.seconds, cpu};
+    TimedRender out;
+    out.pixels = rgba(*r.film);
+    out.seconds = r.seconds;
+    out.cpu_seconds = cpu;
+    if (r.film->has_halves()) {
+        const Timer t;
+        const double dcpu0 = process_cpu_seconds();
+        const std::vector<float> rgb = denoise(r.film->resolve_halves());
+        out.denoise_cpu_seconds = process_cpu_seconds() - dcpu0;
+        out.denoise_seconds = t.seconds();
+        out.denoised = out.pixels;
+        for (size_t i = 0; i < rgb.size() / 3; ++i)
+            for (int c = 0; c < 3; ++c) out.denoised[i * stride + c] = rgb[3 * i + c];
+    }
+    return out;
 }
 
 int run(const BenchNoiseOptions &o) {
@@ -149,6 +179,7 @@ int run(const BenchNoiseOptions &o) {
 
     // --- The reference: cached, or rendered once ---
     desc.film.spp = o.reference_spp;
+    desc.film.denoise = false;
     const Timer t_setup;
     std::unique_ptr<Scene> scene = std::make_unique<Scene>(desc, plugins);
     const double setup_seconds = t_setup.seconds();
@@ -166,6 +197,36 @@ int run(const BenchNoiseOptions &o) {
         write_reference(ref_file, desc.film.width, desc.film.height, reference);
     }
 
+    // --- The cell types per pixel, for the edges' metrics ---
+    std::vector<float> types;
+    const std::vector<std::string> &aov_names = scene->shader_aov_names();
+    if (o.denoise)
+        for (size_t k = 0; k < aov_names.size(); ++k)
+            if (aov_names[k] == "cell_type") {
+                desc.film.spp = 1;
+                const Scene one(desc, plugins);
+                RenderOptions ro;
+                ro.seed = o.reference_seed;
+                const std::vector<float> all = render(one, ro).film->resolve();
+                types.resize(all.size() / Film::num_channels);
+                for (size_t i = 0; i < types.size(); ++i)
+                    types[i] = all[i * Film::num_channels + Film::num_channels -
+                                   PELAGE_SHADER_AOV_SLOTS + k];
+            }
+    auto edges_json = [&](const std::vector<float> &image) {
+        const TypeEdgeMetrics e = measure_type_edges(
+            image, reference, types, desc.film.width, desc.film.height, stride);
+        nlohmann::json ts = nlohmann::json::array();
+        for (const TypeEdgeMetrics::Type &t : e.types)
+            ts.push_back({{"type", t.type},
+                          {"bias", t.bias},
+                          {"interior_pixels", t.interior_pixels},
+                          {"error_by_distance", t.error_by_distance},
+                          {"pixels_by_distance", t.pixels_by_distance}});
+        return nlohmann::json{
+            {"halo_pixels", e.halo_pixels}, {"max_bias", e.max_bias}, {"types", ts}};
+    };
+
     // --- The runs, every sample count with every seed ---
     nlohmann::json runs = nlohmann::json::array(), by_spp = nlohmann::json::array();
     size_t object_pixels = 0;
@@ -174,8 +235,10 @@ int run(const BenchNoiseOptions &o) {
     auto rgb = [](const double *c) { return nlohmann::json{c[0], c[1], c[2]}; };
     for (int spp : o.spp) {
         desc.film.spp = spp;
+        desc.film.denoise = o.denoise;
         scene = std::make_unique<Scene>(desc, plugins);
-        double sum[8] = {};  // seconds, cpu, mse, rmse, fireflies, mean R, G, B
+        double sum[8] = {};   // seconds, cpu, mse, rmse, fireflies, mean R, G, B
+        double dsum[3] = {};  // denoised: seconds, cpu seconds, mse
         for (int s = 1; s <= o.seeds; ++s) {
             const TimedRender r = timed_render(*scene, uint64_t(s));
             const NoiseMetrics m = measure_noise(r.pixels, reference, desc.film.width,
@@ -194,6 +257,24 @@ int run(const BenchNoiseOptions &o) {
                             {"fireflies", m.fireflies},
                             {"median_max", m.median_max},
                             {"mean_rgb", rgb(m.mean_rgb)}});
+            if (o.denoise) {
+                const NoiseMetrics d = measure_noise(
+                    r.denoised, reference, desc.film.width, desc.film.height, stride);
+                runs.back()["denoised"] = {{"seconds", r.denoise_seconds},
+                                           {"cpu_seconds", r.denoise_cpu_seconds},
+                                           {"mse", d.mse},
+                                           {"rmse", d.rmse},
+                                           {"fireflies", d.fireflies},
+                                           {"mean_rgb", rgb(d.mean_rgb)},
+                                           {"mse_ratio", m.mse / std::max(d.mse, 1e-30)}};
+                if (!types.empty()) {
+                    runs.back()["denoised"]["type_edges"] = edges_json(r.denoised);
+                    runs.back()["noisy_type_edges"] = edges_json(r.pixels);
+                }
+                dsum[0] += r.denoise_seconds / o.seeds;
+                dsum[1] += r.denoise_cpu_seconds / o.seeds;
+                dsum[2] += d.mse / o.seeds;
+            }
             const double v[8] = {r.seconds,     r.cpu_seconds,       m.mse,
                                  m.rmse,        double(m.fireflies), m.mean_rgb[0],
                                  m.mean_rgb[1], m.mean_rgb[2]};
@@ -207,6 +288,12 @@ int run(const BenchNoiseOptions &o) {
                           {"time_mse", sum[1] * sum[2]},
                           {"fireflies", sum[4]},
                           {"mean_rgb", rgb(sum + 5)}});
+        if (o.denoise)
+            by_spp.back()["denoised"] = {{"seconds", dsum[0]},
+                                         {"cpu_seconds", dsum[1]},
+                                         {"mse", dsum[2]},
+                                         {"mse_ratio", sum[2] / std::max(dsum[2], 1e-30)},
+                                         {"time_mse", (sum[1] + dsum[1]) * dsum[2]}};
     }
     const nlohmann::json j = {{"scene", o.scene},
                               {"width", desc.film.width},
@@ -252,6 +339,8 @@ Runner add_bench_noise(CLI::App &bench) {
     cmd->add_option("--reference", o->reference,
                     "This reference file instead of the cache (rendered and written when "
                     "missing): to compare builds whose converged images agree");
+    cmd->add_flag("--denoise", o->denoise,
+                  "Also denoise every run and measure the denoised image");
     o->threads.add_to(*cmd);
     o->out.add_to(*cmd);
     return [o] { return run(*o); };

@@ -22,7 +22,7 @@ struct LookOptions {
                       view = "Filmic";
     uint64_t seed = 1;
     int spp = 64;
-    bool fur = false, cryptomatte = false;
+    bool fur = false, cryptomatte = false, denoise = false;
     std::string clip, frames;
     double fps = 24;
     double shutter = 0;
@@ -52,6 +52,7 @@ int run(const LookOptions &o) {
     request.view = o.view;
     request.seed = o.seed;
     request.fur = o.fur;
+    request.denoise = o.denoise;
     request.clip = o.clip;
     request.frames = o.frames;
     request.fps = o.fps;
@@ -131,6 +132,9 @@ Runner add_look_command(CLI::App &app) {
     sub->add_flag("--cryptomatte", o->cryptomatte,
                   "Write every Cryptomatte layer the materials offer (the animal, its "
                   "cell types, cells and clones)");
+    sub->add_flag("--denoise", o->denoise,
+                  "Denoise the render (film.denoise): the preview shows the denoised "
+                  "image, the EXR keeps the noisy one beside it");
     o->stats_json.add_to(*sub, "the render's timing and ray counts");
     o->quiet.add_to(*sub);
     o->threads.add_to(*sub);

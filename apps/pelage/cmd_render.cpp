@@ -15,6 +15,7 @@ struct RenderCliOptions {
     std::string scene, output, preview, res, view;
     int spp = 0;
     double noise_threshold = -1;  // < 0: the scene's film.noise_threshold
+    bool denoise = false;
     unsigned long long seed = 0;
     bool resume = false, cryptomatte = false;
     QuietOption quiet;
@@ -35,6 +36,7 @@ int run(const RenderCliOptions &o) {
     job.spp = o.spp;
     job.noise_threshold = o.noise_threshold;
     job.cryptomatte = o.cryptomatte;
+    job.denoise = o.denoise;
     job.seed = o.seed;
     job.frames = o.frames;
     job.step = o.step;
@@ -78,6 +80,9 @@ Runner add_render_command(CLI::App &app) {
     o->stats_json.add_to(*sub, "timing and ray counts");
     sub->add_flag("--cryptomatte", o->cryptomatte,
                   "Write every Cryptomatte layer the materials offer (film.cryptomatte)");
+    sub->add_flag("--denoise", o->denoise,
+                  "Denoise the beauty (film.denoise): the EXR adds the layer "
+                  "denoised.R/G/B beside the noisy R G B A, and the preview shows it");
     sub->add_option("--frames", o->frames,
                     "Frames: 1001-1120, 1,5,9, 1-100x5 (every 5th), 0-20x5,33; -o then "
                     "names a sequence, out.####.exr, out.%04d.exr or out.$F4.exr");

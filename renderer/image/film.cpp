@@ -32,7 +32,8 @@ void *allocate_buffer(size_t bytes) {
 
 }  // namespace
 
-Film::Film(int width, int height, int cryptomatte_layers, int cryptomatte_slots)
+Film::Film(int width, int height, int cryptomatte_layers, int cryptomatte_slots,
+           bool halves)
     : m_width(width),
       m_height(height),
       m_accum(static_cast<float *>(
@@ -47,6 +48,14 @@ Film::Film(int width, int height, int cryptomatte_layers, int cryptomatte_slots)
         std::fill_n(&m_accum[row * accum_stride], size_t(width) * accum_stride, 0.0f);
         std::uninitialized_fill_n(&m_point[row], width, FilmPointAovs{});
     });
+    if (halves) {
+        const size_t n = size_t(width) * height * 2 * half_stride;
+        m_halves.reset(static_cast<float *>(allocate_buffer(n * sizeof(float))));
+        tbb::parallel_for(0, height, [&](int y) {
+            const size_t row = size_t(y) * width * 2 * half_stride;
+            std::fill_n(&m_halves[row], size_t(width) * 2 * half_stride, 0.0f);
+        });
+    }
     if (cryptomatte_layers > 0)
         m_matte = std::make_unique<CryptomatteFilm>(width, height, cryptomatte_layers,
                                                     cryptomatte_slots);
@@ -73,6 +82,38 @@ std::vector<float> Film::resolve() const {
         for (int k = 0; k < PELAGE_SHADER_AOV_SLOTS; ++k) o[13 + k] = p.shader[k];
     }
     return out;
+}
+
+DenoiseInput Film::resolve_halves() const {
+    DenoiseInput in;
+    if (!m_halves) return in;
+    in.width = m_width;
+    in.height = m_height;
+    const size_t n = size_t(m_width) * m_height;
+    for (DenoiseHalf &h : in.half) {
+        h.colour.resize(3 * n);
+        h.albedo.resize(3 * n);
+        h.normal.resize(3 * n);
+        h.depth.resize(n);
+        h.count.resize(n);
+    }
+    tbb::parallel_for(0, m_height, [&](int y) {
+        for (size_t i = size_t(y) * m_width; i < size_t(y + 1) * m_width; ++i)
+            for (int k = 0; k < 2; ++k) {
+                const float *a = &m_halves[(i * 2 + size_t(k)) * half_stride];
+                DenoiseHalf &h = in.half[k];
+                const float inv = a[9] > 0 ? 1.0f / a[9] : 0.0f;
+                for (int c = 0; c < 3; ++c) {
+                    h.colour[3 * i + c] = a[c] * inv;
+                    h.albedo[3 * i + c] = a[3 + c] * inv;
+                    h.normal[3 * i + c] = a[6 + c] * inv;
+                }
+                h.count[i] = a[9];
+                h.depth[i] =
+                    a[11] > 0 ? a[10] / a[11] : std::numeric_limits<float>::infinity();
+            }
+    });
+    return in;
 }
 
 float Film::noise(int x, int y) const {

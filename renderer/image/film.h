@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "renderer/core/math.h"
+#include "renderer/denoise/denoise.h"
 #include "renderer/image/cryptomatte.h"
 #include "shader/pelage_shader.h"
 
@@ -47,8 +48,10 @@ struct FilmPointAovs {
 class Film {
   public:
     // `cryptomatte_layers` > 0: also accumulate that many Cryptomatte layers, keeping
-    // `cryptomatte_slots` ids per pixel and layer.
-    Film(int width, int height, int cryptomatte_layers = 0, int cryptomatte_slots = 0);
+    // `cryptomatte_slots` ids per pixel and layer. `halves`: also keep the denoiser's
+    // two half buffers (add_half).
+    Film(int width, int height, int cryptomatte_layers = 0, int cryptomatte_slots = 0,
+         bool halves = false);
 
     int width() const { return m_width; }
     int height() const { return m_height; }
@@ -73,6 +76,29 @@ class Film {
             for (int l = 0; l < m_matte->layers(); ++l)
                 if (s.matte_set >> l & 1) m_matte->add(x, y, l, s.matte[l], weight);
     }
+    // The sample also goes to half buffer `sample & 1`: samples of even index to one,
+    // odd to the other, each with its first hit's camera depth (+inf for none).
+    bool has_halves() const { return m_halves != nullptr; }
+    void add_half(int x, int y, uint32_t sample, const FilmSample &s, float depth) {
+        float *a = &m_halves[(size_t(y * m_width + x) * 2 + (sample & 1)) * half_stride];
+        a[0] += s.L.x;
+        a[1] += s.L.y;
+        a[2] += s.L.z;
+        a[3] += s.albedo.x;
+        a[4] += s.albedo.y;
+        a[5] += s.albedo.z;
+        a[6] += s.normal.x;
+        a[7] += s.normal.y;
+        a[8] += s.normal.z;
+        a[9] += 1;
+        if (depth < std::numeric_limits<float>::infinity()) {
+            a[10] += depth;
+            a[11] += 1;
+        }
+    }
+    // The half buffers' means, as the denoiser takes them; empty without halves.
+    DenoiseInput resolve_halves() const;
+
     void set_point_aovs(int x, int y, const FilmPointAovs &p) {
         m_point[size_t(y * m_width + x)] = p;
     }
@@ -107,6 +133,9 @@ class Film {
     std::unique_ptr<float[], FreeBuffer> m_accum;
     std::unique_ptr<FilmPointAovs[], FreeBuffer> m_point;
     std::unique_ptr<CryptomatteFilm> m_matte;
+    // Per pixel and half: L, albedo, normal, samples, depth sum, samples with a depth.
+    static constexpr int half_stride = 12;
+    std::unique_ptr<float[], FreeBuffer> m_halves;
 };
 
 }  // namespace pelage::renderer

@@ -1,5 +1,7 @@
 #include "renderer/image/image_layers.h"
 
+#include <stdexcept>
+
 #include "renderer/image/cryptomatte.h"
 
 namespace pelage::renderer {
@@ -7,7 +9,8 @@ namespace pelage::renderer {
 ImageLayers image_layers(const Film &film, const FilmDesc &desc,
                          const std::vector<std::string> &shader_aov_names,
                          const std::vector<CryptomatteSource> &cryptomatte,
-                         const std::function<void(const std::string &)> &warn) {
+                         const std::function<void(const std::string &)> &warn,
+                         const std::vector<float> &denoised) {
     using LT = FilmDesc::LayerType;
     const int W = film.width(), H = film.height();
     ImageLayers out;
@@ -25,6 +28,16 @@ ImageLayers image_layers(const Film &film, const FilmDesc &desc,
         }
     };
     take(0, 4, desc.half ? LT::half : LT::single);  // R G B A
+    // The denoised beauty: a layer of its own, as V-Ray's and Cycles' denoisers keep the
+    // noisy image beside the clean one, in the beauty's pixel type. Its channels are
+    // not the film's (pick holds -1 for them).
+    const bool has_denoised = !denoised.empty();
+    if (has_denoised)
+        for (const char *c : {"denoised.R", "denoised.G", "denoised.B"}) {
+            pick.push_back(-1);
+            out.names.push_back(c);
+            out.half.push_back(desc.half);
+        }
     take(4, 3, desc.albedo);
     take(7, 3, desc.normal);
     take(10, 1, desc.depth);
@@ -57,14 +70,16 @@ ImageLayers image_layers(const Film &film, const FilmDesc &desc,
             }
         }
 
+    if (has_denoised && denoised.size() != size_t(W) * H * 3)
+        throw std::logic_error("image_layers: the denoised image is not the film's size");
     const std::vector<float> resolved = film.resolve();
     const int nc = out.channels();
     out.pixels.resize(size_t(W) * H * nc);
     for (size_t p = 0; p < size_t(W) * H; ++p) {
         float *o = &out.pixels[p * nc];
         const float *r = &resolved[p * Film::num_channels];
-        size_t c = 0;
-        for (const int src : pick) o[c++] = r[src];
+        size_t c = 0, d = 0;
+        for (const int src : pick) o[c++] = src >= 0 ? r[src] : denoised[3 * p + d++];
         for (const CryptomatteLayer &m : mattes)
             for (const std::vector<float> &plane : m.planes) o[c++] = plane[p];
     }

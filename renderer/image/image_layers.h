@@ -33,9 +33,13 @@ struct CryptomatteSource {
 
 // `shader_aov_names`: the material plugins' AOV names (unnamed slots are not written).
 // `cryptomatte`: one source per layer of the film's Cryptomatte accumulation, in order.
+// `denoised`: the denoised beauty (RGB interleaved), written after R G B A as the layer
+// `denoised` (denoised_channel is its first channel), or empty.
 ImageLayers image_layers(const Film &film, const FilmDesc &desc,
                          const std::vector<std::string> &shader_aov_names,
                          const std::vector<CryptomatteSource> &cryptomatte,
-                         const std::function<void(const std::string &)> &warn);
+                         const std::function<void(const std::string &)> &warn,
+                         const std::vector<float> &denoised = {});
+inline constexpr int denoised_channel = 4;
 
 }  // namespace pelage::renderer

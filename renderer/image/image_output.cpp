@@ -288,10 +288,10 @@ void write_exr(const std::string &path, const ImageLayers &layers,
 
 void write_preview(const std::string &path, int width, int height,
                    const std::vector<float> &pixels, int channels,
-                   const DisplayTransform &display) {
+                   const DisplayTransform &display, int first) {
     std::vector<float> rgb(size_t(width) * height * 3);
     for (size_t i = 0; i < size_t(width) * height; ++i)
-        for (int c = 0; c < 3; ++c) rgb[3 * i + c] = pixels[i * channels + c];
+        for (int c = 0; c < 3; ++c) rgb[3 * i + c] = pixels[i * channels + first + c];
     display.apply_rgb(rgb.data(), size_t(width) * height);
     std::vector<unsigned char> bytes(rgb.size());
     for (size_t i = 0; i < rgb.size(); ++i) {

@@ -80,11 +80,11 @@ void write_exr(const std::string &path, int width, int height,
                const std::vector<std::string> &channel_names, bool half,
                const ImageMetadata &meta);
 
-// The first three channels of `pixels` (stride `channels`) through `display`, as 8-bit
-// RGB.
+// Three channels of `pixels` (stride `channels`) from `first` on through `display`, as
+// 8-bit RGB.
 void write_preview(const std::string &path, int width, int height,
                    const std::vector<float> &pixels, int channels,
-                   const DisplayTransform &display);
+                   const DisplayTransform &display, int first = 0);
 
 // Already display-referred 8-bit RGB (e.g. `pelage preview`), in the format the
 // extension names (PNG, JPEG, …), sRGB-tagged.

@@ -151,6 +151,12 @@ void PathIntegrator::render_tile(Film &film, Sampler &sampler, int x0, int y0, i
                         continue;
                     }
                     film.add(x, y, 1.0f, fs);
+                    if (film.has_halves())
+                        film.add_half(
+                            x, y, uint32_t(s), fs,
+                            first[i].hit.geomID != RTC_INVALID_GEOMETRY_ID
+                                ? first[i].ray.tfar * dot(cam[i].d, cam[i].forward)
+                                : inf);
                 }
             }
     }

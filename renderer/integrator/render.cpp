@@ -30,7 +30,7 @@ RenderResult render(const Scene &scene, const RenderOptions &opt) {
     // finds every slot taken is not counted, so only pixels that see more ids than
     // that lose part of a matte.
     result.film = std::make_unique<Film>(W, H, int(scene.matte_layers().size()),
-                                         fd.cryptomatte_ranks + 2);
+                                         fd.cryptomatte_ranks + 2, fd.denoise);
     // Passes of 1, 1, 2, 4, 8 ... samples: an early stop still has a whole image.
     std::vector<int> bounds = {0};
     while (bounds.back() < spp)
@@ -43,7 +43,12 @@ RenderResult render(const Scene &scene, const RenderOptions &opt) {
     // hold the pixels it holds in a whole render; rows need no rounding.
     const RenderOptions::Region region =
         opt.region ? *opt.region : RenderOptions::Region{0, 0, W, H};
-    const int margin = opt.region && adaptive ? passes : 0;
+    // The denoiser reads its support around every pixel of the region, and those pixels
+    // must be as in a whole render.
+    const int margin =
+        opt.region ? (adaptive ? passes : 0) +
+                         (fd.denoise ? denoise_support_radius(DenoiseOptions{}) : 0)
+                   : 0;
     const int ry0 = std::max(0, region.y0 - margin),
               ry1 = std::min(H, region.y1 + margin);
     const int tx0 = std::max(0, region.x0 - margin) / tile_size,

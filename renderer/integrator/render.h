@@ -38,7 +38,8 @@ struct RenderOptions {
     // farm): its pixels come out exactly as in a whole render, since samples depend on
     // the pixel alone and camera packets on the tile grid's columns (so columns extend
     // to whole 16-pixel tiles). Adaptive sampling's decisions spread one pixel per
-    // pass, so that many pixels around the region are rendered too.
+    // pass, so that many pixels around the region are rendered too, and with
+    // film.denoise the denoiser's support radius more.
     struct Region {
         int x0 = 0, y0 = 0, x1 = 0, y1 = 0;
     };

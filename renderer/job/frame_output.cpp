@@ -51,9 +51,10 @@ void describe_render(const SceneDesc &fd, ImageMetadata &meta) {
 
 void write_frame(const RenderResult &r, const Scene &scene, const SceneDesc &fd,
                  const SceneDesc &desc, const RenderPlan &plan, const FrameFiles &files,
-                 uint64_t seed, const std::function<void(const std::string &)> &warn) {
+                 uint64_t seed, const std::function<void(const std::string &)> &warn,
+                 const std::vector<float> &denoised) {
     ImageLayers layers = image_layers(*r.film, fd.film, scene.shader_aov_names(),
-                                      matte_sources(scene), warn);
+                                      matte_sources(scene), warn, denoised);
     ImageMetadata meta;
     meta.scene = fs::absolute(desc.path).lexically_normal().string();
     meta.software = "pelage " PELAGE_VERSION;
@@ -88,7 +89,8 @@ void write_frame(const RenderResult &r, const Scene &scene, const SceneDesc &fd,
     write_exr(files.exr, layers, meta);
     if (plan.display)
         write_preview(files.preview, fd.film.width, fd.film.height, layers.pixels,
-                      layers.channels(), *plan.display);
+                      layers.channels(), *plan.display,
+                      denoised.empty() ? 0 : denoised_channel);
 }
 
 }  // namespace pelage::renderer

@@ -5,6 +5,7 @@
 
 #include <functional>
 #include <string>
+#include <vector>
 
 #include "renderer/integrator/render.h"
 #include "renderer/job/render_plan.h"
@@ -18,10 +19,13 @@ struct FrameFiles {
 };
 
 // Writes `r`, frame `files.frame` of `desc` (the frame's scene) rendered from `scene`.
-// `warn` hears what the layers could not keep (a Cryptomatte name clash).
+// `warn` hears what the layers could not keep (a Cryptomatte name clash). `denoised`:
+// the denoised beauty (RGB interleaved, the whole film), written as its own layer and
+// shown by the preview; or empty.
 void write_frame(const RenderResult &r, const Scene &scene, const SceneDesc &desc,
                  const SceneDesc &animation_desc, const RenderPlan &plan,
                  const FrameFiles &files, uint64_t seed,
-                 const std::function<void(const std::string &)> &warn);
+                 const std::function<void(const std::string &)> &warn,
+                 const std::vector<float> &denoised = {});
 
 }  // namespace pelage::renderer

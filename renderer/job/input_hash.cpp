@@ -67,6 +67,7 @@ std::string settings_hash(const SceneDesc &desc, const std::string &scene_text,
         film["spp"] = desc.film.spp;
         film["noise_threshold"] = desc.film.noise_threshold;
         film["view"] = desc.film.view;
+        if (desc.film.denoise) film["denoise"] = true;  // --denoise changes the file
         h.add(j.dump());
     } else {
         h.add(scene_text);  // parse_scene accepted it, so this does not happen

@@ -1,5 +1,6 @@
 #include "renderer/job/render_job.h"
 
+#include <fmt/format.h>
 #include <sys/resource.h>
 
 #include <algorithm>
@@ -10,6 +11,7 @@
 #include <sstream>
 
 #include "renderer/core/progress.h"
+#include "renderer/denoise/denoise.h"
 #include "renderer/image/frame_pattern.h"
 #include "renderer/integrator/render.h"
 #include "renderer/job/frame_output.h"
@@ -148,15 +150,32 @@ FrameOutcome render_frame(const JobContext &c, int f, RenderTotals *totals) {
         return FrameOutcome::aborted;
     }
 
+    std::vector<float> denoised;
+    double denoise_seconds = 0;
+    if (fd.film.denoise) {
+        const Timer denoising;
+        DenoiseStats ds;
+        denoised = denoise(r.film->resolve_halves(), DenoiseOptions{}, &ds);
+        denoise_seconds = denoising.seconds();
+        totals->denoise_seconds += denoise_seconds;
+        if (ds.pixels_passed_through > 0)
+            c.observer.warning(fmt::format(
+                "{}: {} pixels kept noisy in the denoised layer: {}", files.exr,
+                ds.pixels_passed_through,
+                r.spp_done < 2 ? "the denoiser needs 2 samples per pixel or more"
+                               : "they hold no samples or non-finite values"));
+    }
     const Timer writing;
-    write_frame(r, scene, fd, c.desc, c.plan, files, c.job.seed,
-                [&](const std::string &w) { c.observer.warning(w); });
+    write_frame(
+        r, scene, fd, c.desc, c.plan, files, c.job.seed,
+        [&](const std::string &w) { c.observer.warning(w); }, denoised);
     totals->write_seconds += writing.seconds();
     ++totals->rendered;
     totals->stats.add(r.stats);
     totals->seconds += r.seconds;
     nlohmann::json frame_stat = {
         {"frame", f}, {"seconds", r.seconds}, {"output", files.exr}};
+    if (fd.film.denoise) frame_stat["denoise_seconds"] = denoise_seconds;
     if (own) add_own_scene_stats(*own, frame_setup_seconds, &frame_stat);
     totals->frame_stats.push_back(frame_stat);
 
@@ -257,6 +276,7 @@ nlohmann::json render_stats_json(const RenderJob &job, const RenderTotals &total
                         {"wall_seconds", totals.wall_seconds},
                         {"setup_seconds", totals.setup_seconds},
                         {"write_seconds", totals.write_seconds},
+                        {"denoise_seconds", totals.denoise_seconds},
                         {"spp", totals.spp_done},
                         {"width", totals.width},
                         {"height", totals.height},

@@ -32,6 +32,7 @@ struct RenderJob {
     int width = 0, height = 0;    // --res (0: film.width/height)
     int spp = 0;                  // --spp
     double noise_threshold = -1;  // --noise-threshold (< 0: the film's)
+    bool denoise = false;         // --denoise: film.denoise on
     bool cryptomatte = false;     // --cryptomatte: every layer the materials offer
     uint64_t seed = 0;
 
@@ -95,6 +96,7 @@ struct RenderTotals {
     // Loading the scene and building meshes, fur and the BVH; writing the EXRs and
     // previews. With `seconds` they are most of the wall time.
     double setup_seconds = 0, write_seconds = 0, wall_seconds = 0;
+    double denoise_seconds = 0;  // film.denoise: the denoiser's share of the wall time
     int rendered = 0, skipped = 0, spp_done = 0;
     int width = 0, height = 0;
     bool animated = false;  // a frame list was given

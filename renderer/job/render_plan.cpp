@@ -56,6 +56,7 @@ std::vector<int> requested_frames(const RenderJob &o, const AnimationDesc &anim,
 RenderPlan plan_render(const RenderJob &o, SceneDesc &desc) {
     if (o.spp > 0) desc.film.spp = o.spp;
     if (o.noise_threshold >= 0) desc.film.noise_threshold = float(o.noise_threshold);
+    if (o.denoise) desc.film.denoise = true;
     if (o.width > 0 && o.height > 0) {
         desc.film.width = o.width;
         desc.film.height = o.height;

@@ -240,6 +240,7 @@ LookPlan plan_look(const LookRequest &o,
     setup.spp = o.spp;
     setup.view = o.view;
     setup.fur = o.fur;
+    setup.denoise = o.denoise;
     setup.comb_field = preset_field;
     plan.scene_path = dir / (stem + ".json");
     return plan;

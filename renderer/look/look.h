@@ -24,6 +24,7 @@ struct LookRequest {
     std::string view = "Filmic";
     uint64_t seed = 1;
     bool fur = false;
+    bool denoise = false;  // the scene's film.denoise
     // A clip of the mesh file: `frames` (a frame list, "" = the whole clip once) at
     // `fps`, blurred over `shutter` of each frame.
     std::string clip, frames;

@@ -23,6 +23,7 @@ struct LookSetup {
     int width = 960, height = 540, spp = 64;
     std::string view = "Filmic";
     bool fur = false;
+    bool denoise = false;
     bool comb_field = false;  // the preset has an anisotropy field: comb along it
     // The file's other objects, as they come (look_objects.h): the mesh reference, and
     // whether the file gives them materials (else a neutral grey).

@@ -88,6 +88,15 @@ constexpr SceneField fields[] = {
      "`min_spp`",
      {"integer in [1, 1048576]", "16",
       "adaptive sampling: samples every pixel takes before it may stop"}},
+    {"film",
+     "denoise",
+     FieldUse::value,
+     "film",
+     "`denoise`",
+     {"boolean", "false",
+      "denoise the beauty from the film's two half buffers (`--denoise`): the EXR keeps "
+      "the noisy `R G B A` and adds `denoised.R denoised.G denoised.B`; the preview "
+      "shows the denoised image (docs/guide/compositing-outputs.md)"}},
     {"film.filter",
      "type",
      FieldUse::value,

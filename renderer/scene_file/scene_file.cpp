@@ -572,6 +572,7 @@ FilmDesc read_film(Reader fr, SceneDesc &scene) {
     f.view = fr.string("view", f.view);
     f.noise_threshold = float(fr.number("noise_threshold", 0, 0, 1));
     f.min_spp = fr.integer("min_spp", f.min_spp, 1, 1 << 20);
+    f.denoise = fr.boolean("denoise", false);
     read_film_layers(fr, scene, &f);
     fr.finish();
     return f;

@@ -39,6 +39,9 @@ struct FilmDesc {
     // estimate is below this; 0 = every pixel takes spp samples.
     float noise_threshold = 0;
     int min_spp = 16;  // ... but never before this many samples
+    // Denoise the beauty (renderer/denoise): the EXR adds it as the `denoised` layer and
+    // the preview shows it.
+    bool denoise = false;
     // The EXR's layers beyond the beauty (docs/guide/compositing-outputs.md): each
     // written as half or float, or not at all. Colour layers default to `half`'s type;
     // depth, ids and the shader's values to float (ids are not exact in half).

@@ -241,7 +241,12 @@ TEST(FarmCli, MergedTilesAreTheWholeRenderByteForByte) {
         // Cryptomatte (each band's manifest lists the objects it shows; the merge's
         // lists all), layers of other types and another compression.
         {"mattes", R"(, "spp": 4, "cryptomatte": true, "compression": "piz",
-                      "layers": {"N": false, "depth": "half"})"}};
+                      "layers": {"N": false, "depth": "half"})"},
+        // The denoiser reads a neighbourhood: each band renders its support around it,
+        // with and without adaptive sampling.
+        {"denoised", R"(, "spp": 4, "denoise": true)"},
+        {"denoised_adaptive",
+         R"(, "spp": 32, "noise_threshold": 0.05, "min_spp": 2, "denoise": true)"}};
     for (const auto &[look, film] : looks) {
         const std::string scene = tmp.write(look + ".json", still_scene(40, 37, film));
         const std::string whole = tmp.file(look + "_whole.exr");
