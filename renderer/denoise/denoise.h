@@ -2,10 +2,13 @@
 // samples of even index are averaged into half A and those of odd index into half B,
 // colour and features alike. The two halves are independent estimates of the same
 // pixel, so their difference estimates the variance of the mean even under a
-// low-discrepancy sampler (Bitterli et al. 2016, "Nonlinearly Weighted First-order
-// Regression for Denoising Monte Carlo Renderings", §5.3; Rousselle, Manzi & Zwicker
-// 2012 for the dual-buffer idea), and filtering one half with weights taken from the
-// other keeps the weights uncorrelated with the noise they filter (NFOR §4.3).
+// low-discrepancy sampler, where the samples' own spread overstates it (Rousselle,
+// Knaus & Zwicker 2012, "Adaptive Rendering with Non-Local Means Filtering", §5;
+// Bitterli et al. 2016, NFOR, §5.3). The filter (nlm_filter.h) weighs each neighbour
+// by non-local means on the colour, normalised by that variance, and by the normals'
+// and depth's agreement (Rousselle, Manzi & Zwicker 2013, RDFC), on the colour divided
+// by the first hit's albedo, so the pattern's cell edges, which are in the albedo, stay
+// as sharp as the film has them.
 //
 // The output of a pixel depends only on inputs within support_radius() pixels of it,
 // so a band of a still (`--tile I/N`) rendered with that margin denoises to the same
@@ -20,7 +23,8 @@ namespace pelage::renderer {
 
 // One half buffer: per pixel, the means of that half's samples. Planar, row-major,
 // width × height pixels; `colour`, `albedo` and `normal` hold 3 floats per pixel,
-// `depth` and `count` one.
+// `depth` and `count` one. Albedo and normal are means over all the half's
+// samples (0 for those that hit nothing); depth is the mean over those that hit.
 struct DenoiseHalf {
     std::vector<float> colour;  // the beauty, scene-linear RGB
     std::vector<float> albedo;  // first-hit albedo (0 where no surface)
@@ -35,10 +39,17 @@ struct DenoiseInput {
 };
 
 struct DenoiseOptions {
-    // Filter window radius in pixels (a (2r+1)² neighbourhood) and the NL-means patch
-    // radius of the colour weights (NFOR §4.2 uses 9 and 3).
-    int window_radius = 7;
-    int patch_radius = 3;
+    // The filter's window radius in pixels: a (2r+1)² neighbourhood.
+    int window_radius = 5;
+    // The guide the weights compare is the mean of each (2p+1)² patch, the patch
+    // distance of non-local means at a fraction of its cost.
+    int patch_radius = 1;
+    // Colour bandwidth k (Rousselle et al. 2012, eq. 8): a neighbour whose guide differs
+    // by k standard deviations more than its noise explains weighs e⁻¹.
+    float k = 2.0f;
+    // Albedo difference (RMS over R, G, B) at which a neighbour weighs e⁻¹: a
+    // neighbour across a cell edge weighs nothing.
+    float albedo_sigma = 0.03f;
 };
 
 struct DenoiseStats {
