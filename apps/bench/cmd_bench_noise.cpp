@@ -29,6 +29,12 @@
 // gain `type_edges: {halo_pixels, max_bias, types: [{type, bias, interior_pixels,
 // error_by_distance}]}` (apps/tools/type_edge_metrics.h), the noisy image's beside it
 // as `noisy_type_edges`, with the types of a 1-spp render's sample 0.
+//
+// Flicker: with 2 seeds or more, each by_spp entry (and its `denoised`) has `flicker`,
+// the variance of a pixel across the seeds, averaged over the objects' pixels and the
+// R, G, B channels. Frames of a still differ only in their random numbers (the sampler
+// is seeded by seed and frame), so this is the frame-to-frame variance a turntable's
+// static pixels show.
 
 #include <cstdlib>
 #include <cstring>
@@ -239,8 +245,11 @@ int run(const BenchNoiseOptions &o) {
         scene = std::make_unique<Scene>(desc, plugins);
         double sum[8] = {};   // seconds, cpu, mse, rmse, fireflies, mean R, G, B
         double dsum[3] = {};  // denoised: seconds, cpu seconds, mse
+        std::vector<std::vector<float>> images, denoised_images;
         for (int s = 1; s <= o.seeds; ++s) {
             const TimedRender r = timed_render(*scene, uint64_t(s));
+            images.push_back(r.pixels);
+            if (o.denoise) denoised_images.push_back(r.denoised);
             const NoiseMetrics m = measure_noise(r.pixels, reference, desc.film.width,
                                                  desc.film.height, stride);
             object_pixels = m.pixels;
@@ -280,6 +289,25 @@ int run(const BenchNoiseOptions &o) {
                                  m.mean_rgb[1], m.mean_rgb[2]};
             for (int k = 0; k < 8; ++k) sum[k] += v[k] / o.seeds;
         }
+        // The variance across the seeds, pixel by pixel, over the objects' pixels.
+        auto flicker = [&](const std::vector<std::vector<float>> &imgs) {
+            double total = 0;
+            size_t count = 0;
+            for (size_t i = 0; i < reference.size() / stride; ++i) {
+                if (reference[i * stride + 3] < 0.5f) continue;
+                for (int c = 0; c < 3; ++c) {
+                    double m = 0, m2 = 0;
+                    for (const auto &img : imgs) {
+                        m += img[i * stride + c];
+                        m2 += double(img[i * stride + c]) * img[i * stride + c];
+                    }
+                    const double k = double(imgs.size());
+                    total += std::max(0.0, (m2 - m * m / k) / (k - 1));
+                    ++count;
+                }
+            }
+            return count ? total / double(count) : 0.0;
+        };
         by_spp.push_back({{"spp", spp},
                           {"seconds", sum[0]},
                           {"cpu_seconds", sum[1]},
@@ -288,12 +316,15 @@ int run(const BenchNoiseOptions &o) {
                           {"time_mse", sum[1] * sum[2]},
                           {"fireflies", sum[4]},
                           {"mean_rgb", rgb(sum + 5)}});
+        if (o.seeds >= 2) by_spp.back()["flicker"] = flicker(images);
         if (o.denoise)
             by_spp.back()["denoised"] = {{"seconds", dsum[0]},
                                          {"cpu_seconds", dsum[1]},
                                          {"mse", dsum[2]},
                                          {"mse_ratio", sum[2] / std::max(dsum[2], 1e-30)},
                                          {"time_mse", (sum[1] + dsum[1]) * dsum[2]}};
+        if (o.denoise && o.seeds >= 2)
+            by_spp.back()["denoised"]["flicker"] = flicker(denoised_images);
     }
     const nlohmann::json j = {{"scene", o.scene},
                               {"width", desc.film.width},

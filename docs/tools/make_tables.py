@@ -389,6 +389,41 @@ def t_noise():
             f"seeds.\n")
 
 
+def t_denoise():
+    rows = []
+    for name, target in [("bench_denoise", 8), ("bench_denoise_fur", 10)]:
+        d = data(name)
+        for r in d["by_spp"]:
+            dn = r["denoised"]
+            runs = [x for x in d["runs"] if x["spp"] == r["spp"] and "type_edges" in x["denoised"]]
+            halo = max((x["denoised"]["type_edges"]["halo_pixels"] for x in runs), default=None)
+            bias = max((x["denoised"]["type_edges"]["max_bias"] for x in runs), default=None)
+            rows.append([f"`{os.path.basename(d['scene'])}`", r["spp"], f"{r['mse']:.2e}",
+                         f"{dn['mse']:.2e}", f"{dn['mse_ratio']:.1f}× (≥ {target}×)",
+                         "–" if halo is None else f"{halo} px",
+                         "–" if bias is None else f"{100 * bias:.1f} %",
+                         num(dn["cpu_seconds"]), f"{r['time_mse']:.2e}", f"{dn['time_mse']:.2e}"])
+    by = {r["spp"]: r for r in data("bench_denoise")["by_spp"]}
+    flicker = ""
+    if 16 in by and 256 in by and "flicker" in by[16]["denoised"]:
+        flicker = (f" Flicker (a pixel's variance across seeds, as between frames of a "
+                   f"turntable's static pixels): denoised 16 spp {by[16]['denoised']['flicker']:.2e} "
+                   f"against noisy 256 spp {by[256]['flicker']:.2e} (target: no higher).")
+    c = data("denoise_1080")
+    render = c["seconds"]
+    d = data("bench_denoise")
+    return (table(["scene", "spp", "MSE noisy", "MSE denoised", "gain (target)", "halo",
+                   "largest type bias", "denoise CPU s", "CPU s × MSE noisy",
+                   "… denoised"], rows) +
+            f"\n{d['width']}×{d['height']} pixels, the references and pixels of the noise "
+            f"table above; means over the seeds (halo and bias: the worst seed). Halo: the "
+            f"widest band along an edge between two cell types whose mean is more than 2 % "
+            f"off the reference's; bias: a type's mean at least 4 pixels from an edge "
+            f"against the reference's. At 1920×1080 the denoiser took "
+            f"{num(c['denoise_seconds'])} s after a {num(render)} s 64-spp render of the bare "
+            f"cow ({100 * c['denoise_seconds'] / render:.1f} % of it; target ≤ 10 %).{flicker}\n")
+
+
 def t_fur_glitter():
     f = data("bench_noise_fur_far")
     w = data("bench_noise_fur_far_widened")
@@ -660,7 +695,7 @@ TABLES = {
     "lookup-density": t_lookup_density, "render": t_render,
     "compare": t_compare, "hair": t_hair, "fur": t_fur, "fur-colour": t_fur_colour,
     "fur-comb": t_fur_comb, "fur-glitter": t_fur_glitter,
-    "fur-slab": t_fur_slab, "noise": t_noise, "cycles-fur": t_cycles_fur, "presets": t_presets,
+    "fur-slab": t_fur_slab, "noise": t_noise, "denoise": t_denoise, "cycles-fur": t_cycles_fur, "presets": t_presets,
     "crps-errors": t_crps_errors, "lookup-quality": t_lookup_quality,
     "hair-furnace": t_hair_furnace, "gallery": t_gallery, "looks": t_looks,
     "control-measures": t_control_measures, "growth-pipelines": t_growth_pipelines,

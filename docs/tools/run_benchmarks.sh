@@ -81,6 +81,16 @@ far_ref=$(python3 -c 'import json, sys; print(json.load(open(sys.argv[1]))["refe
 run bench_noise_fur_far_widened "$pelage" bench noise scenes/bench_cow_far_fur_widened.json \
                       --res "" --spp 16 64 --seeds 2 --reference "$far_ref" \
                       -q --stats-json "$out/bench_noise_fur_far_widened.json"
+# The denoiser on the same scenes and references: its gain, its bias and halo at the
+# pattern's edges, and its cost on a 1920×1080 frame against that frame's 64-spp render.
+run bench_denoise "$pelage" bench noise scenes/bench_cow_sun_sky.json --spp 16 64 256 \
+                      --denoise --seeds 4 --cache build/noise_refs -q --stats-json "$out/bench_denoise.json"
+run bench_denoise_fur "$pelage" bench noise scenes/bench_cow_sun_sky_fur.json --spp 16 64 \
+                      --denoise --seeds 2 --reference-spp 1024 --cache build/noise_refs \
+                      -q --stats-json "$out/bench_denoise_fur.json"
+run denoise_1080  "$pelage" render scenes/bench_cow_sun_sky.json --res 1920x1080 --spp 64 \
+                      --denoise -q -o "$work/denoise_1080.exr" \
+                      --stats-json "$out/denoise_1080.json"
 run sim_cheetah   "$pelage" sim --mesh procedural:sphere:20x20 --preset teo-cheetah --seed 1 \
                       --threads 1 -o scenes/sphere_cheetah.cells
 run compare       "$pelage" compare scenes/sphere_cheetah.json --res 500x500 --spp 2 \
