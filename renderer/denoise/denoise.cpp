@@ -107,7 +107,6 @@ std::vector<float> denoise(const DenoiseInput &input, const DenoiseOptions &opti
         p.albedo[c].resize(n);
         p.normal[c].resize(n);
     }
-    p.albedo_var.resize(n);
     p.normal_var.resize(n);
     p.depth.resize(n);
     p.surface.resize(n);
@@ -136,11 +135,10 @@ std::vector<float> denoise(const DenoiseInput &input, const DenoiseOptions &opti
         if (!ok) {
             for (int c = 0; c < 3; ++c)
                 p.value[c][i] = raw_var[c][i] = p.normal[c][i] = p.albedo[c][i] = 0;
-            p.normal_var[i] = p.albedo_var[i] = p.depth[i] = p.surface[i] = 0;
+            p.normal_var[i] = p.depth[i] = p.surface[i] = 0;
             return;
         }
         const float ia = wa / total, ib = wb / total;
-        float avar = 0;
         for (int c = 0; c < 3; ++c) {
             p.albedo[c][i] = ia * A.albedo[3 * i + c] + ib * B.albedo[3 * i + c];
             p.value[c][i] = ia * A.colour[3 * i + c] + ib * B.colour[3 * i + c];
@@ -148,10 +146,7 @@ std::vector<float> denoise(const DenoiseInput &input, const DenoiseOptions &opti
             // (Var(a − b) = σ²(1/na + 1/nb), Var(mean) = σ²/(na + nb)).
             const float d = A.colour[3 * i + c] - B.colour[3 * i + c];
             raw_var[c][i] = d * d * ia * ib;
-            const float e = A.albedo[3 * i + c] - B.albedo[3 * i + c];
-            avar += e * e * ia * ib;
         }
-        p.albedo_var[i] = avar;
         float nrm[3], len2 = 0, nvar = 0;
         for (int c = 0; c < 3; ++c) {
             nrm[c] = ia * A.normal[3 * i + c] + ib * B.normal[3 * i + c];

@@ -46,10 +46,10 @@ struct DenoiseOptions {
     int patch_radius = 1;
     // Colour bandwidth k (Rousselle et al. 2012, eq. 8): a neighbour whose guide differs
     // by k standard deviations more than its noise explains weighs e⁻¹.
-    float k = 2.0f;
+    float k = 1.0f;
     // Albedo difference (RMS over R, G, B) at which a neighbour weighs e⁻¹: a
     // neighbour across a cell edge weighs nothing.
-    float albedo_sigma = 0.03f;
+    float albedo_sigma = 0.01f;
 };
 
 struct DenoiseStats {
