@@ -108,6 +108,7 @@ std::vector<float> denoise(const DenoiseInput &input, const DenoiseOptions &opti
         p.normal[c].resize(n);
     }
     p.normal_var.resize(n);
+    p.albedo_var.assign(n, 0.0f);
     p.depth.resize(n);
     p.surface.resize(n);
     p.usable.resize(n);
@@ -141,6 +142,8 @@ std::vector<float> denoise(const DenoiseInput &input, const DenoiseOptions &opti
         const float ia = wa / total, ib = wb / total;
         for (int c = 0; c < 3; ++c) {
             p.albedo[c][i] = ia * A.albedo[3 * i + c] + ib * B.albedo[3 * i + c];
+            const float e = A.albedo[3 * i + c] - B.albedo[3 * i + c];
+            p.albedo_var[i] += e * e * ia * ib;
             p.value[c][i] = ia * A.colour[3 * i + c] + ib * B.colour[3 * i + c];
             // The variance of the pixel's mean from its two halves' difference
             // (Var(a − b) = σ²(1/na + 1/nb), Var(mean) = σ²/(na + nb)).

@@ -53,7 +53,7 @@ __attribute__((target_clones("avx2", "default"))) void filter_row(
                 *n2 = &in.normal[2][row];
     const float *nv = &in.normal_var[row], *z = &in.depth[row], *sf = &in.surface[row];
     const float *a0 = &in.albedo[0][row], *a1 = &in.albedo[1][row],
-                *a2 = &in.albedo[2][row];
+                *a2 = &in.albedo[2][row], *av = &in.albedo_var[row];
     const float sa2 = 3 * fp.albedo_sigma * fp.albedo_sigma;
     for (int dy = -R; dy <= R; ++dy) {
         const int yq = y + dy;
@@ -70,7 +70,7 @@ __attribute__((target_clones("avx2", "default"))) void filter_row(
             const float *qnv = &in.normal_var[q], *qz = &in.depth[q],
                         *qsf = &in.surface[q];
             const float *qa0 = &in.albedo[0][q], *qa1 = &in.albedo[1][q],
-                        *qa2 = &in.albedo[2][q];
+                        *qa2 = &in.albedo[2][q], *qav = &in.albedo_var[q];
             const float *c0 = &in.value[0][q], *c1 = &in.value[1][q],
                         *c2 = &in.value[2][q];
             const uint8_t *ok = &in.usable[q];
@@ -101,10 +101,12 @@ __attribute__((target_clones("avx2", "default"))) void filter_row(
                 const float dz = std::abs(z[x] - qz[x]) * depth_scale /
                                  std::max(std::abs(z[x]), 1e-6f);
                 const float e0 = a0[x] - qa0[x], e1 = a1[x] - qa1[x], e2 = a2[x] - qa2[x];
-                // No allowance for the albedo's own noise: on a cell edge it is the
-                // edge's coverage, and a pixel on an edge mixing with the calm pixels
-                // on either side is the halo the pattern must not get.
-                const float da = (e0 * e0 + e1 * e1 + e2 * e2) / sa2;
+                // The albedo's own noise widens the gate by the smaller of the two
+                // pixels' variances: two strands' pixels, both noisy, take each other
+                // in, while a pixel on a cell edge (noisy: its samples fall on either
+                // side) and a calm pixel beside it do not, which would be a halo.
+                const float da =
+                    (e0 * e0 + e1 * e1 + e2 * e2) / (sa2 + 2 * std::min(av[x], qav[x]));
                 const float df = da + sp * sq * (dn + dz) + 80.0f * (sp - sq) * (sp - sq);
                 const float w = float(ok[x]) * exp_neg(dc + df);
                 sum_w[x] += w;

@@ -21,7 +21,7 @@ struct Planes {
     // neighbour (1) or is kept as it is.
     std::vector<float> value[3], guide[3], guide_var[3], normal[3], normal_var, depth,
         surface;
-    std::vector<float> albedo[3];  // the first hit's albedo
+    std::vector<float> albedo[3], albedo_var;  // the first hit's albedo and its variance
     std::vector<float> value_var;  // the variance of the values' mean (summed over RGB)
     std::vector<uint8_t> usable;
 };
