@@ -79,13 +79,13 @@ __attribute__((target_clones("avx2", "default"))) void filter_row(
             const float depth_scale = 1.0f / (fp.depth_sigma * std::max(dist, 1.0f));
             for (int x = x0; x < x1; ++x) {
                 // Colour: the squared difference less the variance it holds anyway,
-                // over k² times the variance (Rousselle et al. 2012, eq. 8). The
-                // variance is the centre's plus the smaller of the two: a firefly
-                // among calm neighbours does not widen their gate to itself, while a
-                // firefly at the centre takes its calm neighbours in.
-                const float s0 = v0[x] + std::min(v0[x], qv0[x]),
-                            s1 = v1[x] + std::min(v1[x], qv1[x]),
-                            s2 = v2[x] + std::min(v2[x], qv2[x]);
+                // over k² times the variance (Rousselle et al. 2012, eq. 8), the sum
+                // of both pixels' variances as there. A glint (a bright outlier in one
+                // half) thus widens its calm neighbours' gate to itself and its energy
+                // is spread over them, not dropped: gating by the centre's variance
+                // plus the smaller of the two kept glints from spreading but left the
+                // furry cow's dark type 4-9 % darker than the reference.
+                const float s0 = v0[x] + qv0[x], s1 = v1[x] + qv1[x], s2 = v2[x] + qv2[x];
                 const float d0 = g0[x] - qg0[x], d1 = g1[x] - qg1[x], d2 = g2[x] - qg2[x];
                 const float dc = std::max(0.0f, ((d0 * d0 - s0) / (1e-10f + k2 * s0) +
                                                  (d1 * d1 - s1) / (1e-10f + k2 * s1) +
