@@ -56,10 +56,13 @@ int run_reported(RenderJob job, const JobReporting &reporting) {
     if (totals.animated && !reporting.quiet)
         std::printf("%d frame(s) rendered, %d skipped (complete), %.2f s\n",
                     totals.rendered, totals.skipped, totals.seconds);
-    if (!reporting.quiet)
-        std::printf("wall %.2f s: set-up %.2f s, render %.2f s, writing %.2f s\n",
-                    totals.wall_seconds, totals.setup_seconds, totals.seconds,
-                    totals.write_seconds);
+    if (!reporting.quiet) {
+        std::printf("wall %.2f s: set-up %.2f s, render %.2f s, ", totals.wall_seconds,
+                    totals.setup_seconds, totals.seconds);
+        if (totals.denoise_seconds > 0)  // its share, so the parts add up to the wall
+            std::printf("denoise %.2f s, ", totals.denoise_seconds);
+        std::printf("writing %.2f s\n", totals.write_seconds);
+    }
     return totals.interrupted ? exit_interrupted : 0;
 }
 

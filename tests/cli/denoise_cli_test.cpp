@@ -126,6 +126,7 @@ TEST(DenoiseCli, TheExrKeepsTheNoisyBeautyAndAddsACleanerDenoisedLayer) {
 
     const nlohmann::json stats = nlohmann::json::parse(slurp(tmp.file("s.json")));
     EXPECT_GT(stats.at("denoise_seconds").get<double>(), 0.0);
+    EXPECT_NE(out.find(", denoise "), std::string::npos) << "the summary line: " << out;
 }
 
 TEST(DenoiseCli, TheSameBytesAtAnyThreadCount) {
