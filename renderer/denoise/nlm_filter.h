@@ -26,13 +26,13 @@ struct Planes {
     std::vector<uint8_t> usable;
 };
 
+// The window and the colour's and albedo's bandwidths are DenoiseOptions' (denoise.h).
 struct FilterParams {
-    int radius = 7;
-    float k = 0.45f;            // colour bandwidth: a neighbour at k² times the variance
-                                // weighs e⁻¹
+    int radius = 0;
+    float k = 0;
+    float albedo_sigma = 0;
     float normal_sigma = 0.1f;  // 1 − cos of the normals at which a neighbour weighs e⁻¹
-    float depth_sigma = 0.02f;   // relative depth difference per pixel of distance
-    float albedo_sigma = 0.03f;  // albedo difference (per channel, RMS) weighing e⁻¹
+    float depth_sigma = 0.02f;  // relative depth difference per pixel of distance
 };
 
 // The filtered values (3 planes) and their variance, Σ w² v / (Σ w)² from value_var
