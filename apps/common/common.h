@@ -38,6 +38,7 @@ Runner add_movie_command(CLI::App &app);
 Runner add_matte_command(CLI::App &app);
 Runner add_merge_command(CLI::App &app);
 Runner add_look_command(CLI::App &app);
+Runner add_export_command(CLI::App &app);
 Runner add_explore_command(CLI::App &app);
 
 // --threads N (0 = all cores). Keep the returned control alive while working.

@@ -113,6 +113,7 @@ extern "C" __attribute__((visibility("default"))) int pelage_cli_main(int argc,
     add(renderer::cli::add_cells_command);
     add(renderer::cli::add_lookup_command);
     add(renderer::cli::add_bake_command);
+    add(renderer::cli::add_export_command);
     add(renderer::cli::add_movie_command);
     add(renderer::cli::add_matte_command);
     add(renderer::cli::add_merge_command);

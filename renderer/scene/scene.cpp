@@ -118,18 +118,7 @@ void Scene::build(const SceneDesc &desc, const PluginRegistry &plugins) {
             // Each root's colour and pigment: the skin's own material plugin there.
             const auto pigment = [this](size_t i, const SurfacePoint &s, Vec3f p,
                                         Vec3f n) {
-                const Material &mat = m_materials[i];
-                PelageHit hit{};
-                hit.object_id = uint32_t(i);
-                hit.primitive_id = s.triangle;
-                hit.b1 = s.b1;
-                hit.b2 = s.b2;
-                hit.p[0] = p.x, hit.p[1] = p.y, hit.p[2] = p.z;
-                hit.n[0] = n.x, hit.n[1] = n.y, hit.n[2] = n.z;
-                hit.depth =
-                    1;  // not a camera hit: no antialiasing blend across cell edges
-                PelageShade sh = pelage_default_shade();
-                mat.plugin->shade(mat.instance, &hit, &sh);
+                const PelageShade sh = shade_surface(i, s, p, n);
                 RootPigment rp;
                 rp.colour = {sh.albedo[0], sh.albedo[1], sh.albedo[2]};
                 rp.eumelanin = sh.eumelanin;
@@ -191,6 +180,22 @@ void Scene::choose_matte_layers(const SceneDesc &desc) {
                 if (m_matte_layers[l] == p.matte_names[k]) slot = k;
             m_matte_slot[o][l] = int8_t(slot);
         }
+}
+
+PelageShade Scene::shade_surface(size_t object, const SurfacePoint &s, Vec3f p,
+                                 Vec3f n) const {
+    const Material &mat = m_materials[object];
+    PelageHit hit{};
+    hit.object_id = uint32_t(object);
+    hit.primitive_id = s.triangle;
+    hit.b1 = s.b1;
+    hit.b2 = s.b2;
+    hit.p[0] = p.x, hit.p[1] = p.y, hit.p[2] = p.z;
+    hit.n[0] = n.x, hit.n[1] = n.y, hit.n[2] = n.z;
+    hit.depth = 1;  // not a camera hit: no antialiasing blend across cell edges
+    PelageShade sh = pelage_default_shade();
+    mat.plugin->shade(mat.instance, &hit, &sh);
+    return sh;
 }
 
 std::string Scene::matte_name(int layer, uint64_t key) const {

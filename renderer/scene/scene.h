@@ -42,6 +42,11 @@ class Scene {
     const std::vector<std::string> &shader_aov_names() const { return m_aov_names; }
     // The scene's fur (renderer/geometry/fur_geometry.h), or null when no object has any.
     const FurGeometry *fur() const { return m_fur.get(); }
+    // What object `object`'s material shows at a point of its mesh (world-space p and
+    // unit n): its plugin's shade as an indirect hit sees it (depth 1, so no blend
+    // across cell edges). Fur roots take their pigment from it; exports their colours.
+    PelageShade shade_surface(size_t object, const SurfacePoint &s, Vec3f p,
+                              Vec3f n) const;
     // Whether anything moves during the shutter (its fur moves with its mesh).
     bool moves() const { return m_geometry->moves(); }
 
