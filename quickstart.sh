@@ -25,11 +25,14 @@ packages=(
     slurm-wlm munge      # tests: the farm recipe on a private Slurm cluster (tests/farm)
     libcpp-httplib-dev libjs-three   # pelage explore: its HTTP server and its page's 3D view
     chromium chromium-driver         # tests: the explorer's page in a headless browser
+    nodejs               # tests: the independent USD and glTF readers (tests/export)
 )
 missing=()
 for p in "${packages[@]}"; do
     dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
 done
+# npm comes with Debian's nodejs as its own package, or inside another nodejs build.
+[ "$mode" = run ] || command -v npm >/dev/null || missing+=(npm)
 if [ ${#missing[@]} -gt 0 ]; then
     echo "quickstart: installing ${missing[*]}"
     sudo=""
@@ -52,6 +55,10 @@ if [ "$mode" = run ]; then
         --stats-json build/cow_giraffe_render.json
     echo "quickstart: wrote images/cow_giraffe.exr and images/cow_giraffe_preview.png"
 else
+    # The exports' independent readers, pinned by tests/export/package-lock.json.
+    mkdir -p build/npm
+    cp tests/export/package.json tests/export/package-lock.json build/npm/
+    npm ci --prefix build/npm --no-audit --no-fund --loglevel=error
     (cd build && ctest --output-on-failure -j2)
     # --- The input-handling tests again under ASan + UBSan (docs/guide/development.md): fuzz
     # corpus replays and the hostile/malformed CLI tables. The whole suite under ASan and

@@ -123,8 +123,19 @@ Texture bake_skin_texture(const Scene &scene, const CoatSkin &skin, int size,
     } else {
         std::optional<sim::Surface> render;
         if (pattern.transfer()) render = sim::build_surface(rest);
-        pattern::bake::BakedAtlas a = pattern::bake::bake_atlas(
-            pattern, size, size, 4, render ? &*render : nullptr);
+        std::optional<pattern::bake::BakedAtlas> baked;
+        try {
+            baked = pattern::bake::bake_atlas(pattern, size, size, 4,
+                                              render ? &*render : nullptr);
+        } catch (const std::invalid_argument &e) {
+            std::string why =
+                e.what();  // names bake's --res: this command's is --texture
+            if (const size_t at = why.find("; raise --res"); at != std::string::npos)
+                why.erase(at);
+            throw InputError("", 0, "--texture",
+                             std::to_string(size) + ": " + why + "; raise --texture");
+        }
+        pattern::bake::BakedAtlas &a = *baked;
         if (a.atlas.num_charts == 0 || skin.num_triangles() != m.num_triangles)
             throw std::runtime_error("the atlas does not cover the skin");
         tex.uvs.resize(6 * skin.num_triangles());
