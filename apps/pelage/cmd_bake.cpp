@@ -1,6 +1,7 @@
 // `pelage bake FILE.cells (--mesh M | --uv-from M) --res 4096 -o pattern.<UDIM>.exr
-// --obj out.obj`: the mosaic as an ordinary texture, on the mesh's own UVs (UDIM tiles)
-// or on an undistorted CRPS atlas, and the mesh with those UVs and its normals.
+// --obj out.obj --glb out.glb`: the mosaic as an ordinary texture, on the mesh's own UVs
+// (UDIM tiles) or on an undistorted CRPS atlas, and the mesh with those UVs and its
+// normals, as OBJ or as one binary glTF with the texture inside (renderer/export).
 #include <fmt/core.h>
 
 #include <cstdio>
@@ -9,6 +10,8 @@
 
 #include "apps/common/common.h"
 #include "pattern/bake/bake.h"
+#include "renderer/export/glb_writer.h"
+#include "renderer/export/texture_png.h"
 #include "renderer/image/image_output.h"
 #include "sim/core/input_error.h"
 #include "sim/crps/surface.h"
@@ -21,7 +24,7 @@ namespace {
 namespace cm = pattern::bake;
 
 struct BakeOptions {
-    std::string cells, mesh, uv_from, output, obj, res = "4096";
+    std::string cells, mesh, uv_from, output, obj, glb, res = "4096";
     int gutter = 4;
     ThreadOption threads;
     QuietOption quiet;
@@ -49,6 +52,9 @@ int run(const BakeOptions &o) {
         throw InputError(
             "", 0, "-o",
             "\"" + o.output + "\": the texture is written as OpenEXR (.exr)");
+    if (!o.glb.empty() && (o.glb.size() < 4 || o.glb.substr(o.glb.size() - 4) != ".glb"))
+        throw InputError("", 0, "--glb",
+                         "\"" + o.glb + "\": the mesh is written as binary glTF (.glb)");
     // N is a square (the atlas's shape, and the usual UDIM tile); WxH otherwise.
     const Resolution res =
         parse_resolution(o.res, 32768, ResolutionForm::or_longer_side, "--res", 16);
@@ -60,6 +66,7 @@ int run(const BakeOptions &o) {
     meta.software = "pelage " PELAGE_VERSION " bake";
     meta.scene = o.cells;
     std::vector<std::string> written;
+    std::vector<float> glb_pixels;
     nlohmann::json tiles = nlohmann::json::array();
     auto write_tile = [&](const cm::BakedTile &tile) {
         const std::string path = tile_path(o.output, tile.udim);
@@ -67,6 +74,7 @@ int run(const BakeOptions &o) {
                             cm::BakeResult::channel_names(), false, meta);
         written.push_back(path);
         tiles.push_back({{"udim", tile.udim}, {"file", path}});
+        if (!o.glb.empty()) glb_pixels = tile.pixels;  // the one tile (checked below)
     };
     const pattern::mosaic::MosaicPattern pattern(o.cells, mesh_path);
     cm::BakeResult baked;
@@ -113,6 +121,12 @@ int run(const BakeOptions &o) {
                                  std::to_string(udims.size()) +
                                  " UDIM tiles; name the output with <UDIM>, e.g. "
                                  "pattern.<UDIM>.exr");
+        if (udims.size() > 1 && !o.glb.empty())
+            throw InputError(
+                o.uv_from, 0, "--glb",
+                "the UVs span " + std::to_string(udims.size()) +
+                    " UDIM tiles; a glTF material takes one texture (lay "
+                    "the UVs out in 0-1, or bake into an atlas with --mesh)");
         // Each tile is written as soon as it is baked: one tile in memory at a time.
         baked = cm::bake_layout(pattern, layout,
                                 [&](cm::BakedTile &&tile) { write_tile(tile); });
@@ -144,6 +158,36 @@ int run(const BakeOptions &o) {
                            "pelage bake: the UVs of " + o.uv_from + " for " + o.output);
         }
     }
+    if (!o.glb.empty()) {
+        const sim::TriangleMesh &mesh =
+            atlas && !pattern.transfer() ? pattern.surface().mesh : uv_mesh;
+        std::vector<double> positions;
+        for (const sim::Vec3d &p : mesh.positions)
+            positions.insert(positions.end(), {p.x, p.y, p.z});
+        std::vector<uint32_t> triangles;
+        std::vector<float> normals, uvs;
+        for (sim::TriId t = 0; t < mesh.num_triangles(); ++t)
+            for (int c = 0; c < 3; ++c) {
+                triangles.push_back(mesh.triangles[t][c]);
+                const sim::Vec2d uv =
+                    atlas ? atlas->uv(t, c) : mesh.corner_uvs[3 * t + c];
+                uvs.insert(uvs.end(), {float(uv.x), float(uv.y)});
+                if (!mesh.corner_normals.empty()) {
+                    const sim::Vec3d n = mesh.corner_normals[3 * t + c];
+                    normals.insert(normals.end(), {float(n.x), float(n.y), float(n.z)});
+                }
+            }
+        const std::string png =
+            renderer::png_bytes(width, height,
+                                renderer::srgb_rgb8(glb_pixels, cm::BakeResult::channels,
+                                                    size_t(width) * size_t(height)),
+                                o.glb + ".texture.png");
+        renderer::write_glb(
+            o.glb,
+            renderer::glb_mesh(std::filesystem::path(mesh_path).stem().string(),
+                               positions, triangles, normals, uvs),
+            png, "pelage " PELAGE_VERSION " bake");
+    }
     const double seconds = timer.seconds();
     if (o.stats_json.wanted()) {
         nlohmann::json j = {
@@ -160,6 +204,7 @@ int run(const BakeOptions &o) {
             {"degenerate_triangles", baked.degenerate_triangles},
             {"seconds", seconds},
         };
+        if (!o.glb.empty()) j["glb"] = o.glb;
         if (atlas) {
             j["charts"] = atlas->num_charts;
             j["texels_per_unit"] = atlas->texels_per_unit;
@@ -175,6 +220,7 @@ int run(const BakeOptions &o) {
         if (atlas)
             fmt::print(", {} charts, {:.1f} texels per unit", atlas->num_charts,
                        atlas->texels_per_unit);
+        if (!o.glb.empty()) fmt::print("; the textured mesh in {}", o.glb);
         fmt::print(", {:.2f} s\n", seconds);
     }
     return 0;
@@ -204,6 +250,9 @@ Runner add_bake_command(CLI::App &app) {
         ->required();
     sub->add_option("--obj", o->obj,
                     "Also write the mesh as OBJ with its UVs and normals");
+    sub->add_option("--glb", o->glb,
+                    "Also write the mesh, its UVs and the texture (sRGB PNG inside) as "
+                    "one binary glTF (.glb), for web viewers and DCCs");
     o->stats_json.add_to(*sub, "coverage, tiles and time");
     o->quiet.add_to(*sub);
     o->threads.add_to(*sub);

@@ -9,6 +9,7 @@
 
 #include "pattern/bake/bake.h"
 #include "renderer/export/coat.h"
+#include "renderer/export/texture_png.h"
 #include "renderer/export/usd_export.h"
 #include "renderer/export/usda_writer.h"
 #include "renderer/image/image_output.h"
@@ -63,14 +64,6 @@ std::vector<int> export_frames(const ExportJob &job) {
                                  std::to_string(a.first_frame) + "-" +
                                  std::to_string(a.first_frame + a.frames - 1) + ")");
     return frames;
-}
-
-// Linear colour to the sRGB encoding textures are stored in (IEC 61966-2-1).
-unsigned char srgb8(float linear) {
-    const float c = std::clamp(linear, 0.0f, 1.0f);
-    const float e =
-        c <= 0.0031308f ? 12.92f * c : 1.055f * std::pow(c, 1 / 2.4f) - 0.055f;
-    return static_cast<unsigned char>(std::lround(e * 255));
 }
 
 struct Texture {
@@ -147,11 +140,8 @@ Texture bake_skin_texture(const Scene &scene, const CoatSkin &skin, int size,
             }
         pixels = std::move(a.image.tiles.at(0).pixels);
     }
-    const int ch = pattern::bake::BakeResult::channels;
-    std::vector<unsigned char> rgb(size_t(size) * size_t(size) * 3);
-    for (size_t p = 0; p < size_t(size) * size_t(size); ++p)
-        for (int k = 0; k < 3; ++k)
-            rgb[3 * p + size_t(k)] = srgb8(pixels[size_t(ch) * p + size_t(k)]);
+    const std::vector<unsigned char> rgb = srgb_rgb8(
+        pixels, pattern::bake::BakeResult::channels, size_t(size) * size_t(size));
     write_rgb8(path, size, size, rgb);
     tex.path = path;
     return tex;
