@@ -8,6 +8,7 @@
 #include <string>
 
 #include "apps/common/common.h"
+#include "apps/pelage/export_report.h"
 #include "apps/pelage/job_report.h"
 #include "renderer/core/setup_phase.h"
 #include "renderer/look/look.h"
@@ -23,7 +24,8 @@ struct LookOptions {
     uint64_t seed = 1;
     int spp = 64;
     bool fur = false, cryptomatte = false, denoise = false;
-    std::string clip, frames;
+    std::string clip, frames, export_path;
+    int export_texture = 2048;
     double fps = 24;
     double shutter = 0;
     ThreadOption threads;
@@ -84,7 +86,21 @@ int run(const LookOptions &o) {
     reporting.threads = o.threads.threads;
     const auto control = o.threads.apply();
     SetupPhase::show("render", o.quiet.progress());
-    return run_reported(std::move(job), reporting);
+    ExportJob exported;
+    if (!o.export_path.empty()) {
+        // Checked before the render, written after it: a bad path costs no render.
+        exported.scene = job.scene;
+        exported.output = o.export_path;
+        exported.output_flag = "--export";
+        exported.frames = plan.render_frames;
+        exported.texture_size = o.export_texture;
+        exported.command = "pelage look " + o.mesh;
+        check_export_output(exported);
+    }
+    const int code = run_reported(std::move(job), reporting);
+    if (code != 0 || o.export_path.empty()) return code;
+    run_export_reported(exported, "pelage look", o.quiet);
+    return 0;
 }
 
 }  // namespace
@@ -135,6 +151,13 @@ Runner add_look_command(CLI::App &app) {
     sub->add_flag("--denoise", o->denoise,
                   "Denoise the render (film.denoise): the preview shows the denoised "
                   "image, the EXR keeps the noisy one beside it");
+    sub->add_option("--export", o->export_path,
+                    "Also export the coat as OpenUSD (.usda; `pelage export`): the skin "
+                    "with its pattern baked into a texture, the fur as coloured curves");
+    sub->add_option("--export-texture", o->export_texture,
+                    "With --export: the baked texture's side in texels")
+        ->check(CLI::Range(16, 16384))
+        ->capture_default_str();
     o->stats_json.add_to(*sub, "the render's timing and ray counts");
     o->quiet.add_to(*sub);
     o->threads.add_to(*sub);

@@ -149,19 +149,25 @@ Texture bake_skin_texture(const Scene &scene, const CoatSkin &skin, int size,
 
 }  // namespace
 
-ExportReport run_export(const ExportJob &job,
-                        const std::function<void(const std::string &)> &note) {
-    const SceneDesc &desc = job.scene;
+void check_export_output(const ExportJob &job) {
     if (!ends_with(job.output, ".usda"))
         throw InputError(
-            "", 0, "-o",
+            "", 0, job.output_flag,
             "\"" + job.output + "\": the coat is written as OpenUSD text (.usda)");
     const fs::path out_path(job.output);
     const fs::path folder = out_path.has_parent_path() ? out_path.parent_path() : ".";
     if (!fs::is_directory(folder))
         throw InputError(
-            "", 0, "-o",
+            "", 0, job.output_flag,
             "\"" + job.output + "\": the folder " + folder.string() + " does not exist");
+}
+
+ExportReport run_export(const ExportJob &job,
+                        const std::function<void(const std::string &)> &note) {
+    check_export_output(job);
+    const fs::path out_path(job.output);
+    const fs::path folder = out_path.has_parent_path() ? out_path.parent_path() : ".";
+    const SceneDesc &desc = job.scene;
     ExportReport report;
     report.frames = export_frames(job);
     const bool animated = report.frames.size() > 1 || !job.frames.empty();

@@ -20,6 +20,7 @@ namespace pelage::renderer {
 struct ExportJob {
     SceneDesc scene;
     std::string output;                // .usda
+    std::string output_flag = "-o";    // names it in errors
     std::vector<std::string> objects;  // by name; empty: every patterned object
     bool fur = true;
     // "" exports the animation's frames when anything but the camera moves, else a
@@ -41,6 +42,10 @@ struct ExportReport {
     double setup_seconds = 0;        // scenes, patterns and fur
     double write_seconds = 0;        // gathering and writing
 };
+
+// Throws pelage::InputError when job.output cannot be the stage (not .usda, no such
+// folder): what run_export checks first, for a caller to check before other work.
+void check_export_output(const ExportJob &job);
 
 // Throws pelage::InputError for bad input (unknown objects, no pattern, a frame list
 // outside the animation, a path that cannot be written, too large a groom).
