@@ -24,5 +24,6 @@ Runner add_bench_fur_colour(CLI::App &bench);
 Runner add_bench_preset_colour(CLI::App &bench);
 Runner add_bench_fur_comb(CLI::App &bench);
 Runner add_bench_noise(CLI::App &bench);
+Runner add_bench_export(CLI::App &bench);
 
 }  // namespace pelage::renderer::cli

@@ -36,6 +36,7 @@ Runner add_bench_command(CLI::App &app) {
     add(add_bench_preset_colour);
     add(add_bench_fur_comb);
     add(add_bench_noise);
+    add(add_bench_export);
     return [children] {
         for (const auto &[sub, run] : children)
             if (sub->parsed()) return run();

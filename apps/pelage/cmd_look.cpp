@@ -25,7 +25,7 @@ struct LookOptions {
     int spp = 64;
     bool fur = false, cryptomatte = false, denoise = false;
     std::string clip, frames, export_path;
-    int export_texture = 2048;
+    int export_texture = 1024;
     double fps = 24;
     double shutter = 0;
     ThreadOption threads;

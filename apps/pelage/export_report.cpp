@@ -19,8 +19,9 @@ ExportReport run_export_reported(const ExportJob &job, const std::string &comman
         fmt::print("; {:.1f} MB", double(r.bytes) / 1e6);
         for (size_t k = 1; k < r.files.size(); ++k)
             fmt::print("{}{}", k == 1 ? "; texture " : ", ", r.files[k]);
-        fmt::print("): set-up {:.2f} s, export {:.2f} s\n", r.setup_seconds,
-                   r.write_seconds);
+        fmt::print("): set-up {:.2f} s, ", r.setup_seconds);
+        if (r.files.size() > 1) fmt::print("textures {:.2f} s, ", r.texture_seconds);
+        fmt::print("export {:.2f} s\n", r.write_seconds);
     }
     return r;
 }
@@ -34,6 +35,7 @@ nlohmann::json export_report_json(const ExportReport &r) {
             {"points", r.points},
             {"bytes", r.bytes},
             {"setup_seconds", r.setup_seconds},
+            {"texture_seconds", r.texture_seconds},
             {"export_seconds", r.write_seconds}};
 }
 

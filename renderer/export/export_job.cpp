@@ -174,6 +174,13 @@ ExportReport run_export(const ExportJob &job,
     const auto setup_start = Clock::now();
     grow_scene_patterns(
         desc, note ? note : [](const std::string &) {}, false);
+    // Without fur in the export, none is grown.
+    SceneDesc bare;
+    if (!job.fur) {
+        bare = desc;
+        for (ObjectDesc &o : bare.objects) o.fur.reset();
+    }
+    const SceneDesc &source = job.fur ? desc : bare;
     const PluginRegistry plugins;
     CoatOptions options;
     options.objects = job.objects;
@@ -185,7 +192,7 @@ ExportReport run_export(const ExportJob &job,
     try {
         for (size_t k = 0; k < report.frames.size(); ++k) {
             const int local = report.frames[k] - desc.animation.first_frame;
-            const SceneDesc fd = animated ? scene_at_frame(desc, local) : desc;
+            const SceneDesc fd = animated ? scene_at_frame(source, local) : source;
             const Scene scene(fd, plugins);
             const auto gather_start = Clock::now();
             coat.push_back(gather_coat(scene, options));
@@ -200,6 +207,7 @@ ExportReport run_export(const ExportJob &job,
                         "); export fewer frames (--frames), lower the fur's "
                         "density, or raise --max-points");
             if (k == 0 && job.texture_size > 0) {
+                const auto bake_start = Clock::now();
                 const std::string stem = out_path.stem().string();
                 for (CoatSkin &skin : coat[0].skins) {
                     const std::string name =
@@ -209,6 +217,7 @@ ExportReport run_export(const ExportJob &job,
                     report.files.push_back(textures.back().path);
                     skin.texture = "./" + name;
                 }
+                report.texture_seconds = since(bake_start);
             }
             if (!textures.empty())
                 for (size_t s = 0; s < coat.back().skins.size(); ++s) {
@@ -217,7 +226,9 @@ ExportReport run_export(const ExportJob &job,
                 }
             gather_seconds += since(gather_start);
         }
-        report.setup_seconds = since(setup_start) - gather_seconds;
+        gather_seconds -= report.texture_seconds;
+        report.setup_seconds =
+            since(setup_start) - gather_seconds - report.texture_seconds;
 
         const auto write_start = Clock::now();
         UsdStageInfo info;

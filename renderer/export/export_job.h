@@ -40,7 +40,8 @@ struct ExportReport {
     std::vector<std::string> files;  // the stage, then the textures
     uint64_t bytes = 0;              // of the stage
     double setup_seconds = 0;        // scenes, patterns and fur
-    double write_seconds = 0;        // gathering and writing
+    double texture_seconds = 0;      // baking the textures (pattern/bake)
+    double write_seconds = 0;        // gathering the coat and writing the stage
 };
 
 // Throws pelage::InputError when job.output cannot be the stage (not .usda, no such
