@@ -329,6 +329,18 @@ def t_fur():
             f"{r0['segments']} segments per strand.\n")
 
 
+def t_export():
+    d = data("bench_export")
+    return (table(["strands", "control points", "stage", "set-up s", "export s",
+                   "s / M strands", "MB / M strands"],
+                  [[num(d["strands"]), num(d["points"]), f"{d['bytes'] / 1e6:.0f} MB",
+                    num(d["setup_seconds"]), num(d["export_seconds"]),
+                    f"{d['seconds_per_million_strands']:.2f}",
+                    f"{d['mb_per_million_strands']:.0f}"]]) +
+            f"\n`pelage bench export {d['scene']} --density-scale {d['density_scale']:g}"
+            f" --threads {d['threads']}`: the median of {d['repeats']} exports.\n")
+
+
 def t_fur_colour():
     d = data("fur_colour")
     rgb = lambda c: "(" + ", ".join(f"{x:.3f}" for x in c) + ")"
@@ -696,7 +708,7 @@ TABLES = {
     "machine": t_machine, "crps": t_crps, "sim": t_sim, "sim-density": t_sim_density, "sim-mclone": t_sim_mclone, "sim-neighbours": t_sim_neighbours, "default-job": t_default_job,
     "lookup": t_lookup, "lookup-lanes": t_lookup_lanes,
     "lookup-density": t_lookup_density, "render": t_render,
-    "compare": t_compare, "hair": t_hair, "fur": t_fur, "fur-colour": t_fur_colour,
+    "compare": t_compare, "hair": t_hair, "fur": t_fur, "export": t_export, "fur-colour": t_fur_colour,
     "fur-comb": t_fur_comb, "fur-glitter": t_fur_glitter,
     "fur-slab": t_fur_slab, "noise": t_noise, "denoise": t_denoise, "cycles-fur": t_cycles_fur, "presets": t_presets,
     "crps-errors": t_crps_errors, "lookup-quality": t_lookup_quality,

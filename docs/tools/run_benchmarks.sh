@@ -56,6 +56,8 @@ run bench_hair    "$pelage" bench hair --configs 16 -q --stats-json "$out/bench_
 run bench_fur     "$pelage" bench fur --strands 20000 100000 2500000 10000000 --res 320x240 \
                       --spp 4 --threads 1 \
                       -q --stats-json "$out/bench_fur.json"
+run bench_export  "$pelage" bench export scenes/fur_cow_giraffe.json --density-scale 3 \
+                      --threads 2 -q --stats-json "$out/bench_export.json"
 run fur_colour    "$pelage" bench fur-colour --res 320x180 --spp 32 --slab-spp 128 -q \
                       --stats-json "$out/fur_colour.json"
 # Each animal preset's colours as `look` shows them (docs/guide/presets.md).
