@@ -13,16 +13,16 @@ namespace {
 template <class T>
 struct Span {
     const T *data = nullptr;
-    size_t count = 0;  // elements (tuples)
+    size_t elements = 0;  // numbers, not tuples
     bool operator==(const Span &o) const {
-        return count == o.count &&
-               (count == 0 || std::memcmp(data, o.data, count * sizeof(T)) == 0);
+        return elements == o.elements &&
+               (elements == 0 || std::memcmp(data, o.data, elements * sizeof(T)) == 0);
     }
 };
 
 template <class T>
-Span<T> span_of(const std::vector<T> &v, int tuple) {
-    return {v.data(), v.size() / size_t(tuple)};
+Span<T> span_of(const std::vector<T> &v) {
+    return {v.data(), v.size()};
 }
 
 // One attribute over the frames: its single value when every frame has the same, else
@@ -36,13 +36,13 @@ class FrameAttributes {
                 const std::function<Span<float>(size_t)> &get) {
         if (constant(get)) {
             const Span<float> s = get(0);
-            m_w.array(decl, s.data, s.count, tuple, interp);
+            m_w.array(decl, s.data, s.elements / size_t(tuple), tuple, interp);
             return;
         }
         m_w.begin_time_samples(decl, interp);
         for (size_t f = 0; f < m_frames; ++f) {
             const Span<float> s = get(f);
-            m_w.sample(m_info.times[f], s.data, s.count, tuple);
+            m_w.sample(m_info.times[f], s.data, s.elements / size_t(tuple), tuple);
         }
         m_w.end_time_samples();
     }
@@ -50,13 +50,13 @@ class FrameAttributes {
               const std::function<Span<int32_t>(size_t)> &get) {
         if (constant(get)) {
             const Span<int32_t> s = get(0);
-            m_w.array(decl, s.data, s.count, interp);
+            m_w.array(decl, s.data, s.elements, interp);
             return;
         }
         m_w.begin_time_samples(decl, interp);
         for (size_t f = 0; f < m_frames; ++f) {
             const Span<int32_t> s = get(f);
-            m_w.sample(m_info.times[f], s.data, s.count);
+            m_w.sample(m_info.times[f], s.data, s.elements);
         }
         m_w.end_time_samples();
     }
@@ -211,19 +211,19 @@ void write_coat_usda(std::ostream &out, const std::vector<CoatFrame> &frames,
                 skin.indices.size());
         auto sk = [&](size_t f) -> const CoatSkin & { return frames[f].skins[k]; };
         attr.floats("point3f[] points", 3, {},
-                    [&](size_t f) { return span_of(sk(f).points, 3); });
+                    [&](size_t f) { return span_of(sk(f).points); });
         if (!skin.normals.empty())
             attr.floats("normal3f[] normals", 3, "faceVarying",
-                        [&](size_t f) { return span_of(sk(f).normals, 3); });
+                        [&](size_t f) { return span_of(sk(f).normals); });
         if (!skin.uvs.empty())
             attr.floats("texCoord2f[] primvars:st", 2, "faceVarying",
-                        [&](size_t f) { return span_of(sk(f).uvs, 2); });
+                        [&](size_t f) { return span_of(sk(f).uvs); });
         attr.floats("color3f[] primvars:displayColor", 3, "uniform",
-                    [&](size_t f) { return span_of(sk(f).face_colour, 3); });
+                    [&](size_t f) { return span_of(sk(f).face_colour); });
         attr.ints("int[] primvars:cell_type", "uniform",
-                  [&](size_t f) { return span_of(sk(f).face_cell_type, 1); });
+                  [&](size_t f) { return span_of(sk(f).face_cell_type); });
         attr.ints("int[] primvars:cell_id", "uniform",
-                  [&](size_t f) { return span_of(sk(f).face_cell_id, 1); });
+                  [&](size_t f) { return span_of(sk(f).face_cell_id); });
         if (!skin.texture.empty())
             w.line("rel material:binding = <" + path + "/pattern>");
         w.end_prim();
@@ -251,30 +251,30 @@ void write_coat_usda(std::ostream &out, const std::vector<CoatFrame> &frames,
             }
             w.line("uniform token wrap = \"nonperiodic\"");
             attr.ints("int[] curveVertexCounts", {},
-                      [&](size_t f) { return span_of(counts_of[f], 1); });
+                      [&](size_t f) { return span_of(counts_of[f]); });
             attr.floats("point3f[] points", 3, {},
-                        [&](size_t f) { return span_of(gr(f).points, 3); });
+                        [&](size_t f) { return span_of(gr(f).points); });
             attr.floats("float[] widths", 1, "vertex",
-                        [&](size_t f) { return span_of(gr(f).widths, 1); });
+                        [&](size_t f) { return span_of(gr(f).widths); });
             attr.floats("color3f[] primvars:displayColor", 3, "uniform",
-                        [&](size_t f) { return span_of(gr(f).colour, 3); });
+                        [&](size_t f) { return span_of(gr(f).colour); });
             attr.ints("int[] primvars:cell_type", "uniform",
-                      [&](size_t f) { return span_of(gr(f).cell_type, 1); });
+                      [&](size_t f) { return span_of(gr(f).cell_type); });
             attr.ints("int[] primvars:cell_id", "uniform",
-                      [&](size_t f) { return span_of(gr(f).cell_id, 1); });
+                      [&](size_t f) { return span_of(gr(f).cell_id); });
             if (!uvs[0].empty())
                 attr.floats("texCoord2f[] primvars:root_uv", 2, "uniform",
-                            [&](size_t f) { return span_of(uvs[f], 2); });
+                            [&](size_t f) { return span_of(uvs[f]); });
             // Unreal's groom importer reads these names (its groom_* attributes).
             attr.floats("color3f[] primvars:groom_color", 3, "uniform",
-                        [&](size_t f) { return span_of(gr(f).colour, 3); });
+                        [&](size_t f) { return span_of(gr(f).colour); });
             attr.floats("float[] primvars:groom_width", 1, "vertex",
-                        [&](size_t f) { return span_of(gr(f).widths, 1); });
+                        [&](size_t f) { return span_of(gr(f).widths); });
             if (!uvs[0].empty())
                 attr.floats("float2[] primvars:groom_root_uv", 2, "uniform",
-                            [&](size_t f) { return span_of(uvs[f], 2); });
+                            [&](size_t f) { return span_of(uvs[f]); });
             attr.ints("int[] primvars:groom_id", "uniform",
-                      [&](size_t f) { return span_of(ids[f], 1); });
+                      [&](size_t f) { return span_of(ids[f]); });
             w.end_prim();
         }
         w.end_prim();

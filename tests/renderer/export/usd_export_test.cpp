@@ -13,6 +13,7 @@
 #include "renderer/scene/scene.h"
 #include "renderer/scene_file/scene_file.h"
 #include "renderer/scene_frame/scene_frame.h"
+#include "tests/renderer/animation/armature_tube.h"
 #include "tests/test_paths.h"
 
 namespace pelage::test {
@@ -383,6 +384,52 @@ TEST(UsdExport, AnObjectTurntableBecomesTimeSamplesOfItsTransform) {
     EXPECT_TRUE(skin["points"].contains("value"));
     EXPECT_FALSE(skin["points"].contains("samples"));
     EXPECT_FALSE(usd["prims"].contains("/coat/sphere/fur"));
+}
+
+TEST(UsdExport, AClipsFramesBecomeTimeSamplesOfThePosedSkin) {
+    REQUIRE_READERS();
+    TempDir tmp;
+    const std::string mesh = tmp.write("tube.gltf", armature_tube(12, 8));
+    const std::string cells = simulate_two_type_cells(tmp, mesh, 200);
+    const json scene = {{"camera", {{"position", {0, 1, 5}}, {"look_at", {0, 0.75, 0}}}},
+                        {"film", {{"width", 32}, {"height", 32}, {"spp", 1}}},
+                        {"lights", {{{"type", "environment"}}}},
+                        {"animation", {{"frames", 12}, {"fps", 24}}},
+                        {"objects",
+                         {{{"name", "tube"},
+                           {"mesh", mesh},
+                           {"cells", cells},
+                           {"animation", {{"clip", "Sway"}}},
+                           {"material", {{"shader", "clonal_mosaic"}}}}}}};
+    const std::string scene_path = tmp.write("clip.json", scene.dump());
+    const std::string usda = tmp.file("clip.usda");
+    std::string err;
+    ASSERT_EQ(run_pelage("export " + scene_path + " -q --frames 0,4,8 -o " + usda,
+                         nullptr, &err),
+              0)
+        << err;
+    const json usd = read_usd(tmp, usda);
+    const json &points = usd["prims"]["/coat/tube/skin"]["attrs"]["points"];
+    ASSERT_TRUE(points.contains("samples")) << "the posed skin is not time-sampled";
+    // Each sample is the skin the renderer poses for that frame.
+    const renderer::SceneDesc desc = renderer::load_scene_file(scene_path);
+    const renderer::PluginRegistry plugins;
+    double worst = 0, moved = 0;
+    std::vector<double> first;
+    for (int f : {0, 4, 8}) {
+        const std::vector<double> p =
+            points["samples"].at(std::to_string(f)).get<std::vector<double>>();
+        const renderer::Scene posed(renderer::scene_at_frame(desc, f), plugins);
+        const renderer::MeshData &m = *posed.geometry().objects()[0].mesh;
+        ASSERT_EQ(p.size(), 3 * size_t(m.num_vertices));
+        for (size_t k = 0; k < p.size(); ++k)
+            worst = std::max(worst, std::abs(p[k] - m.object_positions[k]));
+        if (first.empty()) first = p;
+        for (size_t k = 0; k < p.size(); ++k)
+            moved = std::max(moved, std::abs(p[k] - first[k]));
+    }
+    EXPECT_LT(worst, 1e-6);  // TinyUSDZ prints floats back to 8 digits
+    EXPECT_GT(moved, 0.05) << "the clip's frames should move the spine";
 }
 
 TEST(UsdExport, BadRequestsFailWithTheFieldAndWriteNothing) {
