@@ -2,7 +2,8 @@
 // section 4.4 "GLB File Format Specification"): a JSON chunk and a binary chunk holding
 // the vertices (POSITION, NORMAL, TEXCOORD_0), the triangles (UNSIGNED_INT indices) and
 // the texture (PNG), with one material whose baseColorTexture is the texture. Written
-// directly: assimp's glTF exporter does not embed an image given as bytes.
+// directly rather than through assimp's exporter, which would rebuild the mesh from its
+// own scene structure and choose its own material and sampler fields.
 #pragma once
 
 #include <cstdint>
