@@ -432,6 +432,26 @@ TEST(UsdExport, AClipsFramesBecomeTimeSamplesOfThePosedSkin) {
     EXPECT_GT(moved, 0.05) << "the clip's frames should move the spine";
 }
 
+TEST(UsdExport, TheSameBytesAtAnyThreadCount) {
+    TempDir tmp;
+    const std::string scene_path = fur_scene(tmp);
+    for (const char *threads : {"1", "2"}) {
+        fs::create_directories(tmp.path() / threads);
+        std::string err;
+        ASSERT_EQ(
+            run_pelage("export " + scene_path + " -q --texture 128 --threads " + threads +
+                           " -o " + (tmp.path() / threads / "c.usda").string(),
+                       nullptr, &err),
+            0)
+            << err;
+    }
+    for (const char *file : {"c.usda", "c_sphere.png"}) {
+        const std::string one = slurp((tmp.path() / "1" / file).string());
+        EXPECT_FALSE(one.empty()) << file;
+        EXPECT_TRUE(one == slurp((tmp.path() / "2" / file).string())) << file;
+    }
+}
+
 TEST(UsdExport, BadRequestsFailWithTheFieldAndWriteNothing) {
     TempDir tmp;
     const std::string scene_path = fur_scene(tmp);
