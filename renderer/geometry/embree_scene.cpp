@@ -99,7 +99,7 @@ std::shared_ptr<MeshData> load_mesh_data(const ObjectDesc &o,
                    "objects[" + std::to_string(index) + "].deform");
     // Motion blur: the later steps of the shutter, each posed from the rest.
     std::vector<std::vector<float>> later_positions, later_normals;
-    std::vector<float> to_rest_length;
+    std::vector<float> to_rest_length, bind_pose;
     if (rig && default_pose) {
         pose_default(*rig, report, &mesh);
         to_rest_length = rest_length_ratios(rest->positions, mesh);
@@ -107,6 +107,8 @@ std::shared_ptr<MeshData> load_mesh_data(const ObjectDesc &o,
             std::chrono::duration<double>(std::chrono::steady_clock::now() - pose_start)
                 .count();
     } else if (rig) {
+        for (const sim::Vec3d &v : rig->pose(Rig::default_pose, 0))
+            bind_pose.insert(bind_pose.end(), {float(v.x), float(v.y), float(v.z)});
         const int clip = rig->clip(o.clip->name);
         for (size_t k = 1; k < o.clip_motion_seconds.size(); ++k) {
             sim::TriangleMesh step = mesh;
@@ -145,6 +147,7 @@ std::shared_ptr<MeshData> load_mesh_data(const ObjectDesc &o,
     m->num_triangles = uint32_t(mesh.num_triangles());
     m->object_positions = float_positions(mesh.positions);
     m->to_rest_length = std::move(to_rest_length);
+    m->default_pose = std::move(bind_pose);
     m->triangles.resize(size_t(m->num_triangles) * 3);
     for (size_t t = 0; t < mesh.num_triangles(); ++t)
         for (int c = 0; c < 3; ++c) m->triangles[3 * t + c] = mesh.triangles[t][c];

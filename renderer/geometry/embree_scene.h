@@ -39,6 +39,12 @@ struct MeshData {
     // footprints reach plugins in the pattern's units (PelageHit::footprint); empty when
     // the mesh is as loaded.
     std::vector<float> to_rest_length;
+    // A mesh a clip poses: the skin's default pose (glTF 2.0 §3.7.3: the joints' global
+    // transforms times their inverse bind matrices), xyz per vertex in object space,
+    // the shape its coat is counted and sized on whatever the pose. A file's vertices
+    // need not be in that shape: one laid out as Blender exports a Mixamo character
+    // reads at 1/100 of it, under an armature's scale. Empty without a clip.
+    std::vector<float> default_pose;
     // Motion blur (ObjectDesc::clip_motion_seconds): positions and corner normals at the
     // shutter's later steps 1 .. n − 1, step 0 being `positions` and `corner_normals`;
     // the surface moves linearly from step to step. Empty: the mesh does not move.

@@ -73,13 +73,18 @@ PelageMeshView rest_view(const MeshData &m) {
     return view;
 }
 
-// The rest positions placed by the object's transform.
+// The rest shape placed by the object's transform.
 std::vector<float> rest_in_place(const MeshData &m, const Affine &transform) {
     std::vector<float> out(3 * size_t(m.num_vertices));
     for (uint32_t v = 0; v < m.num_vertices; ++v) {
-        const Vec3f p = transform.point({float(m.rest->positions[3 * v]),
-                                         float(m.rest->positions[3 * v + 1]),
-                                         float(m.rest->positions[3 * v + 2])});
+        // A clip's skin rests in its default pose; a deformed mesh as loaded.
+        const Vec3f p =
+            transform.point(m.default_pose.empty()
+                                ? Vec3f{float(m.rest->positions[3 * v]),
+                                        float(m.rest->positions[3 * v + 1]),
+                                        float(m.rest->positions[3 * v + 2])}
+                                : Vec3f{m.default_pose[3 * v], m.default_pose[3 * v + 1],
+                                        m.default_pose[3 * v + 2]});
         out[3 * v] = p.x;
         out[3 * v + 1] = p.y;
         out[3 * v + 2] = p.z;
