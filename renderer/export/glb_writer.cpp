@@ -56,6 +56,25 @@ GlbMesh glb_mesh(const std::string &name, const std::vector<double> &positions,
     m.name = name;
     std::unordered_map<CornerKey, uint32_t, CornerHash> index;
     const size_t corners = triangles.size();
+    // Without normals in the mesh: area-weighted vertex normals (the sum of the faces'
+    // cross products), so a viewer shades the skin smooth rather than faceted.
+    std::vector<double> vertex_normals;
+    if (corner_normals.empty()) {
+        vertex_normals.assign(positions.size(), 0.0);
+        for (size_t t = 0; 3 * t + 2 < corners; ++t) {
+            const double *A = &positions[3 * size_t(triangles[3 * t])];
+            const double *B = &positions[3 * size_t(triangles[3 * t + 1])];
+            const double *C = &positions[3 * size_t(triangles[3 * t + 2])];
+            const double u[3] = {B[0] - A[0], B[1] - A[1], B[2] - A[2]};
+            const double v[3] = {C[0] - A[0], C[1] - A[1], C[2] - A[2]};
+            const double n[3] = {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2],
+                                 u[0] * v[1] - u[1] * v[0]};
+            for (int c = 0; c < 3; ++c)
+                for (int a = 0; a < 3; ++a)
+                    vertex_normals[3 * size_t(triangles[3 * t + size_t(c)]) +
+                                   size_t(a)] += n[a];
+        }
+    }
     for (size_t c = 0; c < corners; ++c) {
         CornerKey k{};
         k.vertex = triangles[c];
@@ -63,21 +82,14 @@ GlbMesh glb_mesh(const std::string &name, const std::vector<double> &positions,
         if (!corner_normals.empty()) {
             std::copy_n(&corner_normals[3 * c], 3, k.n);
         } else {
-            const size_t t = c / 3;
-            const double *A = &positions[3 * size_t(triangles[3 * t])];
-            const double *B = &positions[3 * size_t(triangles[3 * t + 1])];
-            const double *C = &positions[3 * size_t(triangles[3 * t + 2])];
-            const double u[3] = {B[0] - A[0], B[1] - A[1], B[2] - A[2]};
-            const double v[3] = {C[0] - A[0], C[1] - A[1], C[2] - A[2]};
-            k.n[0] = float(u[1] * v[2] - u[2] * v[1]);
-            k.n[1] = float(u[2] * v[0] - u[0] * v[2]);
-            k.n[2] = float(u[0] * v[1] - u[1] * v[0]);
+            const double *n = &vertex_normals[3 * size_t(k.vertex)];
+            for (int a = 0; a < 3; ++a) k.n[a] = float(n[a]);
         }
         const float l = std::sqrt(k.n[0] * k.n[0] + k.n[1] * k.n[1] + k.n[2] * k.n[2]);
         if (l > 0) {
             for (float &x : k.n) x /= l;
         } else {
-            k.n[0] = 0, k.n[1] = 0, k.n[2] = 1;  // a degenerate face: any unit normal
+            k.n[0] = 0, k.n[1] = 0, k.n[2] = 1;  // degenerate faces only: any unit normal
         }
         k.uv[0] = corner_uvs[2 * c];
         k.uv[1] = 1 - corner_uvs[2 * c + 1];  // OBJ's v up to glTF's v down

@@ -22,7 +22,7 @@ struct GlbMesh {
 
 // Welds triangle corners that share a vertex, a UV and a normal into one glTF vertex.
 // `corner_uvs` are in OBJ's convention (v up), 2 per corner; `corner_normals` 3 per
-// corner or empty (the faces' normals are then given per vertex of each corner).
+// corner or empty (area-weighted vertex normals are then made).
 GlbMesh glb_mesh(const std::string &name, const std::vector<double> &positions,
                  const std::vector<uint32_t> &triangles,
                  const std::vector<float> &corner_normals,
