@@ -81,6 +81,8 @@ LookSetup explore_setup(const explore::ExploreSession &session) {
     LookSetup s;
     s.framing = frame_points(points, request);
     s.object_name = "animal";
+    // Denoised, as `pelage look --denoise`: the page's preview and the saved scene alike.
+    s.denoise = true;
     return s;
 }
 
@@ -158,6 +160,7 @@ int run(const ExploreCliOptions &o) {
         s.width = width;
         s.height = height;
         s.spp = spp;
+        s.denoise = spp >= 2;  // the first pass's one sample has no halves to compare
         s.output = work + "/render.exr";
         s.preview = png;
         // The scene a save writes, rendered from memory (it anchors in the work folder).
