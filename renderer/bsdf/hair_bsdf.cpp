@@ -238,6 +238,13 @@ HairBsdf::HairBsdf(const HairParams &params, float h) : m_params(params), m_h(h)
     }
 }
 
+HairBsdf::HairBsdf(const HairParams &params, FarField far) : HairBsdf(params, 0.0f) {
+    PELAGE_DCHECK(far.nodes >= 1 && far.nodes <= max_nodes && far.xi >= 0 && far.xi < 1);
+    m_nodes = std::clamp(far.nodes, 1, max_nodes);
+    m_xi = std::clamp(far.xi, 0.0f, 0x1.fffffep-1f);
+    if (m_nodes == 1) m_h = -1 + 2 * m_xi, m_gamma_o = safe_asin(m_h);
+}
+
 namespace {
 
 // θ_o rotated by the cuticle tilt for lobe p, so that M_p, which peaks at θ_i = −θ_o',
@@ -268,14 +275,14 @@ Tilted tilt(int p, float sin_o, float cos_o, const std::array<float, 3> &sin_2k,
     return {s, std::abs(c)};
 }
 
-}  // namespace
-
-std::array<Rgb, HairBsdf::p_max + 1> HairBsdf::attenuation(float sin_theta_o) const {
-    const Refraction r = refract(sin_theta_o, m_params.eta, m_h);
+// A_p for the refraction r at offset h (HairBsdf::attenuation).
+std::array<Rgb, HairBsdf::p_max + 1> attenuation_of(const Refraction &r, float h,
+                                                    const HairParams &params) {
+    constexpr int p_max = HairBsdf::p_max;
     // Transmittance of one chord through the fibre: T = exp(−σ_a · 2 cos γ_t / cos θ_t)
-    const Rgb T = exp(m_params.sigma_a * (-2 * r.cos_gamma_t / r.cos_theta_t));
-    const float cos_gamma_o = safe_sqrt(1 - sqr(m_h));
-    const float f = fresnel_dielectric(r.cos_theta_o * cos_gamma_o, m_params.eta);
+    const Rgb T = exp(params.sigma_a * (-2 * r.cos_gamma_t / r.cos_theta_t));
+    const float cos_gamma_o = safe_sqrt(1 - sqr(h));
+    const float f = fresnel_dielectric(r.cos_theta_o * cos_gamma_o, params.eta);
     std::array<Rgb, p_max + 1> a;
     // R reflects once; TT transmits twice; each further bounce adds T·f
     a[0] = Rgb{f, f, f};
@@ -291,6 +298,13 @@ std::array<Rgb, HairBsdf::p_max + 1> HairBsdf::attenuation(float sin_theta_o) co
     return a;
 }
 
+}  // namespace
+
+std::array<Rgb, HairBsdf::p_max + 1> HairBsdf::attenuation(float sin_theta_o,
+                                                           float h) const {
+    return attenuation_of(refract(sin_theta_o, m_params.eta, h), h, m_params);
+}
+
 namespace {
 
 // A lobe is chosen in proportion to the mean of its attenuation's channels, not its
@@ -302,8 +316,9 @@ float selection_weight(const Rgb &a) { return std::max((a.x + a.y + a.z) / 3, 0.
 
 }  // namespace
 
-std::array<float, HairBsdf::p_max + 1> HairBsdf::lobe_pdf(float sin_theta_o) const {
-    const auto a = attenuation(sin_theta_o);
+std::array<float, HairBsdf::p_max + 1> HairBsdf::lobe_pdf(float sin_theta_o,
+                                                          float h) const {
+    const auto a = attenuation(sin_theta_o, h);
     std::array<float, p_max + 1> w{};
     float sum = 0;
     for (int p = 0; p <= p_max; ++p) sum += (w[p] = selection_weight(a[p]));
@@ -314,41 +329,58 @@ std::array<float, HairBsdf::p_max + 1> HairBsdf::lobe_pdf(float sin_theta_o) con
 
 Rgb HairBsdf::albedo() const {
     Rgb sum;
-    for (const Rgb &a : attenuation(0)) sum += a;
-    return sum;
+    for (int k = 0; k < m_nodes; ++k)
+        for (const Rgb &a : attenuation(0, node_h(k))) sum += a;
+    return m_nodes == 1 ? sum : sum / float(m_nodes);
 }
 
 void HairBsdf::evaluate(Vec3f wo, Vec3f wi, Rgb *f, float *pdf) const {
     PELAGE_DCHECK(is_unit(wo) && is_unit(wi));
-    const Refraction r = refract(wo.x, m_params.eta, m_h);
+    const float sin_theta_o = std::clamp(wo.x, -1.0f, 1.0f);
+    const float cos_theta_o = safe_sqrt(1 - sqr(sin_theta_o));
     const float sin_theta_i = std::clamp(wi.x, -1.0f, 1.0f);
     const float cos_theta_i = safe_sqrt(1 - sqr(sin_theta_i));
     const float phi = std::atan2(wi.z, wi.y) - std::atan2(wo.z, wo.y);
-    const auto a = attenuation(wo.x);
-    std::array<float, p_max + 1> w{};
-    if (pdf) {
-        // Lobe selection probabilities, as lobe_pdf
-        float sum = 0;
-        for (int p = 0; p <= p_max; ++p) sum += (w[p] = selection_weight(a[p]));
-        if (sum > 0)
-            for (float &x : w) x /= sum;
-    }
 
-    // --- S = Σ_p M_p A_p N_p and pdf = Σ_p M_p w_p N_p, then the residual with uniform N
-    // ---
-    Rgb s_sum;
-    float pdf_sum = 0;
+    // M_p depends on the longitudinal angles only: once, for every stratum of h.
+    std::array<float, p_max + 1> m;
     for (int p = 0; p <= p_max; ++p) {
         const Tilted o =
-            tilt(p, r.sin_theta_o, r.cos_theta_o, m_sin_2k_alpha, m_cos_2k_alpha);
-        const float n_p = p < p_max
-                              ? np_eval(phi, p, m_s, m_inv_trim, m_gamma_o, r.gamma_t)
-                              : 1 / two_pi;
-        const float m_p = mp_eval(cos_theta_i, o.cos_theta, sin_theta_i, o.sin_theta,
-                                  m_v[p], {m_mp_log_space[p], m_mp_scale[p]});
-        const float mn = m_p * n_p;
-        s_sum += mn * a[p];
-        pdf_sum += mn * w[p];
+            tilt(p, sin_theta_o, cos_theta_o, m_sin_2k_alpha, m_cos_2k_alpha);
+        m[p] = mp_eval(cos_theta_i, o.cos_theta, sin_theta_i, o.sin_theta, m_v[p],
+                       {m_mp_log_space[p], m_mp_scale[p]});
+    }
+
+    // --- S = Σ_p M_p A_p N_p and pdf = Σ_p M_p w_p N_p, then the residual with uniform
+    // N; the far field averages both over the strata of h ---
+    Rgb s_sum;
+    float pdf_sum = 0;
+    for (int k = 0; k < m_nodes; ++k) {
+        const float h = node_h(k);
+        const float gamma_o = m_nodes == 1 ? m_gamma_o : safe_asin(h);
+        const Refraction r = refract(wo.x, m_params.eta, h);
+        const auto a = attenuation_of(r, h, m_params);
+        std::array<float, p_max + 1> w{};
+        if (pdf) {
+            // Lobe selection probabilities, as lobe_pdf
+            float sum = 0;
+            for (int p = 0; p <= p_max; ++p) sum += (w[p] = selection_weight(a[p]));
+            if (sum > 0)
+                for (float &x : w) x /= sum;
+        }
+        for (int p = 0; p <= p_max; ++p) {
+            const float n_p = p < p_max
+                                  ? np_eval(phi, p, m_s, m_inv_trim, gamma_o, r.gamma_t)
+                                  : 1 / two_pi;
+            const float mn = m[p] * n_p;
+            s_sum += mn * a[p];
+            pdf_sum += mn * w[p];
+        }
+    }
+    if (m_nodes > 1) {
+        const float inv = 1 / float(m_nodes);
+        s_sum = s_sum * inv;
+        pdf_sum *= inv;
     }
 
     // f = S / |cos θ_i| w.r.t. the shading normal z, so the integrator's |wi.z| cancels
@@ -371,11 +403,26 @@ float HairBsdf::pdf(Vec3f wo, Vec3f wi) const {
     return pdf;
 }
 
+Rgb HairBsdf::eval_pdf(Vec3f wo, Vec3f wi, float *pdf) const {
+    Rgb f;
+    evaluate(wo, wi, &f, pdf);
+    return f;
+}
+
 std::optional<BsdfSample> HairBsdf::sample(Vec3f wo, float u_lobe, float u1,
                                            float u2) const {
     PELAGE_DCHECK(is_unit(wo));
-    const Refraction r = refract(wo.x, m_params.eta, m_h);
-    const auto w = lobe_pdf(wo.x);
+    // --- The far field: a stratum of h, uniformly; u_lobe rescaled for the lobe ---
+    float h = m_h, gamma_o = m_gamma_o;
+    if (m_nodes > 1) {
+        const float scaled = u_lobe * float(m_nodes);
+        const int k = std::min(int(scaled), m_nodes - 1);
+        u_lobe = std::min(scaled - float(k), 0x1.fffffep-1f);
+        h = node_h(k);
+        gamma_o = safe_asin(h);
+    }
+    const Refraction r = refract(wo.x, m_params.eta, h);
+    const auto w = lobe_pdf(wo.x, h);
 
     // --- Choose lobe p by the A_p weights; remap u_lobe to [0, 1) for reuse by N_p ---
     int p = 0;
@@ -402,7 +449,7 @@ std::optional<BsdfSample> HairBsdf::sample(Vec3f wo, float u_lobe, float u1,
     const float cos_theta_i = safe_sqrt(1 - sqr(sin_theta_i));
 
     // --- Sample N_p for Δφ ---
-    const float dphi = p < p_max ? azimuthal_deflection(p, m_gamma_o, r.gamma_t) +
+    const float dphi = p < p_max ? azimuthal_deflection(p, gamma_o, r.gamma_t) +
                                        sample_trimmed_logistic(u_lobe, m_s, -pi, pi)
                                  : two_pi * u_lobe;
     const float phi_i = std::atan2(wo.z, wo.y) + dphi;

@@ -65,6 +65,26 @@ class HairBsdf {
     // (renderer/geometry/fur_geometry.cpp per fur layer; h from offset_h() is in range).
     HairBsdf(const HairParams &params, float h);
 
+    // The far-field model of a fibre narrower than the footprint that sees it: the
+    // near-field model averaged over the offset h across the whole width,
+    // S̄(wo, wi) = ½ ∫ S(wo, wi; h) dh (d'Eon, Francois, Hill, Letteri & Aubry 2011 §4;
+    // Zinke & Weber 2007's far-field BCSDF; Huang et al. 2022 switch to it below the
+    // pixel). A ray that meets a sub-pixel strand lands at a uniformly distributed h, so
+    // the average is what the near-field model converges to over the pixel's samples,
+    // without the variance of one h per sample: R's Fresnel term alone runs from 0.04 at
+    // the axis to 1 at the silhouettes. The integral is taken on `nodes` strata of h,
+    // one point each at the same offset ξ ∈ [0, 1) in its stratum (h_k = −1 + 2(k+ξ)/n):
+    // with ξ uniform the average is unbiased, and sample() picks a stratum uniformly and
+    // samples the near-field model there, so pdf() is the same average of the strata's
+    // densities and the pair stays exact for MIS. M_p does not depend on h and is
+    // evaluated once.
+    struct FarField {
+        int nodes;  // 1 ... max_nodes
+        float xi;   // in [0, 1)
+    };
+    static constexpr int max_nodes = 16;
+    HairBsdf(const HairParams &params, FarField far);
+
     // The first invalid argument as "HairBsdf: name = value: expected range", or "" when
     // all are valid: h ∉ [-1, 1], beta_m/beta_n ∉ (0, 1], sigma_a < 0 or not finite,
     // eta < 1 or not finite, |alpha| >= π/4.
@@ -74,27 +94,43 @@ class HairBsdf {
 
     Rgb eval(Vec3f wo, Vec3f wi) const;
     float pdf(Vec3f wo, Vec3f wi) const;
+    // f and pdf from one evaluation (the integrator's light samples need both).
+    Rgb eval_pdf(Vec3f wo, Vec3f wi, float *pdf) const;
     // u_lobe picks the lobe (then is reused for N_p); u1, u2 sample M_p. All in [0, 1).
     std::optional<BsdfSample> sample(Vec3f wo, float u_lobe, float u1, float u2) const;
-    // Σ_p A_p at normal incidence (θ_o = 0) and this h: a colour for AOVs / albedo
-    // passes.
+    // Σ_p A_p at normal incidence (θ_o = 0) and this h (the far-field model: its mean
+    // over h): a colour for AOVs / albedo passes.
     Rgb albedo() const;
 
     const HairParams &params() const { return m_params; }
     float h() const { return m_h; }
+    int nodes() const { return m_nodes; }  // 1: the near-field model at h()
 
     // The model's pieces, exposed for tests.
-    // Attenuation A_p (p = 0..p_max) for sin θ_o.
-    std::array<Rgb, p_max + 1> attenuation(float sin_theta_o) const;
-    // Lobe selection probabilities: A_p channel means, normalised (all 0 if A is black).
-    std::array<float, p_max + 1> lobe_pdf(float sin_theta_o) const;
+    // Attenuation A_p (p = 0..p_max) for sin θ_o, at h() (near field).
+    std::array<Rgb, p_max + 1> attenuation(float sin_theta_o) const {
+        return attenuation(sin_theta_o, m_h);
+    }
+    std::array<Rgb, p_max + 1> attenuation(float sin_theta_o, float h) const;
+    // Lobe selection probabilities at h(): A_p channel means, normalised (all 0 if A is
+    // black).
+    std::array<float, p_max + 1> lobe_pdf(float sin_theta_o) const {
+        return lobe_pdf(sin_theta_o, m_h);
+    }
+    std::array<float, p_max + 1> lobe_pdf(float sin_theta_o, float h) const;
 
   private:
     // f and/or pdf (null pointers are skipped) sharing A_p, M_p and N_p.
     void evaluate(Vec3f wo, Vec3f wi, Rgb *f, float *pdf) const;
+    // The offset of stratum k (far field), or h() (near field).
+    float node_h(int k) const {
+        return m_nodes == 1 ? m_h : -1 + 2 * (float(k) + m_xi) / float(m_nodes);
+    }
 
     HairParams m_params;
     float m_h, m_gamma_o;
+    int m_nodes = 1;
+    float m_xi = 0;
     std::array<float, p_max + 1> m_v;  // M_p variance per lobe
     std::array<bool, p_max + 1>
         m_mp_log_space;  // M_p normalisation per lobe (v <= 0.1: log)

@@ -1,5 +1,6 @@
 #include "renderer/integrator/integrator_fur.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "renderer/bsdf/hair_bsdf.h"
@@ -10,6 +11,14 @@
 namespace pelage::renderer {
 
 namespace {
+
+// The far field's strata of h (HairBsdf::FarField): 2 at camera hits, 4 at a bounce's.
+// On the furry bench cow at 64 spp (`pelage bench noise`, 2 seeds) CPU s × MSE fell
+// from 12.7 (near field) to 8.1 with these; 4 and 4 gave 8.7, 8 and 8 9.3, 2 and 2
+// 9.3, 8 and 2 11.5: the bounces' strands, lit through the coat, gain the most, and
+// each stratum costs a refraction, a Fresnel term and three logistics per evaluation.
+constexpr int far_field_camera_nodes = 2;
+constexpr int far_field_bounce_nodes = 4;
 
 // A strand vertex as sample_ld() sees it: the fibre transmits, so light from either side
 // of z counts; shadow rays skip the strand (ray_id).
@@ -22,8 +31,10 @@ struct StrandLdVertex {
 
     bool accepts(Vec3f) const { return true; }
     Vec3f to_local(Vec3f w) const { return frame.to_local(w); }
-    Rgb f(Vec3f wi_local) const { return bsdf.eval(wo_local, wi_local); }
-    float pdf(Vec3f wi_local) const { return bsdf.pdf(wo_local, wi_local); }
+    mutable float bsdf_pdf = 0;
+    // f and pdf from one evaluation: the far-field model's strata are walked once.
+    Rgb f(Vec3f wi_local) const { return bsdf.eval_pdf(wo_local, wi_local, &bsdf_pdf); }
+    float pdf(Vec3f) const { return bsdf_pdf; }
 };
 
 }  // namespace
@@ -87,6 +98,25 @@ PathIntegrator::StrandVertex PathIntegrator::strand_vertex(const FurLayer &layer
     hp.beta_m = layer.beta_m_of(strand);
     hp.beta_n = layer.beta_n_of(strand);
     hp.alpha = layer.alpha;
+    // The far-field model (hair_bsdf.h) where a ray's h is uniform over the fibre's
+    // width: at every strand a bounce or shadow-casting path reaches, and where a camera
+    // ray meets a strand narrower than the pixel at that distance (its samples spread
+    // over the whole width). Its strata's offset ξ is the hit's own place in its stratum,
+    // uniform wherever h is: the hit's h is one of the points and no sampler dimension is
+    // drawn. Strands wider than a pixel keep the near-field model, its highlight across
+    // the fibre resolved.
+    if (m_fur_far_field && (!camera_hit || 2 * radius < rh.ray.tfar * m_pixel_angle)) {
+        const int K = camera_hit ? far_field_camera_nodes : far_field_bounce_nodes;
+        const float scaled = 0.5f * (h + 1) * float(K);
+        const float xi = std::clamp(scaled - std::floor(scaled), 0.0f, 0x1.fffffep-1f);
+        return {layer,
+                strand,
+                p,
+                wo,
+                rh.ray.tfar,
+                frame,
+                HairBsdf(hp, HairBsdf::FarField{K, xi})};
+    }
     return {layer, strand, p, wo, rh.ray.tfar, frame, HairBsdf(hp, h)};
 }
 

@@ -65,11 +65,13 @@ PathIntegrator::PathIntegrator(const Scene &scene, const Camera &camera,
       m_max_depth(scene.desc().integrator.max_depth),
       m_rr_depth(scene.desc().integrator.rr_depth),
       m_clamp_indirect(scene.desc().integrator.clamp_indirect),
+      m_fur_far_field(scene.desc().integrator.fur_far_field),
       m_spp(scene.desc().film.spp),
       m_timed(scene.moves()),
       m_mattes(int(scene.matte_layers().size())) {
-    m_pixel_spread = 2 * std::tan(0.5f * scene.desc().camera.fov_deg * pi / 180) /
-                     float(height) * camera_spread_scale(m_spp);
+    m_pixel_angle =
+        2 * std::tan(0.5f * scene.desc().camera.fov_deg * pi / 180) / float(height);
+    m_pixel_spread = m_pixel_angle * camera_spread_scale(m_spp);
 }
 
 template <typename Instr>

@@ -351,6 +351,16 @@ constexpr SceneField fields[] = {
       "first hit is scaled down to at most this in its brightest channel. It removes "
       "fireflies but darkens (biased); the EXR records `pelage:clamp_indirect`"}},
     {"integrator",
+     "fur_far_field",
+     FieldUse::value,
+     "integrator",
+     "`fur_far_field`",
+     {"boolean", "true",
+      "strands narrower than a pixel, and every strand a bounce reaches, are shaded with "
+      "the hair model averaged over the fibre's width (the far field): the same mean "
+      "image with about half the noise. `false`: each hit with the near-field model at "
+      "its own offset across the fibre (the full-detail reference)"}},
+    {"integrator",
      "sampler",
      FieldUse::value,
      "integrator",

@@ -639,6 +639,7 @@ IntegratorDesc read_integrator(Reader ir) {
     d.max_depth = ir.integer("max_depth", d.max_depth, 1, 1024);
     d.rr_depth = ir.integer("rr_depth", d.rr_depth, 1, 1024);
     d.clamp_indirect = float(ir.number("clamp_indirect", 0, 0, 1e30));
+    d.fur_far_field = ir.boolean("fur_far_field", d.fur_far_field);
     d.light_selection = ir.choice<IntegratorDesc::LightSelection>(
         "light_selection", d.light_selection,
         {{"auto", IntegratorDesc::LightSelection::automatic},

@@ -176,6 +176,10 @@ struct IntegratorDesc {
     // (everything but direct light at the first hit) is scaled down to at most this in
     // its brightest channel. Biased (it darkens), so recorded in the EXR.
     float clamp_indirect = 0;
+    // Strand hits where the ray's offset across the fibre is uniform (sub-pixel strands
+    // seen by the camera, every strand a bounce meets) take the far-field hair model
+    // (HairBsdf::FarField); false: the near-field model at every hit.
+    bool fur_far_field = true;
     // Next-event estimation samples every light at every vertex (all; automatic for up
     // to Lights::max_sample_all lights), or picks one: in proportion to its estimated
     // power (automatic for more lights), or uniformly.
