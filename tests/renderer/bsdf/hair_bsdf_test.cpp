@@ -16,6 +16,7 @@
 #include "renderer/bsdf/hair_colour_table.h"
 #include "renderer/bsdf/hair_furnace.h"
 #include "renderer/bsdf/hair_pigments.h"
+#include "tests/renderer/bsdf/sphere_chi2.h"
 
 namespace pelage::renderer {
 namespace {
@@ -156,14 +157,6 @@ TEST(HairBsdf, MeanSampleWeightMatchesQuadratureAlbedo) {
 
 // --- Chi-square: sample() against pdf() ---
 
-// Wilson–Hilferty: P(χ²_k >= x) via the normal approximation of (χ²/k)^(1/3), accurate
-// to ~1e-3 in p for the k of hundreds used here.
-double chi2_p_value(double x, int k) {
-    const double m = 1 - 2.0 / (9 * k), sd = std::sqrt(2.0 / (9 * k));
-    const double z = (std::cbrt(x / k) - m) / sd;
-    return 0.5 * std::erfc(z / std::sqrt(2.0));
-}
-
 // Bins: 20 in u = sin θ_i (equal area) × 40 in φ_i; expected counts from the pdf by an
 // 8 × 8 midpoint rule per bin (dω = du dφ); bins expecting < 5 are pooled. 10^6 samples
 // per case; reject at p < 0.01 / cases (Bonferroni, as Mitsuba's chi2 tests).
@@ -178,53 +171,15 @@ TEST(HairBsdf, ChiSquareSampleMatchesPdf) {
         {0.8f, 0.9f, 2 * deg, 0.95f, 0.0f, {0.0f, 0.0f, 1.0f}},
         {0.25f, 0.5f, 4 * deg, -0.1f, 8.0f, {0.9f, 0.3f, 0.3162f}},
     };
-    const int nu = 20, nphi = 40, sub = 8, n_samples = 1000000;
+    const int n_samples = 1000000;
     Rng rng(99);
     for (const Case &cs : cases) {
         HairParams p = HairParams::from_melanin(cs.eu, 0.3f, cs.beta_m, cs.beta_n);
         p.alpha = cs.alpha;
         const HairBsdf bsdf(p, cs.h);
-        std::vector<double> expected(nu * nphi, 0.0), observed(nu * nphi, 0.0);
-        const double du = 2.0 / nu, dphi = 2 * M_PI / nphi;
-        for (int i = 0; i < nu; ++i)
-            for (int j = 0; j < nphi; ++j) {
-                double acc = 0;
-                for (int a = 0; a < sub; ++a)
-                    for (int b = 0; b < sub; ++b) {
-                        const double u = -1 + (i + (a + 0.5) / sub) * du;
-                        const double phi = -M_PI + (j + (b + 0.5) / sub) * dphi;
-                        const double r = std::sqrt(std::max(0.0, 1 - u * u));
-                        acc += bsdf.pdf(cs.wo, Vec3f{float(u), float(r * std::cos(phi)),
-                                                     float(r * std::sin(phi))});
-                    }
-                expected[i * nphi + j] = acc * du * dphi / (sub * sub) * n_samples;
-            }
-        for (int k = 0; k < n_samples; ++k) {
-            const auto s = bsdf.sample(cs.wo, rng(), rng(), rng());
-            if (!s) continue;
-            const int i = std::clamp(int((s->wi.x + 1) / du), 0, nu - 1);
-            const int j = std::clamp(int((std::atan2(s->wi.z, s->wi.y) + M_PI) / dphi), 0,
-                                     nphi - 1);
-            observed[i * nphi + j] += 1;
-        }
-        double chi2 = 0, pooled_e = 0, pooled_o = 0;
-        int dof = 0;
-        for (size_t b = 0; b < expected.size(); ++b) {
-            if (expected[b] < 5) {
-                pooled_e += expected[b];
-                pooled_o += observed[b];
-                continue;
-            }
-            chi2 += sqr(float(observed[b] - expected[b])) / expected[b];
-            ++dof;
-        }
-        if (pooled_e > 0) {
-            chi2 +=
-                (pooled_o - pooled_e) * (pooled_o - pooled_e) / std::max(pooled_e, 5.0);
-            ++dof;
-        }
-        dof -= 1;
-        const double pval = chi2_p_value(chi2, dof);
+        const testing::Chi2Result r = testing::chi2_of_bsdf(bsdf, cs.wo, rng, n_samples);
+        const double chi2 = r.chi2, pval = r.p_value;
+        const int dof = r.dof;
         std::cout << "chi2: beta_m " << cs.beta_m << " beta_n " << cs.beta_n << ": "
                   << chi2 << " on " << dof << " dof, p = " << pval << "\n";
         EXPECT_GT(pval, 0.01 / cases.size())

@@ -12,6 +12,7 @@
 
 #include "renderer/bsdf/hair_bsdf.h"
 #include "renderer/bsdf/hair_furnace.h"
+#include "tests/renderer/bsdf/sphere_chi2.h"
 
 namespace pelage::renderer {
 namespace {
@@ -120,53 +121,16 @@ TEST(HairFarField, ChiSquareSampleMatchesPdf) {
     };
     const std::vector<Case> cases = {{0.3f, 0.3f, 0.37f, {0.3f, 0.6f, 0.7416f}},
                                      {0.6f, 0.2f, 0.91f, {-0.6f, -0.48f, 0.64f}}};
-    const int nu = 20, nphi = 40, sub = 6, n_samples = 1000000;
+    const int n_samples = 1000000;
     Rng rng(1998);
     for (const Case &cs : cases) {
         HairParams p = HairParams::from_melanin(0.8f, 1.5f, cs.beta_m, cs.beta_n);
         p.alpha = 2 * deg;
         const HairBsdf bsdf(p, HairBsdf::FarField{8, cs.xi});
-        std::vector<double> expected(nu * nphi, 0.0), observed(nu * nphi, 0.0);
-        const double du = 2.0 / nu, dphi = 2 * M_PI / nphi;
-        for (int i = 0; i < nu; ++i)
-            for (int j = 0; j < nphi; ++j) {
-                double acc = 0;
-                for (int a = 0; a < sub; ++a)
-                    for (int b = 0; b < sub; ++b) {
-                        const double u = -1 + (i + (a + 0.5) / sub) * du;
-                        const double phi = -M_PI + (j + (b + 0.5) / sub) * dphi;
-                        const double r = std::sqrt(std::max(0.0, 1 - u * u));
-                        acc += bsdf.pdf(cs.wo, Vec3f{float(u), float(r * std::cos(phi)),
-                                                     float(r * std::sin(phi))});
-                    }
-                expected[i * nphi + j] = acc * du * dphi / (sub * sub) * n_samples;
-            }
-        for (int k = 0; k < n_samples; ++k) {
-            const auto s = bsdf.sample(cs.wo, rng(), rng(), rng());
-            if (!s) continue;
-            const int i = std::clamp(int((s->wi.x + 1) / du), 0, nu - 1);
-            const int j = std::clamp(int((std::atan2(s->wi.z, s->wi.y) + M_PI) / dphi), 0,
-                                     nphi - 1);
-            observed[i * nphi + j] += 1;
-        }
-        double chi2 = 0, pooled_e = 0, pooled_o = 0;
-        int dof = 0;
-        for (size_t b = 0; b < expected.size(); ++b) {
-            if (expected[b] < 5) {
-                pooled_e += expected[b];
-                pooled_o += observed[b];
-                continue;
-            }
-            chi2 += sqr(float(observed[b] - expected[b])) / expected[b];
-            ++dof;
-        }
-        if (pooled_e > 0) {
-            chi2 += sqr(float(pooled_o - pooled_e)) / std::max(pooled_e, 5.0);
-            ++dof;
-        }
-        dof -= 1;
-        const double m = 1 - 2.0 / (9 * dof), sd = std::sqrt(2.0 / (9 * dof));
-        const double pval = 0.5 * std::erfc((std::cbrt(chi2 / dof) - m) / sd / M_SQRT2);
+        const testing::Chi2Result r =
+            testing::chi2_of_bsdf(bsdf, cs.wo, rng, n_samples, 6);
+        const double chi2 = r.chi2, pval = r.p_value;
+        const int dof = r.dof;
         EXPECT_GT(pval, 0.01 / cases.size()) << "chi2 " << chi2 << " dof " << dof;
     }
 }
