@@ -3,12 +3,13 @@
 // light and cells), both with Cryptomatte; for each cell type the mean linear colour over
 // the pixels its type matte covers fully (apps/tools/matte_colour.h) is compared:
 // luminance furry / bare, and the chromaticities R/G and B/G furry over bare. And the
-// colour inversion against the forward model: a thick slab of fibres of each requested
-// colour in a white furnace (the definition renderer/bsdf/fit_hair_colour.py measures
-// its table with) and the albedo it shows. Each render is a child `pelage` process, so
-// the numbers are what a user gets.
+// colour inversion against the forward model: a slab of fibres of each requested colour,
+// as deep as asked, on a skin of that colour, in a white furnace, and the fraction of
+// the light it reflects (the definition renderer/bsdf/hair_pigments.h inverts). Each
+// render is a child `pelage` process, so the numbers are what a user gets.
 #include <fmt/core.h>
 
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -23,12 +24,15 @@ namespace {
 namespace fs = std::filesystem;
 
 struct BenchFurColourOptions {
-    std::string mesh = "scenes/meshes/cow.off", res = "480x270", fur_keys = "{}";
+    std::string mesh = "scenes/meshes/cow.off", res = "480x270", fur_keys = "{}",
+                integrator_keys = "{}";
     std::vector<std::string> presets = {"giraffe-reticulata", "zebra", "teo-cheetah"};
     std::vector<std::string> slab_colours = {"0.9,0.7,0.5", "0.3,0.15,0.08",
                                              "0.04,0.02,0.01"};
     int spp = 64, slab_spp = 128;
     float beta_n = 0.3f;
+    std::vector<float> slab_depths = {2, 26};
+    std::vector<float> slab_comb = {20, 12};  // angle, jitter (degrees)
     uint64_t seed = 1;
     ThreadOption threads;
     BenchOutput out;
@@ -41,14 +45,33 @@ void run_or_throw(const std::string &command) {
 
 nlohmann::json rgb(Rgb c) { return {c.x, c.y, c.z}; }
 
-// A thick slab of fibres of `colour` on a black skin, lit by a white furnace, seen
-// straight down: about 30 fibre cross-sections over every point of the skin.
-nlohmann::json slab_scene(const nlohmann::json &colour, float beta_n, int spp,
-                          const std::string &output) {
+// The views a slab's albedo is measured from: x = cos² of the angle from the normal and
+// the weight of 3-point Gauss–Legendre in x on [0, 1], so the weighted mean of the
+// furnace's radiance is the coat's bihemispherical albedo (fit_hair_coat.py).
+struct SlabView {
+    double x, weight;
+};
+const SlabView slab_views[] = {{0.5 - 0.5 * std::sqrt(0.6), 5.0 / 18},
+                               {0.5, 8.0 / 18},
+                               {0.5 + 0.5 * std::sqrt(0.6), 5.0 / 18}};
+
+// A coat of fibres of `colour` `depth` fibre cross-sections deep (fur_depth in
+// renderer/fur/strand_groom.h) on a skin of the same colour, lit by a white furnace,
+// seen from `view`: what a hair colour means (sigma_a_from_coat_colour). The strands are
+// `pelage look`'s coat (tapered 4:1, combed 20° with 12° of jitter, lengths ±30 %), on
+// which the inversion's table was measured (renderer/bsdf/fit_hair_coat.py); other
+// coats are the reach of `--slab-comb`: the same depth combed steeper reflects less.
+nlohmann::json slab_scene(const nlohmann::json &colour, float depth, float beta_n,
+                          int spp, const std::string &output, SlabView view, float comb,
+                          float jitter) {
+    const double length = 0.25, root_radius = 0.002, tip_radius = 0.0005;
+    const double density =
+        depth / (length * (root_radius + tip_radius) * std::cos(comb * M_PI / 180));
+    const double mu = std::sqrt(view.x), side = std::sqrt(1 - view.x) / std::sqrt(2.0);
     return {{"camera",
-             {{"position", {0, 3, 0.001}},
+             {{"position", {3 * side, 3 * mu, 3 * side}},
               {"look_at", {0, 0, 0}},
-              {"up", {0, 0, -1}},
+              {"up", {0, 1, 0}},
               {"fov", 8}}},
             {"film", {{"width", 24}, {"height", 24}, {"spp", spp}, {"output", output}}},
             {"lights", {{{"type", "environment"}, {"colour", {1, 1, 1}}}}},
@@ -57,15 +80,17 @@ nlohmann::json slab_scene(const nlohmann::json &colour, float beta_n, int spp,
              {{{"name", "slab"},
                {"mesh", "procedural:plane:1x1"},
                {"transform", {{"scale", 3}}},
-               {"material", {{"shader", "diffuse"}, {"params", {{"albedo", 0}}}}},
+               {"material", {{"shader", "diffuse"}, {"params", {{"albedo", colour}}}}},
                {"fur",
-                {{"density", 30000},
-                 {"length", 0.25},
-                 {"root_radius", 0.002},
-                 {"tip_radius", 0.002},
-                 {"segments", 4},
-                 {"comb_angle", 30},
-                 {"comb_jitter", 30},
+                {{"density", density},
+                 {"length", length},
+                 {"length_variation", 0.3},
+                 {"root_radius", root_radius},
+                 {"tip_radius", tip_radius},
+                 {"segments", 6},
+                 {"comb", {1, 0, 0}},
+                 {"comb_angle", comb},
+                 {"comb_jitter", jitter},
                  {"colour", colour},
                  {"melanin_jitter", 0},
                  {"beta_n", beta_n},
@@ -100,15 +125,25 @@ nlohmann::json slab_runs(const BenchFurColourOptions &o, const std::string &self
         fs::create_directories(dir / "slab");
         const fs::path scene = dir / "slab" / "slab.json",
                        exr = dir / "slab" / "slab.exr";
-        std::ofstream(scene) << slab_scene(colour, o.beta_n, o.slab_spp, exr.string());
-        run_or_throw(fmt::format("{} render {} --cryptomatte -q --threads {}",
-                                 shell_quoted(self), shell_quoted(scene.string()),
-                                 o.threads.threads));
-        const Rgb m = mean_rgb(exr.string());
-        nlohmann::json error = nlohmann::json::array();
-        for (int k = 0; k < 3; ++k) error.push_back(m[k] / colour[k].get<double>() - 1);
-        runs.push_back(
-            {{"requested", colour}, {"measured", rgb(m)}, {"relative_error", error}});
+        for (const float depth : o.slab_depths) {
+            Rgb m{0, 0, 0};
+            for (const SlabView &view : slab_views) {
+                std::ofstream(scene)
+                    << slab_scene(colour, depth, o.beta_n, o.slab_spp, exr.string(), view,
+                                  o.slab_comb[0], o.slab_comb[1]);
+                run_or_throw(fmt::format("{} render {} --cryptomatte -q --threads {}",
+                                         shell_quoted(self), shell_quoted(scene.string()),
+                                         o.threads.threads));
+                m = m + mean_rgb(exr.string()) * float(view.weight);
+            }
+            nlohmann::json error = nlohmann::json::array();
+            for (int k = 0; k < 3; ++k)
+                error.push_back(m[k] / colour[k].get<double>() - 1);
+            runs.push_back({{"requested", colour},
+                            {"depth", depth},
+                            {"measured", rgb(m)},
+                            {"relative_error", error}});
+        }
     }
     return runs;
 }
@@ -117,6 +152,11 @@ int run(const BenchFurColourOptions &o) {
     const nlohmann::json keys = nlohmann::json::parse(o.fur_keys, nullptr, false);
     if (!keys.is_object())
         throw InputError("", 0, "--fur-keys", "expected a JSON object of fur keys");
+    const nlohmann::json integrator =
+        nlohmann::json::parse(o.integrator_keys, nullptr, false);
+    if (!integrator.is_object())
+        throw InputError("", 0, "--integrator-keys",
+                         "expected a JSON object of integrator keys");
     const std::string self = self_path();
     const fs::path dir =
         fs::temp_directory_path() / fmt::format("pelage-bench-fur-colour-{}", ::getpid());
@@ -136,16 +176,18 @@ int run(const BenchFurColourOptions &o) {
                 o.threads.threads);
             const std::string size = fmt::format(" --res {} --spp {}", o.res, o.spp);
             run_or_throw(look + size + " -o " + shell_quoted(bare.string()));
-            if (keys.empty()) {
+            if (keys.empty() && integrator.empty()) {
                 run_or_throw(look + size + " --fur -o " + shell_quoted(fur.string()));
             } else {
-                // The scene `look --fur` writes, its fur block amended, rendered again.
+                // The scene `look --fur` writes, its fur and integrator blocks amended,
+                // rendered again.
                 run_or_throw(look + " --res 16x9 --spp 1 --fur -o " +
                              shell_quoted(fur.string()));
                 const fs::path scene = fur.parent_path() / "animal.json";
                 nlohmann::json j;
                 std::ifstream(scene) >> j;
                 for (const auto &[k, v] : keys.items()) j["objects"][0]["fur"][k] = v;
+                for (const auto &[k, v] : integrator.items()) j["integrator"][k] = v;
                 std::ofstream(scene) << j.dump(2);
                 run_or_throw(fmt::format("{} render {} --cryptomatte -q --threads {}",
                                          shell_quoted(self), shell_quoted(scene.string()),
@@ -183,8 +225,10 @@ int run(const BenchFurColourOptions &o) {
                 {"spp", o.spp},
                 {"seed", o.seed},
                 {"fur_keys", keys},
+                {"integrator_keys", integrator},
                 {"presets", presets},
                 {"slab_spp", o.slab_spp},
+                {"slab_comb", o.slab_comb},
                 {"beta_n", o.beta_n},
                 {"slab", slab}});
     return 0;
@@ -212,8 +256,24 @@ Runner add_bench_fur_colour(CLI::App &bench) {
     cmd->add_option("--slab-spp", o->slab_spp, "Samples per pixel of each slab (0: none)")
         ->check(CLI::Range(0, 1 << 16))
         ->capture_default_str();
+    cmd->add_option("--slab-depths", o->slab_depths,
+                    "The slabs' depths: mean fibre cross-sections over a point of skin")
+        ->delimiter(',')
+        ->check(CLI::Range(0.1, 100.0))
+        ->capture_default_str();
+    cmd->add_option("--slab-comb", o->slab_comb,
+                    "The slabs' comb angle and jitter in degrees (`look`'s: 20,12)")
+        ->delimiter(',')
+        ->expected(2)
+        ->check(CLI::Range(0.0, 80.0))
+        ->capture_default_str();
     cmd->add_option("--beta-n", o->beta_n, "The slabs' azimuthal roughness")
         ->check(CLI::Range(0.01, 1.0))
+        ->capture_default_str();
+    cmd->add_option(
+           "--integrator-keys", o->integrator_keys,
+           "A JSON object of integrator keys that amend the furry render's, e.g. "
+           "'{\"max_depth\": 16}'")
         ->capture_default_str();
     cmd->add_option("--fur-keys", o->fur_keys,
                     "A JSON object of fur keys that amend `look --fur`'s fur block, e.g. "

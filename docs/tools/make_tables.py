@@ -376,10 +376,13 @@ def t_fur_comb():
 def t_fur_slab():
     d = data("fur_colour")
     rgb = lambda c: "(" + ", ".join(f"{x:.3f}" for x in c) + ")"
-    rows = [[rgb(r["requested"]), rgb(r["measured"]),
+    rows = [[rgb(r["requested"]), f"{r['depth']:g}", rgb(r["measured"]),
              ", ".join(f"{100 * e:+.1f} %" for e in r["relative_error"])] for r in d["slab"]]
-    return (table(["requested colour", "slab's albedo", "error per channel"], rows, "lll") +
-            f"\nβ_n = {d['beta_n']:.2g}, {d['slab_spp']} spp over 24 × 24 pixels per slab.\n")
+    return (table(["requested colour", "coat depth", "slab's albedo", "error per channel"],
+                  rows, "lrll") +
+            f"\nβ_n = {d['beta_n']:.2g}; each slab on a skin of the requested colour, its "
+            f"albedo the Gauss–Legendre mean of three views, {d['slab_spp']} spp over 24 × 24 "
+            f"pixels each.\n")
 
 
 def t_noise():

@@ -7,6 +7,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "renderer/bsdf/hair_coat_table.h"
 #include "renderer/bsdf/hair_colour_table.h"
 
 namespace pelage::renderer {
@@ -59,6 +60,68 @@ float root_sigma_for(float target, float beta_n) {
     return s0;
 }
 
+// A coat of one depth at β_n = 0.3, as curves of sqrt(σ_a): −ln R and −ln T² at
+// hair_colour_root_sigma, each made non-decreasing (measurement noise never makes a
+// darker fibre reflect or transmit more). Between the table's depths both blend
+// linearly in ln(depth); below the first, R and T² blend linearly towards a bare skin
+// (R = 0, T² = 1 at depth 0); past the last, the last depth's.
+struct CoatCurve {
+    static constexpr size_t n = std::size(hair_colour_root_sigma);
+    float reflect[n], transmit[n];  // −ln R, −ln T²
+
+    explicit CoatCurve(float depth) {
+        constexpr size_t rows = std::size(hair_coat_depth);
+        auto row = [&](size_t i) {
+            for (size_t k = 0; k < n; ++k) {
+                reflect[k] = hair_coat_reflect[i][k];
+                transmit[k] = hair_coat_transmit[i][k];
+            }
+        };
+        if (depth >= hair_coat_depth[rows - 1]) {
+            row(rows - 1);
+        } else if (depth <= hair_coat_depth[0]) {
+            const float w = std::max(depth, 0.0f) / hair_coat_depth[0];
+            for (size_t k = 0; k < n; ++k) {
+                const float r = w * std::exp(-hair_coat_reflect[0][k]);
+                const float t = 1 - w * (1 - std::exp(-hair_coat_transmit[0][k]));
+                reflect[k] = -std::log(std::max(r, 1e-12f));
+                transmit[k] = -std::log(std::max(t, 1e-12f));
+            }
+        } else {
+            size_t i = 0;
+            while (depth > hair_coat_depth[i + 1]) ++i;
+            const float w = std::log(depth / hair_coat_depth[i]) /
+                            std::log(hair_coat_depth[i + 1] / hair_coat_depth[i]);
+            for (size_t k = 0; k < n; ++k) {
+                reflect[k] =
+                    (1 - w) * hair_coat_reflect[i][k] + w * hair_coat_reflect[i + 1][k];
+                transmit[k] =
+                    (1 - w) * hair_coat_transmit[i][k] + w * hair_coat_transmit[i + 1][k];
+            }
+        }
+        for (size_t k = 1; k < n; ++k) {
+            reflect[k] = std::max(reflect[k], reflect[k - 1]);
+            transmit[k] = std::max(transmit[k], transmit[k - 1]);
+        }
+    }
+
+    // The curves at sqrt(σ_a) = u: the first entry's value below it (the fibres are
+    // clear there), the last segment carried on past the last entry.
+    static float at(const float *f, float u) {
+        const float *s = hair_colour_root_sigma;
+        if (u <= s[0]) return f[0];
+        size_t k = 1;
+        while (k + 1 < n && u > s[k]) ++k;
+        return f[k - 1] + (f[k] - f[k - 1]) * (u - s[k - 1]) / (s[k] - s[k - 1]);
+    }
+
+    // The coat's albedo over a skin of albedo `skin`, at sqrt(σ_a) = u.
+    float albedo(float u, float skin) const {
+        const float r = std::exp(-at(reflect, u)), t2 = std::exp(-at(transmit, u));
+        return r + t2 * skin / std::max(1 - skin * r, 1e-6f);
+    }
+};
+
 }  // namespace
 
 Rgb sigma_a_from_melanin(float eumelanin, float pheomelanin) {
@@ -84,6 +147,35 @@ Rgb sigma_a_from_colour_chiang(Rgb colour, float beta_n) {
                         0.245f * std::pow(b, 5.0f);
     auto one = [&](float c) { return sqr(std::log(c) / denom); };
     return {one(colour.x), one(colour.y), one(colour.z)};
+}
+
+Rgb sigma_a_from_coat_colour(Rgb colour, float beta_n, float depth, Rgb skin) {
+    check_colour(colour, beta_n);
+    if (!(std::isfinite(depth) && depth >= 0))
+        throw std::invalid_argument("hair pigments: depth = " + std::to_string(depth) +
+                                    ": must be a finite number of fibres >= 0");
+    const CoatCurve coat(depth);
+    // The darkest fibre considered: sqrt(σ_a) = 6, three times the table's last entry.
+    constexpr float u_max = 6;
+    auto one = [&](float c, float s) {
+        if (c >= 1) return 0.0f;
+        s = std::isfinite(s) ? std::clamp(s, 0.0f, 1.0f) : 0.0f;
+        float lo = 0, hi = u_max;  // albedo(lo) > c >= albedo(hi)
+        if (coat.albedo(lo, s) <= c) return 0.0f;
+        if (coat.albedo(hi, s) >= c) return sqr(hi);
+        // Bisection: the albedo falls monotonically with σ_a; 2^-20 of the range is
+        // far below the table's own accuracy.
+        for (int it = 0; it < 20; ++it) {
+            const float mid = 0.5f * (lo + hi);
+            (coat.albedo(mid, s) > c ? lo : hi) = mid;
+        }
+        const float u = 0.5f * (lo + hi);
+        // Other β_n: the thick table's ratio of σ_a between β_n and 0.3.
+        const float thick = root_sigma_for(-std::log(c), 0.3f);
+        const float ratio = thick > 0 ? root_sigma_for(-std::log(c), beta_n) / thick : 1;
+        return sqr(u * ratio);
+    };
+    return {one(colour.x, skin.x), one(colour.y, skin.y), one(colour.z, skin.z)};
 }
 
 }  // namespace pelage::renderer

@@ -36,6 +36,23 @@ Rgb sigma_a_from_melanin(float eumelanin, float pheomelanin);
 // and in sqrt(σ_a) between its entries, extended linearly past its darkest entry.
 Rgb sigma_a_from_colour(Rgb colour, float beta_n);
 
+// σ_a whose coat reflects the fraction `colour` of uniform white light (its
+// bihemispherical albedo: what a Lambertian skin's albedo means), where the coat is
+// `depth` fibre cross-sections deep over a point of skin (fur_depth() in
+// renderer/fur/strand_groom.h) and lies on a skin of albedo `skin`: what a user's
+// colour means on an animal. Real coats are thin (`pelage look`'s cow has about two
+// cross-sections), so much of the light a thick coat's fibres would absorb reaches the
+// skin and comes back, and sigma_a_from_colour's fibres show a dark colour two to three
+// times too bright there. The coat's albedo over the skin is the adding equation
+// A = R + T²·s / (1 − s·R) (van de Hulst 1980; Hanrahan & Krueger 1993 §4) of its
+// measured albedo R over a black skin and transmittance T² there and back
+// (renderer/bsdf/fit_hair_coat.py, hair_coat_table.h, on `pelage look`'s coat at
+// β_n = 0.3; other β_n scale σ_a by the thick table's ratio between β_n and 0.3),
+// solved for σ_a per channel. A colour no σ_a reaches (a light colour over a dark skin
+// under a thin coat, or the reverse) gets the nearest: clear fibres, or the darkest the
+// table extends to.
+Rgb sigma_a_from_coat_colour(Rgb colour, float beta_n, float depth, Rgb skin);
+
 // Chiang et al. 2016 §4.2's closed form of the same inverse (what pbrt and Cycles use):
 // σ_a = (ln c / (5.969 − 0.215 β_n + 2.532 β_n² − 10.73 β_n³ + 5.574 β_n⁴ + 0.245
 // β_n⁵))².

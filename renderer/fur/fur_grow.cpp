@@ -24,8 +24,10 @@ struct StrandAbsorption {
     float eumelanin, pheomelanin;
 };
 
-StrandAbsorption absorption(const FurParams &params, const RootPigment &pg,
-                            float beta_n) {
+// `depth`: the coat's at the root (fur_depth), in which a colour is matched over the
+// skin the root grows from.
+StrandAbsorption absorption(const FurParams &params, const RootPigment &pg, float beta_n,
+                            float depth) {
     using Kind = FurParams::Pigment::Kind;
     const FurParams::Pigment &pig =
         pg.cell_type >= 0 && size_t(pg.cell_type) < params.pigment_by_type.size()
@@ -41,7 +43,8 @@ StrandAbsorption absorption(const FurParams &params, const RootPigment &pg,
             return {sigma_a_from_melanin(eu, ph), true, eu, ph};
         }
         case Kind::colour:
-            return {sigma_a_from_colour(pig.colour, beta_n), false, 0, 0};
+            return {sigma_a_from_coat_colour(pig.colour, beta_n, depth, pg.colour), false,
+                    0, 0};
         case Kind::absorption:
             return {pig.sigma_a, false, 0, 0};
         case Kind::skin:
@@ -51,7 +54,7 @@ StrandAbsorption absorption(const FurParams &params, const RootPigment &pg,
     // the darkest fibre the fit reaches rather than infinite absorption.
     auto in_domain = [&](float x) { return std::clamp(finite(x), 1e-3f, 1.0f); };
     const Rgb c{in_domain(pg.colour.x), in_domain(pg.colour.y), in_domain(pg.colour.z)};
-    return {sigma_a_from_colour(c, beta_n), false, 0, 0};
+    return {sigma_a_from_coat_colour(c, beta_n, depth, pg.colour), false, 0, 0};
 }
 
 void check(bool ok, const std::string &what) {
@@ -174,7 +177,8 @@ Strands grow_fur(const FurParams &params, const SkinMesh &mesh,
             // --- Absorption: from the skin at the root, scaled and jittered ---
             const float j_eu = float(2 * uniform(params.seed, Stream::pigment, i, 0) - 1);
             const float j_ph = float(2 * uniform(params.seed, Stream::pigment, i, 1) - 1);
-            const StrandAbsorption a = absorption(params, pg, g.beta_n);
+            const float depth = fur_depth(g);
+            const StrandAbsorption a = absorption(params, pg, g.beta_n, depth);
             const float k = params.melanin_scale, jit = params.melanin_jitter;
             Rgb sa = a.melanin
                          ? sigma_a_from_melanin(a.eumelanin * k * (1 + jit * j_eu),
@@ -183,7 +187,8 @@ Strands grow_fur(const FurParams &params, const SkinMesh &mesh,
             // Hair colour by region: towards each region's colour, by its weight.
             for (const auto &[region, colour] : params.colour_in) {
                 const Rgb target =
-                    sigma_a_from_colour(colour, g.beta_n) * (k * (1 + jit * j_eu));
+                    sigma_a_from_coat_colour(colour, g.beta_n, depth, pg.colour) *
+                    (k * (1 + jit * j_eu));
                 sa = sa + (target - sa) * weights[size_t(region)];
             }
             auto finite = [](float x) {

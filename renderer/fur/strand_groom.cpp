@@ -1,6 +1,7 @@
 #include "renderer/fur/strand_groom.h"
 
 #include <algorithm>
+#include <cmath>
 
 namespace pelage::renderer {
 
@@ -29,6 +30,12 @@ float value_at(const FurParams::Varying &v, bool factor, float coat, const float
 }
 
 }  // namespace
+
+float fur_depth(const StrandGroom &g) {
+    const float d = g.density * g.length * (g.root_radius + g.tip_radius) *
+                    std::cos(g.comb_angle_deg * float(M_PI / 180));
+    return std::isfinite(d) ? std::max(d, 0.0f) : 0.0f;
+}
 
 StrandGroom coat_groom(const FurParams &p) {
     return {p.length, float(p.density), p.root_radius, p.tip_radius, p.beta_m,

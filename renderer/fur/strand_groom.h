@@ -22,6 +22,12 @@ StrandGroom coat_groom(const FurParams &params);
 // `weights` (SkinMesh::num_regions of them; null when the fur has no regions).
 StrandGroom strand_groom(const FurParams &params, const float *weights, int type);
 
+// The coat's depth at a root: the mean number of fibre cross-sections over a point of
+// skin, density × length × (root_radius + tip_radius) × cos(comb angle) (the shadow
+// its strands cast straight down, radii linear along each), what a hair colour is
+// matched in (sigma_a_from_coat_colour, renderer/bsdf/hair_pigments.h).
+float fur_depth(const StrandGroom &g);
+
 // The weight of each region at `root` (mesh.num_regions values into `out`).
 void region_weights(const SkinMesh &mesh, const SurfacePoint &root, float *out);
 

@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "renderer/bsdf/hair_coat_table.h"
 #include "renderer/bsdf/hair_colour_table.h"
 #include "renderer/bsdf/hair_furnace.h"
 #include "renderer/bsdf/hair_pigments.h"
@@ -382,6 +383,59 @@ TEST(HairPigments, TheInverseHitsTheMeasuredTableAtItsEntries) {
                 std::pow(std::log(0.5) / d, 2), 1e-6);
 }
 
+TEST(HairPigments, TheCoatInverseSolvesTheAddingEquationOfItsTable) {
+    // At a table depth and entry, the colour the adding equation A = R + T²·s/(1 − s·R)
+    // gives (written here from van de Hulst's form) comes back as that entry's σ_a, over
+    // a black, a mid and a light skin. Entries where the measured curves are flat
+    // (noise, or T² below the table's floor) have no unique inverse and are skipped.
+    constexpr size_t cols = std::size(hair_colour_root_sigma);
+    size_t checked = 0;
+    for (size_t i = 0; i < std::size(hair_coat_depth); ++i)
+        for (size_t k = 1; k < cols; ++k) {
+            bool rising = true;
+            for (size_t j = 1; j <= k; ++j)
+                rising = rising &&
+                         hair_coat_reflect[i][j] > hair_coat_reflect[i][j - 1] &&
+                         hair_coat_transmit[i][j] > hair_coat_transmit[i][j - 1];
+            if (!rising) continue;
+            const double r = std::exp(-double(hair_coat_reflect[i][k])),
+                         t2 = std::exp(-double(hair_coat_transmit[i][k]));
+            for (const float skin : {0.0f, 0.3f, 0.8f}) {
+                const float c = float(r + t2 * skin / (1 - skin * r));
+                const float want = sqr(hair_colour_root_sigma[k]);
+                EXPECT_NEAR(sigma_a_from_coat_colour({c, c, c}, 0.3f, hair_coat_depth[i],
+                                                     {skin, skin, skin})
+                                .x,
+                            want, 1e-3f * want + 1e-6f)
+                    << "depth " << hair_coat_depth[i] << " entry " << k << " skin "
+                    << skin;
+                ++checked;
+            }
+        }
+    EXPECT_GT(checked, 60u);
+}
+
+TEST(HairPigments, AThinnerCoatNeedsDarkerFibres) {
+    // A dark colour on a skin of that colour: the thinner the coat, the more of the
+    // skin shows and the more each fibre must absorb; a deep coat hides the skin.
+    const Rgb dark{0.05f, 0.03f, 0.02f};
+    float last = 1e9f;
+    for (const float depth : {0.7f, 1.5f, 3.0f, 6.0f, 12.0f, 26.0f}) {
+        const float s = sigma_a_from_coat_colour(dark, 0.3f, depth, dark).y;
+        EXPECT_LT(s, last) << "depth " << depth;
+        last = s;
+    }
+    // What no fibre reaches gets the nearest: a light colour over a dark skin under a
+    // thin coat gets clear fibres; a dark one over a white skin the darkest fibres.
+    EXPECT_EQ(
+        sigma_a_from_coat_colour({0.9f, 0.9f, 0.9f}, 0.3f, 0.5f, {0.05f, 0.05f, 0.05f}).x,
+        0.0f);
+    EXPECT_EQ(sigma_a_from_coat_colour({0.01f, 0.01f, 0.01f}, 0.3f, 0.5f, {1, 1, 1}).x,
+              36.0f);
+    // White asks for no absorption at any depth.
+    EXPECT_EQ(sigma_a_from_coat_colour({1, 1, 1}, 0.3f, 2, {0.2f, 0.2f, 0.2f}).x, 0.0f);
+}
+
 // --- Validation ---
 
 template <typename F>
@@ -432,6 +486,16 @@ TEST(HairBsdf, BadParametersThrowFromValidate) {
         },
         "colour[1] = 1.5");
     expect_invalid([] { sigma_a_from_colour({0.5f, 0.5f, 0.5f}, 0); }, "beta_n = 0");
+    expect_invalid(
+        [] {
+            sigma_a_from_coat_colour({0.5f, 0.5f, 0.5f}, 0.3f, -1, {});
+        },
+        "depth = -1");
+    expect_invalid(
+        [] {
+            sigma_a_from_coat_colour({0.5f, 0.5f, 0.5f}, 0.3f, std::nanf(""), {});
+        },
+        "depth = nan");
 }
 
 // The constructor runs at every strand hit and only DCHECKs validate()'s conditions.

@@ -9,6 +9,7 @@
 #include <cmath>
 
 #include "renderer/bsdf/hair_pigments.h"
+#include "renderer/fur/strand_groom.h"
 
 namespace pelage::renderer {
 namespace {
@@ -135,9 +136,12 @@ Rgb melanin_sigma_a(float eu, float pheo) {
             eu * 1.37f + pheo * 1.05f};
 }
 
-// The inverse hair_pigments.h gives (measured against path-traced slabs in
-// tests/cli/fur_colour_cli_test.cpp); here what matters is that each strand gets it.
-Rgb colour_sigma_a(Rgb c, float bn) { return sigma_a_from_colour(c, bn); }
+// The inverse hair_pigments.h gives for the coat `p` grows (its depth) over a skin of
+// `skin` (measured against path-traced slabs in tests/cli/fur_colour_cli_test.cpp);
+// here what matters is that each strand gets it.
+Rgb colour_sigma_a(Rgb c, float bn, Rgb skin, const FurParams &p) {
+    return sigma_a_from_coat_colour(c, bn, fur_depth(coat_groom(p)), skin);
+}
 
 void expect_near(Rgb a, Rgb b, float rel) {
     for (int k = 0; k < 3; ++k)
@@ -161,7 +165,9 @@ TEST(FurGrow, ByDefaultAStrandHasTheColourTheSkinShowsAtItsRoot) {
     ASSERT_GT(s.size(), 1000u);
     for (size_t i = 0; i < s.size(); ++i)
         expect_near(s.sigma_a[i],
-                    colour_sigma_a(lookup(s.roots[i], {}, {}).colour, 0.35f), 1e-4f);
+                    colour_sigma_a(lookup(s.roots[i], {}, {}).colour, 0.35f,
+                                   lookup(s.roots[i], {}, {}).colour, p),
+                    1e-4f);
 
     // Per type: type 0 a colour, type 1 melanins; type 2 (not listed) the coat's, here
     // the skin's melanins; then type 2 the absorption itself.
@@ -184,8 +190,9 @@ TEST(FurGrow, ByDefaultAStrandHasTheColourTheSkinShowsAtItsRoot) {
         for (size_t i = 0; i < t.size(); ++i) {
             const int type = int(t.roots[i].triangle % 3);
             ++seen[type];
+            const Rgb skin = lookup(t.roots[i], {}, {}).colour;
             expect_near(t.sigma_a[i],
-                        type == 0    ? colour_sigma_a({0.8f, 0.7f, 0.5f}, 0.35f)
+                        type == 0    ? colour_sigma_a({0.8f, 0.7f, 0.5f}, 0.35f, skin, p)
                         : type == 1  ? melanin_sigma_a(0.5f, 2)
                         : absorption ? Rgb{0.25f, 1.5f, 4}
                                      : melanin_sigma_a(5, 0),
@@ -204,7 +211,7 @@ TEST(FurGrow, ByDefaultAStrandHasTheColourTheSkinShowsAtItsRoot) {
             return r;
         });
     for (const Rgb &a : black.sigma_a)
-        expect_near(a, colour_sigma_a({1e-3f, 1e-3f, 1e-3f}, 0.35f), 1e-4f);
+        expect_near(a, colour_sigma_a({1e-3f, 1e-3f, 1e-3f}, 0.35f, {0, 0, 0}, p), 1e-4f);
 }
 
 TEST(FurGrow, SkinMelaninIsScaledAndJittered) {

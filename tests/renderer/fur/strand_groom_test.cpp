@@ -100,9 +100,13 @@ TEST(StrandGroom, EveryKeyTakesItsTypesThenItsRegionsValue) {
         EXPECT_FLOAT_EQ(P[3], 0.0015f * (type ? 3.0f : 1.0f));
         EXPECT_NEAR(s.beta[2 * i], lerp(0.25f, 0.6f, w), 1e-6f);
         EXPECT_FLOAT_EQ(s.beta[2 * i + 1], 0.3f);
-        // Colour: σ_a moves from the skin's towards the region's.
-        const Rgb skin = sigma_a_from_colour({0.6f, 0.5f, 0.4f}, 0.3f),
-                  east = sigma_a_from_colour({0.9f, 0.2f, 0.1f}, 0.3f);
+        // Colour: σ_a moves from the skin's towards the region's, both matched in the
+        // coat as deep as it grows at the root, over the skin's colour.
+        const float weights[1] = {w};
+        const float depth = fur_depth(strand_groom(p, weights, type));
+        const Rgb under{0.6f, 0.5f, 0.4f};
+        const Rgb skin = sigma_a_from_coat_colour(under, 0.3f, depth, under),
+                  east = sigma_a_from_coat_colour({0.9f, 0.2f, 0.1f}, 0.3f, depth, under);
         for (int k = 0; k < 3; ++k)
             EXPECT_NEAR(s.sigma_a[i][k], lerp(skin[k], east[k], w),
                         1e-4f * std::max(1.0f, east[k]));

@@ -280,7 +280,8 @@ renderer::Scene furry_two_type_scene(TempDir &tmp, const std::string &colour,
     const std::string scene =
         R"({"camera": {}, "objects": [{"mesh": ")" + mesh + R"(", "cells": ")" + cells +
         R"(", "material": {"shader": "clonal_mosaic", "params": {"antialias": 0}},
-        "fur": {"density": 800, "melanin_jitter": 0, "segments": 4, "colour": ")" +
+        "fur": {"density": 800, "length": 0.05, "root_radius": 0.0015, "tip_radius": 0.0003,
+                "comb_angle": 30, "melanin_jitter": 0, "segments": 4, "colour": ")" +
         colour + R"("}}]})";
     return renderer::Scene(renderer::parse_scene(scene, tmp.file("scene.json")), plugins);
 }
@@ -304,12 +305,16 @@ TEST(FurRender, EachStrandTakesTheColourTheMosaicShowsAtItsRoot) {
     ASSERT_NE(s.fur(), nullptr);
     const renderer::Strands &strands = s.fur()->layers().at(0).strands;
     ASSERT_GT(strands.size(), 1000u);
+    // The coat's depth: density × length × (root + tip radius) × cos(comb angle).
+    const float depth =
+        800 * 0.05f * (0.0015f + 0.0003f) * std::cos(30 * float(M_PI) / 180);
     std::set<std::array<float, 3>> distinct;
     for (size_t i = 0; i < strands.size(); ++i) {
         const PelageShade sh = skin_at_root(s.materials()[0], strands.roots[i]);
-        // The inverse of the skin's colour at the default β_n (hair_pigments.h).
-        const Rgb want = renderer::sigma_a_from_colour(
-            {sh.albedo[0], sh.albedo[1], sh.albedo[2]}, 0.3f);
+        // The inverse of the skin's colour at the default β_n, in the coat as deep as it
+        // grows, over that skin (hair_pigments.h).
+        const Rgb albedo{sh.albedo[0], sh.albedo[1], sh.albedo[2]};
+        const Rgb want = renderer::sigma_a_from_coat_colour(albedo, 0.3f, depth, albedo);
         for (int k = 0; k < 3; ++k)
             ASSERT_NEAR(strands.sigma_a[i][k], want[k], 1e-6f * want[k] + 1e-9f) << i;
         distinct.insert(
