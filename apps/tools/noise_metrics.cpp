@@ -40,6 +40,7 @@ NoiseMetrics measure_noise(const std::vector<float> &image,
         for (int c = 0; c < 3; ++c) {
             const double d = double(image[i * stride + c]) - reference[i * stride + c];
             sum += d * d;
+            m.max_error = std::max(m.max_error, std::abs(d));
             sum_ref += reference[i * stride + c];
             sum_rgb[c] += image[i * stride + c];
             sum_ref_rgb[c] += reference[i * stride + c];

@@ -8,6 +8,9 @@
 //     brightest value of the reference anywhere on the objects. A median removes
 //     isolated outliers of ordinary noise; what survives it is a cluster of samples
 //     brighter than anything the converged image holds.
+//   * Worst pixel: the largest |image − reference| of any channel of any object pixel,
+//     over the reference's mean (max_error_over_mean): how far the worst outlier is from
+//     the converged value, in units of the image's brightness.
 // A pixel belongs to the objects when the reference's coverage (alpha) is at least 1/2.
 #pragma once
 
@@ -26,6 +29,10 @@ struct NoiseMetrics {
     size_t fireflies = 0;     // object pixels above the reference's maximum
     float reference_max = 0;  // brightest channel value of the reference's objects
     float median_max = 0;     // ... and of the image after the 3×3 median
+    double max_error = 0;     // the largest |image − reference| of one channel
+    double max_error_over_mean() const {
+        return reference_mean > 0 ? max_error / reference_mean : 0.0;
+    }
 };
 
 // `image` and `reference`: width × height pixels of `stride` interleaved floats each,

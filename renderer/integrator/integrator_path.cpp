@@ -66,6 +66,7 @@ PathIntegrator::PathIntegrator(const Scene &scene, const Camera &camera,
       m_rr_depth(scene.desc().integrator.rr_depth),
       m_clamp_indirect(scene.desc().integrator.clamp_indirect),
       m_fur_far_field(scene.desc().integrator.fur_far_field),
+      m_fur_bounce_roughness(scene.desc().integrator.fur_bounce_roughness),
       m_spp(scene.desc().film.spp),
       m_timed(scene.moves()),
       m_mattes(int(scene.matte_layers().size())) {

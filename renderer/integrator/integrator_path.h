@@ -91,12 +91,13 @@ class PathIntegrator {
     PacketIntersector m_packets;  // camera rays
     int m_width, m_height;
     int m_max_depth, m_rr_depth;
-    float m_clamp_indirect;  // 0: off
-    bool m_fur_far_field;    // IntegratorDesc::fur_far_field
-    int m_spp;               // samples per pixel: how much a rough bounce widens a cone
-    float m_pixel_spread;    // the camera rays' cone, radians: a pixel's share per sample
-                             // (ray_cone.h)
-    float m_pixel_angle;     // a whole pixel's angle at the image centre, radians
+    float m_clamp_indirect;        // 0: off
+    bool m_fur_far_field;          // IntegratorDesc::fur_far_field
+    float m_fur_bounce_roughness;  // IntegratorDesc::fur_bounce_roughness
+    int m_spp;             // samples per pixel: how much a rough bounce widens a cone
+    float m_pixel_spread;  // the camera rays' cone, radians: a pixel's share per sample
+                           // (ray_cone.h)
+    float m_pixel_angle;   // a whole pixel's angle at the image centre, radians
     const CameraMotion *m_motion = nullptr;
     bool m_timed;  // the camera or geometry moves: each sample draws a shutter time
     int m_mattes;  // the film's Cryptomatte layers (Scene::matte_layers())

@@ -640,6 +640,8 @@ IntegratorDesc read_integrator(Reader ir) {
     d.rr_depth = ir.integer("rr_depth", d.rr_depth, 1, 1024);
     d.clamp_indirect = float(ir.number("clamp_indirect", 0, 0, 1e30));
     d.fur_far_field = ir.boolean("fur_far_field", d.fur_far_field);
+    d.fur_bounce_roughness =
+        float(ir.number("fur_bounce_roughness", d.fur_bounce_roughness, 0, 1));
     d.light_selection = ir.choice<IntegratorDesc::LightSelection>(
         "light_selection", d.light_selection,
         {{"auto", IntegratorDesc::LightSelection::automatic},

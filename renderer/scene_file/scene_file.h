@@ -180,6 +180,10 @@ struct IntegratorDesc {
     // seen by the camera, every strand a bounce meets) take the far-field hair model
     // (HairBsdf::FarField); false: the near-field model at every hit.
     bool fur_far_field = true;
+    // Path regularisation of fur (Kaplanyan & Dachsbacher 2013): a strand a bounce
+    // reaches scatters with its longitudinal and azimuthal roughness raised to at least
+    // this; camera hits keep their own. 0: every strand its own roughness everywhere.
+    float fur_bounce_roughness = 0.4f;
     // Next-event estimation samples every light at every vertex (all; automatic for up
     // to Lights::max_sample_all lights), or picks one: in proportion to its estimated
     // power (automatic for more lights), or uniformly.

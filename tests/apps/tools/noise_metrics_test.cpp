@@ -36,6 +36,9 @@ TEST(NoiseMetrics, MseCountsObjectPixelsAndChannelsOnly) {
     EXPECT_NEAR(m.mean_rgb[0], 0.5 + 0.3 / 36, 1e-7);
     EXPECT_NEAR(m.mean_rgb[1], 0.5, 1e-7);
     EXPECT_NEAR(m.reference_mean_rgb[0], 0.5, 1e-7);
+    // The worst object pixel is 0.3 off, 0.6 of the mean; the background's 100 is not.
+    EXPECT_NEAR(m.max_error, 0.3, 1e-6);
+    EXPECT_NEAR(m.max_error_over_mean(), 0.6, 2e-6);
 }
 
 TEST(NoiseMetrics, AnIsolatedSpikeIsNoFireflyAClusterIs) {

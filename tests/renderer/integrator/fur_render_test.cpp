@@ -234,6 +234,48 @@ TEST(FurRender, WhiteFurnaceReturnsTheEnvironment) {
     EXPECT_LT(mean_channel(grey, 1), 0.95);
 }
 
+std::string with_bounce_roughness(std::string scene, float roughness) {
+    const std::string key = R"("rr_depth": 4)";
+    return scene.replace(
+        scene.find(key), key.size(),
+        key + R"(, "fur_bounce_roughness": )" + std::to_string(roughness));
+}
+
+// Path regularisation (integrator.fur_bounce_roughness) widens lobes that stay
+// normalised: the white furnace still returns the environment at its widest.
+TEST(FurRender, ARegularisedWhiteFurnaceReturnsTheEnvironment) {
+    TempDir tmp;
+    const std::string white_env = R"([{"type": "environment", "color": [1, 1, 1]}])";
+    const std::string white_skin = R"({"shader": "diffuse", "params": {"albedo": 1}})";
+    const RenderedImage white = render_json(
+        with_bounce_roughness(fur_scene(white_skin, coat, 24, 32, white_env, 200), 1),
+        tmp);
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(mean_channel(white, c), 1.0, 0.03) << c;
+}
+
+// ... and only where a bounce reaches a strand: with direct light alone (max_depth 1)
+// the image is the same at any value, bit for bit; with bounces it changes.
+TEST(FurRender, BounceRoughnessLeavesTheCameraHitsAlone) {
+    TempDir tmp;
+    auto render = [&](int max_depth, float roughness) {
+        return render_json(
+            with_bounce_roughness(
+                fur_scene(grey_skin, coat, 24, 16, sun_and_sky, max_depth), roughness),
+            tmp);
+    };
+    const RenderedImage direct0 = render(1, 0), direct1 = render(1, 1);
+    const RenderedImage bounced0 = render(4, 0), bounced1 = render(4, 1);
+    double direct_diff = 0, bounced_diff = 0;
+    for (int y = 0; y < 24; ++y)
+        for (int x = 0; x < 24; ++x)
+            for (int c = 0; c < 3; ++c) {
+                direct_diff += std::abs(direct0.at(x, y, c) - direct1.at(x, y, c));
+                bounced_diff += std::abs(bounced0.at(x, y, c) - bounced1.at(x, y, c));
+            }
+    EXPECT_EQ(direct_diff, 0.0);
+    EXPECT_GT(bounced_diff, 0.0);
+}
+
 // Defaults not given scale with the object (FurParams::scale_defaults_to): the same
 // sphere at 1/1000 and at 200 times unit size grows the same number of strands, each
 // as long relative to the sphere; values given are kept as they are.
