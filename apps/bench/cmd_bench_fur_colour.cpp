@@ -60,7 +60,9 @@ const SlabView slab_views[] = {{0.5 - 0.5 * std::sqrt(0.6), 5.0 / 18},
 // seen from `view`: what a hair colour means (sigma_a_from_coat_colour). The strands are
 // `pelage look`'s coat (tapered 4:1, combed 20° with 12° of jitter, lengths ±30 %), on
 // which the inversion's table was measured (renderer/bsdf/fit_hair_coat.py); other
-// coats are the reach of `--slab-comb`: the same depth combed steeper reflects less.
+// coats are the reach of `--slab-comb`: the same depth combed steeper reflects less. The
+// slab is the unbiased coat the table measured: no path regularisation
+// (integrator.fur_bounce_roughness), whose bias the furry renders show.
 nlohmann::json slab_scene(const nlohmann::json &colour, float depth, float beta_n,
                           int spp, const std::string &output, SlabView view, float comb,
                           float jitter) {
@@ -75,7 +77,8 @@ nlohmann::json slab_scene(const nlohmann::json &colour, float depth, float beta_
               {"fov", 8}}},
             {"film", {{"width", 24}, {"height", 24}, {"spp", spp}, {"output", output}}},
             {"lights", {{{"type", "environment"}, {"colour", {1, 1, 1}}}}},
-            {"integrator", {{"max_depth", 1024}, {"rr_depth", 1000}}},
+            {"integrator",
+             {{"max_depth", 1024}, {"rr_depth", 1000}, {"fur_bounce_roughness", 0}}},
             {"objects",
              {{{"name", "slab"},
                {"mesh", "procedural:plane:1x1"},
