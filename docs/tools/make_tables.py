@@ -442,6 +442,31 @@ def t_denoise():
             f"cow ({100 * c['denoise_seconds'] / render:.1f} % of it; target ≤ 10 %).{flicker}\n")
 
 
+def t_fur_regularisation():
+    reg = data("bench_noise_fur")
+    exact = data("bench_noise_fur_unregularised")
+    ref = reg["reference_mean_rgb"]
+    rows = []
+    for label, d in [("0 (off)", exact), ("0.4 (default)", reg)]:
+        for r in d["by_spp"]:
+            rel = r["rmse"] / d["reference_mean"]
+            rows.append([label, r["spp"], num(r["cpu_seconds"]), f"{rel:.3f}",
+                         f"{r['cpu_seconds'] * rel * rel:.2f}",
+                         f"{r['max_error_over_mean']:.1f}",
+                         ", ".join(signed_pct(m / c - 1) for m, c in zip(r["mean_rgb"], ref))])
+    return (table(["`fur_bounce_roughness`", "spp", "CPU s", "RMSE / mean",
+                   "CPU s × (RMSE / mean)²", "worst pixel / mean",
+                   "mean R, G, B against the reference"], rows, "lrrrrrl") +
+            f"\n`pelage bench noise` on `{os.path.basename(reg['scene'])}` and "
+            f"`{os.path.basename(exact['scene'])}` (the same scene at 0), "
+            f"{reg['width']}×{reg['height']}, {reg['object_pixels']} object pixels, means over "
+            f"2 seeds (worst pixel: over both); both against the "
+            f"{reg['reference']['spp']}-spp reference rendered at 0 (mean "
+            f"{reg['reference_mean']:.4f}), whose own error is in every RMSE: about "
+            f"1/{round(reg['reference']['spp'] / 64)} of the 64-spp MSE. Targets (the fur issue): CPU s × "
+            f"(RMSE / mean)² ≤ 0.25 at 64 spp, worst pixel ≤ 5 × the mean, means within 3 %.\n")
+
+
 def t_fur_glitter():
     f = data("bench_noise_fur_far")
     w = data("bench_noise_fur_far_widened")
@@ -713,6 +738,7 @@ TABLES = {
     "lookup-density": t_lookup_density, "render": t_render,
     "compare": t_compare, "hair": t_hair, "fur": t_fur, "export": t_export, "fur-colour": t_fur_colour,
     "fur-comb": t_fur_comb, "fur-glitter": t_fur_glitter,
+    "fur-regularisation": t_fur_regularisation,
     "fur-slab": t_fur_slab, "noise": t_noise, "denoise": t_denoise, "cycles-fur": t_cycles_fur, "presets": t_presets,
     "crps-errors": t_crps_errors, "lookup-quality": t_lookup_quality,
     "hair-furnace": t_hair_furnace, "gallery": t_gallery, "looks": t_looks,
