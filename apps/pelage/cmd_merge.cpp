@@ -129,6 +129,7 @@ ImageMetadata whole_metadata(const std::vector<TileFile> &tiles) {
     meta.seed = std::stoull(s.get_string_attribute("pelage:seed", "0"));
     meta.settings_xxh3 = s.get_string_attribute("pelage:settings_xxh3");
     meta.clamp_indirect = s.get_float_attribute("pelage:clamp_indirect", 0);
+    meta.fur_bounce_roughness = s.get_float_attribute("pelage:fur_bounce_roughness", 0);
     meta.noise_threshold = s.get_float_attribute("pelage:noise_threshold", 0);
     meta.min_spp = s.get_int_attribute("pelage:min_spp", 0);
     meta.frame = s.get_int_attribute("pelage:frame", -1);

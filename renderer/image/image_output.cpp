@@ -225,6 +225,8 @@ void write_exr(const std::string &path, const ImageLayers &layers,
     spec.attribute("pelage:seed", std::to_string(meta.seed));
     if (meta.clamp_indirect > 0)
         spec.attribute("pelage:clamp_indirect", meta.clamp_indirect);
+    if (meta.fur_bounce_roughness > 0)
+        spec.attribute("pelage:fur_bounce_roughness", meta.fur_bounce_roughness);
     if (meta.noise_threshold > 0) {
         spec.attribute("pelage:noise_threshold", meta.noise_threshold);
         spec.attribute("pelage:min_spp", meta.min_spp);

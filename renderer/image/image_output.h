@@ -33,6 +33,9 @@ struct ImageMetadata {
     // off, nothing written.
     float noise_threshold = 0;
     float clamp_indirect = 0;  // pelage:clamp_indirect when on
+    // pelage:fur_bounce_roughness when a furry scene regularises its paths (biased, as
+    // clamping is); 0 = not written.
+    float fur_bounce_roughness = 0;
     int min_spp = 0;
     double mean_spp = 0;
     double fps = 0;  // animation.fps (pelage:fps), 0 = none

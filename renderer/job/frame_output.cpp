@@ -65,6 +65,9 @@ void write_frame(const RenderResult &r, const Scene &scene, const SceneDesc &fd,
     meta.view = fd.film.view;  // `pelage movie` displays the frames through it
     meta.settings_xxh3 = files.settings;
     meta.clamp_indirect = fd.integrator.clamp_indirect;
+    // Only fur reads it (renderer/integrator/integrator_fur.cpp): a bare image is not
+    // biased by it and does not say so.
+    if (scene.fur()) meta.fur_bounce_roughness = fd.integrator.fur_bounce_roughness;
     if (fd.film.noise_threshold > 0) {
         meta.noise_threshold = fd.film.noise_threshold;
         meta.min_spp = fd.film.min_spp;

@@ -126,6 +126,33 @@ TEST(RenderCli, InterruptWritesTheCompletedPassesAtomically) {
     EXPECT_EQ(files, 0u);
 }
 
+// The EXR says when fur was rendered with path regularisation (biased, as firefly
+// clamping is), and with what value; a bare scene, or regularisation off, says nothing.
+TEST(RenderCli, TheExrRecordsFurPathRegularisation) {
+    TempDir tmp;
+    const auto scene = [&](const std::string &fur, const std::string &integrator) {
+        return tmp.write("s.json", R"({
+      "camera": {"position": [0, 0, 3], "look_at": [0, 0, 0]},
+      "film": {"width": 12, "height": 12, "spp": 1},
+      "integrator": {)" + integrator + R"(},
+      "lights": [{"type": "environment"}],
+      "objects": [{"mesh": "procedural:icosphere:2")" +
+                                       fur + "}]}");
+    };
+    const std::string fur =
+        R"(, "fur": {"density": 200, "length": 0.1, "root_radius": 0.005})";
+    const auto attribute = [&](const std::string &s) {
+        EXPECT_EQ(run_pelage("render " + s + " -q -o " + tmp.file("o.exr")), 0);
+        auto in = OIIO::ImageInput::open(tmp.file("o.exr"));
+        return in ? in->spec().get_float_attribute("pelage:fur_bounce_roughness", -1)
+                  : -2.0f;
+    };
+    EXPECT_FLOAT_EQ(attribute(scene(fur, "")), 0.4f);  // the default
+    EXPECT_FLOAT_EQ(attribute(scene(fur, R"("fur_bounce_roughness": 0.7)")), 0.7f);
+    EXPECT_EQ(attribute(scene(fur, R"("fur_bounce_roughness": 0)")), -1.0f);
+    EXPECT_EQ(attribute(scene("", "")), -1.0f);
+}
+
 TEST(ShadersCli, ListsDiffuseAndItsParameters) {
     std::string out;
     ASSERT_EQ(run_pelage("shaders --json", &out), 0);
