@@ -10,6 +10,13 @@
 // by the first hit's albedo, so the pattern's cell edges, which are in the albedo, stay
 // as sharp as the film has them.
 //
+// When the halves hold the first hit's light samples apart (`direct`: a sun's light,
+// its shadows and the shading of a low-poly mesh's facets, detail no feature holds,
+// usually sampled well), those and the rest (sky and bounces: most of the noise,
+// smooth where the features are) are filtered apart and added, as production
+// denoisers filter light groups and direct and indirect passes apart. A quiet direct
+// part keeps its noisy mean (denoise.cpp says when).
+//
 // The output of a pixel depends only on inputs within support_radius() pixels of it,
 // so a band of a still (`--tile I/N`) rendered with that margin denoises to the same
 // bytes as the whole image. Rows are filtered in parallel and every pixel's arithmetic
@@ -27,6 +34,9 @@ namespace pelage::renderer {
 // samples (0 for those that hit nothing); depth is the mean over those that hit.
 struct DenoiseHalf {
     std::vector<float> colour;  // the beauty, scene-linear RGB
+    // The part of `colour` the first hit's light samples gathered (FilmSample::direct),
+    // or empty: then the beauty is filtered whole.
+    std::vector<float> direct;
     std::vector<float> albedo;  // first-hit albedo (0 where no surface)
     std::vector<float> normal;  // first-hit world-space shading normal (0 where none)
     std::vector<float> depth;   // first-hit camera depth; +inf where no surface
@@ -41,6 +51,8 @@ struct DenoiseInput {
 struct DenoiseOptions {
     // The filter's window radius in pixels: a (2r+1)² neighbourhood.
     int window_radius = 5;
+    // The window of the first hit's light samples, when the halves hold them apart.
+    int direct_window_radius = 2;
     // The guide the weights compare is the mean of each (2p+1)² patch, the patch
     // distance of non-local means at a fraction of its cost.
     int patch_radius = 1;

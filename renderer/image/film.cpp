@@ -92,6 +92,7 @@ DenoiseInput Film::resolve_halves() const {
     const size_t n = size_t(m_width) * m_height;
     for (DenoiseHalf &h : in.half) {
         h.colour.resize(3 * n);
+        h.direct.resize(3 * n);
         h.albedo.resize(3 * n);
         h.normal.resize(3 * n);
         h.depth.resize(n);
@@ -105,6 +106,7 @@ DenoiseInput Film::resolve_halves() const {
                 const float inv = a[9] > 0 ? 1.0f / a[9] : 0.0f;
                 for (int c = 0; c < 3; ++c) {
                     h.colour[3 * i + c] = a[c] * inv;
+                    h.direct[3 * i + c] = a[12 + c] * inv;
                     h.albedo[3 * i + c] = a[3 + c] * inv;
                     h.normal[3 * i + c] = a[6 + c] * inv;
                 }

@@ -31,6 +31,10 @@ inline constexpr int max_cryptomatte_layers = 1 + PELAGE_SHADER_MATTE_SLOTS;
 
 struct FilmSample {
     Rgb L;
+    // The part of L the first hit's next-event estimation gathered (with what the
+    // camera ray itself saw of a light): for the denoiser, which keeps this usually
+    // well-sampled light's shadows and shading apart from the noisier rest.
+    Rgb direct;
     float alpha = 0;
     Rgb albedo, normal;
     // The first hit's key in each of the film's Cryptomatte layers, valid where bit l
@@ -95,6 +99,9 @@ class Film {
             a[10] += depth;
             a[11] += 1;
         }
+        a[12] += s.direct.x;
+        a[13] += s.direct.y;
+        a[14] += s.direct.z;
     }
     // The half buffers' means, as the denoiser takes them; empty without halves.
     DenoiseInput resolve_halves() const;
@@ -134,7 +141,7 @@ class Film {
     std::unique_ptr<FilmPointAovs[], FreeBuffer> m_point;
     std::unique_ptr<CryptomatteFilm> m_matte;
     // Per pixel and half: L, albedo, normal, samples, depth sum, samples with a depth.
-    static constexpr int half_stride = 12;
+    static constexpr int half_stride = 15;
     std::unique_ptr<float[], FreeBuffer> m_halves;
 };
 

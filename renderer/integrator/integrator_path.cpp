@@ -214,6 +214,9 @@ Rgb PathIntegrator::radiance(const CameraRay &cam, float time, const RTCRayHit &
             scattered = depth < m_max_depth &&
                         scatter_at_surface(sv, sh, albedo, sampler, path, stats, instr);
         }
+        // What the first hit's light samples added (scatter adds them to L before
+        // the BSDF's ray is traced), with what the camera ray saw of a light.
+        if (depth == 0) fs.direct = path.L;
         if (!scattered || !continue_path(depth, sampler, path)) break;
     }
     if (clamp) {

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstring>
 
+#include "renderer/denoise/denoise.h"
 #include "tests/renderer/render_helpers.h"
 
 namespace pelage::test {
@@ -447,6 +448,52 @@ TEST(PathIntegrator, ClampIndirectCapsAllButDirectLight) {
             EXPECT_NEAR(clamped.at(x, y, 1), direct.at(x, y, 1), 1e-5);
         }
     EXPECT_GT(f, 1.05 * c);
+}
+
+// The denoiser's half buffers hold, apart, what the first hit's light samples
+// gathered: with no bounce that is the whole beauty; with bounces, the bounces are
+// the rest.
+TEST(PathIntegrator, TheHalvesHoldTheFirstHitsLightSamplesApart) {
+    TempDir tmp;
+    auto halves = [&](int depth) {
+        const std::string path = tmp.write("s.json", R"({
+          "camera": {"position": [0, 1, 4], "look_at": [0, 0, 0]},
+          "film": {"width": 20, "height": 20, "spp": 8, "denoise": true},
+          "lights": [{"type": "distant", "direction": [-1, -1, -1], "intensity": 3}],
+          "objects": [{"mesh": "procedural:icosphere:2",
+                       "material": {"shader": "diffuse", "params": {"albedo": 0.8}}},
+                      {"mesh": "procedural:plane:1x1",
+                       "transform": {"scale": 10, "translate": [0, -1, 0]},
+                       "material": {"shader": "diffuse", "params": {"albedo": 0.8}}}],
+          "integrator": {"max_depth": )" + std::to_string(depth) +
+                                                         "}}");
+        const renderer::SceneDesc desc = renderer::load_scene_file(path);
+        const renderer::PluginRegistry plugins;
+        const renderer::Scene scene(desc, plugins);
+        return renderer::render(scene, renderer::RenderOptions{}).film->resolve_halves();
+    };
+    const renderer::DenoiseInput one = halves(1);
+    double lit = 0;
+    for (const renderer::DenoiseHalf &h : one.half) {
+        ASSERT_EQ(h.direct.size(), h.colour.size());
+        for (size_t i = 0; i < h.colour.size(); ++i) {
+            EXPECT_FLOAT_EQ(h.direct[i], h.colour[i]) << i;
+            lit += h.colour[i];
+        }
+    }
+    EXPECT_GT(lit, 100);  // the sun lights the sphere and the ground
+    const renderer::DenoiseInput four = halves(4);
+    double direct = 0, rest = 0;
+    for (const renderer::DenoiseHalf &h : four.half)
+        for (size_t i = 0; i < h.colour.size(); ++i) {
+            EXPECT_LE(h.direct[i], h.colour[i] * (1 + 1e-6f)) << i;
+            direct += h.direct[i];
+            rest += h.colour[i] - h.direct[i];
+        }
+    // The same first-hit light samples (the sampler's numbers for the first vertex do
+    // not depend on the depth), and the bounces on top.
+    EXPECT_NEAR(direct, lit, 1e-3 * lit);
+    EXPECT_GT(rest, 0.05 * direct);
 }
 
 }  // namespace
