@@ -38,7 +38,8 @@ $pelage render scenes/fur_cow_turntable.json --frames 0-20 --step 4 -q \
     -o "$tmp/turntable.####.exr"
 frames=()
 for f in 0000 0004 0008 0012 0016 0020; do
-    oiiotool "$tmp/turntable.$f.exr" --ch R,G,B --colorconvert linear sRGB \
+    oiiotool "$tmp/turntable.$f.exr" --ch denoised.R,denoised.G,denoised.B \
+        --chnames R,G,B --colorconvert linear sRGB \
         -o "$tmp/turntable.$f.png"
     frames+=("$tmp/turntable.$f.png")
 done
