@@ -385,10 +385,30 @@ std::unique_ptr<ClonalMosaic> make(const PelageParamSet &ps) {
         : neighbourhood == "teo"    ? pattern::mosaic::Neighbourhood::unfolding_teo
                                     : pattern::mosaic::Neighbourhood::unfolding_edges);
     cm->transfer = cm->pattern->transfer();
-    if (cm->transfer) {
+    // `pelage sim` grows a mesh far from the cells' scale on its own copy of it, split
+    // at its edge midpoints or simplified (sim/remesh/cell_scale_surface.h), and the
+    // file records it (params "simulation_surface"). Rendered on a mesh of as many
+    // triangles, the transfer is pelage's own doing, measured in docs/validation.md,
+    // and no news to the user; a pattern grown on another mesh still is.
+    const auto own_copy = [&] {
+        const nlohmann::json j =
+            nlohmann::json::parse(cm->pattern->data().params_json, nullptr, false);
+        if (!j.is_object() || !j.contains("simulation_surface")) return false;
+        const nlohmann::json &sf = j["simulation_surface"];
+        if (!sf.is_object()) return false;
+        const auto field = [&](const char *k) {
+            return sf.contains(k) ? sf[k] : nlohmann::json();
+        };
+        const nlohmann::json simplified = field("simplified"),
+                             levels = field("refine_levels"),
+                             input = field("input_triangles");
+        const bool copied = (simplified.is_boolean() && simplified.get<bool>()) ||
+                            (levels.is_number_unsigned() && levels.get<uint64_t>() > 0);
+        return copied && input.is_number_unsigned() &&
+               input.get<uint64_t>() == cm->transfer->num_render_triangles();
+    };
+    if (cm->transfer && !own_copy()) {
         char message[1024];
-        // A low-poly mesh is grown on a copy split at its edge midpoints (the same
-        // surface: sim/remesh/cell_scale_surface.h), which is no news of another mesh.
         if (!cm->transfer->similarity_applied() && cm->transfer->max_deviation() < 1e-6)
             std::snprintf(message, sizeof message,
                           "clonal_mosaic: %s was grown on %s triangulated otherwise (%zu "

@@ -15,6 +15,7 @@
 #include "renderer/plugins/plugin_loader.h"
 #include "sim/cells_io/cells_file.h"
 #include "sim/crps/surface.h"
+#include "sim/mesh/subdivide.h"
 #include "tests/pattern/transfer/triangle_soup.h"
 #include "tests/shader/clonal_mosaic/mosaic_plugin_instance.h"
 #include "tests/test_paths.h"
@@ -506,6 +507,47 @@ TEST(ClonalMosaicPlugin, EveryHitOnATriangleSoupHasACellAndTheSoupIsNamed) {
             grey += sh.aov_written != 1 || sh.cell_type < 0;
         }
     EXPECT_EQ(grey, 0u) << "hits without a cell";
+}
+
+// A low-poly mesh is grown on a copy of itself split at its edge midpoints
+// (sim/remesh/cell_scale_surface.h): the pattern is carried back exactly, and the
+// plugin says nothing about another triangulation (it did, on every low-poly animal).
+TEST(ClonalMosaicPlugin, ALowPolyMeshGrownOnItsOwnSplitCopyIsNotReported) {
+    TempDir tmp;
+    const std::string mesh = "procedural:icosphere:0";  // 20 triangles
+    const std::string cells = tmp.file("low.cells");
+    std::string err;
+    ASSERT_EQ(run_pelage("sim --mesh " + mesh + " --preset " +
+                             two_type_preset(tmp, 3000) + " -o " + cells,
+                         nullptr, &err),
+              0)
+        << err;
+    const pattern::mosaic::MosaicPattern pattern(cells, mesh);
+    ASSERT_NE(pattern.transfer(), nullptr) << "grown on the mesh itself: nothing to test";
+    EXPECT_GT(pattern.num_triangles(), 20u);
+    testing::internal::CaptureStderr();
+    const Instance inst({}, cells.c_str(), mesh);
+    const std::string warned = testing::internal::GetCapturedStderr();
+    ASSERT_NE(inst.self, nullptr) << inst.error;
+    EXPECT_EQ(warned.find("triangulated otherwise"), std::string::npos) << warned;
+    EXPECT_EQ(warned.find("another mesh"), std::string::npos) << warned;
+    // The same split made by the user and grown on as it is: rendered on the coarse
+    // mesh, that is another triangulation, and the plugin says so.
+    const std::string split = tmp.file("split.off");
+    write_off_exact(split,
+                    sim::subdivide(sim::load_mesh(mesh), sim::Subdivision::midpoint));
+    const std::string theirs = tmp.file("split.cells");
+    ASSERT_EQ(
+        run_pelage("sim --mesh " + split + " --preset " + two_type_preset(tmp, 300) +
+                       " -o " + theirs + " --surface input",
+                   nullptr, &err),
+        0)
+        << err;
+    testing::internal::CaptureStderr();
+    const Instance other({}, theirs.c_str(), mesh);
+    const std::string told = testing::internal::GetCapturedStderr();
+    ASSERT_NE(other.self, nullptr) << other.error;
+    EXPECT_NE(told.find("triangulated otherwise"), std::string::npos) << told;
 }
 
 }  // namespace
