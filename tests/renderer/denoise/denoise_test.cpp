@@ -222,34 +222,55 @@ TEST(Denoise, TheFirstHitsLightSamplesKeepTheirShadowsSharp) {
     }
 }
 
-TEST(Denoise, GarbageIsKeptWhereItIsAndNeverSpreads) {
+// Garbage in the beauty, the counts and (with the light samples apart, GetParam())
+// the direct part: the pixel is kept as the mean of its finite halves and nothing
+// spreads to its neighbours.
+class DenoiseGarbage : public ::testing::TestWithParam<bool> {};
+
+TEST_P(DenoiseGarbage, IsKeptWhereItIsAndNeverSpreads) {
     const int W = 40, H = 30;
     DenoiseInput in = noisy_image(W, H, 0.2f, 4, 4, constant);
+    if (GetParam())
+        for (DenoiseHalf &h : in.half) {
+            h.direct.resize(h.colour.size());
+            for (size_t j = 0; j < h.colour.size(); ++j) h.direct[j] = 0.5f * h.colour[j];
+        }
     const std::vector<float> clean = denoise(in);
     const size_t nan_px = 5 * W + 5, inf_px = 20 * W + 30, empty_px = 12 * W + 18,
-                 one_half = 25 * W + 8;
+                 one_half = 25 * W + 8, direct_px = 15 * W + 25;
     in.half[0].colour[3 * nan_px] = std::numeric_limits<float>::quiet_NaN();
     in.half[1].colour[3 * inf_px + 1] = std::numeric_limits<float>::infinity();
     in.half[0].count[empty_px] = in.half[1].count[empty_px] = 0;
     in.half[1].count[one_half] = 0;
+    if (GetParam())
+        in.half[1].direct[3 * direct_px + 2] = std::numeric_limits<float>::quiet_NaN();
     DenoiseStats stats;
     const std::vector<float> out = denoise(in, {}, &stats);
-    EXPECT_EQ(stats.nonfinite_inputs, 2u);
-    EXPECT_EQ(stats.pixels_passed_through, 4u);
+    EXPECT_EQ(stats.nonfinite_inputs, GetParam() ? 3u : 2u);
+    EXPECT_EQ(stats.pixels_passed_through, GetParam() ? 5u : 4u);
     for (const float v : out) ASSERT_TRUE(std::isfinite(v));
     // A pixel with one finite half keeps that half.
     EXPECT_EQ(out[3 * nan_px], in.half[1].colour[3 * nan_px]);
     EXPECT_EQ(out[3 * inf_px + 1], in.half[0].colour[3 * inf_px + 1]);
     EXPECT_EQ(out[3 * empty_px], 0.0f);
     EXPECT_EQ(out[3 * one_half + 2], in.half[0].colour[3 * one_half + 2]);
+    if (GetParam())
+        EXPECT_EQ(out[3 * direct_px + 2], in.half[0].colour[3 * direct_px + 2]);
     // The others differ from the clean run only as the missing neighbours' weights do:
     // never by a garbage value.
     for (size_t i = 0; i < size_t(W) * H; ++i) {
-        if (i == nan_px || i == inf_px || i == empty_px || i == one_half) continue;
+        if (i == nan_px || i == inf_px || i == empty_px || i == one_half ||
+            (GetParam() && i == direct_px))
+            continue;
         for (int c = 0; c < 3; ++c)
             EXPECT_NEAR(out[3 * i + c], clean[3 * i + c], 0.05f * clean[3 * i + c]) << i;
     }
 }
+
+INSTANTIATE_TEST_SUITE_P(Denoise, DenoiseGarbage, ::testing::Bool(),
+                         [](const auto &info) {
+                             return info.param ? "LightSamplesApart" : "BeautyWhole";
+                         });
 
 TEST(Denoise, TinyAndEmptyImagesWork) {
     for (const auto &[W, H] :
