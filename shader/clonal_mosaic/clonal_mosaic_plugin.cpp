@@ -387,29 +387,53 @@ std::unique_ptr<ClonalMosaic> make(const PelageParamSet &ps) {
     cm->transfer = cm->pattern->transfer();
     // `pelage sim` grows a mesh far from the cells' scale on its own copy of it, split
     // at its edge midpoints or simplified (sim/remesh/cell_scale_surface.h), and the
-    // file records it (params "simulation_surface"). Rendered on a mesh of as many
-    // triangles, the transfer is pelage's own doing, measured in docs/validation.md,
-    // and no news to the user; a pattern grown on another mesh still is.
+    // file records which (params "simulation_surface"). The note names that copy as
+    // pelage's own: "triangulated otherwise" or "another mesh" read as a mismatch of
+    // the user's files when the Fox or the cow is rendered on the mesh it was grown
+    // from. A pattern grown on another mesh is named as such.
+    enum class Copy { none, split, simplified };
     const auto own_copy = [&] {
         const nlohmann::json j =
             nlohmann::json::parse(cm->pattern->data().params_json, nullptr, false);
-        if (!j.is_object() || !j.contains("simulation_surface")) return false;
+        if (!j.is_object() || !j.contains("simulation_surface")) return Copy::none;
         const nlohmann::json &sf = j["simulation_surface"];
-        if (!sf.is_object()) return false;
+        if (!sf.is_object()) return Copy::none;
         const auto field = [&](const char *k) {
             return sf.contains(k) ? sf[k] : nlohmann::json();
         };
         const nlohmann::json simplified = field("simplified"),
                              levels = field("refine_levels"),
                              input = field("input_triangles");
-        const bool copied = (simplified.is_boolean() && simplified.get<bool>()) ||
-                            (levels.is_number_unsigned() && levels.get<uint64_t>() > 0);
-        return copied && input.is_number_unsigned() &&
-               input.get<uint64_t>() == cm->transfer->num_render_triangles();
+        if (!input.is_number_unsigned() ||
+            input.get<uint64_t>() != cm->transfer->num_render_triangles())
+            return Copy::none;
+        if (simplified.is_boolean() && simplified.get<bool>()) return Copy::simplified;
+        if (levels.is_number_unsigned() && levels.get<uint64_t>() > 0) return Copy::split;
+        return Copy::none;
     };
-    if (cm->transfer && !own_copy()) {
+    if (cm->transfer) {
         char message[1024];
-        if (!cm->transfer->similarity_applied() && cm->transfer->max_deviation() < 1e-6)
+        const bool same_surface =
+            !cm->transfer->similarity_applied() && cm->transfer->max_deviation() < 1e-6;
+        const Copy copy = own_copy();
+        if (copy == Copy::split && same_surface)
+            std::snprintf(
+                message, sizeof message,
+                "clonal_mosaic: %s was grown on pelage sim's copy of %s split at "
+                "its edge midpoints (%zu triangles, here %zu): the same surface, "
+                "every point in its own cell",
+                ps.mesh.cells_path, mesh_name.c_str(), cm->pattern->num_triangles(),
+                cm->transfer->num_render_triangles());
+        else if (copy == Copy::simplified && !cm->transfer->similarity_applied())
+            std::snprintf(
+                message, sizeof message,
+                "clonal_mosaic: %s was grown on pelage sim's simplified copy of %s "
+                "(%zu triangles, here %zu) and is rendered through the closest "
+                "points of that copy, at most %.2g %% of the mesh's size away",
+                ps.mesh.cells_path, mesh_name.c_str(), cm->pattern->num_triangles(),
+                cm->transfer->num_render_triangles(),
+                100 * cm->transfer->max_deviation());
+        else if (same_surface)
             std::snprintf(message, sizeof message,
                           "clonal_mosaic: %s was grown on %s triangulated otherwise (%zu "
                           "triangles, here %zu): the same surface, every point in its "

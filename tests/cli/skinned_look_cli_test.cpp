@@ -132,7 +132,8 @@ TEST(SkinnedLookCli, AClipFrameShowsEachCellInItsTypesColour) {
         << err;
     // Frame 12: the spine turned 15°. The case of the dense character: the pattern grown
     // on a simplified copy.
-    EXPECT_NE(err.find("was grown on another mesh"), std::string::npos) << err;
+    EXPECT_NE(err.find("was grown on pelage sim's simplified copy of"), std::string::npos)
+        << err;
     // The footprints' conversion at that pose: below y = 0.5 (the hips' alone, rigid)
     // every posed length is 100 rest lengths, as in the default pose; where the skin
     // bends, about as many.

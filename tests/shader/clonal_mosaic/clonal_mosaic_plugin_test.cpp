@@ -511,8 +511,9 @@ TEST(ClonalMosaicPlugin, EveryHitOnATriangleSoupHasACellAndTheSoupIsNamed) {
 
 // A low-poly mesh is grown on a copy of itself split at its edge midpoints
 // (sim/remesh/cell_scale_surface.h): the pattern is carried back exactly, and the
-// plugin says nothing about another triangulation (it did, on every low-poly animal).
-TEST(ClonalMosaicPlugin, ALowPolyMeshGrownOnItsOwnSplitCopyIsNotReported) {
+// note names pelage's own copy, not another triangulation of the user's (as it did on
+// every low-poly animal).
+TEST(ClonalMosaicPlugin, ALowPolyMeshGrownOnItsOwnSplitCopyIsNamedSo) {
     TempDir tmp;
     const std::string mesh = "procedural:icosphere:0";  // 20 triangles
     const std::string cells = tmp.file("low.cells");
@@ -529,6 +530,10 @@ TEST(ClonalMosaicPlugin, ALowPolyMeshGrownOnItsOwnSplitCopyIsNotReported) {
     const Instance inst({}, cells.c_str(), mesh);
     const std::string warned = testing::internal::GetCapturedStderr();
     ASSERT_NE(inst.self, nullptr) << inst.error;
+    EXPECT_NE(warned.find("was grown on pelage sim's copy of " + mesh +
+                          " split at its edge midpoints"),
+              std::string::npos)
+        << warned;
     EXPECT_EQ(warned.find("triangulated otherwise"), std::string::npos) << warned;
     EXPECT_EQ(warned.find("another mesh"), std::string::npos) << warned;
     // The same split made by the user and grown on as it is: rendered on the coarse
