@@ -94,9 +94,11 @@ namespace {
 
 // One component of the beauty (its two halves' per-pixel means, RGB interleaved) filtered
 // on the shared features in `p` and blended with its noisy mean by their estimated
-// errors; `share_a`: each pixel's share of its samples in half A.
+// errors; `share_a`: each pixel's share of its samples in half A; `albedo_patch`: the
+// albedo's patch means.
 void filter_component(const std::vector<float> &ca, const std::vector<float> &cb,
-                      const std::vector<float> &share_a, Planes &p, int patch_radius,
+                      const std::vector<float> &share_a, Planes &p,
+                      const std::vector<float> (&albedo_patch)[3], int patch_radius,
                       const FilterParams &fp, float *out,
                       std::vector<float> *noisy_error = nullptr,
                       const std::vector<float> *other_error = nullptr) {
@@ -134,10 +136,8 @@ void filter_component(const std::vector<float> &ca, const std::vector<float> &cb
         // cell's coat reflection is not magnified without bound): shading, which is
         // what the weights should compare. Across a cell edge the shading goes on
         // while the colour jumps; the albedo feature still keeps the two cells apart.
-        std::vector<float> albedo_patch;
-        box_mean(p.albedo[c], p.usable, W, H, r, &albedo_patch, nullptr);
         for (size_t i = 0; i < n; ++i) {
-            const float f = 1.0f / (albedo_patch[i] + guide_albedo_floor);
+            const float f = 1.0f / (albedo_patch[c][i] + guide_albedo_floor);
             p.guide[c][i] *= f;
             p.guide_var[c][i] *= f * f;
         }
@@ -180,8 +180,7 @@ void filter_component(const std::vector<float> &ca, const std::vector<float> &cb
         // cost more than the little noise it removes, and the blend's error estimates
         // are too rough to tell. Where it carries a quarter of the other's noise or
         // more (the light samples of sub-pixel strands, whose coverage is noisy), it
-        // is filtered as the other is. Measured on the bench cows at 16 spp: bare 6.7e-6
-        // kept whole against 7.9e-6 filtered as the rest; furry 3.6e-5 against 4.2e-5.
+        // is filtered as the other is (docs/performance.md, the denoiser).
         if (other_error) {
             const float eo = (*other_error)[i];
             t *= en > 0 ? en / (en + 0.25f * eo) : 0.0f;
@@ -266,14 +265,19 @@ std::vector<float> denoise(const DenoiseInput &input, const DenoiseOptions &opti
         p.surface[i] = ha || hb;
     });
 
+    std::vector<float> albedo_patch[3];
+    for (int c = 0; c < 3; ++c)
+        box_mean(p.albedo[c], p.usable, W, H, options.patch_radius, &albedo_patch[c],
+                 nullptr);
+
     FilterParams fp;
     fp.radius = options.window_radius;
     fp.k = options.k;
     fp.albedo_sigma = options.albedo_sigma;
     std::vector<float> out(3 * n, 0.0f);
     if (!split) {
-        filter_component(A.colour, B.colour, share_a, p, options.patch_radius, fp,
-                         out.data());
+        filter_component(A.colour, B.colour, share_a, p, albedo_patch,
+                         options.patch_radius, fp, out.data());
     } else {
         // The first hit's light samples (a sun's shadows and shading: detail no feature
         // holds, usually sampled well) and the rest (sky and bounces: most of the noise,
@@ -284,12 +288,12 @@ std::vector<float> denoise(const DenoiseInput &input, const DenoiseOptions &opti
             rest_b[j] = B.colour[j] - B.direct[j];
         }
         std::vector<float> rest_error;
-        filter_component(rest_a, rest_b, share_a, p, options.patch_radius, fp, out.data(),
-                         &rest_error);
+        filter_component(rest_a, rest_b, share_a, p, albedo_patch, options.patch_radius,
+                         fp, out.data(), &rest_error);
         FilterParams direct = fp;
         direct.radius = options.direct_window_radius;
-        filter_component(A.direct, B.direct, share_a, p, options.patch_radius, direct,
-                         out.data(), nullptr, &rest_error);
+        filter_component(A.direct, B.direct, share_a, p, albedo_patch,
+                         options.patch_radius, direct, out.data(), nullptr, &rest_error);
     }
     size_t kept = 0, bad = 0;
     for (size_t i = 0; i < n; ++i) {
