@@ -14,6 +14,7 @@
 #include "sim/crps/unfold.h"
 #include "sim/geodesic/geodesic_mesh.h"
 #include "sim/geodesic/window_propagation.h"
+#include "sim/mosaic/pair_forces.h"
 
 namespace pelage::sim {
 
@@ -311,33 +312,76 @@ RelaxStepResult Relaxer::step(const RelaxContext &ctx, Cells &cells,
     return apply_moves(cells, active);
 }
 
-// Cells into triangle order (parallel: each triangle fills its own range).
+// Cells into triangle order (parallel: each triangle fills its own range), in doubles
+// for the walk and in floats padded to whole lanes for the force kernel.
 void Relaxer::gather_by_triangle(const Cells &cells, size_t nt) {
     m_row.resize(nt + 1);
-    m_row[0] = 0;
-    for (TriId t = 0; t < nt; ++t)
-        m_row[t + 1] = m_row[t] + static_cast<uint32_t>(cells.on(t).size());
-    const size_t n = m_row[nt];
+    m_padded_row.resize(nt + 1);
+    m_row[0] = m_padded_row[0] = 0;
+    for (TriId t = 0; t < nt; ++t) {
+        const uint32_t n = static_cast<uint32_t>(cells.on(t).size());
+        m_row[t + 1] = m_row[t] + n;
+        m_padded_row[t + 1] =
+            m_padded_row[t] + (n + force_lanes - 1) / force_lanes * force_lanes;
+    }
+    const size_t n = m_row[nt], padded = m_padded_row[nt];
     m_sx.resize(n);
     m_sz.resize(n);
     m_st.resize(n);
     m_sid.resize(n);
-    {
-        const double *xs = cells.x().data(), *zs = cells.z().data();
-        const uint8_t *ts = cells.types().data();
-        tbb::parallel_for(tbb::blocked_range<TriId>(0, static_cast<TriId>(nt), 256),
-                          [&](const auto &range) {
-                              for (TriId t = range.begin(); t != range.end(); ++t) {
-                                  uint32_t i = m_row[t];
-                                  for (CellId c : cells.on(t)) {
-                                      m_sx[i] = xs[c];
-                                      m_sz[i] = zs[c];
-                                      m_st[i] = ts[c];
-                                      m_sid[i] = c;
-                                      ++i;
-                                  }
+    m_fx.resize(padded);
+    m_fz.resize(padded);
+    m_ftype.resize(padded);
+    m_chunk_x.resize(padded / force_lanes);
+    m_chunk_z.resize(padded / force_lanes);
+    m_chunk_radius.resize(padded / force_lanes);
+    const double *xs = cells.x().data(), *zs = cells.z().data();
+    const uint8_t *ts = cells.types().data();
+    tbb::parallel_for(tbb::blocked_range<TriId>(0, static_cast<TriId>(nt), 256),
+                      [&](const auto &range) {
+                          for (TriId t = range.begin(); t != range.end(); ++t) {
+                              uint32_t i = m_row[t], f = m_padded_row[t];
+                              for (CellId c : cells.on(t)) {
+                                  m_sx[i] = xs[c];
+                                  m_sz[i] = zs[c];
+                                  m_st[i] = ts[c];
+                                  m_sid[i] = c;
+                                  m_fx[f] = static_cast<float>(xs[c]);
+                                  m_fz[f] = static_cast<float>(zs[c]);
+                                  m_ftype[f] = ts[c];
+                                  ++i;
+                                  ++f;
                               }
-                          });
+                              for (; f < m_padded_row[t + 1]; ++f) {
+                                  m_fx[f] = m_fz[f] = force_padding_position;
+                                  m_ftype[f] = 0;
+                              }
+                              bound_chunks(t);
+                          }
+                      });
+}
+
+// A circle about each chunk of t's cells (in t's frame), wide enough that floats
+// rounded on the way into another frame stay inside it.
+void Relaxer::bound_chunks(TriId t) {
+    const double margin = 1e-5 * m_nbhd.bounding_radius(t);
+    for (uint32_t first = m_row[t]; first < m_row[t + 1]; first += force_lanes) {
+        const uint32_t last = std::min(first + force_lanes, m_row[t + 1]);
+        double lo_x = m_sx[first], hi_x = lo_x, lo_z = m_sz[first], hi_z = lo_z;
+        for (uint32_t p = first; p < last; ++p) {
+            lo_x = std::min(lo_x, m_sx[p]);
+            hi_x = std::max(hi_x, m_sx[p]);
+            lo_z = std::min(lo_z, m_sz[p]);
+            hi_z = std::max(hi_z, m_sz[p]);
+        }
+        const Vec2d centre{0.5 * (lo_x + hi_x), 0.5 * (lo_z + hi_z)};
+        double radius = 0;
+        for (uint32_t p = first; p < last; ++p)
+            radius = std::max(radius, length(Vec2d{m_sx[p], m_sz[p]} - centre));
+        const uint32_t c = (m_padded_row[t] + (first - m_row[t])) / force_lanes;
+        m_chunk_x[c] = centre.x;
+        m_chunk_z[c] = centre.y;
+        m_chunk_radius[c] = static_cast<float>(radius * (1 + 1e-4) + margin);
     }
 }
 
@@ -352,59 +396,157 @@ void Relaxer::size_moves(const std::vector<TriId> &active) {
     m_dest.resize(n_active_cells);
 }
 
+// The pushes on the cells of triangle t, summed into D in t's frame: the cells of every
+// triangle of its unfolding, with their chunks' circles, are carried into t's frame
+// once, and meet t's cells eight at a time (pair_forces.h).
+void Relaxer::push_triangle(const RelaxContext &ctx, TriId t, const OneMinusAlpha &oma,
+                            ForceScratch &s, Vec2d *D) const {
+    const uint32_t begin = m_row[t], n = m_row[t + 1] - begin;
+    const CellId *ids = m_sid.data() + begin;
+    s.resize(n);
+    for (uint32_t k = 0; k < n; ++k) {
+        // Queiroz §V: a local w_r gives the moving cell its own radius.
+        s.r[k] = ctx.cell_r ? ctx.cell_r[ids[k]] : ctx.r;
+        s.target_r[k] = static_cast<float>(s.r[k]);
+        s.target_x[k] = m_fx[m_padded_row[t] + k];
+        s.target_z[k] = m_fz[m_padded_row[t] + k];
+        const double *row = one_minus_alpha_row(ctx, oma, begin + k);
+        for (int q = 0; q < max_cell_types; ++q)
+            s.target_oma[size_t(k) * max_cell_types + q] = static_cast<float>(row[q]);
+    }
+    const uint32_t self = gather_candidates(t, s);
+    const ForceCandidates candidates{s.x.data(),
+                                     s.z.data(),
+                                     s.type.data(),
+                                     s.centre_x.data(),
+                                     s.centre_z.data(),
+                                     s.radius.data(),
+                                     static_cast<uint32_t>(s.radius.size())};
+    const ForceTargets targets{s.target_x.data(),
+                               s.target_z.data(),
+                               s.target_r.data(),
+                               s.target_oma.data(),
+                               n,
+                               self};
+    add_pair_forces(targets, candidates, s.sum_x.data(), s.sum_z.data(),
+                    s.coincident.data());
+    for (uint32_t k = 0; k < n; ++k) {
+        D[k] = Vec2d{s.sum_x[k], s.sum_z[k]};
+        if (s.coincident[k]) D[k] += tie_break_pushes(ctx, oma, begin + k, s, targets, k);
+    }
+}
+
+// The cells of t's unfolding carried into t's frame, in entry order, each triangle's
+// padded to whole chunks and the chunks to whole lanes. Returns where t's own cells
+// start.
+uint32_t Relaxer::gather_candidates(TriId t, ForceScratch &s) const {
+    const auto &entries = m_nbhd.of(t);
+    uint32_t chunks = 0;
+    for (const Neighbourhoods::Entry &e : entries)
+        chunks += (m_padded_row[e.tri + 1] - m_padded_row[e.tri]) / force_lanes;
+    const uint32_t lanes_of_chunks =
+        (chunks + force_lanes - 1) / force_lanes * force_lanes;
+    s.resize_candidates(lanes_of_chunks);
+    float *x = s.x.data(), *z = s.z.data();
+    int32_t *type = s.type.data();
+    uint32_t *row = s.row.data();
+    uint32_t c = 0, self = 0;
+    for (const Neighbourhoods::Entry &e : entries) {
+        const TriId j = e.tri;
+        const uint32_t first = m_padded_row[j], padded = m_padded_row[j + 1] - first;
+        if (padded == 0) continue;
+        if (j == t) self = c * force_lanes;
+        const RigidMap2 G = e.to_nbr.inverse();  // F[j→t]
+        for (uint32_t jc = first / force_lanes; jc < (first + padded) / force_lanes;
+             ++jc, ++c) {
+            const Vec2d centre = G.apply({m_chunk_x[jc], m_chunk_z[jc]});
+            s.centre_x[c] = static_cast<float>(centre.x);
+            s.centre_z[c] = static_cast<float>(centre.y);
+            s.radius[c] = m_chunk_radius[jc];
+        }
+        // The map in floats: its rounding (1e-7 of the frame's size) is far below any
+        // distance the forces resolve.
+        const float gc = static_cast<float>(G.c), gs = static_cast<float>(G.s),
+                    gx = static_cast<float>(G.ax), gz = static_cast<float>(G.ay);
+        const float *px = m_fx.data() + first, *pz = m_fz.data() + first;
+        for (uint32_t p = 0; p < padded; ++p) {
+            x[p] = gc * px[p] - gs * pz[p] + gx;
+            z[p] = gs * px[p] + gc * pz[p] + gz;
+        }
+        const uint32_t n = m_row[j + 1] - m_row[j];
+        for (uint32_t p = 0; p < n; ++p) row[p] = m_row[j] + p;
+        std::copy_n(m_ftype.data() + first, padded, type);
+        for (uint32_t p = n; p < padded; ++p) {
+            x[p] = z[p] = force_padding_position;
+            row[p] = ~uint32_t(0);
+        }
+        x += padded;
+        z += padded;
+        type += padded;
+        row += padded;
+    }
+    s.cells = c * force_lanes;
+    for (; c < lanes_of_chunks; ++c) {
+        s.centre_x[c] = s.centre_z[c] = force_padding_position;
+        s.radius[c] = 0;
+    }
+    return self;
+}
+
+// The pushes on target k from the candidates lying exactly on it (as the kernel's
+// floats see them): each pair separates along its hashed direction, in t's frame.
+Vec2d Relaxer::tie_break_pushes(const RelaxContext &ctx, const OneMinusAlpha &oma,
+                                uint32_t row_k, const ForceScratch &s,
+                                const ForceTargets &targets, uint32_t k) const {
+    const double *row = one_minus_alpha_row(ctx, oma, row_k);
+    const float qx = targets.x[k], qz = targets.z[k], r = targets.r[k];
+    Vec2d push{};
+    for (size_t p = 0; p < s.cells; ++p) {
+        if (s.row[p] == ~uint32_t(0)) continue;
+        const float dx = qx - s.x[p], dz = qz - s.z[p];
+        const float d2 = dx * dx + dz * dz;
+        if (!(d2 < r * r) || d2 != 0.0f || p == targets.self + k) continue;
+        const Vec2d u = tie_break_direction(ctx.seed, m_sid[row_k], m_sid[s.row[p]]);
+        push += u * (row[m_st[s.row[p]]] * s.r[k]);
+    }
+    return push;
+}
+
+// The row of 1 − α that the cell at row i feels from each type.
+const double *Relaxer::one_minus_alpha_row(const RelaxContext &ctx,
+                                           const OneMinusAlpha &oma, uint32_t i) const {
+    return ctx.cell_one_minus_alpha && !ctx.uniform_alpha
+               ? ctx.cell_one_minus_alpha + size_t(m_sid[i]) * max_cell_types
+               : oma.m[m_st[i]];
+}
+
 // The displacement of every active cell (parallel over active triangles; each writes
 // only its own cells).
 void Relaxer::accumulate_forces(const RelaxContext &ctx,
                                 const std::vector<TriId> &active) {
-    const double r_all = ctx.r, inv_r_all = 1.0 / r_all;
-    const uint8_t *ts = m_st.data();
-    const CellId *ids = m_sid.data();
     const bool aniso = ctx.field && !ctx.field->empty() && ctx.w_a > 0;
     const double iso_weight = (1.0 - ctx.w_a) * ctx.w_d;
     // 1 − α for every pair, resolved once per step (the initial phase uses one α).
-    double one_minus_alpha[max_cell_types][max_cell_types];
+    OneMinusAlpha one_minus_alpha;
     for (int c = 0; c < max_cell_types; ++c)
         for (int q = 0; q < max_cell_types; ++q)
-            one_minus_alpha[c][q] = ctx.uniform_alpha
-                                        ? 1.0 - ctx.alpha
-                                        : (c < ctx.types->size() && q < ctx.types->size()
-                                               ? ctx.types->one_minus_alpha(c, q)
-                                               : 0.0);
+            one_minus_alpha.m[c][q] =
+                ctx.uniform_alpha ? 1.0 - ctx.alpha
+                                  : (c < ctx.types->size() && q < ctx.types->size()
+                                         ? ctx.types->one_minus_alpha(c, q)
+                                         : 0.0);
 
     // --- Forces (parallel over active triangles; each writes only its own cells) ---
     tbb::parallel_for(
         tbb::blocked_range<size_t>(0, active.size(), 8), [&](const auto &range) {
+            ForceScratch &scratch = m_force_scratch.local();
             for (size_t ai = range.begin(); ai != range.end(); ++ai) {
                 const TriId t = active[ai];
                 const uint32_t mine_begin = m_row[t], mine_end = m_row[t + 1];
                 if (mine_begin == mine_end) continue;
                 Vec2d *D = m_move.data() + m_active_row[ai];
-                for (uint32_t k = mine_begin; k < mine_end; ++k) {
-                    const double *oma_row =
-                        ctx.cell_one_minus_alpha && !ctx.uniform_alpha
-                            ? ctx.cell_one_minus_alpha + size_t(ids[k]) * max_cell_types
-                            : one_minus_alpha[ts[k]];
-                    // Queiroz §V: a local w_r gives the moving cell its own radius.
-                    const double r = ctx.cell_r ? ctx.cell_r[ids[k]] : r_all;
-                    const double inv_r = ctx.cell_r ? 1.0 / r : inv_r_all;
-                    double sx = 0, sz = 0;
-                    for_each_neighbour(t, k, r, [&](uint32_t p, Vec2d away, double d2) {
-                        // Walter 1998 Fig. 1 step 1: f = 1 − d/r, D = unit(C −
-                        // P)·f·(1 − α)·r
-                        const double oma = oma_row[ts[p]];
-                        if (d2 > 0) {
-                            const double d = std::sqrt(d2);
-                            const double f = (1.0 - d * inv_r) * oma * r / d;
-                            sx += away.x * f;
-                            sz += away.y * f;
-                        } else {
-                            const Vec2d u = tie_break_direction(ctx.seed, ids[k], ids[p]);
-                            sx += u.x * oma * r;
-                            sz += u.y * oma * r;
-                        }
-                    });
-                    D[k - mine_begin] = {sx, sz};
-                }
+                push_triangle(ctx, t, one_minus_alpha, scratch, D);
+                const CellId *ids = m_sid.data();
                 // SG01 §3.2.1: C' = C + w_a·O + (1 − w_a)·w_d·D, O = (D·Â)·A
                 for (uint32_t k = 0; k < mine_end - mine_begin; ++k) {
                     const CellId id = ids[mine_begin + k];

@@ -14,11 +14,14 @@
 // order. Results do not depend on the number of threads.
 #pragma once
 
+#include <tbb/enumerable_thread_specific.h>
+
 #include <vector>
 
 #include "sim/crps/tangent_field.h"
 #include "sim/mosaic/cell_types.h"
 #include "sim/mosaic/cells.h"
+#include "sim/mosaic/pair_forces.h"
 
 namespace pelage::sim {
 
@@ -114,14 +117,63 @@ class Relaxer {
                          const std::vector<TriId> &active);
     Neighbourhoods &neighbourhoods() { return m_nbhd; }
     // Every neighbour within r of cell c that pushes it, as step() would find them now
-    // (for tests and tools; rebuilds the per-step state).
+    // (for tests and tools; rebuilds the per-step state). Distances here are doubles;
+    // step() decides d < r in floats, which can differ for a pair at r within 1e-7 r.
     std::vector<RelaxNeighbour> neighbours(const RelaxContext &ctx, const Cells &cells,
                                            CellId c);
 
   private:
+    // 1 − α for every pair of types, resolved once per step.
+    struct OneMinusAlpha {
+        double m[max_cell_types][max_cell_types];
+    };
+    // One thread's copy of a triangle's cells and of its candidates as the force
+    // kernel takes them (pair_forces.h).
+    struct ForceScratch {
+        std::vector<double> r;
+        std::vector<float> target_x, target_z, target_r, target_oma, sum_x, sum_z;
+        std::vector<uint8_t> coincident;
+        std::vector<float> x, z, centre_x, centre_z, radius;
+        std::vector<int32_t> type;
+        std::vector<uint32_t> row;  // the candidate's row in triangle order, or none
+        size_t cells = 0;           // candidates written, padding included
+        void resize(size_t n) {
+            r.resize(n);
+            target_x.resize(n);
+            target_z.resize(n);
+            target_r.resize(n);
+            target_oma.resize(n * max_cell_types);
+            sum_x.resize(n);
+            sum_z.resize(n);
+            coincident.resize(n);
+        }
+        // Room for `chunks` chunks; chunks past the candidates' are never read as cells.
+        void resize_candidates(size_t chunks) {
+            const size_t cells = chunks * force_lanes;
+            if (x.size() < cells) {
+                x.resize(cells);
+                z.resize(cells);
+                type.resize(cells);
+                row.resize(cells);
+            }
+            centre_x.resize(chunks);
+            centre_z.resize(chunks);
+            radius.resize(chunks);
+        }
+    };
+
     void gather_by_triangle(const Cells &cells, size_t nt);
     void size_moves(const std::vector<TriId> &active);
     void accumulate_forces(const RelaxContext &ctx, const std::vector<TriId> &active);
+    void push_triangle(const RelaxContext &ctx, TriId t, const OneMinusAlpha &oma,
+                       ForceScratch &s, Vec2d *D) const;
+    uint32_t gather_candidates(TriId t, ForceScratch &s) const;
+    Vec2d tie_break_pushes(const RelaxContext &ctx, const OneMinusAlpha &oma,
+                           uint32_t row_k, const ForceScratch &s,
+                           const ForceTargets &targets, uint32_t k) const;
+    void bound_chunks(TriId t);
+    const double *one_minus_alpha_row(const RelaxContext &ctx, const OneMinusAlpha &oma,
+                                      uint32_t i) const;
     // Calls fn(p, away, d2) for every neighbour p (index in triangle order) of cell k of
     // triangle t within r; away is C − P in t's frame, d2 its squared length.
     template <typename Fn>
@@ -136,6 +188,13 @@ class Relaxer {
     std::vector<double> m_sx, m_sz;
     std::vector<uint8_t> m_st;
     std::vector<CellId> m_sid;
+    // The same cells in floats, each triangle's padded to whole lanes (pair_forces.h).
+    std::vector<uint32_t> m_padded_row;
+    std::vector<float> m_fx, m_fz;
+    std::vector<int32_t> m_ftype;
+    std::vector<double> m_chunk_x, m_chunk_z;  // per chunk of eight, its circle
+    std::vector<float> m_chunk_radius;
+    tbb::enumerable_thread_specific<ForceScratch> m_force_scratch;
     std::vector<Vec2d> m_move;           // per active cell, in active order
     std::vector<uint32_t> m_active_row;  // offsets of each active triangle's cells
     std::vector<SurfacePoint> m_dest;

@@ -6,6 +6,7 @@
 #include <tbb/global_control.h>
 
 #include <cmath>
+#include <random>
 
 #include "sim/cells_io/cells_file.h"
 #include "sim/core/random.h"
@@ -305,8 +306,69 @@ TEST(Relaxation, TwoCellsOnDifferentTrianglesRepelExactlyAsInWalter) {
     const Vec3d u = (b - a) / d;
     const Vec3d a1 = s.crps.to_3d(cells.tri(0), cells.pos(0)),
                 b1 = s.crps.to_3d(cells.tri(1), cells.pos(1));
-    EXPECT_NEAR(length(a1 - (a - u * step)), 0, 1e-9);
-    EXPECT_NEAR(length(b1 - (b + u * step)), 0, 1e-9);
+    // The pair forces are summed in floats (pair_forces.h): 1e-7 of the frame's size.
+    EXPECT_NEAR(length(a1 - (a - u * step)), 0, 1e-6 * ctx.r);
+    EXPECT_NEAR(length(b1 - (b + u * step)), 0, 1e-6 * ctx.r);
+}
+
+// A whole step on a flat mesh, where 3D distances are the geodesic ones: every cell moves
+// by w_d·Σ unit(C − P)·(1 − d/r)·(1 − α[C][P])·r over every other cell within r, summed
+// here in doubles over all pairs, whatever triangles and chunks the cells lie in. Two
+// cells placed on one point separate along opposite directions by w_d·(1 − α)·r each,
+// on top of what the others do to them.
+TEST(Relaxation, AStepMovesEveryCellByWaltersSumOverAllCellsWithinR) {
+    const Surface s = build_surface("procedural:plane:8x8");
+    const CellTypes types({CellType{"F", {0, 0, 0}, 0, 0, 1.0, 1.0},
+                           CellType{"B", {1, 1, 1}, 0, 0, 1.0, 0.0}},
+                          {{1.0, 0.0}, {0.0, 1.0}}, {{0.2, 0.6}, {0.5, 0.1}});
+    Cells cells(s.mesh.num_triangles());
+    std::vector<Vec3d> at;
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<double> u(-0.3, 0.3);
+    for (int i = 0; i < 300; ++i) {
+        const Vec3d p{u(rng), 0, u(rng)};
+        at.push_back(p);
+        cells.add(locate(s.crps, p), static_cast<uint8_t>(i % 3 == 0));
+    }
+    at.push_back(at[10]);  // one on top of another
+    cells.add(locate(s.crps, at.back()), 1);
+    RelaxContext ctx;
+    ctx.crps = &s.crps;
+    ctx.types = &types;
+    ctx.r = 0.11;
+    ctx.w_d = 0.05;
+    std::vector<TriId> all(s.mesh.num_triangles());
+    for (TriId t = 0; t < all.size(); ++t) all[t] = t;
+    Relaxer relaxer;
+    relaxer.step(ctx, cells, all);
+    size_t pairs = 0;
+    Vec3d residual[2];
+    for (CellId c = 0; c < cells.size(); ++c) {
+        Vec3d D{0, 0, 0};
+        for (CellId p = 0; p < cells.size(); ++p) {
+            const double d = length(at[c] - at[p]);
+            if (p == c || d >= ctx.r || d == 0) continue;
+            D += (at[c] - at[p]) / d *
+                 ((1 - d / ctx.r) * types.one_minus_alpha(cells.type(c), cells.type(p)) *
+                  ctx.r);
+            ++pairs;
+        }
+        const Vec3d moved = s.crps.to_3d(cells.tri(c), cells.pos(c)) - at[c];
+        const Vec3d off = moved - D * ctx.w_d;
+        if (c == 10 || c == cells.size() - 1) {
+            residual[c == 10 ? 0 : 1] = off;
+            continue;
+        }
+        ASSERT_NEAR(length(off), 0, 1e-6 * ctx.r) << "cell " << c;
+    }
+    EXPECT_GT(pairs, 3000u);
+    EXPECT_NEAR(length(residual[0]), ctx.w_d * types.one_minus_alpha(0, 1) * ctx.r,
+                1e-6 * ctx.r);
+    EXPECT_NEAR(length(residual[1]), ctx.w_d * types.one_minus_alpha(1, 0) * ctx.r,
+                1e-6 * ctx.r);
+    EXPECT_NEAR(
+        dot(residual[0], residual[1]) / (length(residual[0]) * length(residual[1])), -1,
+        1e-6);
 }
 
 }  // namespace

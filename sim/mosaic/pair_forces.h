@@ -1,0 +1,67 @@
+// The Clonal Mosaic's pair forces on the cells of one triangle from every cell of its
+// unfolding, eight neighbours at a time (Walter 1998 Fig. 1 step 1):
+//   D += (C − P)·(1 − α[C][P])·(r/d − 1)     for every P with 0 < d = |C − P| < r,
+// which is unit(C − P)·(1 − d/r)·(1 − α)·r written with one square root and one division.
+//
+// The candidates (the cells of the triangles of the unfolding, Teo §5.1.2) are carried
+// into the pushed triangle's frame once per step, not once per pushed cell, in chunks of
+// eight cells with a bounding circle each. A pushed cell tests eight chunks' circles at
+// a time and meets only the cells of the chunks it reaches.
+//
+// Floats, eight lanes: lane l sums candidates l, l + 8, ..., and the lanes are added in
+// one fixed tree. Only IEEE-exact operations are used (no fused multiply-add, no
+// reciprocal estimate), so the AVX2 path and the scalar path give the same bits on
+// every CPU, and the cells do not depend on the machine or the number of threads.
+#pragma once
+
+#include <cstdint>
+
+namespace pelage::sim {
+
+inline constexpr uint32_t force_lanes = 8;
+
+// Where padding cells and chunks lie: squared distances stay finite in floats.
+inline constexpr float force_padding_position = 1e18f;
+
+// The candidates, in the pushed triangle's frame: cells padded to whole chunks with
+// cells at force_padding_position, chunks padded to whole lanes of chunks likewise.
+struct ForceCandidates {
+    const float *x = nullptr, *z = nullptr;
+    const int32_t *type = nullptr;  // cell types, < max_cell_types
+    // Per chunk: a circle holding its cells (a margin included).
+    const float *centre_x = nullptr, *centre_z = nullptr, *radius = nullptr;
+    uint32_t chunks = 0;  // a multiple of force_lanes; cells = chunks · force_lanes
+};
+
+// The pushed cells, in their triangle's frame.
+struct ForceTargets {
+    const float *x = nullptr, *z = nullptr;
+    const float *r = nullptr;                // each cell's radius
+    const float *one_minus_alpha = nullptr;  // 8 per cell: 1 − α felt from each type
+    uint32_t count = 0;
+    uint32_t self = 0;  // candidate self + k is target k itself (never its own push)
+};
+
+// Writes each target's sum over the candidates into sum_x/sum_z, and sets
+// coincident[k] to whether a candidate lies exactly on target k (d = 0 in floats): that
+// pair has no direction, and the caller adds its tie-break push.
+void add_pair_forces(const ForceTargets &targets, const ForceCandidates &candidates,
+                     float *sum_x, float *sum_z, uint8_t *coincident);
+
+// The same sums in plain C++, lane by lane (what add_pair_forces runs without AVX2).
+void add_pair_forces_scalar(const ForceTargets &targets,
+                            const ForceCandidates &candidates, float *sum_x, float *sum_z,
+                            uint8_t *coincident);
+
+// Whether add_pair_forces runs eight lanes in AVX2 on this CPU.
+bool pair_forces_use_avx2();
+
+// Whether target (x, z) with radius r can reach chunk c: the test both paths make.
+inline bool reaches_chunk(float x, float z, float r, const ForceCandidates &candidates,
+                          uint32_t c) {
+    const float dx = x - candidates.centre_x[c], dz = z - candidates.centre_z[c];
+    const float reach = r + candidates.radius[c];
+    return dx * dx + dz * dz <= reach * reach;
+}
+
+}  // namespace pelage::sim
