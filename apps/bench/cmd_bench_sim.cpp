@@ -115,6 +115,8 @@ int run(const BenchSimOptions &o) {
                 {"ns_per_cell_step", ns},
                 {"ns_per_cell_step_relax", ns_relax},
                 {"seconds_neighbourhoods", best.stats.seconds_neighbourhoods},
+                {"seconds_force_sum", best.stats.seconds_force_sum},
+                {"interacting_pairs", best.stats.interacting_pairs},
             };
             by_key[{n, mode}] = j;
             runs.push_back(j);

@@ -131,6 +131,8 @@ int run_sim(const SimOptions &o) {
             {"seconds", seconds},
             {"seconds_initial", st.seconds_initial},
             {"seconds_neighbourhoods", st.seconds_neighbourhoods},
+            {"seconds_force_sum", st.seconds_force_sum},
+            {"interacting_pairs", st.interacting_pairs},
             {"peak_rss_mb", peak_rss_mb()},
             {"cells_steps_per_second",
              seconds > 0 ? double(st.cell_steps) / seconds : 0.0},

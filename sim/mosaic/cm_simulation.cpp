@@ -582,6 +582,8 @@ void CmSimulation::run(const std::function<void(double)> &progress) {
     m_stats.final_radius = radius();
     m_stats.seconds_neighbourhoods = m_relaxer.neighbourhoods().seconds();
     m_stats.neighbourhood_builds = m_relaxer.neighbourhoods().rebuilds();
+    m_stats.seconds_force_sum = m_relaxer.force_seconds();
+    m_stats.interacting_pairs = m_relaxer.interacting_pairs();
     m_stats.seconds_total = m_stats.seconds_initial + (now_seconds() - t0);
 }
 

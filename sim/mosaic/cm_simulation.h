@@ -45,6 +45,8 @@ struct SimStats {
     double seconds_neighbourhoods =
         0;  // building the unfolding cache (once per ~2× cells)
     size_t neighbourhood_builds = 0;
+    double seconds_force_sum = 0;      // the relaxation's pair forces (pair_forces.h)
+    uint64_t interacting_pairs = 0;    // pairs within r the force sum met, over all steps
     std::vector<GrowthSample> growth;  // one per reshape, and the end (growing runs)
     double growth_lost_cells = 0;  // ΔN no dividing cell was near (growing_surface.h)
 };

@@ -16,8 +16,7 @@ inline float lane_sum(const float *a) {
 }  // namespace
 
 void add_pair_forces_scalar(const ForceTargets &targets,
-                            const ForceCandidates &candidates, float *sum_x, float *sum_z,
-                            uint8_t *coincident) {
+                            const ForceCandidates &candidates, const ForceSums &out) {
     for (uint32_t k = 0; k < targets.count; ++k) {
         const float qx = targets.x[k], qz = targets.z[k];
         const float r = targets.r[k], r2 = r * r;
@@ -25,6 +24,7 @@ void add_pair_forces_scalar(const ForceTargets &targets,
         const uint32_t self = targets.self + k;
         float ax[force_lanes] = {}, az[force_lanes] = {};
         bool touching = false;
+        uint32_t pairs = 0;
         for (uint32_t c = 0; c < candidates.chunks; ++c) {
             if (!reaches_chunk(qx, qz, r, candidates, c)) continue;
             for (uint32_t l = 0; l < force_lanes; ++l) {
@@ -34,6 +34,7 @@ void add_pair_forces_scalar(const ForceTargets &targets,
                 const bool in = d2 < r2 && p != self;
                 const bool zero = d2 == 0.0f;
                 touching = touching || (in && zero);
+                pairs += in;
                 const float d = __builtin_sqrtf(zero ? 1.0f : d2);
                 const float f =
                     in && !zero ? oma[candidates.type[p]] * (r / d - 1.0f) : 0.0f;
@@ -41,9 +42,10 @@ void add_pair_forces_scalar(const ForceTargets &targets,
                 az[l] += dz * f;
             }
         }
-        sum_x[k] = lane_sum(ax);
-        sum_z[k] = lane_sum(az);
-        coincident[k] = touching;
+        out.x[k] = lane_sum(ax);
+        out.z[k] = lane_sum(az);
+        out.coincident[k] = touching;
+        out.pairs[k] = pairs;
     }
 }
 
@@ -54,8 +56,8 @@ namespace {
 // add_pair_forces_scalar with its eight lanes in one AVX2 register, and eight chunks'
 // circles tested at once.
 __attribute__((target("avx2"))) void add_pair_forces_avx2(
-    const ForceTargets &targets, const ForceCandidates &candidates, float *sum_x,
-    float *sum_z, uint8_t *coincident) {
+    const ForceTargets &targets, const ForceCandidates &candidates,
+    const ForceSums &out) {
     const __m256 one = _mm256_set1_ps(1.0f), zero = _mm256_setzero_ps();
     const __m256i lane = _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7);
     for (uint32_t k = 0; k < targets.count; ++k) {
@@ -65,6 +67,7 @@ __attribute__((target("avx2"))) void add_pair_forces_avx2(
         const __m256 oma = _mm256_loadu_ps(targets.one_minus_alpha + size_t(k) * 8);
         const int self = int(targets.self + k);
         __m256 ax = zero, az = zero, touching = zero;
+        uint32_t pairs = 0;
         for (uint32_t c0 = 0; c0 < candidates.chunks; c0 += force_lanes) {
             const __m256 cx =
                 _mm256_sub_ps(qx, _mm256_loadu_ps(candidates.centre_x + c0));
@@ -89,6 +92,7 @@ __attribute__((target("avx2"))) void add_pair_forces_avx2(
                     _mm256_andnot_ps(is_self, _mm256_cmp_ps(d2, r2, _CMP_LT_OQ));
                 const __m256 at_zero = _mm256_cmp_ps(d2, zero, _CMP_EQ_OQ);
                 touching = _mm256_or_ps(touching, _mm256_and_ps(in, at_zero));
+                pairs += uint32_t(__builtin_popcount(unsigned(_mm256_movemask_ps(in))));
                 const __m256 d = _mm256_sqrt_ps(_mm256_blendv_ps(d2, one, at_zero));
                 const __m256 type_oma = _mm256_permutevar8x32_ps(
                     oma, _mm256_loadu_si256(
@@ -103,9 +107,10 @@ __attribute__((target("avx2"))) void add_pair_forces_avx2(
         alignas(32) float lanes_x[force_lanes], lanes_z[force_lanes];
         _mm256_store_ps(lanes_x, ax);
         _mm256_store_ps(lanes_z, az);
-        sum_x[k] = lane_sum(lanes_x);
-        sum_z[k] = lane_sum(lanes_z);
-        coincident[k] = _mm256_movemask_ps(touching) != 0;
+        out.x[k] = lane_sum(lanes_x);
+        out.z[k] = lane_sum(lanes_z);
+        out.coincident[k] = _mm256_movemask_ps(touching) != 0;
+        out.pairs[k] = pairs;
     }
 }
 
@@ -119,11 +124,11 @@ const bool has_avx2 = [] {
 bool pair_forces_use_avx2() { return has_avx2; }
 
 void add_pair_forces(const ForceTargets &targets, const ForceCandidates &candidates,
-                     float *sum_x, float *sum_z, uint8_t *coincident) {
+                     const ForceSums &out) {
     if (has_avx2)
-        add_pair_forces_avx2(targets, candidates, sum_x, sum_z, coincident);
+        add_pair_forces_avx2(targets, candidates, out);
     else
-        add_pair_forces_scalar(targets, candidates, sum_x, sum_z, coincident);
+        add_pair_forces_scalar(targets, candidates, out);
 }
 
 #else
@@ -131,8 +136,8 @@ void add_pair_forces(const ForceTargets &targets, const ForceCandidates &candida
 bool pair_forces_use_avx2() { return false; }
 
 void add_pair_forces(const ForceTargets &targets, const ForceCandidates &candidates,
-                     float *sum_x, float *sum_z, uint8_t *coincident) {
-    add_pair_forces_scalar(targets, candidates, sum_x, sum_z, coincident);
+                     const ForceSums &out) {
+    add_pair_forces_scalar(targets, candidates, out);
 }
 
 #endif

@@ -42,16 +42,21 @@ struct ForceTargets {
     uint32_t self = 0;  // candidate self + k is target k itself (never its own push)
 };
 
-// Writes each target's sum over the candidates into sum_x/sum_z, and sets
-// coincident[k] to whether a candidate lies exactly on target k (d = 0 in floats): that
-// pair has no direction, and the caller adds its tie-break push.
+// What the kernel writes per target.
+struct ForceSums {
+    float *x = nullptr, *z = nullptr;  // the sum over the candidates
+    // Whether a candidate lies exactly on the target (d = 0 in floats): that pair has no
+    // direction, and the caller adds its tie-break push.
+    uint8_t *coincident = nullptr;
+    uint32_t *pairs = nullptr;  // candidates within r (the work that is not wasted)
+};
+
 void add_pair_forces(const ForceTargets &targets, const ForceCandidates &candidates,
-                     float *sum_x, float *sum_z, uint8_t *coincident);
+                     const ForceSums &out);
 
 // The same sums in plain C++, lane by lane (what add_pair_forces runs without AVX2).
 void add_pair_forces_scalar(const ForceTargets &targets,
-                            const ForceCandidates &candidates, float *sum_x, float *sum_z,
-                            uint8_t *coincident);
+                            const ForceCandidates &candidates, const ForceSums &out);
 
 // Whether add_pair_forces runs eight lanes in AVX2 on this CPU.
 bool pair_forces_use_avx2();

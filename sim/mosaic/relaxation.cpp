@@ -68,7 +68,10 @@ class Unfolder {
         collect_reached(s);
         out.reserve(s.tris.size());
         if (!verified || consistent) {
-            for (TriId j : s.tris) out.push_back({j, s.queue[s.first[j]].to_t.inverse()});
+            for (TriId j : s.tris) {
+                const RigidMap2 &to_t = s.queue[s.first[j]].to_t;
+                out.push_back({j, float(unfolded_distance(t, j, to_t)), to_t.inverse()});
+            }
             return;
         }
         keep_geodesically_checked_images(t, s, out);
@@ -171,6 +174,14 @@ class Unfolder {
         return accept;
     }
 
+    // How far j, carried into t's frame by to_t, lies from t in the unfolding.
+    double unfolded_distance(TriId t, TriId j, const RigidMap2 &to_t) const {
+        if (j == t) return 0;
+        const auto &vt = crps.frame(t).v, &vj = crps.frame(j).v;
+        const Vec2d mapped[3] = {to_t.apply(vj[0]), to_t.apply(vj[1]), to_t.apply(vj[2])};
+        return triangle_triangle_distance(vt.data(), mapped);
+    }
+
     // The triangles reached, in triangle order (the force loop's order), into s.tris.
     static void collect_reached(UnfoldingScratch &s) {
         s.tris.clear();
@@ -205,7 +216,11 @@ class Unfolder {
                 best = best_image(j, &*lo, &*lo + (hi - lo), s, best_error);
             }
             if (best == none || best_error > tolerance) continue;
-            out.push_back({j, s.queue[best].to_t.inverse()});
+            const RigidMap2 &to_t = s.queue[best].to_t;
+            // Kept for a radius R' while its error is within image_tolerance·R'.
+            const double needs = std::max(unfolded_distance(t, j, to_t),
+                                          best_error / Neighbourhoods::image_tolerance);
+            out.push_back({j, float(needs), to_t.inverse()});
         }
     }
 
@@ -253,8 +268,16 @@ class Unfolder {
 
 void Neighbourhoods::update(const Crps &crps, double r) {
     const size_t nt = crps.num_triangles();
-    if (m_entries.size() == nt && r <= m_radius && r * rebuild_ratio >= m_radius) return;
+    const bool built = m_entries.size() == nt && m_radius > 0 && r <= m_radius;
+    if (built && r * slack * filter_ratio >= m_radius) return;
     const auto start = std::chrono::steady_clock::now();
+    if (built) {
+        filter(r * slack);
+        m_seconds +=
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - start)
+                .count();
+        return;
+    }
     m_radius = r * slack;
     m_entries.assign(nt, {});
     m_bounding.resize(nt);
@@ -286,6 +309,27 @@ void Neighbourhoods::update(const Crps &crps, double r) {
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
+// The entries of a smaller radius R from those of a larger one: a triangle stays while
+// it lies within R in its unfolding and its image agrees with the exact geodesics within
+// image_tolerance·R. Every triangle of a fresh build at R is among them, but for one
+// reached only by a path that the larger radius's unfolding did not keep (max_images);
+// a triangle that is kept may have been left unchecked by a fresh build (its unfolding
+// agreeing with itself) and now be dropped: the subset errs on the side of no fold.
+void Neighbourhoods::filter(double R) {
+    tbb::parallel_for(
+        tbb::blocked_range<size_t>(0, m_entries.size(), 256), [&](const auto &range) {
+            for (size_t t = range.begin(); t != range.end(); ++t) {
+                auto &e = m_entries[t];
+                e.erase(
+                    std::remove_if(e.begin(), e.end(),
+                                   [R](const Entry &x) { return double(x.needs) > R; }),
+                    e.end());
+            }
+        });
+    m_radius = R;
+    ++m_filters;
+}
+
 namespace {
 
 // Deterministic direction for two coincident cells (d = 0): a hashed angle of the pair,
@@ -307,9 +351,18 @@ RelaxStepResult Relaxer::step(const RelaxContext &ctx, Cells &cells,
     m_nbhd.update(*ctx.crps, ctx.r);
     gather_by_triangle(cells, ctx.crps->num_triangles());
     size_moves(active);
+    const auto start = std::chrono::steady_clock::now();
     accumulate_forces(ctx, active);
+    m_force_seconds +=
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     walk_moves(*ctx.crps, active);
     return apply_moves(cells, active);
+}
+
+uint64_t Relaxer::interacting_pairs() const {
+    uint64_t n = 0;
+    for (const ForceScratch &s : m_force_scratch) n += s.pairs_total;
+    return n;
 }
 
 // Cells into triangle order (parallel: each triangle fills its own range), in doubles
@@ -428,9 +481,11 @@ void Relaxer::push_triangle(const RelaxContext &ctx, TriId t, const OneMinusAlph
                                s.target_oma.data(),
                                n,
                                self};
-    add_pair_forces(targets, candidates, s.sum_x.data(), s.sum_z.data(),
-                    s.coincident.data());
+    add_pair_forces(
+        targets, candidates,
+        ForceSums{s.sum_x.data(), s.sum_z.data(), s.coincident.data(), s.pairs.data()});
     for (uint32_t k = 0; k < n; ++k) {
+        s.pairs_total += s.pairs[k];
         D[k] = Vec2d{s.sum_x[k], s.sum_z[k]};
         if (s.coincident[k]) D[k] += tie_break_pushes(ctx, oma, begin + k, s, targets, k);
     }

@@ -25,9 +25,10 @@
 
 namespace pelage::sim {
 
-// Unfoldings within a radius R ≥ r, cached per triangle while the radius stays close: r
-// only shrinks as cells are added, so the cache is rebuilt when r < R / rebuild_ratio
-// (keeping the candidate set tight) or r > R (it would miss triangles).
+// Unfoldings within a radius R ≥ r, built once and kept per triangle: r only shrinks as
+// cells are added, so when r < R / (slack · filter_ratio) the entries farther than the
+// new R are dropped (keeping the candidate set tight without unfolding again); the cache
+// is built anew only when r > R (it would miss triangles) or the surface changes shape.
 //
 // The unfolding walks across edges only, so every map is the unfolding of an edge path
 // (Teo's vertex maps rotate about a line, not along the surface). Around a vertex whose
@@ -47,9 +48,13 @@ class Neighbourhoods {
   public:
     struct Entry {
         TriId tri;
+        // The smallest R this entry belongs to: the distance from t to j in the
+        // unfolding, and the image's disagreement with exact geodesics over
+        // image_tolerance.
+        float needs;
         RigidMap2 to_nbr;  // F[t→j]: carries a point of t into j's frame
     };
-    static constexpr double slack = 1.15, rebuild_ratio = 1.5;
+    static constexpr double slack = 1.15, filter_ratio = 1.1;
     static constexpr int max_images = 3;
     static constexpr double image_tolerance = 0.05;
 
@@ -65,16 +70,19 @@ class Neighbourhoods {
     double bounding_radius(TriId t) const { return m_bounding[t]; }
     double radius() const { return m_radius; }
     size_t rebuilds() const { return m_rebuilds; }
+    size_t filters() const { return m_filters; }
     double seconds() const { return m_seconds; }  // total time spent building
     // The entries over all triangles, and the memory they take.
     size_t entries() const;
     size_t bytes() const;
 
   private:
+    void filter(double R);
+
     std::vector<std::vector<Entry>> m_entries;
     std::vector<double> m_bounding;
     double m_radius = 0;
-    size_t m_rebuilds = 0;
+    size_t m_rebuilds = 0, m_filters = 0;
     double m_seconds = 0;
     bool m_verified = true;
 };
@@ -116,6 +124,10 @@ class Relaxer {
     RelaxStepResult step(const RelaxContext &ctx, Cells &cells,
                          const std::vector<TriId> &active);
     Neighbourhoods &neighbourhoods() { return m_nbhd; }
+    // Over all steps so far: the wall time of the force sum, and the pairs of cells
+    // within r it met (the work the relaxation cannot do without).
+    double force_seconds() const { return m_force_seconds; }
+    uint64_t interacting_pairs() const;
     // Every neighbour within r of cell c that pushes it, as step() would find them now
     // (for tests and tools; rebuilds the per-step state). Distances here are doubles;
     // step() decides d < r in floats, which can differ for a pair at r within 1e-7 r.
@@ -133,6 +145,8 @@ class Relaxer {
         std::vector<double> r;
         std::vector<float> target_x, target_z, target_r, target_oma, sum_x, sum_z;
         std::vector<uint8_t> coincident;
+        std::vector<uint32_t> pairs;
+        uint64_t pairs_total = 0;  // over the steps, for the statistics
         std::vector<float> x, z, centre_x, centre_z, radius;
         std::vector<int32_t> type;
         std::vector<uint32_t> row;  // the candidate's row in triangle order, or none
@@ -146,6 +160,7 @@ class Relaxer {
             sum_x.resize(n);
             sum_z.resize(n);
             coincident.resize(n);
+            pairs.resize(n);
         }
         // Room for `chunks` chunks; chunks past the candidates' are never read as cells.
         void resize_candidates(size_t chunks) {
@@ -195,6 +210,7 @@ class Relaxer {
     std::vector<double> m_chunk_x, m_chunk_z;  // per chunk of eight, its circle
     std::vector<float> m_chunk_radius;
     tbb::enumerable_thread_specific<ForceScratch> m_force_scratch;
+    double m_force_seconds = 0;
     std::vector<Vec2d> m_move;           // per active cell, in active order
     std::vector<uint32_t> m_active_row;  // offsets of each active triangle's cells
     std::vector<SurfacePoint> m_dest;

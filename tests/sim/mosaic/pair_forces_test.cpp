@@ -105,13 +105,15 @@ Case make_case(uint32_t seed) {
 struct Sums {
     std::vector<float> x, z;
     std::vector<uint8_t> coincident;
+    std::vector<uint32_t> pairs;
 };
 
 template <typename Kernel>
 Sums run(const Case &c, Kernel kernel) {
     Sums s{std::vector<float>(c.tx.size(), -7), std::vector<float>(c.tx.size(), -7),
-           std::vector<uint8_t>(c.tx.size(), 9)};
-    kernel(c.targets(), c.candidates(), s.x.data(), s.z.data(), s.coincident.data());
+           std::vector<uint8_t>(c.tx.size(), 9), std::vector<uint32_t>(c.tx.size(), 99)};
+    kernel(c.targets(), c.candidates(),
+           ForceSums{s.x.data(), s.z.data(), s.coincident.data(), s.pairs.data()});
     return s;
 }
 
@@ -126,11 +128,13 @@ TEST(PairForces, TheSumsAreWaltersFormulaOverEveryCellWithinR) {
             const double r = c.tr[k];
             double ex = 0, ez = 0, scale = 0;
             bool on_top = false;
+            uint32_t within = 0;
             for (size_t p = 0; p < c.x.size(); ++p) {
                 if (c.x[p] == force_padding_position || p == c.self + k) continue;
                 const double dx = double(c.tx[k]) - c.x[p], dz = double(c.tz[k]) - c.z[p];
                 const double d = std::hypot(dx, dz);
                 if (d >= r) continue;
+                ++within;
                 if (d == 0) {
                     on_top = true;
                     continue;
@@ -144,6 +148,7 @@ TEST(PairForces, TheSumsAreWaltersFormulaOverEveryCellWithinR) {
             EXPECT_NEAR(s.x[k], ex, 1e-5 * scale + 1e-7) << "seed " << seed << " k " << k;
             EXPECT_NEAR(s.z[k], ez, 1e-5 * scale + 1e-7) << "seed " << seed << " k " << k;
             EXPECT_EQ(bool(s.coincident[k]), on_top) << "seed " << seed << " k " << k;
+            EXPECT_EQ(s.pairs[k], within) << "seed " << seed << " k " << k;
             touching += on_top;
         }
     }
@@ -161,6 +166,7 @@ TEST(PairForces, TheAvx2PathGivesTheScalarPathsBits) {
         ASSERT_EQ(0, std::memcmp(a.z.data(), b.z.data(), a.z.size() * sizeof(float)))
             << "seed " << seed;
         ASSERT_EQ(a.coincident, b.coincident) << "seed " << seed;
+        ASSERT_EQ(a.pairs, b.pairs) << "seed " << seed;
     }
 }
 
