@@ -75,6 +75,8 @@ nlohmann::json mclone_runs(const McloneOptions &o) {
                         {"final_cells", grown.data.num_cells()},
                         {"cell_steps", grown.stats.cell_steps},
                         {"ns_per_cell_step", 1e9 * cpu / steps},
+                        {"seconds_force_sum", grown.stats.seconds_force_sum},
+                        {"interacting_pairs", grown.stats.interacting_pairs},
                         {"speedup", mclone_cpu_seconds / cpu}};
         }
         runs.push_back(best);

@@ -150,9 +150,13 @@ def t_sim():
 def t_sim_mclone():
     d = data("bench_sim")["mclone"]
     rows = [[r["relax"], num(r["final_cells"]), num(r["cell_steps"]),
-             f"{r['cpu_seconds']:.2f}", num(r["ns_per_cell_step"]), f"{r['speedup']:.1f}×"]
+             f"{r['cpu_seconds']:.2f}", num(r["ns_per_cell_step"]),
+             num(r["interacting_pairs"] / max(r["cell_steps"], 1)),
+             f"{1e9 * r['seconds_force_sum'] / max(r['interacting_pairs'], 1):.2f}",
+             pct(r["seconds_force_sum"] / r["seconds"], 0), f"{r['speedup']:.1f}×"]
             for r in d["runs"]]
     return (table(["relaxation", "final cells", "cell-steps", "CPU s", "ns / cell-step",
+                   "pairs / cell-step", "force sum ns / pair", "force sum share",
                    "MClone CPU s / pelage CPU s"], rows) +
             f"\nWalter's cheetah-like configuration (thesis Fig. 3.10 with Queiroz's w_d: "
             f"ρ 18, w_r 2, {num(d['initial_cells'])} initial cells, 15 days, division times "
@@ -210,6 +214,7 @@ def t_sim_neighbours():
 
 def t_default_job():
     s, st = data("sim_cow_giraffe"), data("stats_cow_giraffe")
+    s2 = data("sim_cow_giraffe_2threads")
     by_type = ", ".join(f"{k} {num(v)}" for k, v in sorted(s["cells_by_type"].items()))
     return table(["", ""], [
         ["command", f"`pelage sim --mesh scenes/meshes/cow.off --preset {s['preset']} "
@@ -219,6 +224,15 @@ def t_default_job():
         ["divisions, relaxation steps", f"{num(s['divisions'])}, {num(s['relax_steps'])} "
                                         f"(+{s['initial_relax_steps']} initial, {s['relax']})"],
         ["seconds (one thread)", f"{num(s['seconds'])} ({num(s['seconds_initial'])} initial relaxation)"],
+        ["seconds (two threads)", f"{num(s2['seconds'])} ({num(s2['seconds_initial'])} initial relaxation)"],
+        ["where the time goes (one thread)",
+         f"neighbourhoods {num(s['seconds_neighbourhoods'])} s, force sum "
+         f"{num(s['seconds_force_sum'])} s ({pct(s['seconds_force_sum'] / s['seconds'], 0)}), "
+         f"the rest {num(s['seconds'] - s['seconds_neighbourhoods'] - s['seconds_force_sum'])} s"],
+        ["interacting pairs", f"{num(s['interacting_pairs'])}, "
+                              f"{num(s['interacting_pairs'] / s['cell_steps'])} per cell-step, "
+                              f"{1e9 * s['seconds_force_sum'] / s['interacting_pairs']:.2f} ns each "
+                              "in the force sum"],
         ["spot fraction, spots, largest spot", f"{st['spot_fraction']:.3f}, {st['spot_count']}, "
                                                f"{num(st['largest_spot_cells'])} cells"],
         ["spot fraction by area", f"{st['spot_fraction_by_area']:.3f} "

@@ -108,6 +108,9 @@ run crps_sphere   "$pelage" crps --mesh procedural:sphere:20x20 --threads 1 \
 run sim_cow       "$pelage" sim --mesh scenes/meshes/cow.off --preset giraffe-reticulata \
                       --seed 1 --threads 1 -o "$work/cow_giraffe.cells" \
                       --stats-json "$out/sim_cow_giraffe.json"
+run sim_cow_2threads "$pelage" sim --mesh scenes/meshes/cow.off --preset giraffe-reticulata \
+                      --seed 1 --threads 2 -o "$work/cow_giraffe_2threads.cells" \
+                      --stats-json "$out/sim_cow_giraffe_2threads.json"
 run stats_cow     "$pelage" stats "$work/cow_giraffe.cells" --mesh scenes/meshes/cow.off \
                       --stats-json "$out/stats_cow_giraffe.json"
 
