@@ -27,11 +27,15 @@ void add_pair_forces_scalar(const ForceTargets &targets,
         uint32_t pairs = 0;
         for (uint32_t c = 0; c < candidates.chunks; ++c) {
             if (!reaches_chunk(qx, qz, r, candidates, c)) continue;
+            const float gc = candidates.map_c[c], gs = candidates.map_s[c],
+                        gx = candidates.map_x[c], gz = candidates.map_z[c];
             for (uint32_t l = 0; l < force_lanes; ++l) {
-                const uint32_t p = c * force_lanes + l;
-                const float dx = qx - candidates.x[p], dz = qz - candidates.z[p];
+                const uint32_t p = candidates.first[c] + l;
+                const float px = candidates.x[p], pz = candidates.z[p];
+                const float dx = qx - (gc * px - gs * pz + gx);
+                const float dz = qz - (gs * px + gc * pz + gz);
                 const float d2 = dx * dx + dz * dz;
-                const bool in = d2 < r2 && p != self;
+                const bool in = d2 < r2 && p != self && px != force_padding_position;
                 const bool zero = d2 == 0.0f;
                 touching = touching || (in && zero);
                 pairs += in;
@@ -59,6 +63,7 @@ __attribute__((target("avx2"))) void add_pair_forces_avx2(
     const ForceTargets &targets, const ForceCandidates &candidates,
     const ForceSums &out) {
     const __m256 one = _mm256_set1_ps(1.0f), zero = _mm256_setzero_ps();
+    const __m256 padding = _mm256_set1_ps(force_padding_position);
     const __m256i lane = _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7);
     for (uint32_t k = 0; k < targets.count; ++k) {
         const __m256 qx = _mm256_set1_ps(targets.x[k]), qz = _mm256_set1_ps(targets.z[k]);
@@ -80,16 +85,28 @@ __attribute__((target("avx2"))) void add_pair_forces_avx2(
                               _mm256_mul_ps(reach, reach), _CMP_LE_OQ);
             for (unsigned bits = unsigned(_mm256_movemask_ps(near)); bits;
                  bits &= bits - 1) {
-                const uint32_t p = (c0 + uint32_t(__builtin_ctz(bits))) * force_lanes;
-                const __m256 dx = _mm256_sub_ps(qx, _mm256_loadu_ps(candidates.x + p));
-                const __m256 dz = _mm256_sub_ps(qz, _mm256_loadu_ps(candidates.z + p));
+                const uint32_t c = c0 + uint32_t(__builtin_ctz(bits));
+                const uint32_t p = candidates.first[c];
+                const __m256 gc = _mm256_broadcast_ss(candidates.map_c + c),
+                             gs = _mm256_broadcast_ss(candidates.map_s + c);
+                const __m256 px = _mm256_loadu_ps(candidates.x + p),
+                             pz = _mm256_loadu_ps(candidates.z + p);
+                const __m256 mx = _mm256_add_ps(
+                    _mm256_sub_ps(_mm256_mul_ps(gc, px), _mm256_mul_ps(gs, pz)),
+                    _mm256_broadcast_ss(candidates.map_x + c));
+                const __m256 mz = _mm256_add_ps(
+                    _mm256_add_ps(_mm256_mul_ps(gs, px), _mm256_mul_ps(gc, pz)),
+                    _mm256_broadcast_ss(candidates.map_z + c));
+                const __m256 dx = _mm256_sub_ps(qx, mx), dz = _mm256_sub_ps(qz, mz);
                 const __m256 d2 =
                     _mm256_add_ps(_mm256_mul_ps(dx, dx), _mm256_mul_ps(dz, dz));
-                const __m256 is_self = _mm256_castsi256_ps(
-                    _mm256_cmpeq_epi32(_mm256_add_epi32(lane, _mm256_set1_epi32(int(p))),
-                                       _mm256_set1_epi32(self)));
+                const __m256 skip =
+                    _mm256_or_ps(_mm256_castsi256_ps(_mm256_cmpeq_epi32(
+                                     _mm256_add_epi32(lane, _mm256_set1_epi32(int(p))),
+                                     _mm256_set1_epi32(self))),
+                                 _mm256_cmp_ps(px, padding, _CMP_EQ_OQ));
                 const __m256 in =
-                    _mm256_andnot_ps(is_self, _mm256_cmp_ps(d2, r2, _CMP_LT_OQ));
+                    _mm256_andnot_ps(skip, _mm256_cmp_ps(d2, r2, _CMP_LT_OQ));
                 const __m256 at_zero = _mm256_cmp_ps(d2, zero, _CMP_EQ_OQ);
                 touching = _mm256_or_ps(touching, _mm256_and_ps(in, at_zero));
                 pairs += uint32_t(__builtin_popcount(unsigned(_mm256_movemask_ps(in))));

@@ -3,10 +3,10 @@
 //   D += (C − P)·(1 − α[C][P])·(r/d − 1)     for every P with 0 < d = |C − P| < r,
 // which is unit(C − P)·(1 − d/r)·(1 − α)·r written with one square root and one division.
 //
-// The candidates (the cells of the triangles of the unfolding, Teo §5.1.2) are carried
-// into the pushed triangle's frame once per step, not once per pushed cell, in chunks of
-// eight cells with a bounding circle each. A pushed cell tests eight chunks' circles at
-// a time and meets only the cells of the chunks it reaches.
+// The candidates are the cells of the triangles of the unfolding (Teo §5.1.2), in chunks
+// of eight with a bounding circle each. The circles are carried into the pushed
+// triangle's frame once per step; a pushed cell tests eight circles at a time, and only
+// the chunks it reaches have their cells carried into its frame and met.
 //
 // Floats, eight lanes: lane l sums candidates l, l + 8, ..., and the lanes are added in
 // one fixed tree. Only IEEE-exact operations are used (no fused multiply-add, no
@@ -23,14 +23,19 @@ inline constexpr uint32_t force_lanes = 8;
 // Where padding cells and chunks lie: squared distances stay finite in floats.
 inline constexpr float force_padding_position = 1e18f;
 
-// The candidates, in the pushed triangle's frame: cells padded to whole chunks with
-// cells at force_padding_position, chunks padded to whole lanes of chunks likewise.
+// The cells lie in their own triangles' frames, each triangle's padded to whole chunks
+// with cells at force_padding_position. The candidate chunks are listed with the map
+// into the pushed triangle's frame, padded to whole lanes of chunks with circles at
+// force_padding_position.
 struct ForceCandidates {
     const float *x = nullptr, *z = nullptr;
     const int32_t *type = nullptr;  // cell types, < max_cell_types
-    // Per chunk: a circle holding its cells (a margin included).
+    // Per candidate chunk: where its cells start in x/z/type, the rigid map (cos, sin,
+    // shift) into the pushed frame, and a circle there holding them (a margin included).
+    const uint32_t *first = nullptr;
+    const float *map_c = nullptr, *map_s = nullptr, *map_x = nullptr, *map_z = nullptr;
     const float *centre_x = nullptr, *centre_z = nullptr, *radius = nullptr;
-    uint32_t chunks = 0;  // a multiple of force_lanes; cells = chunks · force_lanes
+    uint32_t chunks = 0;  // a multiple of force_lanes
 };
 
 // The pushed cells, in their triangle's frame.
@@ -39,7 +44,8 @@ struct ForceTargets {
     const float *r = nullptr;                // each cell's radius
     const float *one_minus_alpha = nullptr;  // 8 per cell: 1 − α felt from each type
     uint32_t count = 0;
-    uint32_t self = 0;  // candidate self + k is target k itself (never its own push)
+    uint32_t self =
+        0;  // cell self + k of x/z/type is target k itself (never its own push)
 };
 
 // What the kernel writes per target.

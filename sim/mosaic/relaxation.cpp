@@ -132,9 +132,9 @@ void Relaxer::size_moves(const std::vector<TriId> &active) {
     m_dest.resize(n_active_cells);
 }
 
-// The pushes on the cells of triangle t, summed into D in t's frame: the cells of every
-// triangle of its unfolding, with their chunks' circles, are carried into t's frame
-// once, and meet t's cells eight at a time (pair_forces.h).
+// The pushes on the cells of triangle t, summed into D in t's frame: the chunks of every
+// triangle of its unfolding are listed with their maps and circles in t's frame, and
+// meet t's cells eight at a time (pair_forces.h).
 void Relaxer::push_triangle(const RelaxContext &ctx, TriId t, const OneMinusAlpha &oma,
                             ForceScratch &s, Vec2d *D) const {
     const uint32_t begin = m_row[t], n = m_row[t + 1] - begin;
@@ -150,102 +150,74 @@ void Relaxer::push_triangle(const RelaxContext &ctx, TriId t, const OneMinusAlph
         for (int q = 0; q < max_cell_types; ++q)
             s.target_oma[size_t(k) * max_cell_types + q] = static_cast<float>(row[q]);
     }
-    const uint32_t self = gather_candidates(t, s);
-    const ForceCandidates candidates{s.x.data(),
-                                     s.z.data(),
-                                     s.type.data(),
-                                     s.centre_x.data(),
-                                     s.centre_z.data(),
-                                     s.radius.data(),
-                                     static_cast<uint32_t>(s.radius.size())};
-    const ForceTargets targets{s.target_x.data(),
-                               s.target_z.data(),
-                               s.target_r.data(),
-                               s.target_oma.data(),
-                               n,
-                               self};
+    list_candidate_chunks(t, s);
+    const ForceCandidates candidates{
+        m_fx.data(),       m_fz.data(),     m_ftype.data(),
+        s.first.data(),    s.map_c.data(),  s.map_s.data(),
+        s.map_x.data(),    s.map_z.data(),  s.centre_x.data(),
+        s.centre_z.data(), s.radius.data(), static_cast<uint32_t>(s.radius.size())};
+    const ForceTargets targets{
+        s.target_x.data(), s.target_z.data(), s.target_r.data(), s.target_oma.data(), n,
+        m_padded_row[t]};
     add_pair_forces(
         targets, candidates,
         ForceSums{s.sum_x.data(), s.sum_z.data(), s.coincident.data(), s.pairs.data()});
     for (uint32_t k = 0; k < n; ++k) {
         s.pairs_total += s.pairs[k];
         D[k] = Vec2d{s.sum_x[k], s.sum_z[k]};
-        if (s.coincident[k]) D[k] += tie_break_pushes(ctx, oma, begin + k, s, targets, k);
+        if (s.coincident[k])
+            D[k] += tie_break_pushes(ctx, oma, begin + k, s, candidates, targets, k);
     }
 }
 
-// The cells of t's unfolding carried into t's frame, in entry order, each triangle's
-// padded to whole chunks and the chunks to whole lanes. Returns where t's own cells
-// start.
-uint32_t Relaxer::gather_candidates(TriId t, ForceScratch &s) const {
-    const auto &entries = m_nbhd.of(t);
-    uint32_t chunks = 0;
-    for (const Neighbourhoods::Entry &e : entries)
-        chunks += (m_padded_row[e.tri + 1] - m_padded_row[e.tri]) / force_lanes;
-    const uint32_t lanes_of_chunks =
-        (chunks + force_lanes - 1) / force_lanes * force_lanes;
-    s.resize_candidates(lanes_of_chunks);
-    float *x = s.x.data(), *z = s.z.data();
-    int32_t *type = s.type.data();
-    uint32_t *row = s.row.data();
-    uint32_t c = 0, self = 0;
-    for (const Neighbourhoods::Entry &e : entries) {
+// The chunks of t's unfolding in entry order, with the map into t's frame in floats
+// (its rounding, 1e-7 of the frame's size, is far below any distance the forces
+// resolve) and their circles carried there, padded to whole lanes of chunks.
+void Relaxer::list_candidate_chunks(TriId t, ForceScratch &s) const {
+    s.clear_candidates();
+    for (const Neighbourhoods::Entry &e : m_nbhd.of(t)) {
         const TriId j = e.tri;
-        const uint32_t first = m_padded_row[j], padded = m_padded_row[j + 1] - first;
-        if (padded == 0) continue;
-        if (j == t) self = c * force_lanes;
         const RigidMap2 G = e.to_nbr.inverse();  // F[j→t]
-        for (uint32_t jc = first / force_lanes; jc < (first + padded) / force_lanes;
-             ++jc, ++c) {
-            const Vec2d centre = G.apply({m_chunk_x[jc], m_chunk_z[jc]});
-            s.centre_x[c] = static_cast<float>(centre.x);
-            s.centre_z[c] = static_cast<float>(centre.y);
-            s.radius[c] = m_chunk_radius[jc];
-        }
-        // The map in floats: its rounding (1e-7 of the frame's size) is far below any
-        // distance the forces resolve.
         const float gc = static_cast<float>(G.c), gs = static_cast<float>(G.s),
                     gx = static_cast<float>(G.ax), gz = static_cast<float>(G.ay);
-        const float *px = m_fx.data() + first, *pz = m_fz.data() + first;
-        for (uint32_t p = 0; p < padded; ++p) {
-            x[p] = gc * px[p] - gs * pz[p] + gx;
-            z[p] = gs * px[p] + gc * pz[p] + gz;
+        for (uint32_t jc = m_padded_row[j] / force_lanes;
+             jc < m_padded_row[j + 1] / force_lanes; ++jc) {
+            const Vec2d centre = G.apply({m_chunk_x[jc], m_chunk_z[jc]});
+            s.add_candidate(jc * force_lanes, j, gc, gs, gx, gz,
+                            static_cast<float>(centre.x), static_cast<float>(centre.y),
+                            m_chunk_radius[jc]);
         }
-        const uint32_t n = m_row[j + 1] - m_row[j];
-        for (uint32_t p = 0; p < n; ++p) row[p] = m_row[j] + p;
-        std::copy_n(m_ftype.data() + first, padded, type);
-        for (uint32_t p = n; p < padded; ++p) {
-            x[p] = z[p] = force_padding_position;
-            row[p] = ~uint32_t(0);
-        }
-        x += padded;
-        z += padded;
-        type += padded;
-        row += padded;
     }
-    s.cells = c * force_lanes;
-    for (; c < lanes_of_chunks; ++c) {
-        s.centre_x[c] = s.centre_z[c] = force_padding_position;
-        s.radius[c] = 0;
-    }
-    return self;
+    while (s.radius.size() % force_lanes)
+        s.add_candidate(0, t, 1, 0, 0, 0, force_padding_position, force_padding_position,
+                        0);
 }
 
 // The pushes on target k from the candidates lying exactly on it (as the kernel's
 // floats see them): each pair separates along its hashed direction, in t's frame.
 Vec2d Relaxer::tie_break_pushes(const RelaxContext &ctx, const OneMinusAlpha &oma,
                                 uint32_t row_k, const ForceScratch &s,
+                                const ForceCandidates &candidates,
                                 const ForceTargets &targets, uint32_t k) const {
     const double *row = one_minus_alpha_row(ctx, oma, row_k);
     const float qx = targets.x[k], qz = targets.z[k], r = targets.r[k];
     Vec2d push{};
-    for (size_t p = 0; p < s.cells; ++p) {
-        if (s.row[p] == ~uint32_t(0)) continue;
-        const float dx = qx - s.x[p], dz = qz - s.z[p];
-        const float d2 = dx * dx + dz * dz;
-        if (!(d2 < r * r) || d2 != 0.0f || p == targets.self + k) continue;
-        const Vec2d u = tie_break_direction(ctx.seed, m_sid[row_k], m_sid[s.row[p]]);
-        push += u * (row[m_st[s.row[p]]] * s.r[k]);
+    for (uint32_t c = 0; c < candidates.chunks; ++c) {
+        if (!reaches_chunk(qx, qz, r, candidates, c)) continue;
+        const TriId j = s.tri[c];
+        for (uint32_t l = 0; l < force_lanes; ++l) {
+            const uint32_t p = candidates.first[c] + l;
+            const float px = m_fx[p], pz = m_fz[p];
+            const float dx = qx - (s.map_c[c] * px - s.map_s[c] * pz + s.map_x[c]);
+            const float dz = qz - (s.map_s[c] * px + s.map_c[c] * pz + s.map_z[c]);
+            const float d2 = dx * dx + dz * dz;
+            if (px == force_padding_position || p == targets.self + k || !(d2 < r * r) ||
+                d2 != 0.0f)
+                continue;
+            const uint32_t row_p = m_row[j] + (p - m_padded_row[j]);
+            const Vec2d u = tie_break_direction(ctx.seed, m_sid[row_k], m_sid[row_p]);
+            push += u * (row[m_st[row_p]] * s.r[k]);
+        }
     }
     return push;
 }

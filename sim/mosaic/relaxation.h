@@ -88,10 +88,10 @@ class Relaxer {
         std::vector<uint8_t> coincident;
         std::vector<uint32_t> pairs;
         uint64_t pairs_total = 0;  // over the steps, for the statistics
-        std::vector<float> x, z, centre_x, centre_z, radius;
-        std::vector<int32_t> type;
-        std::vector<uint32_t> row;  // the candidate's row in triangle order, or none
-        size_t cells = 0;           // candidates written, padding included
+        // The candidate chunks (pair_forces.h ForceCandidates), and each one's triangle.
+        std::vector<uint32_t> first;
+        std::vector<TriId> tri;
+        std::vector<float> map_c, map_s, map_x, map_z, centre_x, centre_z, radius;
         void resize(size_t n) {
             r.resize(n);
             target_x.resize(n);
@@ -103,18 +103,24 @@ class Relaxer {
             coincident.resize(n);
             pairs.resize(n);
         }
-        // Room for `chunks` chunks; chunks past the candidates' are never read as cells.
-        void resize_candidates(size_t chunks) {
-            const size_t cells = chunks * force_lanes;
-            if (x.size() < cells) {
-                x.resize(cells);
-                z.resize(cells);
-                type.resize(cells);
-                row.resize(cells);
-            }
-            centre_x.resize(chunks);
-            centre_z.resize(chunks);
-            radius.resize(chunks);
+        void clear_candidates() {
+            for (auto *v :
+                 {&map_c, &map_s, &map_x, &map_z, &centre_x, &centre_z, &radius})
+                v->clear();
+            first.clear();
+            tri.clear();
+        }
+        void add_candidate(uint32_t at, TriId j, float c, float s, float x, float z,
+                           float cx, float cz, float rad) {
+            first.push_back(at);
+            tri.push_back(j);
+            map_c.push_back(c);
+            map_s.push_back(s);
+            map_x.push_back(x);
+            map_z.push_back(z);
+            centre_x.push_back(cx);
+            centre_z.push_back(cz);
+            radius.push_back(rad);
         }
     };
 
@@ -123,10 +129,11 @@ class Relaxer {
     void accumulate_forces(const RelaxContext &ctx, const std::vector<TriId> &active);
     void push_triangle(const RelaxContext &ctx, TriId t, const OneMinusAlpha &oma,
                        ForceScratch &s, Vec2d *D) const;
-    uint32_t gather_candidates(TriId t, ForceScratch &s) const;
+    void list_candidate_chunks(TriId t, ForceScratch &s) const;
     Vec2d tie_break_pushes(const RelaxContext &ctx, const OneMinusAlpha &oma,
                            uint32_t row_k, const ForceScratch &s,
-                           const ForceTargets &targets, uint32_t k) const;
+                           const ForceCandidates &candidates, const ForceTargets &targets,
+                           uint32_t k) const;
     void bound_chunks(TriId t);
     const double *one_minus_alpha_row(const RelaxContext &ctx, const OneMinusAlpha &oma,
                                       uint32_t i) const;
