@@ -68,7 +68,8 @@ def write_ply(path, verts, faces):
 
 
 def look(pelage, mesh, work, name):
-    stats = os.path.join(work, name + ".json")
+    # Not NAME.json: look writes its scene there, beside the EXR.
+    stats = os.path.join(work, name + ".stats.json")
     log = os.path.join(work, name + ".log")
     cmd = ["nice", "-n", "19", pelage, "look", mesh, "--res", "480x270", "--spp", "16",
            "-o", os.path.join(work, name + ".exr"), "--stats-json", stats]

@@ -63,7 +63,6 @@ __attribute__((target("avx2"))) void add_pair_forces_avx2(
     const ForceTargets &targets, const ForceCandidates &candidates,
     const ForceSums &out) {
     const __m256 one = _mm256_set1_ps(1.0f), zero = _mm256_setzero_ps();
-    const __m256 padding = _mm256_set1_ps(force_padding_position);
     const __m256i lane = _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7);
     for (uint32_t k = 0; k < targets.count; ++k) {
         const __m256 qx = _mm256_set1_ps(targets.x[k]), qz = _mm256_set1_ps(targets.z[k]);
@@ -100,13 +99,15 @@ __attribute__((target("avx2"))) void add_pair_forces_avx2(
                 const __m256 dx = _mm256_sub_ps(qx, mx), dz = _mm256_sub_ps(qz, mz);
                 const __m256 d2 =
                     _mm256_add_ps(_mm256_mul_ps(dx, dx), _mm256_mul_ps(dz, dz));
-                const __m256 skip =
-                    _mm256_or_ps(_mm256_castsi256_ps(_mm256_cmpeq_epi32(
-                                     _mm256_add_epi32(lane, _mm256_set1_epi32(int(p))),
-                                     _mm256_set1_epi32(self))),
-                                 _mm256_cmp_ps(px, padding, _CMP_EQ_OQ));
-                const __m256 in =
-                    _mm256_andnot_ps(skip, _mm256_cmp_ps(d2, r2, _CMP_LT_OQ));
+                // Padding cells lie 1e18 away in any frame; only a chunk holding the
+                // target itself needs the lane test.
+                __m256 in = _mm256_cmp_ps(d2, r2, _CMP_LT_OQ);
+                if (uint32_t(self) - p < force_lanes)
+                    in = _mm256_andnot_ps(
+                        _mm256_castsi256_ps(_mm256_cmpeq_epi32(
+                            _mm256_add_epi32(lane, _mm256_set1_epi32(int(p))),
+                            _mm256_set1_epi32(self))),
+                        in);
                 const __m256 at_zero = _mm256_cmp_ps(d2, zero, _CMP_EQ_OQ);
                 touching = _mm256_or_ps(touching, _mm256_and_ps(in, at_zero));
                 pairs += uint32_t(__builtin_popcount(unsigned(_mm256_movemask_ps(in))));

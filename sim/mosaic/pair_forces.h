@@ -20,11 +20,12 @@ namespace pelage::sim {
 
 inline constexpr uint32_t force_lanes = 8;
 
-// Where padding cells and chunks lie: squared distances stay finite in floats.
+// Where padding cells and chunks lie: squared distances stay finite in floats. A padding
+// cell lies at (force_padding_position, 0), which any rigid map carries 1e18 away.
 inline constexpr float force_padding_position = 1e18f;
 
 // The cells lie in their own triangles' frames, each triangle's padded to whole chunks
-// with cells at force_padding_position. The candidate chunks are listed with the map
+// with padding cells. The candidate chunks are listed with the map
 // into the pushed triangle's frame, padded to whole lanes of chunks with circles at
 // force_padding_position.
 struct ForceCandidates {

@@ -89,7 +89,8 @@ void Relaxer::gather_by_triangle(const Cells &cells, size_t nt) {
                                   ++f;
                               }
                               for (; f < m_padded_row[t + 1]; ++f) {
-                                  m_fx[f] = m_fz[f] = force_padding_position;
+                                  m_fx[f] = force_padding_position;
+                                  m_fz[f] = 0;
                                   m_ftype[f] = 0;
                               }
                               bound_chunks(t);
@@ -152,10 +153,9 @@ void Relaxer::push_triangle(const RelaxContext &ctx, TriId t, const OneMinusAlph
     }
     list_candidate_chunks(t, s);
     const ForceCandidates candidates{
-        m_fx.data(),       m_fz.data(),     m_ftype.data(),
-        s.first.data(),    s.map_c.data(),  s.map_s.data(),
-        s.map_x.data(),    s.map_z.data(),  s.centre_x.data(),
-        s.centre_z.data(), s.radius.data(), static_cast<uint32_t>(s.radius.size())};
+        m_fx.data(),       m_fz.data(),       m_ftype.data(),  s.first.data(),
+        s.map_c.data(),    s.map_s.data(),    s.map_x.data(),  s.map_z.data(),
+        s.centre_x.data(), s.centre_z.data(), s.radius.data(), s.chunks};
     const ForceTargets targets{
         s.target_x.data(), s.target_z.data(), s.target_r.data(), s.target_oma.data(), n,
         m_padded_row[t]};
@@ -174,23 +174,40 @@ void Relaxer::push_triangle(const RelaxContext &ctx, TriId t, const OneMinusAlph
 // (its rounding, 1e-7 of the frame's size, is far below any distance the forces
 // resolve) and their circles carried there, padded to whole lanes of chunks.
 void Relaxer::list_candidate_chunks(TriId t, ForceScratch &s) const {
-    s.clear_candidates();
-    for (const Neighbourhoods::Entry &e : m_nbhd.of(t)) {
+    const auto &entries = m_nbhd.of(t);
+    size_t most = 0;
+    for (const Neighbourhoods::Entry &e : entries)
+        most += (m_padded_row[e.tri + 1] - m_padded_row[e.tri]) / force_lanes;
+    s.room_for_chunks(most + force_lanes);
+    uint32_t c = 0;
+    for (const Neighbourhoods::Entry &e : entries) {
         const TriId j = e.tri;
         const RigidMap2 G = e.to_nbr.inverse();  // F[j→t]
         const float gc = static_cast<float>(G.c), gs = static_cast<float>(G.s),
                     gx = static_cast<float>(G.ax), gz = static_cast<float>(G.ay);
         for (uint32_t jc = m_padded_row[j] / force_lanes;
-             jc < m_padded_row[j + 1] / force_lanes; ++jc) {
+             jc < m_padded_row[j + 1] / force_lanes; ++jc, ++c) {
             const Vec2d centre = G.apply({m_chunk_x[jc], m_chunk_z[jc]});
-            s.add_candidate(jc * force_lanes, j, gc, gs, gx, gz,
-                            static_cast<float>(centre.x), static_cast<float>(centre.y),
-                            m_chunk_radius[jc]);
+            s.first[c] = jc * force_lanes;
+            s.tri[c] = j;
+            s.map_c[c] = gc;
+            s.map_s[c] = gs;
+            s.map_x[c] = gx;
+            s.map_z[c] = gz;
+            s.centre_x[c] = static_cast<float>(centre.x);
+            s.centre_z[c] = static_cast<float>(centre.y);
+            s.radius[c] = m_chunk_radius[jc];
         }
     }
-    while (s.radius.size() % force_lanes)
-        s.add_candidate(0, t, 1, 0, 0, 0, force_padding_position, force_padding_position,
-                        0);
+    for (; c % force_lanes; ++c) {  // never reached: no kernel reads their cells
+        s.first[c] = 0;
+        s.tri[c] = t;
+        s.map_c[c] = 1;
+        s.map_s[c] = s.map_x[c] = s.map_z[c] = 0;
+        s.centre_x[c] = s.centre_z[c] = force_padding_position;
+        s.radius[c] = 0;
+    }
+    s.chunks = c;
 }
 
 // The pushes on target k from the candidates lying exactly on it (as the kernel's

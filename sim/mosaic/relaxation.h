@@ -103,24 +103,14 @@ class Relaxer {
             coincident.resize(n);
             pairs.resize(n);
         }
-        void clear_candidates() {
+        uint32_t chunks = 0;  // candidate chunks listed, padding included
+        void room_for_chunks(size_t n) {
+            if (first.size() >= n) return;
+            first.resize(n);
+            tri.resize(n);
             for (auto *v :
                  {&map_c, &map_s, &map_x, &map_z, &centre_x, &centre_z, &radius})
-                v->clear();
-            first.clear();
-            tri.clear();
-        }
-        void add_candidate(uint32_t at, TriId j, float c, float s, float x, float z,
-                           float cx, float cz, float rad) {
-            first.push_back(at);
-            tri.push_back(j);
-            map_c.push_back(c);
-            map_s.push_back(s);
-            map_x.push_back(x);
-            map_z.push_back(z);
-            centre_x.push_back(cx);
-            centre_z.push_back(cz);
-            radius.push_back(rad);
+                v->resize(n);
         }
     };
 

@@ -61,7 +61,7 @@ Case make_case(uint32_t seed) {
     for (uint32_t k = 0; k < chunks; ++k) slot[k] = k;
     std::shuffle(slot.begin(), slot.end(), rng);
     c.x.assign(chunks * force_lanes, force_padding_position);
-    c.z.assign(chunks * force_lanes, force_padding_position);
+    c.z.assign(chunks * force_lanes, 0.0f);  // padding, as pair_forces.h lays it
     c.type.assign(chunks * force_lanes, 0);
     const uint32_t self_chunk = rng() % chunks;
     for (uint32_t k = 0; k < chunks; ++k) {
