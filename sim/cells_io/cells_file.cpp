@@ -362,7 +362,23 @@ TriangleMesh surface_mesh(const CellsData &data, const std::string &path) {
         corners.source_face.push_back(
             static_cast<uint32_t>(corners.triangles.size() - 1));
     }
-    return clean_mesh(corners, path);
+    // The corners carried back from the frames differ from the grown surface's only by
+    // double rounding, so they are welded at 1e-9 of the size, never at a loaded mesh's
+    // 1e-5: the surface may be pelage sim's own copy split at its edge midpoints, whose
+    // triangles can be smaller than that, and no triangle may be lost (the cells' frames
+    // are this surface's triangles one by one). Its pieces were stitched when it was
+    // loaded.
+    MeshCleanOptions options;
+    options.weld_relative = 1e-9;
+    options.stitch_relative = 0;
+    options.area_relative = 0;
+    TriangleMesh mesh = clean_mesh(corners, path, options);
+    if (mesh.num_triangles() != data.num_triangles())
+        throw InputError(path, 0, "frames",
+                         std::to_string(data.num_triangles() - mesh.num_triangles()) +
+                             " of the file's " + std::to_string(data.num_triangles()) +
+                             " triangles are degenerate: the file is damaged");
+    return mesh;
 }
 
 void check_cells_match_mesh(const CellsData &data, const TriangleMesh &mesh,
